@@ -1,0 +1,38 @@
+# Every routine command in one place. `make help` lists them.
+VENV := .venv
+PY := $(VENV)/bin/python
+EXAMPLE ?= examples/office.txt
+OUT ?= out
+
+.PHONY: help setup demo test test-fast lint bench eval models clean
+
+help:  ## list the targets
+	@grep -E '^[a-z-]+:.*## ' Makefile | sed 's/:.*## /\t/'
+
+setup:  ## apt packages (as root), .venv, pinned pip install, npm tools
+	bash scripts/setup.sh
+
+demo:  ## animate the example story into $(OUT)/
+	$(VENV)/bin/wana animate $(EXAMPLE) -o $(OUT)
+
+test:  ## the whole suite, slow tests included (what CI runs)
+	$(PY) -m pytest -q
+
+test-fast:  ## skip tests marked slow
+	$(PY) -m pytest -q -m "not slow"
+
+lint:  ## ruff and mypy
+	$(VENV)/bin/ruff check .
+	$(VENV)/bin/ruff format --check .
+	$(VENV)/bin/mypy proto services wana
+
+bench:  ## every benchmark, quick mode, JSON under bench/results/
+	mkdir -p bench/results
+	for b in bench/*.py; do $(PY) $$b --quick --json bench/results/$$(basename $$b .py).json || exit 1; done
+
+eval:  ## every evaluation, quick mode, JSON under eval/results/
+	mkdir -p eval/results
+	for e in eval/*.py; do $(PY) $$e --quick --json eval/results/$$(basename $$e .py).json || exit 1; done
+
+clean:
+	rm -rf $(OUT) .pytest_cache .ruff_cache .mypy_cache
