@@ -1,0 +1,292 @@
+"""The incremental pipeline over one document: parse -> resolve -> scene -> motion.
+
+Query nodes (DESIGN §3), each keyed by the content hash of its inputs:
+- `parse:<sentence id>`   the sentence's whitespace-normalised text  -> its SSG fragment (sentence offsets)
+- `resolve`               the parse results in order                 -> names and pronouns resolved
+- `scene`                 every scene sentence's objects + relations -> the composed room
+- `segment:<name>:<k>`    k-th action, scene, end state of k-1       -> motion piece + end state
+A stage whose service is not in this build is reported in `unavailable`; nothing is faked.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import msgspec
+
+from proto.common import Header, Span
+from proto.motion_data import Motion
+from proto.scene import Scene
+from proto.ssg import ActionNode, CharacterNode, Command, Diagnostic, SentenceGraph
+from services.orchestrator.backend import Backend, StageFailed, StageUnavailable
+from services.orchestrator.document import Document
+from services.orchestrator.queries import QueryEngine
+
+STAGES = ("parse", "scene", "motion")
+
+
+@dataclass(frozen=True)
+class SentenceView:
+    id: str
+    start: int
+    end: int
+    text: str
+    kind: str
+
+
+@dataclass
+class PipelineResult:
+    doc_id: str
+    version: int
+    sentences: list[SentenceView] = field(default_factory=list)
+    graphs: dict[str, SentenceGraph] = field(default_factory=dict)  # resolved, sentence-relative spans
+    diagnostics: dict[str, list[Diagnostic]] = field(default_factory=dict)  # sentence id -> doc offsets
+    scene: Scene | None = None
+    scene_report: Any = None
+    motions: dict[str, Motion] = field(default_factory=dict)
+    commands: list[tuple[str, Command]] = field(default_factory=list)  # (sentence id, command)
+    ran: list[str] = field(default_factory=list)
+    reused: list[str] = field(default_factory=list)
+    unavailable: dict[str, str] = field(default_factory=dict)  # stage -> why
+    optimisations: list[Any] = field(default_factory=list)  # OptimiseReply per optimised interaction
+
+
+def _messages(service: str, module: str, *names: str) -> list[Any]:
+    """Import a service's message types; a missing module means the stage is not in this build."""
+    try:
+        mod = __import__(f"proto.{module}", fromlist=list(names))
+        return [getattr(mod, n) for n in names]
+    except (ImportError, AttributeError) as exc:
+        raise StageUnavailable(service, str(exc)) from exc
+
+
+def _shift(span: Span, by: int) -> Span:
+    return Span(span.start + by, span.end + by)
+
+
+def _stage_diag(stage: str, why: str, span: Span) -> Diagnostic:
+    return Diagnostic(code="E011", message=f"the {stage} stage is not available yet: {why}", span=span,
+                      severity="info")
+
+
+class Pipeline:
+    def __init__(self, backend: Backend, *, doc_id: str = "", seed: int = 0) -> None:
+        self.backend = backend
+        self.doc_id = doc_id
+        self.seed = seed
+
+    def _header(self, version: int) -> Header:
+        return Header(doc_id=self.doc_id, revision=version)
+
+    # -- stages --------------------------------------------------------------------------------------
+    def _parse(self, sid: str, text: str, version: int) -> SentenceGraph:
+        ParseRequest, ParseReply = _messages("nlp", "nlp", "ParseRequest", "ParseReply")
+
+        reply = self.backend.call(
+            "nlp", ParseRequest(header=self._header(version), sentence_id=sid, text=text, offset=0), ParseReply
+        )
+        return reply.graph  # type: ignore[no-any-return]
+
+    def _resolve(self, graphs: list[SentenceGraph], version: int) -> list[SentenceGraph]:
+        ResolveRequest, ResolveReply = _messages("nlp", "nlp", "ResolveRequest", "ResolveReply")
+
+        reply = self.backend.call("nlp", ResolveRequest(header=self._header(version), graphs=graphs), ResolveReply)
+        return list(reply.graphs)
+
+    def _compose(self, part: dict[str, Any], version: int) -> tuple[Scene, Any]:
+        ComposeRequest, ComposeReply = _messages("retrieval", "retrieval", "ComposeRequest", "ComposeReply")
+
+        reply = self.backend.call(
+            "retrieval",
+            ComposeRequest(header=self._header(version), objects=part["objects"], relations=part["relations"],
+                           room_type=part["room_type"], seed=self.seed),
+            ComposeReply,
+        )
+        return reply.scene, reply
+
+    def _synthesise(self, character: CharacterNode, scene: Scene, start: tuple[float, float, float],
+                    version: int) -> Any:
+        SynthesizeRequest, SynthesizeReply = _messages("motion", "motion", "SynthesizeRequest", "SynthesizeReply")
+        return self.backend.call(
+            "motion",
+            SynthesizeRequest(header=self._header(version), character=character, scene=scene, start=start),
+            SynthesizeReply,
+        )
+
+    def _optimise(self, scene: Scene, motion: Motion, character: str, action: ActionNode, version: int) -> Any:
+        OptimiseRequest, OptimiseReply, Interaction, OptimiseSettings = _messages(
+            "optimizer", "optimizer", "OptimiseRequest", "OptimiseReply", "Interaction", "OptimiseSettings")
+        targets = [t for t in (action.target, action.instrument) if t]
+        return self.backend.call(
+            "optimizer",
+            OptimiseRequest(header=self._header(version), scene=scene, motion=motion,
+                            interaction=Interaction(character=character, action=action.action, targets=targets),
+                            settings=OptimiseSettings(seed=self.seed)),
+            OptimiseReply,
+        )
+
+    def _motion_stage(self, result: PipelineResult, resolved: list[SentenceGraph], sentences: list[Any],
+                      engine: QueryEngine, version: int, tick: Callable[[str, int, int], None]) -> None:
+        """Motion per character, then the layout optimised around each interaction, then the final motion."""
+        assert result.scene is not None
+        characters = _characters(resolved, sentences)
+        starts = _start_positions(result.scene, list(characters))
+        scene = result.scene
+        ids = {o.id for o in scene.objects}
+        # Optimise the layout around every action that touches an object of the scene.
+        interactions = [(name, k, a) for name, (node, _) in characters.items()
+                        for k, a in enumerate(node.actions) if a.action and (a.target in ids or a.instrument in ids)]
+        done = 0
+        total = len(interactions) + len(characters)
+        for name, k, action in interactions:
+            tick("optimise", done, total)
+            node = characters[name][0]
+            first = engine.query(f"motion:{name}", [node, scene, starts[name]],
+                                 lambda n=node, sc=scene, st=starts[name]: self._synthesise(n, sc, st, version))
+            try:
+                reply = engine.query(
+                    f"optimise:{name}:{k}", [scene, first.motion, action],
+                    lambda sc=scene, m=first.motion, n=name, a=action: self._optimise(sc, m, n, a, version))
+            except StageFailed as exc:
+                result.diagnostics.setdefault(characters[name][1][k], []).append(Diagnostic(
+                    code="W301", message=f"the layout around this action could not be optimised: {exc}",
+                    span=Span(0, 0), severity="warning"))
+                continue
+            scene = reply.scene
+            result.optimisations.append(reply)
+            done += 1
+        result.scene = scene
+        for name, (node, sids) in characters.items():
+            tick("motion", done, total)
+            reply = engine.query(f"motion:{name}", [node, scene, starts[name]],
+                                 lambda n=node, st=starts[name]: self._synthesise(n, scene, st, version))
+            segments = [msgspec.structs.replace(seg, sentence_id=sids[seg.index] if seg.index < len(sids) else "")
+                        for seg in reply.motion.segments]
+            result.motions[name] = msgspec.structs.replace(reply.motion, segments=segments)
+            done += 1
+        tick("motion", done, total)
+
+    # -- the run -------------------------------------------------------------------------------------
+    def run(
+        self,
+        doc: Document,
+        engine: QueryEngine,
+        *,
+        stages: tuple[str, ...] | None = None,
+        progress: Callable[[str, int, int], None] | None = None,
+    ) -> PipelineResult:
+        stages = stages or STAGES
+        result = PipelineResult(doc_id=doc.doc_id, version=doc.version)
+        tick = progress or (lambda stage, done, total: None)
+        sentences = list(doc.sentences)
+
+        # parse, one node per sentence
+        parsed: dict[str, SentenceGraph] = {}
+        try:
+            for i, s in enumerate(sentences):
+                tick("parse", i, len(sentences))
+                parsed[s.id] = engine.query(
+                    f"parse:{s.id}", s.key_text, lambda s=s: self._parse(s.id, s.key_text, doc.version)
+                )
+            tick("parse", len(sentences), len(sentences))
+            ordered = [parsed[s.id] for s in sentences]
+            resolved = engine.query(
+                "resolve",
+                [engine.result_hash(f"parse:{s.id}") for s in sentences],
+                lambda: self._resolve(ordered, doc.version),
+            )
+        except StageUnavailable as exc:
+            result.unavailable["parse"] = str(exc)
+            self._finish(result, engine, sentences)
+            return result
+        # Spans from the parser are relative to the whitespace-normalised sentence text; map them back.
+        for s, g in zip(sentences, resolved, strict=True):
+            result.graphs[s.id] = g
+            result.sentences.append(SentenceView(s.id, s.start, s.end, s.text, g.kind))
+            result.diagnostics[s.id] = [
+                msgspec.structs.replace(d, span=_shift(_map_span(d.span, s.text), s.start)) for d in g.diagnostics
+            ]
+            result.commands.extend((s.id, c) for c in g.commands)
+
+        if "scene" in stages:
+            part = _scene_part(resolved)
+            try:
+                tick("scene", 0, 1)
+                scene, report = engine.query("scene", part, lambda: self._compose(part, doc.version))
+                result.scene, result.scene_report = scene, report
+                tick("scene", 1, 1)
+            except (StageUnavailable, StageFailed) as exc:
+                result.unavailable["scene"] = str(exc)
+
+        if "motion" in stages and result.scene is not None:
+            try:
+                self._motion_stage(result, resolved, sentences, engine, doc.version, tick)
+            except (StageUnavailable, StageFailed) as exc:
+                result.unavailable["motion"] = str(exc)
+        self._finish(result, engine, sentences)
+        return result
+
+    def _finish(self, result: PipelineResult, engine: QueryEngine, sentences: list[Any]) -> None:
+        result.ran = engine.ran()
+        result.reused = engine.reused()
+        if sentences and result.unavailable:
+            span = Span(sentences[0].start, sentences[0].end)
+            first = sentences[0].id
+            for stage, why in result.unavailable.items():
+                result.diagnostics.setdefault(first, []).append(_stage_diag(stage, why, span))
+
+
+def _map_span(span: Span, original: str) -> Span:
+    """Map a span in the whitespace-normalised text back to the sentence as written."""
+    mapping: list[int] = []  # normalised index -> original index
+    prev_space = False
+    started = False
+    for i, ch in enumerate(original):
+        if ch.isspace():
+            if started and not prev_space:
+                mapping.append(i)
+            prev_space = True
+        else:
+            mapping.append(i)
+            prev_space = False
+            started = True
+    mapping.append(len(original))
+
+    def at(k: int) -> int:
+        return mapping[min(max(k, 0), len(mapping) - 1)]
+
+    return Span(at(span.start), at(span.end - 1) + 1 if span.end > span.start else at(span.start))
+
+
+def _scene_part(graphs: list[SentenceGraph]) -> dict[str, Any]:
+    """Everything the scene depends on: objects, relations and the room kind of the scene sentences."""
+    objects, relations, room_type = [], [], ""
+    for g in graphs:
+        if g.kind != "scene":
+            continue
+        objects.extend(msgspec.structs.replace(o, span=Span(0, 0)) for o in g.objects)
+        relations.extend(msgspec.structs.replace(r, span=Span(0, 0)) for r in g.relations)
+        room_type = room_type or g.room_type
+    return {"objects": objects, "relations": relations, "room_type": room_type}
+
+
+def _characters(graphs: list[SentenceGraph], sentences: list[Any]) -> dict[str, tuple[CharacterNode, list[str]]]:
+    """Each character's actions over the document in order, with the sentence id of each action."""
+    out: dict[str, tuple[list[ActionNode], list[str]]] = {}
+    for g, s in zip(graphs, sentences, strict=True):
+        for c in g.characters:
+            actions, sids = out.setdefault(c.name, ([], []))
+            for a in c.actions:
+                actions.append(msgspec.structs.replace(a, span=Span(0, 0)))
+                sids.append(s.id)
+    return {name: (CharacterNode(name=name, actions=acts), sids) for name, (acts, sids) in out.items()}
+
+
+def _start_positions(scene: Scene, names: list[str]) -> dict[str, tuple[float, float, float]]:
+    """Characters enter along the front wall (-Z side), facing into the room, 0.9 m apart."""
+    room = scene.room
+    z = -room.depth / 2 + 0.6
+    x0 = -min(room.width / 2 - 0.6, 0.45 * (len(names) - 1))
+    return {name: (round(x0 + 0.9 * i, 3), round(z, 3), 0.0) for i, name in enumerate(names)}

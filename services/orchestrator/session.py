@@ -1,0 +1,98 @@
+"""Per-document sessions: persisted edits, and the incremental pipeline run over them.
+
+`Orchestrator` owns the session database and the backend that reaches the services; `Session` is one open
+document. `Session.edit` is acknowledged once the edit is committed to SQLite; `Session.compute` brings the
+derived values (parse, scene, motion, ...) up to date, re-running only the query nodes whose inputs changed.
+"""
+
+from __future__ import annotations
+
+import threading
+import uuid
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from services.orchestrator.backend import Backend
+from services.orchestrator.document import Document, TextChange
+from services.orchestrator.pipeline import Pipeline, PipelineResult
+from services.orchestrator.queries import QueryEngine
+from services.orchestrator.store import SessionStore
+
+Progress = Callable[[str, int, int], None]  # (stage, done, total)
+
+
+@dataclass(frozen=True)
+class EditAck:
+    doc_id: str
+    version: int  # the version this edit produced
+    changed: list[str]  # ids of sentences whose text changed
+
+
+@dataclass
+class Session:
+    doc: Document
+    store: SessionStore
+    pipeline: Pipeline
+    engine: QueryEngine = field(default_factory=QueryEngine)
+    lock: threading.RLock = field(default_factory=threading.RLock)
+    last: PipelineResult | None = None
+
+    @property
+    def doc_id(self) -> str:
+        return self.doc.doc_id
+
+    def edit(self, base_version: int, changes: list[TextChange]) -> EditAck:
+        """Apply and persist an edit; raises StaleEdit / BadEdit without changing anything."""
+        with self.lock:
+            snapshot = (self.doc.text, self.doc.version, list(self.doc.sentences), self.doc.next_id)
+            changed = self.doc.apply(base_version, changes)
+            try:
+                self.store.append_edit(self.doc_id, self.doc.version, changes, self.doc.text)
+            except BaseException:
+                self.doc.text, self.doc.version, self.doc.sentences, self.doc.next_id = snapshot
+                raise
+            return EditAck(self.doc_id, self.doc.version, changed)
+
+    def compute(self, *, stages: tuple[str, ...] | None = None, progress: Progress | None = None) -> PipelineResult:
+        """Bring every derived value up to date for the current version."""
+        with self.lock:
+            self.engine.new_revision()
+            result = self.pipeline.run(self.doc, self.engine, stages=stages, progress=progress)
+            live = {s.id for s in self.doc.sentences}
+            self.engine.forget(lambda key: not key.startswith("parse:") or key.split(":", 1)[1] in live)
+            self.engine.trim_log()
+            self.last = result
+            return result
+
+
+class Orchestrator:
+    """Opens sessions over one SQLite file and one backend."""
+
+    def __init__(self, db_path: str | Path, backend: Backend, *, seed: int = 0) -> None:
+        self.store = SessionStore(db_path)
+        self.backend = backend
+        self.seed = seed
+        self._sessions: dict[str, Session] = {}
+        self._lock = threading.Lock()
+
+    def create(self, text: str = "", *, doc_id: str | None = None, title: str = "") -> Session:
+        doc_id = doc_id or uuid.uuid4().hex[:12]
+        self.store.create(doc_id, text, title)
+        return self.open(doc_id)
+
+    def open(self, doc_id: str) -> Session:
+        """The live session of a document, rebuilt from the database when not in memory."""
+        with self._lock:
+            session = self._sessions.get(doc_id)
+            if session is None:
+                doc = self.store.load(doc_id)
+                session = Session(doc, self.store, Pipeline(self.backend, doc_id=doc_id, seed=self.seed))
+                self._sessions[doc_id] = session
+            return session
+
+    def list(self) -> list[dict[str, object]]:
+        return self.store.list()
+
+    def close(self) -> None:
+        self.store.close()
