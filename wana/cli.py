@@ -112,18 +112,22 @@ _DELEGATES = {
 
 def main(argv: list[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
-    parser = build_parser()
-    args = parser.parse_args(argv)
+    # Delegated sub-commands parse their own arguments (their --help included).
+    verbose = 0
+    while argv and argv[0] in ("-v", "-vv", "--verbose"):
+        verbose += 2 if argv.pop(0) == "-vv" else 1
     logging.basicConfig(
-        level=[logging.WARNING, logging.INFO, logging.DEBUG][min(args.verbose, 2)],
+        level=[logging.WARNING, logging.INFO, logging.DEBUG][min(verbose, 2)],
         format="%(asctime)s %(name)s %(levelname)s %(message)s",
     )
+    if argv and argv[0] in _DELEGATES:
+        module, what = _DELEGATES[argv[0]]
+        return _delegate(module, argv[1:], what)
+    parser = build_parser()
+    args = parser.parse_args(argv)
     if args.command is None:
         parser.print_help()
         return 2
-    if args.command in _DELEGATES:
-        module, what = _DELEGATES[args.command]
-        return _delegate(module, args.rest, what)
     return int(args.func(args))
 
 

@@ -1,0 +1,1 @@
+"""Importers for data a user owns: 3D-FRONT scenes, ShapeNetSem models, any OBJ/GLB + annotation."""
