@@ -1,10 +1,12 @@
-"""The incremental pipeline over one document: parse -> resolve -> scene -> motion.
+"""The incremental pipeline over one document: parse -> resolve -> scene -> optimise -> motion.
 
 Query nodes (DESIGN §3), each keyed by the content hash of its inputs:
 - `parse:<sentence id>`   the sentence's whitespace-normalised text  -> its SSG fragment (sentence offsets)
 - `resolve`               the parse results in order                 -> names and pronouns resolved
 - `scene`                 every scene sentence's objects + relations -> the composed room
-- `segment:<name>:<k>`    k-th action, scene, end state of k-1       -> motion piece + end state
+- `draft:<name>:<k>`      actions, layout before optimising action k -> the motion the optimiser starts from
+- `optimise:<name>:<k>`   layout, draft motion, action k             -> layout (+ motion) around action k
+- `motion:<name>`         actions, the final layout                  -> the character's motion
 A stage whose service is not in this build is reported in `unavailable`; nothing is faked.
 """
 
@@ -143,7 +145,7 @@ class Pipeline:
         for name, k, action in interactions:
             tick("optimise", done, total)
             node = characters[name][0]
-            first = engine.query(f"motion:{name}", [node, scene, starts[name]],
+            first = engine.query(f"draft:{name}:{k}", [node, scene, starts[name]],
                                  lambda n=node, sc=scene, st=starts[name]: self._synthesise(n, sc, st, version))
             try:
                 reply = engine.query(

@@ -1,0 +1,155 @@
+"""Bus-level messages: the envelope of every bus frame, broker statistics, and the echo service.
+
+proto/PROTOCOL.md is the authoritative description of frames, commands and messages. Everything
+here is plain msgpack on the wire, readable by any msgpack library.
+"""
+
+from __future__ import annotations
+
+from typing import Union
+
+import msgspec
+
+from proto.common import Header, Status
+
+PROTOCOL_VERSION = 1
+
+# Every bus message is one envelope frame (a msgpack array whose first element is the command name)
+# followed, for REQUEST, JOB, REPLY, ERROR and STATS-from-the-broker, by one body frame. The broker's
+# ROUTER socket adds the peer's routing id in front. Array-like structs keep the envelope small and
+# its decoding cheap; any msgpack library reads it as a plain array.
+
+
+class ReadyFrame(msgspec.Struct, frozen=True, array_like=True, tag="READY"):
+    """worker -> broker: register for ``service``. No body frame."""
+
+    service: str
+    protocol: int = PROTOCOL_VERSION
+    pid: int = 0
+    host: str = ""
+    max_frame: int = 0  # bytes the worker accepts; 0 = unknown
+    capacity: int = 1  # jobs the broker may hand it at once (it runs them one after another)
+
+
+class RequestFrame(msgspec.Struct, frozen=True, array_like=True, tag="REQUEST"):
+    """client -> broker: one job for ``service``; the body frame is the request payload."""
+
+    service: str
+    job_id: str  # unique per job, chosen by the client; requests and replies are deduplicated by it
+    key: str  # idempotency key: hash of the inputs and the code/model version
+    attempt: int  # 0 from a client
+    deadline_ms: int  # milliseconds left when sent (relative, so clocks need not agree)
+    doc_id: str = ""  # document the job belongs to ("" for stateless calls)
+    revision: int = 0  # document revision the job is computed for
+
+
+class JobFrame(msgspec.Struct, frozen=True, array_like=True, tag="JOB"):
+    """broker -> worker: a job to run; the body frame is the request payload."""
+
+    job_id: str
+    key: str
+    attempt: int  # dispatches so far, this one included: 1, 2, 3
+    deadline_ms: int  # milliseconds left when the broker dispatched the job
+    doc_id: str = ""
+    revision: int = 0
+
+
+class ReplyFrame(msgspec.Struct, frozen=True, array_like=True, tag="REPLY"):
+    """worker -> broker, then forwarded unchanged broker -> client; the body frame is the reply payload."""
+
+    job_id: str
+
+
+class ErrorFrame(msgspec.Struct, frozen=True, array_like=True, tag="ERROR"):
+    """broker -> client: a bus-level failure of a job; the body frame is a proto.common.ErrorReply."""
+
+    job_id: str  # "" when the request was too malformed to name its job
+
+
+class HeartbeatFrame(msgspec.Struct, frozen=True, array_like=True, tag="HEARTBEAT"):
+    """worker <-> broker, every heartbeat interval. No body frame."""
+
+
+class DisconnectFrame(msgspec.Struct, frozen=True, array_like=True, tag="DISCONNECT"):
+    """worker -> broker: I am leaving; broker -> worker: I do not know you, register again."""
+
+
+class PingFrame(msgspec.Struct, frozen=True, array_like=True, tag="PING"):
+    """client -> broker: liveness probe, sent every heartbeat interval while jobs are pending."""
+
+    seq: int = 0
+
+
+class PongFrame(msgspec.Struct, frozen=True, array_like=True, tag="PONG"):
+    """broker -> client: answer to PING with the broker's instance id (a new id means a restart)."""
+
+    instance: str
+    seq: int = 0
+
+
+class StatsFrame(msgspec.Struct, frozen=True, array_like=True, tag="STATS"):
+    """client -> broker (no body); broker -> client with a BrokerStats body frame."""
+
+
+Envelope = Union[  # noqa: UP007 - a runtime union for msgspec decoders
+    ReadyFrame,
+    RequestFrame,
+    JobFrame,
+    ReplyFrame,
+    ErrorFrame,
+    HeartbeatFrame,
+    DisconnectFrame,
+    PingFrame,
+    PongFrame,
+    StatsFrame,
+]
+
+# Envelopes followed by exactly one body frame (STATS only in the broker -> client direction).
+WITH_BODY = (RequestFrame, JobFrame, ReplyFrame, ErrorFrame)
+
+
+class ServiceStats(msgspec.Struct, frozen=True, kw_only=True):
+    workers: int  # registered workers
+    idle: int  # workers waiting for a job
+    queued: int  # jobs waiting for a worker
+    in_flight: int  # jobs a worker is handling
+
+
+class WorkerStats(msgspec.Struct, frozen=True, kw_only=True):
+    service: str
+    pid: int
+    host: str
+    job_id: str  # "" when idle
+    attempt: int  # attempt number of the job it holds, 0 when idle
+    jobs: int = 0  # jobs it holds (at most its capacity)
+    capacity: int = 1
+
+
+class BrokerStats(msgspec.Struct, frozen=True, kw_only=True, tag="broker_stats"):
+    """Answer to STATS: queue depths per service (what an autoscaler reads) and counters."""
+
+    instance: str  # random id of this broker process run; changes on restart
+    services: dict[str, ServiceStats] = {}
+    workers: list[WorkerStats] = []
+    completed: int = 0  # replies forwarded to clients
+    requeued: int = 0  # jobs re-queued after their worker died
+    duplicate_replies: int = 0  # replies dropped because the job was already answered or unknown
+    duplicate_requests: int = 0  # requests ignored because the job id was already queued or in flight
+    errors: dict[str, int] = {}  # bus-level error replies sent, by code
+
+
+# A tiny built-in service (wana/bus/echo.py): a health check for a deployment and the example
+# service of the contract-test harness.
+
+
+class EchoRequest(msgspec.Struct, frozen=True, kw_only=True, tag="echo_request"):
+    header: Header
+    text: str
+    sleep_s: float = 0.0  # seconds to wait before answering, 0..60 (for tests of slow jobs)
+
+
+class EchoReply(msgspec.Struct, frozen=True, kw_only=True, tag="echo_reply"):
+    header: Header
+    status: Status = "ok"
+    text: str
+    worker_pid: int = 0

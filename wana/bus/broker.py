@@ -1,0 +1,476 @@
+"""The broker: one ROUTER socket that routes jobs by service name to registered workers (Majordomo).
+
+Rules (proto/PROTOCOL.md is the authoritative description):
+
+- Workers send READY with their service name; idle workers are kept per service in least-recently-used
+  order, and a job goes to the worker that has waited longest. A worker announcing ``capacity`` > 1
+  may be handed further jobs, but only when no worker of its service is idle.
+- Heartbeats both ways every ``heartbeat_s``; a worker silent for ``liveness`` intervals is dead. Its
+  jobs are re-queued at the front of their service queue with the attempt count raised; a job dispatched
+  ``max_attempts`` times whose worker died each time gets an E007 error reply.
+- Requests and replies are deduplicated by job id: a request whose job is already queued or in flight
+  is ignored, the first reply to a job wins and later ones are dropped.
+- Each service queue holds at most ``queue_limit`` waiting jobs; beyond that the client gets E005 busy.
+- A payload over ``max_frame`` bytes gets E002; frames over twice that are refused by ZeroMQ itself
+  (the connection is dropped) so that no peer can exhaust the broker's memory.
+- Every job has a deadline; when it passes the client gets E006, or E003 when no worker for the
+  service is registered at all (a request for an unknown service waits for a worker until then).
+
+The broker keeps everything in memory: after a restart, workers re-register and clients re-send
+their pending jobs (see wana/bus/client.py), so pending work completes.
+
+This module runs a little over 400 lines because every rule above acts on the same state from one
+event loop; splitting the rules apart would hide how they interact. The plain bookkeeping classes
+live in wana/bus/broker_state.py.
+"""
+
+from __future__ import annotations
+
+import collections
+import logging
+import threading
+import time
+import uuid
+from collections.abc import Iterable
+
+import msgspec
+import zmq
+
+from proto.bus import (
+    BrokerStats,
+    DisconnectFrame,
+    ErrorFrame,
+    HeartbeatFrame,
+    JobFrame,
+    PingFrame,
+    PongFrame,
+    ReadyFrame,
+    ReplyFrame,
+    RequestFrame,
+    StatsFrame,
+)
+from proto.common import ERROR_CODES, ErrorReply, Header
+from wana.bus import wire
+from wana.bus.broker_state import Job, Service, WorkerEntry, broker_stats
+
+log = logging.getLogger(__name__)
+
+_TICK_S = 0.05  # longest sleep of the event loop: bounds deadline precision and stop latency
+_DONE_MEMORY = 65536  # job ids remembered after their reply, to drop duplicates
+_UNDELIVERED_MEMORY = 256  # replies kept when the client was unreachable, re-sent if it asks again
+_MAX_SERVICES = 1024  # distinct service names the broker will track
+_HEARTBEAT = wire.encoder.encode(HeartbeatFrame())
+_DISCONNECT = wire.encoder.encode(DisconnectFrame())
+_STATS = wire.encoder.encode(StatsFrame())
+
+
+class Broker:
+    """A Majordomo-style broker on one ROUTER socket bound to one or more URLs.
+
+    Args:
+        bind: URL or URLs to bind (``inproc://name``, ``ipc:///path``, ``tcp://127.0.0.1:5555``;
+            ``tcp://127.0.0.1:*`` picks a free port, see ``endpoints``).
+        heartbeat_s: heartbeat interval in seconds, both directions.
+        liveness: heartbeats a worker may miss before it is declared dead.
+        queue_limit: jobs that may wait per service before new ones get E005 busy.
+        max_frame: largest request or reply payload in bytes; larger ones get E002.
+        max_attempts: dispatches of one job before its worker's death turns into E007.
+        context: ZeroMQ context; pass the shared one to use ``inproc://``.
+
+    Not thread-safe: after ``start_thread()`` only ``close()`` (and ``endpoints``) may be used from
+    other threads.
+    """
+
+    def __init__(
+        self,
+        bind: str | Iterable[str],
+        *,
+        heartbeat_s: float = 1.0,
+        liveness: int = 3,
+        queue_limit: int = 256,
+        max_frame: int = 32 * 1024 * 1024,
+        max_attempts: int = 3,
+        context: zmq.Context | None = None,
+    ):
+        if heartbeat_s <= 0 or liveness < 1 or queue_limit < 1 or max_frame < 1 or max_attempts < 1:
+            raise ValueError(
+                "heartbeat_s, liveness, queue_limit, max_frame and max_attempts must be positive"
+            )
+        self.heartbeat_s = float(heartbeat_s)
+        self.liveness = int(liveness)
+        self.queue_limit = int(queue_limit)
+        self.max_frame = int(max_frame)
+        self.max_attempts = int(max_attempts)
+        self.instance = uuid.uuid4().hex[:16]
+        self._context = context or zmq.Context.instance()
+        self._socket = self._context.socket(zmq.ROUTER)
+        self._socket.setsockopt(zmq.LINGER, 0)
+        self._socket.setsockopt(zmq.ROUTER_MANDATORY, 1)  # learn at once when a peer is gone
+        self._socket.setsockopt(zmq.ROUTER_HANDOVER, 1)  # a reconnecting client keeps its routing id
+        self._socket.setsockopt(zmq.SNDHWM, 0)  # queues are bounded by queue_limit, not by dropping
+        self._socket.setsockopt(zmq.RCVHWM, 0)
+        self._socket.setsockopt(zmq.MAXMSGSIZE, 2 * self.max_frame + 4096)
+        self.endpoints: list[str] = []
+        urls = [bind] if isinstance(bind, str) else list(bind)
+        if not urls:
+            raise ValueError("Broker needs at least one URL to bind")
+        try:
+            for url in urls:
+                self._socket.bind(url)
+                self.endpoints.append(self._socket.getsockopt_string(zmq.LAST_ENDPOINT))
+        except zmq.ZMQError:
+            self._socket.close(0)
+            raise
+        self._services: dict[str, Service] = {}
+        self._workers: dict[bytes, WorkerEntry] = {}
+        self._jobs: dict[str, Job] = {}
+        self._done: dict[str, None] = {}
+        self._undelivered: collections.OrderedDict[str, tuple[bytes, tuple]] = collections.OrderedDict()
+        self._stop = threading.Event()
+        self._thread: threading.Thread | None = None
+        self._closed = False
+        self.completed = 0
+        self.requeued = 0
+        self.duplicate_replies = 0
+        self.duplicate_requests = 0
+        self.errors: collections.Counter[str] = collections.Counter()
+
+    # ----------------------------------------------------------------------------------- lifetime
+
+    def run(self, stop: threading.Event | None = None) -> None:
+        """Serve until ``stop`` (or the broker's own stop event, set by ``close()``) is set."""
+        stopped = self._stop.is_set if stop is None else (lambda: stop.is_set() or self._stop.is_set())
+        sock = self._socket
+        recv = wire.recv
+        on_message = self._on_message
+        monotonic = time.monotonic
+        next_heartbeat = monotonic() + self.heartbeat_s
+        next_tick = monotonic()
+        while True:
+            frames = recv(sock)
+            if frames is not None:
+                on_message(frames)
+                if monotonic() < next_tick:
+                    continue
+            now = monotonic()
+            if now >= next_tick:
+                if stopped():
+                    return
+                if now >= next_heartbeat:
+                    self._heartbeat(now)
+                    next_heartbeat = now + self.heartbeat_s
+                self._expire_jobs(now)
+                next_tick = now + _TICK_S
+            if frames is None:
+                wire.wait(sock, min(next_tick, next_heartbeat) - now)
+
+    def start_thread(self) -> threading.Thread:
+        """Run the broker in a daemon thread; ``close()`` stops it."""
+        if self._thread is not None:
+            raise RuntimeError("broker already started")
+        self._thread = threading.Thread(target=self.run, name="wana-broker", daemon=True)
+        self._thread.start()
+        return self._thread
+
+    def close(self) -> None:
+        """Stop the loop (waiting for its thread if ``start_thread`` was used) and close the socket."""
+        if self._closed:
+            return
+        self._stop.set()
+        if self._thread is not None and self._thread is not threading.current_thread():
+            self._thread.join(timeout=5.0)
+        self._closed = True
+        self._socket.close(0)
+
+    def __enter__(self) -> Broker:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    # ------------------------------------------------------------------------------------ inbound
+
+    def _on_message(self, frames: list[zmq.Frame]) -> None:
+        sender = frames[0].bytes
+        if len(frames) < 2:
+            log.warning("dropped a message with no envelope from %r", sender)
+            return
+        try:
+            msg = wire.envelope_decoder.decode(frames[1])
+        except (msgspec.DecodeError, msgspec.ValidationError) as exc:
+            self._client_error(sender, "", "E001", f"undecodable envelope: {exc}")
+            return
+        kind = type(msg)
+        if kind is RequestFrame:
+            if len(frames) != 3:
+                self._client_error(
+                    sender, msg.job_id, "E001", f"REQUEST needs 1 body frame, got {len(frames) - 2}"
+                )
+                return
+            self._on_request(sender, msg, frames[2])
+            return
+        worker = self._workers.get(sender)
+        if worker is not None:
+            worker.expiry = time.monotonic() + self.heartbeat_s * self.liveness
+        if kind is ReplyFrame:
+            if len(frames) != 3:
+                log.warning("dropped a REPLY with %d body frames from %r", len(frames) - 2, sender)
+                return
+            self._on_reply(sender, worker, msg.job_id, frames)
+        elif kind is HeartbeatFrame:
+            if worker is None:
+                self._send(sender, _DISCONNECT)
+        elif kind is PingFrame:
+            self._send(sender, wire.encoder.encode(PongFrame(self.instance, msg.seq)))
+        elif kind is ReadyFrame:
+            self._on_ready(sender, worker, msg)
+        elif kind is DisconnectFrame:
+            if worker is not None:
+                self._remove_worker(worker, "it disconnected")
+        elif kind is StatsFrame:
+            self._send(sender, _STATS, wire.encoder.encode(self.stats()))
+        else:
+            log.warning(
+                "dropped a %s envelope from %r: not a command the broker answers", kind.__name__, sender
+            )
+
+    def _on_request(self, client: bytes, request: RequestFrame, payload: zmq.Frame) -> None:
+        job_id = request.job_id
+        job = self._jobs.get(job_id)
+        if job is not None:
+            self.duplicate_requests += 1
+            job.client = client  # the client may have reconnected under a new id
+            return
+        if job_id in self._done:
+            self.duplicate_requests += 1
+            kept = self._undelivered.pop(job_id, None)
+            if kept is not None:
+                self._send(client, *kept[1])
+            return
+        if len(payload) > self.max_frame:
+            why = f"payload of {len(payload)} bytes exceeds the {self.max_frame}-byte cap"
+            self._client_error(client, job_id, "E002", why, request.doc_id, request.revision)
+            return
+        if request.deadline_ms <= 0:
+            why = "the request arrived after its deadline"
+            self._client_error(client, job_id, "E006", why, request.doc_id, request.revision)
+            return
+        svc = self._services.get(request.service)
+        if svc is None:
+            if len(self._services) >= _MAX_SERVICES:
+                why = f"unknown service {request.service!r}"
+                self._client_error(client, job_id, "E003", why, request.doc_id, request.revision)
+                return
+            svc = self._services[request.service] = Service(request.service)
+        if len(svc.queue) >= self.queue_limit:
+            why = f"service {request.service!r} has {len(svc.queue)} jobs waiting"
+            self._client_error(client, job_id, "E005", why, request.doc_id, request.revision, retryable=True)
+            return
+        self._jobs[job_id] = Job(client, request, payload, time.monotonic())
+        svc.queue.append(job_id)
+        if svc.idle or svc.prefetching:
+            self._dispatch(svc)
+
+    def _on_ready(self, sender: bytes, worker: WorkerEntry | None, ready: ReadyFrame) -> None:
+        if worker is not None:  # re-registration: whatever it held is abandoned
+            self._remove_worker(worker, "it registered again")
+        svc = self._services.get(ready.service)
+        if svc is None:
+            if len(self._services) >= _MAX_SERVICES:
+                log.warning("refused worker %r: too many services", sender)
+                self._send(sender, _DISCONNECT)
+                return
+            svc = self._services[ready.service] = Service(ready.service)
+        worker = WorkerEntry(sender, ready, time.monotonic() + self.heartbeat_s * self.liveness)
+        self._workers[sender] = worker
+        svc.workers.add(sender)
+        svc.idle.append(sender)
+        if worker.capacity > 1:
+            svc.prefetching += 1
+        log.info("worker %r (pid %d) registered for %r", sender, ready.pid, ready.service)
+        self._dispatch(svc)
+
+    def _on_reply(
+        self, sender: bytes, worker: WorkerEntry | None, job_id: str, frames: list[zmq.Frame]
+    ) -> None:
+        job = self._jobs.pop(job_id, None)
+        if job is None:
+            self.duplicate_replies += 1
+        else:
+            # The first reply wins, even from a worker presumed dead whose job went to another worker;
+            # that other worker finishes and its reply is dropped as a duplicate.
+            self._remember_done(job_id)
+            if len(frames[2]) > self.max_frame:
+                why = f"reply of {len(frames[2])} bytes exceeds the {self.max_frame}-byte cap"
+                self._client_error(job.client, job_id, "E002", why, job.request.doc_id, job.request.revision)
+            else:
+                self.completed += 1
+                self._send_to_client(job.client, job_id, frames[1], frames[2])  # envelope forwarded as is
+        if worker is None:
+            self._send(sender, _DISCONNECT)  # e.g. a worker of the broker before a restart
+            return
+        if worker.jobs.pop(job_id, 0) is None:  # it held this job (values are None)
+            svc = self._services[worker.service]
+            if not worker.jobs:
+                svc.idle.append(sender)
+            if svc.queue:
+                self._dispatch(svc)
+
+    # ----------------------------------------------------------------------------------- dispatch
+
+    def _next_worker(self, svc: Service) -> WorkerEntry | None:
+        """The idle worker that waited longest, else (prefetch) the least loaded one with a free slot."""
+        while svc.idle:
+            worker = self._workers.get(svc.idle.popleft())
+            if worker is not None and not worker.jobs:
+                return worker
+        if not svc.prefetching:
+            return None
+        best = None
+        for wid in svc.workers:
+            worker = self._workers[wid]
+            if len(worker.jobs) < worker.capacity and (best is None or len(worker.jobs) < len(best.jobs)):
+                best = worker
+        return best
+
+    def _dispatch(self, svc: Service) -> None:
+        while svc.queue:
+            worker = self._next_worker(svc)
+            if worker is None:
+                return
+            job = self._jobs.get(svc.queue.popleft())
+            if job is None:  # expired while queued
+                if not worker.jobs:
+                    svc.idle.appendleft(worker.identity)
+                continue
+            job.attempt += 1
+            job.worker = worker.identity
+            worker.jobs[job.job_id] = None
+            r = job.request
+            left_ms = max(1, int((job.deadline - time.monotonic()) * 1000))
+            envelope = wire.encoder.encode(
+                JobFrame(r.job_id, r.key, job.attempt, left_ms, r.doc_id, r.revision)
+            )
+            if not self._send(worker.identity, envelope, job.payload):
+                job.attempt -= 1  # the job never reached it: not an attempt
+                self._remove_worker(worker, "it is unreachable", undelivered=job.job_id)
+
+    def _remove_worker(self, worker: WorkerEntry, why: str, *, undelivered: str = "") -> None:
+        """Forget a worker; re-queue its jobs, or fail those whose last allowed attempt it was.
+
+        ``undelivered``: a job that never reached the worker; it is re-queued without counting.
+        """
+        self._workers.pop(worker.identity, None)
+        svc = self._services.get(worker.service)
+        if svc is not None:
+            svc.workers.discard(worker.identity)
+            try:
+                svc.idle.remove(worker.identity)
+            except ValueError:
+                pass
+        log.info("worker %r of %r removed: %s", worker.identity, worker.service, why)
+        if worker.capacity > 1 and svc is not None:
+            svc.prefetching -= 1
+        held, worker.jobs = list(worker.jobs), {}
+        requeue = []
+        for job_id in held:
+            job = self._jobs.get(job_id)
+            if job is None or job.worker != worker.identity:
+                continue  # already answered or expired
+            job.worker = None
+            delivered = job_id != undelivered
+            if delivered and job.attempt >= self.max_attempts:
+                del self._jobs[job_id]
+                self._remember_done(job_id)
+                message = f"the worker died during each of {job.attempt} attempts (last: {why})"
+                self._client_error(
+                    job.client, job_id, "E007", message, job.request.doc_id, job.request.revision
+                )
+                continue
+            if delivered:
+                self.requeued += 1
+            requeue.append(job_id)
+        if svc is not None and requeue:
+            svc.queue.extendleft(reversed(requeue))  # they waited longest: they go first, in order
+            self._dispatch(svc)
+
+    # ------------------------------------------------------------------------------------- timers
+
+    def _heartbeat(self, now: float) -> None:
+        for worker in list(self._workers.values()):
+            if worker.expiry < now:
+                self._remove_worker(worker, f"no heartbeat for {self.liveness} intervals")
+            elif not self._send(worker.identity, _HEARTBEAT):
+                self._remove_worker(worker, "it is unreachable")
+
+    def _expire_jobs(self, now: float) -> None:
+        expired = [job for job in self._jobs.values() if job.deadline <= now]
+        for job in expired:
+            del self._jobs[job.job_id]
+            self._remember_done(job.job_id)
+            svc = self._services.get(job.service)
+            if job.worker is None and svc is not None:
+                try:
+                    svc.queue.remove(job.job_id)
+                except ValueError:
+                    pass
+            if svc is None or not svc.workers:
+                code, why = "E003", f"no worker for service {job.service!r} registered before the deadline"
+            else:
+                where = "in the queue" if job.worker is None else f"on a worker (attempt {job.attempt})"
+                code, why = "E006", f"deadline passed while the job was {where}"
+            self._client_error(job.client, job.job_id, code, why, job.request.doc_id, job.request.revision)
+
+    # ------------------------------------------------------------------------------------ outbound
+
+    def _send(self, identity: bytes, *frames: object) -> bool:
+        try:
+            wire.send(self._socket, (identity, *frames))
+            return True
+        except zmq.ZMQError as exc:  # EHOSTUNREACH (ROUTER_MANDATORY): the peer is gone
+            log.debug("could not send to %r: %s", identity, exc)
+            return False
+
+    def _send_to_client(self, client: bytes, job_id: str, envelope: object, body: object) -> None:
+        if not self._send(client, envelope, body):
+            self._undelivered[job_id] = (client, (envelope, body))
+            if len(self._undelivered) > _UNDELIVERED_MEMORY:
+                self._undelivered.popitem(last=False)
+
+    def _client_error(
+        self,
+        client: bytes,
+        job_id: str,
+        code: str,
+        message: str,
+        doc_id: str = "",
+        revision: int = 0,
+        *,
+        retryable: bool = False,
+    ) -> None:
+        assert code in ERROR_CODES, code
+        self.errors[code] += 1
+        reply = ErrorReply(
+            header=Header(doc_id=doc_id, revision=revision), code=code, message=message, retryable=retryable
+        )
+        log.debug("job %r: %s %s", job_id, code, message)
+        envelope = wire.encoder.encode(ErrorFrame(job_id))
+        self._send_to_client(client, job_id, envelope, wire.encoder.encode(reply))
+
+    def _remember_done(self, job_id: str) -> None:
+        done = self._done
+        done[job_id] = None
+        if len(done) > _DONE_MEMORY:
+            del done[next(iter(done))]
+
+    # -------------------------------------------------------------------------------- statistics
+
+    def stats(self) -> BrokerStats:
+        """Queue depths per service, registered workers and counters (also answered to STATS)."""
+        counters = {
+            "completed": self.completed,
+            "requeued": self.requeued,
+            "duplicate_replies": self.duplicate_replies,
+            "duplicate_requests": self.duplicate_requests,
+        }
+        return broker_stats(self.instance, self._services, self._workers, self._jobs, counters, self.errors)

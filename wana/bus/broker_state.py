@@ -1,0 +1,88 @@
+"""The broker's bookkeeping: jobs, registered workers, per-service queues, and their statistics.
+
+Plain data with no sockets, kept apart from wana/bus/broker.py so that the routing rules there read
+on their own.
+"""
+
+from __future__ import annotations
+
+import collections
+
+import zmq
+
+from proto.bus import BrokerStats, ReadyFrame, RequestFrame, ServiceStats, WorkerStats
+
+
+class Job:
+    __slots__ = ("job_id", "client", "service", "request", "attempt", "deadline", "payload", "worker")
+
+    def __init__(self, client: bytes, request: RequestFrame, payload: zmq.Frame, now: float):
+        self.job_id = request.job_id
+        self.client = client
+        self.service = request.service
+        self.request = request
+        self.attempt = request.attempt
+        self.deadline = now + request.deadline_ms / 1000.0
+        self.payload = payload
+        self.worker: bytes | None = None
+
+
+class WorkerEntry:
+    __slots__ = ("identity", "service", "expiry", "jobs", "capacity", "ready")
+
+    def __init__(self, identity: bytes, ready: ReadyFrame, expiry: float):
+        self.identity = identity
+        self.service = ready.service
+        self.expiry = expiry
+        self.jobs: dict[str, None] = {}  # job ids it holds, in dispatch order
+        self.capacity = max(1, ready.capacity)
+        self.ready = ready
+
+
+class Service:
+    __slots__ = ("name", "idle", "queue", "workers", "prefetching")
+
+    def __init__(self, name: str):
+        self.name = name
+        self.idle: collections.deque[bytes] = (
+            collections.deque()
+        )  # workers holding no job, least recently used first
+        self.queue: collections.deque[str] = collections.deque()  # job ids waiting for a worker
+        self.workers: set[bytes] = set()
+        self.prefetching = 0  # registered workers with capacity > 1
+
+
+def broker_stats(
+    instance: str,
+    services: dict[str, Service],
+    workers: dict[bytes, WorkerEntry],
+    jobs: dict[str, Job],
+    counters: dict[str, int],
+    errors: dict[str, int],
+) -> BrokerStats:
+    """Queue depths per service, registered workers and counters, as answered to STATS."""
+    service_stats = {}
+    for name, svc in services.items():
+        in_flight = sum(len(workers[wid].jobs) for wid in svc.workers)
+        idle = sum(1 for wid in svc.workers if not workers[wid].jobs)
+        service_stats[name] = ServiceStats(
+            workers=len(svc.workers), idle=idle, queued=len(svc.queue), in_flight=in_flight
+        )
+    worker_stats = []
+    for w in workers.values():
+        first = next(iter(w.jobs), "")
+        job = jobs.get(first)
+        worker_stats.append(
+            WorkerStats(
+                service=w.service,
+                pid=w.ready.pid,
+                host=w.ready.host,
+                job_id=first,
+                attempt=job.attempt if job is not None else 0,
+                jobs=len(w.jobs),
+                capacity=w.capacity,
+            )
+        )
+    return BrokerStats(
+        instance=instance, services=service_stats, workers=worker_stats, errors=dict(errors), **counters
+    )

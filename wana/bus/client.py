@@ -1,0 +1,355 @@
+"""The client API the orchestrator (and tests) use to send jobs through the broker.
+
+One DEALER socket with a fixed routing id, so the broker can answer across reconnects. Several jobs
+may be in flight at once (``submit`` + ``wait``); ``request`` is the one-job shortcut.
+
+While jobs are pending the client pings the broker every ``heartbeat_s``; the PONG carries the
+broker's instance id. When that id changes (the broker restarted and lost its memory) or the broker
+answers again after a silence, every pending job is sent again with the same job id, and the broker
+ignores a job id it already holds, so pending work completes exactly once.
+
+Not thread-safe: use one Client per thread (ZeroMQ sockets must not be shared between threads).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import time
+import uuid
+from collections.abc import Iterable
+from typing import Any, Literal
+
+import msgspec
+import zmq
+
+import wana
+from proto.bus import BrokerStats, ErrorFrame, PingFrame, PongFrame, ReplyFrame, RequestFrame, StatsFrame
+from proto.common import ERROR_CODES, ErrorReply
+from wana.bus import wire
+
+_TICK_S = 0.05
+_STATS = wire.encoder.encode(StatsFrame())
+
+
+class BusError(Exception):
+    """A bus-level failure of one job: busy, deadline, attempts exhausted, oversize, unknown service.
+
+    Attributes:
+        code: key of proto.common.ERROR_CODES, e.g. "E005".
+        message: human-readable detail.
+        retryable: True when sending the same job later may succeed (busy).
+    """
+
+    def __init__(self, code: str, message: str, retryable: bool = False):
+        super().__init__(f"{code} {ERROR_CODES.get(code, 'error')}: {message}")
+        self.code = code
+        self.message = message
+        self.retryable = retryable
+
+
+class _Pending:
+    __slots__ = ("request", "payload", "local_deadline", "sent_to", "ping_before")
+
+    def __init__(
+        self,
+        request: RequestFrame,
+        payload: bytes,
+        local_deadline: float,
+        sent_to: str | None,
+        ping_before: int,
+    ):
+        self.request = request
+        self.payload = payload
+        self.local_deadline = local_deadline
+        self.sent_to = sent_to  # broker instance id when last sent (None: not known yet)
+        self.ping_before = ping_before  # sequence number of the last PING sent before the job
+
+
+def idempotency_key(service: str, payload: bytes, version: str = wana.__version__) -> str:
+    """Default idempotency key: a hash of the service, the code version and the payload (32 hex chars)."""
+    h = hashlib.blake2b(digest_size=16)
+    h.update(service.encode())
+    h.update(b"\0")
+    h.update(version.encode())
+    h.update(b"\0")
+    h.update(payload)
+    return h.hexdigest()
+
+
+class Client:
+    """Send jobs to services through the broker at ``connect``.
+
+    Args:
+        connect: broker URL (``inproc://`` needs the broker's context, passed as ``context``).
+        heartbeat_s: ping interval while jobs are pending; should match the broker's heartbeat.
+        liveness: missed pongs after which the broker is presumed gone (jobs re-sent when it answers).
+        context: ZeroMQ context; defaults to the process-wide one.
+    """
+
+    def __init__(
+        self,
+        connect: str,
+        *,
+        heartbeat_s: float = 1.0,
+        liveness: int = 3,
+        context: zmq.Context | None = None,
+    ):
+        self.connect = connect
+        self.heartbeat_s = float(heartbeat_s)
+        self.liveness = int(liveness)
+        self._context = context or zmq.Context.instance()
+        self._socket = self._context.socket(zmq.DEALER)
+        self._socket.setsockopt(zmq.LINGER, 0)
+        self._socket.setsockopt(zmq.ROUTING_ID, b"C" + uuid.uuid4().hex.encode())
+        self._socket.setsockopt(zmq.SNDHWM, 0)
+        self._socket.setsockopt(zmq.RCVHWM, 0)
+        self._socket.connect(connect)
+        self._prefix = uuid.uuid4().hex[:12]
+        self._counter = 0
+        self._pending: dict[str, _Pending] = {}
+        self._results: dict[str, bytes | BusError] = {}
+        self._stats: BrokerStats | None = None
+        # Any: they decode zmq.Frame objects, which pyzmq's stubs do not declare as buffers.
+        self._error_decoder: Any = msgspec.msgpack.Decoder(ErrorReply)
+        self._stats_decoder: Any = msgspec.msgpack.Decoder(BrokerStats)
+        self.broker_instance: str | None = None
+        self._unanswered_since: float | None = None  # first PING sent since the last PONG
+        self._last_ping = 0.0
+        self._next_check = 0.0  # pings and local deadlines are checked at most every _TICK_S
+        self._broker_lost = False
+        self._ping_seq = 0
+        self.resent = 0
+        self._ping()
+
+    # -------------------------------------------------------------------------------- public API
+
+    def submit(
+        self,
+        service: str,
+        payload: bytes,
+        *,
+        idempotency_key: str | None = None,
+        deadline_s: float = 30.0,
+        doc_id: str = "",
+        revision: int = 0,
+    ) -> str:
+        """Send one job and return its job id at once; collect the reply with ``wait`` or ``result``.
+
+        Args:
+            service: service name, e.g. "nlp".
+            payload: request payload, normally a msgpack-encoded request struct.
+            idempotency_key: hash of the inputs and the code/model version; computed from the
+                payload and wana's version when None.
+            deadline_s: seconds the job may take, queueing included; then it fails with E006.
+            doc_id, revision: document and revision the job is computed for.
+        """
+        if not isinstance(payload, (bytes, bytearray, memoryview)):
+            raise TypeError(f"payload must be bytes, not {type(payload).__name__}")
+        if deadline_s <= 0:
+            raise ValueError("deadline_s must be positive")
+        self._counter += 1
+        job_id = f"{self._prefix}-{self._counter}"
+        key = idempotency_key if idempotency_key is not None else _default_key(service, payload)
+        request = RequestFrame(service, job_id, key, 0, int(deadline_s * 1000), doc_id, revision)
+        payload = bytes(payload)
+        local_deadline = time.monotonic() + deadline_s + self.heartbeat_s * self.liveness
+        pending = _Pending(request, payload, local_deadline, self.broker_instance, self._ping_seq)
+        self._pending[job_id] = pending
+        if not self._send((wire.encoder.encode(request), payload)):
+            pending.sent_to = ""  # not delivered: the next PONG from any broker re-sends it
+        return job_id
+
+    def wait(
+        self,
+        job_ids: Iterable[str],
+        timeout: float | None = None,
+        *,
+        return_when: Literal["all", "any"] = "all",
+    ) -> dict[str, bytes | BusError]:
+        """Wait for jobs; return ``{job_id: reply payload or BusError}`` for those finished.
+
+        Returns when all (or, with ``return_when="any"``, at least one) of ``job_ids`` finished or
+        after ``timeout`` seconds (None: until each job's deadline). Finished results are handed
+        over once: a later ``wait`` for the same id does not return it again.
+        """
+        wanted = list(dict.fromkeys(job_ids))
+        unknown = [j for j in wanted if j not in self._pending and j not in self._results]
+        if unknown:
+            raise KeyError(f"unknown or already collected job ids: {unknown[:5]}")
+        end = None if timeout is None else time.monotonic() + timeout
+        need = len(wanted) if return_when == "all" else min(1, len(wanted))
+        while sum(1 for j in wanted if j in self._results) < need:
+            now = time.monotonic()
+            if end is not None and now >= end:
+                break
+            step = _TICK_S if end is None else max(0.0, min(_TICK_S, end - now))
+            self._pump(step)
+        return {j: self._results.pop(j) for j in wanted if j in self._results}
+
+    def collect(self, timeout: float = 0.0) -> dict[str, bytes | BusError]:
+        """Every result that has arrived, waiting up to ``timeout`` seconds for at least one (as completed)."""
+        if not self._results and self._pending:
+            end = time.monotonic() + timeout
+            while True:
+                self._pump(max(0.0, min(_TICK_S, end - time.monotonic())))
+                if self._results or not self._pending or time.monotonic() >= end:
+                    break
+        out, self._results = self._results, {}
+        return out
+
+    def result(self, job_id: str, timeout: float | None = None) -> bytes:
+        """The reply payload of one job; raises BusError on a bus-level error, TimeoutError on timeout."""
+        got = self.wait([job_id], timeout)
+        if job_id not in got:
+            raise TimeoutError(f"job {job_id} not finished after {timeout} s")
+        out = got[job_id]
+        if isinstance(out, BusError):
+            raise out
+        return out
+
+    def request(
+        self,
+        service: str,
+        payload: bytes,
+        *,
+        idempotency_key: str | None = None,
+        deadline_s: float = 30.0,
+        doc_id: str = "",
+        revision: int = 0,
+    ) -> bytes:
+        """Send one job and return its reply payload (which may encode a service's ErrorReply).
+
+        Raises:
+            BusError: bus-level failure (E002 oversize, E003 unknown service, E005 busy, E006
+                deadline, E007 attempts exhausted).
+        """
+        job_id = self.submit(
+            service,
+            payload,
+            idempotency_key=idempotency_key,
+            deadline_s=deadline_s,
+            doc_id=doc_id,
+            revision=revision,
+        )
+        return self.result(job_id)
+
+    def cancel(self, job_ids: Iterable[str]) -> None:
+        """Stop waiting for jobs (e.g. of a superseded revision); their replies will be dropped."""
+        for j in job_ids:
+            self._pending.pop(j, None)
+            self._results.pop(j, None)
+
+    @property
+    def pending(self) -> int:
+        """Jobs sent and not answered yet."""
+        return len(self._pending)
+
+    def stats(self, timeout: float = 5.0) -> BrokerStats:
+        """Ask the broker for its queue depths, workers and counters."""
+        self._stats = None
+        self._send((_STATS,))
+        end = time.monotonic() + timeout
+        while self._stats is None:
+            left = end - time.monotonic()
+            if left <= 0:
+                raise TimeoutError(f"broker at {self.connect} did not answer STATS within {timeout} s")
+            self._pump(min(_TICK_S, left))
+        return self._stats
+
+    def close(self) -> None:
+        """Close the socket; pending jobs are abandoned."""
+        if not self._socket.closed:
+            self._socket.close(0)
+
+    def __enter__(self) -> Client:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    # --------------------------------------------------------------------------------- internals
+
+    def _send(self, frames: tuple[object, ...]) -> bool:
+        try:
+            wire.send(self._socket, frames)
+            return True
+        except zmq.Again:  # no broker connected at all (inproc after it closed): retried on PONG
+            return False
+
+    def _ping(self) -> None:
+        self._ping_seq += 1
+        if self._unanswered_since is None:
+            self._unanswered_since = time.monotonic()
+        self._send((wire.encoder.encode(PingFrame(self._ping_seq)),))
+        self._last_ping = time.monotonic()
+
+    def _pump(self, timeout_s: float) -> None:
+        """Read what arrived within ``timeout_s``; run pings and local deadlines."""
+        sock = self._socket
+        frames = wire.recv(sock)
+        if frames is None and wire.wait(sock, timeout_s):
+            frames = wire.recv(sock)
+        while frames is not None:
+            self._on_message(frames)
+            frames = wire.recv(sock)
+        now = time.monotonic()
+        if self._pending and now >= self._next_check:
+            self._next_check = now + _TICK_S
+            if now - self._last_ping >= self.heartbeat_s:
+                self._ping()
+            if (
+                self._unanswered_since is not None
+                and now - self._unanswered_since > self.heartbeat_s * self.liveness
+            ):
+                self._broker_lost = True
+            expired = [j for j, p in self._pending.items() if p.local_deadline <= now]
+            for j in expired:
+                del self._pending[j]
+                self._results[j] = BusError(
+                    "E006", f"no answer from the broker at {self.connect} before the deadline"
+                )
+
+    def _on_message(self, frames: list[zmq.Frame]) -> None:
+        try:
+            msg = wire.envelope_decoder.decode(frames[0])
+        except (msgspec.DecodeError, msgspec.ValidationError):
+            return
+        kind = type(msg)
+        if kind is ReplyFrame and len(frames) == 2:
+            if self._pending.pop(msg.job_id, None) is not None:  # else: a duplicate or a cancelled job
+                self._results[msg.job_id] = frames[1].bytes
+        elif kind is ErrorFrame and len(frames) == 2:
+            if self._pending.pop(msg.job_id, None) is not None:
+                try:
+                    err = self._error_decoder.decode(frames[1])
+                    self._results[msg.job_id] = BusError(err.code, err.message, err.retryable)
+                except (msgspec.DecodeError, msgspec.ValidationError) as exc:
+                    self._results[msg.job_id] = BusError(
+                        "E001", f"undecodable error reply from the broker: {exc}"
+                    )
+        elif kind is PongFrame:
+            self._on_pong(msg.instance, msg.seq)
+        elif kind is StatsFrame and len(frames) == 2:
+            self._stats = self._stats_decoder.decode(frames[1])
+
+    def _on_pong(self, instance: str, seq: int) -> None:
+        """Re-send the pending jobs this broker instance may not hold (see the module docstring)."""
+        self._unanswered_since = None
+        resend_all, self._broker_lost = self._broker_lost, False
+        self.broker_instance = instance
+        for p in self._pending.values():
+            if p.sent_to == instance and not resend_all:
+                continue
+            if p.sent_to is None and seq <= p.ping_before and not resend_all:
+                p.sent_to = instance  # the broker answered a PING sent before the job: it has the job
+                continue
+            left_ms = int((p.local_deadline - self.heartbeat_s * self.liveness - time.monotonic()) * 1000)
+            if left_ms <= 0:
+                continue
+            p.request = msgspec.structs.replace(p.request, deadline_ms=left_ms)
+            p.sent_to = instance if self._send((wire.encoder.encode(p.request), p.payload)) else ""
+            self.resent += 1
+
+
+def _default_key(service: str, payload: bytes) -> str:
+    return idempotency_key(service, bytes(payload))

@@ -1,0 +1,295 @@
+"""The worker runtime: register a bytes -> bytes handler for a service and serve jobs from the broker.
+
+The handler is usually ``wana.bus.service.make_frame_handler(CONTRACT)``: it decodes the request,
+calls the pure handler and encodes the reply, turning any failure into an ErrorReply. This module
+adds the socket side: READY, heartbeats (also while a long handler runs), oversize and expired jobs
+answered with an ErrorReply without calling the handler, and reconnection with exponential back-off
+when the broker goes silent (for instance because it restarted).
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import signal
+import socket
+import threading
+import time
+import uuid
+from collections.abc import Callable
+
+import msgspec
+import zmq
+
+from proto.bus import DisconnectFrame, HeartbeatFrame, JobFrame, ReadyFrame, ReplyFrame
+from proto.common import ErrorReply, Header
+from wana.bus import wire
+
+log = logging.getLogger(__name__)
+
+Handler = Callable[[bytes], bytes]
+
+_TICK_S = 0.05  # longest sleep of the loop: bounds stop latency
+_HEARTBEAT = wire.encoder.encode(HeartbeatFrame())
+_DISCONNECT = wire.encoder.encode(DisconnectFrame())
+
+
+class Worker:
+    """Serve one service's jobs with a bytes -> bytes handler.
+
+    Args:
+        service: service name clients address, e.g. ``"nlp"``.
+        handler: pure function from request payload to reply payload; it should not raise (exceptions
+            are turned into an E009 ErrorReply anyway).
+        connect: broker URL.
+        heartbeat_s: heartbeat interval in seconds; the broker must use the same one.
+        liveness: broker heartbeats that may be missed before the worker reconnects.
+        max_frame: largest request payload handled and reply payload sent (E002 otherwise).
+        reconnect_max_s: ceiling of the exponential reconnect back-off (which starts at heartbeat_s).
+        capacity: jobs the broker may hand this worker at once. 1 is classic Majordomo; 2 lets the
+            next job travel while the current one runs (more throughput for short jobs), at the cost
+            of a job sometimes waiting behind another here while a different worker is free. The
+            broker still prefers idle workers.
+        context: ZeroMQ context; pass the broker's to use ``inproc://``.
+
+    ``run`` blocks; it may be called from any one thread. ``stop`` (an Event) ends it after the
+    current job; the worker then sends DISCONNECT.
+    """
+
+    def __init__(
+        self,
+        service: str,
+        handler: Handler,
+        connect: str,
+        *,
+        heartbeat_s: float = 1.0,
+        liveness: int = 3,
+        max_frame: int = 32 * 1024 * 1024,
+        reconnect_max_s: float = 30.0,
+        capacity: int = 1,
+        context: zmq.Context | None = None,
+    ):
+        if not service:
+            raise ValueError("a worker needs a service name")
+        if capacity < 1:
+            raise ValueError("capacity must be at least 1")
+        self.service = service
+        self.handler = handler
+        self.connect = connect
+        self.heartbeat_s = float(heartbeat_s)
+        self.liveness = int(liveness)
+        self.max_frame = int(max_frame)
+        self.reconnect_max_s = float(reconnect_max_s)
+        self._context = context or zmq.Context.instance()
+        self._socket: zmq.Socket | None = None
+        self._lock = threading.Lock()  # owns the socket: the loop, or the heartbeat thread during a job
+        self._in_handler = False
+        self._last_sent = 0.0
+        self._broker_expiry = 0.0
+        self._backoff = self.heartbeat_s
+        self._stop = threading.Event()
+        self._ready = wire.encoder.encode(
+            ReadyFrame(
+                service,
+                pid=os.getpid(),
+                host=socket.gethostname(),
+                max_frame=self.max_frame,
+                capacity=capacity,
+            )
+        )
+        self.jobs_done = 0
+        self.reconnects = 0
+
+    @property
+    def backoff_s(self) -> float:
+        """Seconds the next reconnection will wait (doubles while the broker stays away)."""
+        return self._backoff
+
+    # ----------------------------------------------------------------------------------- sockets
+
+    def _open(self) -> None:
+        sock = self._context.socket(zmq.DEALER)
+        sock.setsockopt(zmq.LINGER, 0)
+        sock.setsockopt(zmq.ROUTING_ID, b"W" + uuid.uuid4().hex.encode())
+        sock.setsockopt(zmq.MAXMSGSIZE, 2 * self.max_frame + 4096)
+        sock.connect(self.connect)
+        self._socket = sock
+        now = time.monotonic()
+        self._broker_expiry = now + self.heartbeat_s * self.liveness
+        self._send(self._ready)
+
+    def _close(self) -> None:
+        if self._socket is not None:
+            self._socket.close(0)
+            self._socket = None
+
+    def _send(self, *frames: object) -> None:
+        assert self._socket is not None
+        try:
+            wire.send(self._socket, frames)
+        except zmq.Again:  # no broker connected (e.g. inproc after it closed): liveness will notice
+            log.debug("%s worker: could not send, no broker connected", self.service)
+        self._last_sent = time.monotonic()
+
+    def _reconnect(self, stop: threading.Event) -> None:
+        self._close()
+        log.warning(
+            "%s worker: broker silent or asked us to re-register; reconnecting in %.2fs",
+            self.service,
+            self._backoff,
+        )
+        stop.wait(self._backoff)
+        self._backoff = min(self._backoff * 2, self.reconnect_max_s)
+        self.reconnects += 1
+        if not stop.is_set():
+            self._open()
+
+    # --------------------------------------------------------------------------------------- loop
+
+    def run(self, stop: threading.Event | None = None) -> None:
+        """Serve until ``stop`` is set; always sends DISCONNECT and closes the socket on the way out."""
+        stop = stop or self._stop
+        beat_stop = threading.Event()
+        beat = threading.Thread(
+            target=self._beat_during_jobs, args=(beat_stop,), name="wana-worker-beat", daemon=True
+        )
+        self._lock.acquire()
+        try:
+            self._open()
+            beat.start()
+            while not stop.is_set():
+                try:
+                    self._serve_once(stop)
+                except zmq.ContextTerminated:
+                    break
+                except zmq.ZMQError as exc:  # a socket-level failure: start over with a fresh socket
+                    log.warning("%s worker: socket error %s; reconnecting", self.service, exc)
+                    self._reconnect(stop)
+        finally:
+            try:
+                if self._socket is not None:
+                    self._send(_DISCONNECT)
+            except zmq.ZMQError:
+                pass
+            self._close()
+            self._lock.release()
+            beat_stop.set()
+            if beat.is_alive():
+                beat.join(timeout=2.0)
+
+    def _serve_once(self, stop: threading.Event) -> None:
+        sock = self._socket
+        assert sock is not None
+        while True:
+            frames = wire.recv(sock)
+            if frames is None:
+                break
+            self._broker_expiry = time.monotonic() + self.heartbeat_s * self.liveness
+            try:
+                msg = wire.envelope_decoder.decode(frames[0])
+            except (msgspec.DecodeError, msgspec.ValidationError) as exc:
+                log.warning(
+                    "%s worker: dropped a message with an undecodable envelope: %s", self.service, exc
+                )
+                continue
+            kind = type(msg)
+            if kind is not DisconnectFrame:
+                self._backoff = self.heartbeat_s  # the broker knows us: the next outage starts over
+            if kind is JobFrame:
+                self._on_job(msg, frames)
+            elif kind is DisconnectFrame:
+                self._reconnect(stop)  # the broker does not know us (it restarted): register again
+                return
+            elif kind is not HeartbeatFrame:
+                log.warning("%s worker: dropped a %s envelope", self.service, kind.__name__)
+            if stop.is_set():
+                return
+        now = time.monotonic()
+        if now >= self._broker_expiry:
+            self._reconnect(stop)
+        elif now >= self._last_sent + self.heartbeat_s:
+            self._send(_HEARTBEAT)
+        else:
+            wire.wait(sock, min(self._last_sent + self.heartbeat_s, self._broker_expiry, now + _TICK_S) - now)
+
+    def _on_job(self, job: JobFrame, frames: list[zmq.Frame]) -> None:
+        if len(frames) != 2:
+            log.warning("%s worker: dropped a JOB with %d body frames", self.service, len(frames) - 1)
+            return
+        payload = frames[1]
+        if len(payload) > self.max_frame:
+            reply = self._error(
+                job, "E002", f"request of {len(payload)} bytes exceeds the {self.max_frame}-byte cap"
+            )
+        elif job.deadline_ms <= 0:
+            reply = self._error(job, "E006", "the job reached the worker after its deadline")
+        else:
+            self._in_handler = True
+            self._lock.release()  # the heartbeat thread may use the socket while the handler runs
+            try:
+                reply = self.handler(payload.bytes)
+            except Exception as exc:  # the frame handler already catches; a raw handler might not
+                log.exception("%s worker: handler raised", self.service)
+                reply = self._error(job, "E009", f"{type(exc).__name__}: {exc}")
+            finally:
+                self._lock.acquire()
+                self._in_handler = False
+            if not isinstance(reply, (bytes, bytearray, memoryview)):
+                reply = self._error(job, "E009", f"handler returned {type(reply).__name__}, not bytes")
+            elif len(reply) > self.max_frame:
+                reply = self._error(
+                    job, "E002", f"reply of {len(reply)} bytes exceeds the {self.max_frame}-byte cap"
+                )
+        if self._socket is not None:
+            self._send(wire.encoder.encode(ReplyFrame(job.job_id)), reply)
+            self.jobs_done += 1
+
+    @staticmethod
+    def _error(job: JobFrame, code: str, message: str) -> bytes:
+        header = Header(doc_id=job.doc_id, revision=job.revision)
+        return wire.encoder.encode(ErrorReply(header=header, code=code, message=message))
+
+    def _beat_during_jobs(self, stop: threading.Event) -> None:
+        """Keep heartbeating while the loop is inside a long handler (the loop beats otherwise)."""
+        while not stop.wait(self.heartbeat_s / 2):
+            if not self._in_handler or time.monotonic() < self._last_sent + self.heartbeat_s:
+                continue
+            if self._lock.acquire(timeout=self.heartbeat_s / 4):
+                try:
+                    if self._in_handler and self._socket is not None:
+                        self._send(_HEARTBEAT)
+                finally:
+                    self._lock.release()
+
+
+def serve(
+    service: str,
+    handler: Handler,
+    connect: str,
+    *,
+    heartbeat_s: float | None = None,
+    capacity: int | None = None,
+    context: zmq.Context | None = None,
+) -> None:
+    """Serve ``service`` until SIGTERM or SIGINT (then finish the current job, DISCONNECT and return).
+
+    ``heartbeat_s`` defaults to the environment variable ``WANA_BUS_HEARTBEAT_S`` or 1.0 s; it must
+    match the broker's. ``capacity`` (see Worker) defaults to ``WANA_BUS_CAPACITY`` or 1.
+    """
+    if heartbeat_s is None:
+        heartbeat_s = float(os.environ.get("WANA_BUS_HEARTBEAT_S", "1.0"))
+    if capacity is None:
+        capacity = int(os.environ.get("WANA_BUS_CAPACITY", "1"))
+    stop = threading.Event()
+    previous = {}
+    if threading.current_thread() is threading.main_thread():
+        for sig in (signal.SIGTERM, signal.SIGINT):
+            previous[sig] = signal.signal(sig, lambda *_: stop.set())
+    try:
+        log.info("%s worker (pid %d) serving via %s", service, os.getpid(), connect)
+        Worker(service, handler, connect, heartbeat_s=heartbeat_s, capacity=capacity, context=context).run(
+            stop
+        )
+    finally:
+        for sig, old in previous.items():
+            signal.signal(sig, old)
