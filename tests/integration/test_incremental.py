@@ -1,0 +1,110 @@
+"""Salsa-style tests of the whole pipeline: make one edit, assert exactly which query nodes re-ran.
+
+The services run in-process (their real handlers: the trained parser, the composer, the optimiser and the
+motion synthesiser); one session per test, so each starts from a cold memo.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from services.orchestrator.backend import InProcessBackend
+from services.orchestrator.document import TextChange
+from services.orchestrator.session import Orchestrator, Session
+
+pytestmark = [pytest.mark.integration, pytest.mark.slow]
+
+STORY = (
+    "A desk is near the window$. A laptop is on the desk$. A chair is in front of the desk$.\n"
+    "Eve walks to the chair. Eve sits on the chair.\n"
+    "camera left\n"
+    "Tom walks to the window. Tom waves.\n"
+)
+
+
+@pytest.fixture(scope="module")
+def orchestrator(tmp_path_factory):
+    orch = Orchestrator(tmp_path_factory.mktemp("db") / "sessions.db", InProcessBackend())
+    yield orch
+    orch.close()
+
+
+@pytest.fixture
+def session(orchestrator) -> Session:
+    s = orchestrator.create(STORY)
+    s.compute()
+    return s
+
+
+def replace(session: Session, old: str, new: str) -> None:
+    at = session.doc.text.index(old)
+    session.edit(session.doc.version, [TextChange(start=at, end=at + len(old), text=new)])
+
+
+def sid_of(session: Session, fragment: str) -> str:
+    return next(s.id for s in session.doc.sentences if fragment in s.text)
+
+
+def test_the_first_compute_runs_every_node(orchestrator):
+    s = orchestrator.create(STORY)
+    result = s.compute()
+    parses = [f"parse:{x.id}" for x in s.doc.sentences]
+    assert result.ran[: len(parses) + 2] == parses + ["resolve", "scene"]
+    assert {"motion:Eve", "motion:Tom"} <= set(result.ran)
+    assert result.unavailable == {}
+    assert set(result.motions) == {"Eve", "Tom"}
+
+
+def test_editing_one_action_reruns_its_parse_and_that_characters_motion_only(session):
+    replace(session, "Tom waves", "Tom claps")
+    result = session.compute()
+    assert result.ran == [f"parse:{sid_of(session, 'Tom claps')}", "resolve", "motion:Tom"]
+
+
+def test_a_whitespace_only_edit_recomputes_nothing(session):
+    replace(session, "Eve sits", "Eve   sits")
+    assert session.compute().ran == []
+
+
+def test_a_new_blank_line_recomputes_nothing(session):
+    session.edit(session.doc.version, [TextChange(start=0, end=0, text="\n\n")])
+    assert session.compute().ran == []
+
+
+def test_changing_a_command_reruns_only_its_parse_and_resolve(session):
+    replace(session, "camera left", "camera top")
+    result = session.compute()
+    assert result.ran == [f"parse:{sid_of(session, 'camera top')}", "resolve"]
+    assert [c.value for _, c in result.commands] == ["top"]
+
+
+def test_a_scene_edit_whose_graph_is_unchanged_stops_after_resolve(session):
+    replace(session, "A laptop is on the desk$", "The laptop is on the desk$")
+    result = session.compute()
+    assert result.ran == [f"parse:{sid_of(session, 'The laptop')}", "resolve"]
+
+
+def test_changing_a_scene_object_recomposes_the_scene_and_the_motion_in_it(session):
+    replace(session, "A laptop is on the desk$", "A lamp is on the desk$")
+    result = session.compute()
+    assert result.ran[:3] == [f"parse:{sid_of(session, 'A lamp')}", "resolve", "scene"]
+    assert "motion:Eve" in result.ran and "motion:Tom" in result.ran
+    assert "lamp" in {o.category for o in result.scene.objects}
+
+
+def test_deleting_a_sentence_reruns_resolve_and_the_affected_character(session):
+    replace(session, " Tom waves.", "")
+    result = session.compute()
+    assert result.ran == ["resolve", "motion:Tom"]
+    assert all(seg.action != "wave" for seg in result.motions["Tom"].segments)
+
+
+def test_recomputing_without_an_edit_runs_nothing(session):
+    assert session.compute().ran == []
+
+
+def test_the_same_text_gives_the_same_animation(orchestrator, session):
+    other = orchestrator.create(STORY)
+    a, b = session.compute(), other.compute()
+    assert a.scene == b.scene
+    assert a.motions == b.motions
