@@ -211,6 +211,7 @@ def water_cooler(b: Builder, p: Params) -> None:
     b.lathe((0, h * 0.7, 0), [(w * 0.4, 0), (w * 0.4, h * 0.25), (0.03, h * 0.3)], p.tone("glass"))
     b.box((-0.03, h * 0.5, d / 2), (0.03, h * 0.55, d / 2 + 0.04), p.tone("blue"))
     b.contact("drink", "RightHand", (0.0, h * 0.52, d / 2 + 0.06))
+    b.surface(h * 0.7, -w / 2, -d / 2, w / 2, d / 2)  # the cabinet top around the bottle
 
 
 def radiator(b: Builder, p: Params) -> None:

@@ -58,6 +58,8 @@ def sink(b: Builder, p: Params, kind: str = "kitchen") -> None:
             b.box((-w / 2, 0, -d / 2), (w / 2, h * 0.8, d / 2 - 0.02), p.frame)
         b.lathe((0, h * 0.8, 0), [(min(w, d) * 0.3, 0), (min(w, d) * 0.5, h * 0.2)], p.body, sections=20)
         top = h
+        r = min(w, d) * 0.5
+        b.surface(h, -r, -r, r, r)  # the basin's rim
     b.lathe((0, top, -d / 2 + 0.05), [(0.02, 0), (0.015, 0.25)], p.tone("chrome"), sections=8)
     b.rod((0, top + 0.23, -d / 2 + 0.05), (0, top + 0.2, -d / 2 + 0.2), 0.012, p.tone("chrome"))
     b.two_hands("wash", top - 0.05, 0.0, 0.3)
@@ -118,6 +120,7 @@ def towel_rack(b: Builder, p: Params) -> None:
         b.cyl((-w / 2 + 0.02, y, 0), 0.01, w - 0.04, p.frame, axis="x", sections=8)
     b.box((-w * 0.35, h * 0.5, -0.02), (w * 0.35, h * 0.96, 0.02), p.body)
     b.contact("take", "RightHand", (0.0, h * 0.9, 0.03))
+    b.surface(h * 0.96, -w / 2 + 0.02, -d / 2, w / 2 - 0.02, d / 2)  # things hang over the top bar
 
 
 def towel(b: Builder, p: Params) -> None:

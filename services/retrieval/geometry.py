@@ -1,0 +1,189 @@
+"""Boxes, poses and overlap tests for composing a room (metres, world frame, Y up).
+
+An object is placed by a pose: the world position of its base centre and a yaw about +Y (0 keeps its
+front on +Z), as proto.scene.PlacedObject and wana.assets.catalog.object_to_world define it. Collision
+boxes are the catalog's small voxel boxes; in the world they are axis-aligned boxes of the rotated
+boxes, as wana.assets.catalog.world_collision_boxes computes them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import lru_cache
+
+import numpy as np
+
+from wana.assets import vocabulary
+from wana.assets.catalog import SupportSurface, make_object
+
+OVERLAP_EPS = 0.01  # metres two boxes must interpenetrate on every axis to count as overlapping
+
+
+@dataclass(frozen=True, eq=False)
+class Footprint:
+    """What composition needs to know of a catalog object.
+
+    Attributes:
+        category, attributes, seed: the catalog variant.
+        boxes: (N, 2, 3) collision boxes, object frame: the catalog's voxel cells merged into larger
+            boxes covering exactly the same cells (far fewer boxes to test).
+        bounds: (2, 3) object-frame AABB of the boxes.
+        surfaces: support surfaces, object frame.
+        mount: "floor", "surface" or "wall".
+    """
+
+    category: str
+    attributes: tuple[tuple[str, str], ...]
+    seed: int
+    boxes: np.ndarray = field(repr=False)
+    bounds: np.ndarray
+    surfaces: tuple[SupportSurface, ...] = field(repr=False)
+    mount: str
+
+    @property
+    def height(self) -> float:
+        return float(self.bounds[1, 1] - self.bounds[0, 1])
+
+
+@lru_cache(maxsize=4096)
+def _footprint(category: str, attributes: tuple[tuple[str, str], ...], seed: int) -> Footprint:
+    asset = make_object(category, dict(attributes), seed)
+    boxes = merge_cells(np.asarray(asset.collision_boxes, dtype=np.float64))
+    if len(boxes) == 0:  # a generator without solid parts still occupies its mesh box
+        half = np.asarray(asset.dims) / 2.0
+        boxes = np.array([[[-half[0], 0.0, -half[2]], [half[0], asset.dims[1], half[2]]]])
+    bounds = np.stack([boxes[:, 0].min(axis=0), boxes[:, 1].max(axis=0)])
+    info = vocabulary.CATEGORIES.get(category)
+    return Footprint(
+        category,
+        attributes,
+        seed,
+        boxes,
+        bounds,
+        tuple(asset.support_surfaces),
+        info.mount if info else "floor",
+    )
+
+
+def merge_cells(cells: np.ndarray) -> np.ndarray:
+    """Merge equal voxel cells on a regular grid into fewer boxes with the same union (greedy meshing).
+
+    Args:
+        cells: (N, 2, 3) min/max corners of equal-sized cells on one grid.
+
+    Returns:
+        (M, 2, 3) boxes, M <= N; cells that do not sit on one grid come back unchanged.
+    """
+    if len(cells) < 2:
+        return cells
+    size = cells[0, 1] - cells[0, 0]
+    if np.any(size <= 0) or not np.allclose(cells[:, 1] - cells[:, 0], size, atol=1e-6):
+        return cells
+    origin = cells[:, 0].min(axis=0)
+    idx = np.rint((cells[:, 0] - origin) / size).astype(int)
+    if not np.allclose(origin + idx * size, cells[:, 0], atol=1e-5):
+        return cells
+    shape = idx.max(axis=0) + 1
+    occ = np.zeros(shape, dtype=bool)
+    occ[idx[:, 0], idx[:, 1], idx[:, 2]] = True
+    free = occ.copy()
+    out = []
+    for y in range(shape[1]):
+        for z in range(shape[2]):
+            for x in range(shape[0]):
+                if not free[x, y, z]:
+                    continue
+                x1 = x + 1
+                while x1 < shape[0] and free[x1, y, z]:
+                    x1 += 1
+                z1 = z + 1
+                while z1 < shape[2] and free[x:x1, y, z1].all():
+                    z1 += 1
+                y1 = y + 1
+                while y1 < shape[1] and free[x:x1, y1, z:z1].all():
+                    y1 += 1
+                free[x:x1, y:y1, z:z1] = False
+                out.append([origin + np.array([x, y, z]) * size, origin + np.array([x1, y1, z1]) * size])
+    return np.array(out, dtype=np.float64)
+
+
+def footprint(category: str, attributes: dict[str, str], seed: int) -> Footprint:
+    """The (cached) footprint of a catalog variant; raises KeyError for an unknown category."""
+    return _footprint(category, tuple(sorted(attributes.items())), seed)
+
+
+def yaw_matrix(yaw: float) -> np.ndarray:
+    """(3, 3) rotation about +Y (same convention as wana.assets.catalog.yaw_matrix)."""
+    c, s = np.cos(yaw), np.sin(yaw)
+    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+
+
+def boxes_at(boxes: np.ndarray, position: np.ndarray, yaw: float) -> np.ndarray:
+    """World AABBs of object-frame boxes.
+
+    Args:
+        boxes: (N, 2, 3) min/max corners, object frame.
+        position: (3,) world position of the object's base centre.
+        yaw: radians about +Y.
+
+    Returns:
+        (N, 2, 3) world min/max corners.
+    """
+    r = yaw_matrix(yaw)
+    centre = (boxes[:, 0] + boxes[:, 1]) * 0.5 @ r.T + position
+    half = (boxes[:, 1] - boxes[:, 0]) * 0.5 @ np.abs(r).T
+    return np.stack([centre - half, centre + half], axis=1)
+
+
+def aabb(boxes: np.ndarray) -> np.ndarray:
+    """(2, 3) AABB of (N, 2, 3) boxes."""
+    return np.stack([boxes[:, 0].min(axis=0), boxes[:, 1].max(axis=0)])
+
+
+@lru_cache(maxsize=65536)
+def _extents(fp: Footprint, yaw: float) -> np.ndarray:
+    e = aabb(boxes_at(fp.boxes, np.zeros(3), yaw))
+    e.setflags(write=False)
+    return e
+
+
+def extents(fp: Footprint, yaw: float) -> np.ndarray:
+    """(2, 3) AABB of the footprint's boxes after a yaw, relative to its origin (cached)."""
+    return _extents(fp, round(float(yaw), 9))
+
+
+def boxes_overlap(a: np.ndarray, b: np.ndarray, eps: float = OVERLAP_EPS) -> bool:
+    """True when any box of a (N, 2, 3) interpenetrates any box of b (M, 2, 3) by more than eps."""
+    lo = np.maximum(a[:, 0].min(axis=0), b[:, 0].min(axis=0)) - eps
+    hi = np.minimum(a[:, 1].max(axis=0), b[:, 1].max(axis=0)) + eps
+    if np.any(lo >= hi):
+        return False
+    # Only boxes inside the common region can touch; prune before the pairwise test.
+    a = a[np.all((a[:, 1] > lo) & (a[:, 0] < hi), axis=1)]
+    b = b[np.all((b[:, 1] > lo) & (b[:, 0] < hi), axis=1)]
+    if len(a) == 0 or len(b) == 0:
+        return False
+    sep = (a[:, None, 0] >= b[None, :, 1] - eps) | (b[None, :, 0] >= a[:, None, 1] - eps)  # (N, M, 3)
+    return bool(np.any(~np.any(sep, axis=2)))
+
+
+def aabbs_overlap(a: np.ndarray, b: np.ndarray, eps: float = OVERLAP_EPS) -> bool:
+    """True when two (2, 3) AABBs interpenetrate by more than eps on every axis."""
+    return bool(np.all(a[0] < b[1] - eps) and np.all(b[0] < a[1] - eps))
+
+
+def inside_room(box: np.ndarray, width: float, depth: float, height: float, eps: float = 0.01) -> bool:
+    """True when a (2, 3) AABB lies inside the room x in [-w/2, w/2], y in [0, h], z in [-d/2, d/2]."""
+    (x0, y0, z0), (x1, y1, z1) = box.tolist()
+    hw, hd = width / 2.0 + eps, depth / 2.0 + eps
+    return x0 >= -hw and x1 <= hw and z0 >= -hd and z1 <= hd and y0 >= -eps and y1 <= height + eps
+
+
+def surface_rects(fp: Footprint, position: np.ndarray, yaw: float) -> list[tuple[float, np.ndarray]]:
+    """World support surfaces as (height y, (2, 2) x/z AABB of the rectangle)."""
+    out = []
+    for s in fp.surfaces:
+        box = np.array([[[s.min_xz[0], s.height, s.min_xz[1]], [s.max_xz[0], s.height, s.max_xz[1]]]])
+        w = boxes_at(box, position, yaw)[0]
+        out.append((float(w[0, 1]), w[:, [0, 2]]))
+    return out
