@@ -114,6 +114,14 @@ def main(argv: list[str]) -> int:
     close()
     report = summary(result)
     (out / "report.json").write_text(json.dumps(report, indent=2))
+    if result.scene is not None and not result.unavailable:
+        try:
+            from services.render.export import write_outputs
+        except ImportError as exc:
+            result.unavailable["render"] = f"the render stage is not available yet: {exc}"
+        else:
+            paths = write_outputs(out, result.scene, result.motions, result.commands, result.sentences, report,
+                                  width=args.width, height=args.height, progress=not args.no_progress)
     for sid, diags in result.diagnostics.items():
         for d in diags:
             if d.code != "E011":
@@ -124,5 +132,6 @@ def main(argv: list[str]) -> int:
         print(f"wana animate: wrote only {out / 'report.json'}; the animation needs the stages above",
               file=sys.stderr)
         return 3
-    print(f"wrote {out}/report.json")
+    for name in sorted(paths):
+        print(f"wrote {paths[name]}")
     return 0
