@@ -74,6 +74,13 @@ def _progress_bar(enabled: bool) -> tuple[Any, Any]:
     return tick, close
 
 
+def _without_header(value: Any) -> Any:
+    """Drop message headers (random ids) so that the same story gives the same report."""
+    if isinstance(value, dict):
+        return {k: v for k, v in value.items() if k not in ("header", "motion", "scene")}
+    return value
+
+
 def summary(result: PipelineResult) -> dict[str, Any]:
     """The report: sentences, SSG, retrieval choices, diagnostics and what ran."""
     to_builtins = msgspec.to_builtins
@@ -86,7 +93,8 @@ def summary(result: PipelineResult) -> dict[str, Any]:
             for s in result.sentences
         ],
         "scene": to_builtins(result.scene) if result.scene is not None else None,
-        "retrieval": to_builtins(result.scene_report) if result.scene_report is not None else None,
+        "retrieval": _without_header(to_builtins(result.scene_report)) if result.scene_report is not None else None,
+        "optimisation": [_without_header(to_builtins(o)) for o in result.optimisations],
         "characters": sorted(result.motions),
         "unavailable": result.unavailable,
         "nodes_ran": result.ran,
