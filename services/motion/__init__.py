@@ -1,0 +1,7 @@
+"""The motion service: neural locomotion, template actions, blending and IK.
+
+CONTRACT: SynthesizeRequest -> SynthesizeReply | ErrorReply; LibraryRequest -> LibraryReply | ErrorReply.
+
+Python API: services.motion.library (action_names, load_library), services.motion.planning.plan_actions,
+services.motion.synthesis (synthesise_segment, synthesise), services.motion.bvh (read_bvh, write_bvh).
+"""

@@ -1,0 +1,196 @@
+"""Evaluate motion synthesis: foot sliding, path following, contact distance, jerk.
+
+Usage:
+    .venv/bin/python eval/motion.py [--quick] [--json PATH] [--seed 7]
+
+Scenarios: generated scenes (a chair, a desk, a bed, a button on a wall...) with characters walking,
+sitting, typing, standing, waving, lying down, pushing buttons, plus free locomotion along random
+waypoints (>= 30 in the full run), and held-out CMU clips from ../shared/data (their captured root
+path replayed through the controller; skipped when the data is absent).
+JSON keys: foot_slide_cm, path_error_cm, contact_cm, jerk, actions, scenarios, cmu_clips, ...
+Targets: foot_slide_cm <= 1.0 (cm per frame while a foot is in contact), contact_cm <= 3.0.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from proto.scene import PlacedObject, Room, Scene  # noqa: E402
+from proto.ssg import ActionNode, CharacterNode  # noqa: E402
+from services.motion.ik import global_transforms  # noqa: E402
+from services.motion.library import load_library  # noqa: E402
+from services.motion.planning import plan_actions  # noqa: E402
+from services.motion.synthesis import synthesise  # noqa: E402
+from wana.arrays import from_wire  # noqa: E402
+from wana.skeleton import JOINT_INDEX  # noqa: E402
+
+SCRIPTS = [
+    [("walk", "", "chair"), ("sit", "chair", ""), ("type", "desk", ""), ("stand", "", "")],
+    [("walk", "", "desk"), ("wave", "", ""), ("sit", "chair", ""), ("write", "desk", "")],
+    [("run", "", "bed"), ("lie_down", "bed", ""), ("sleep", "bed", ""), ("stand", "", "")],
+    [("push_button", "elevator_button", ""), ("turn_left", "", ""), ("walk", "", "chair"), ("sit", "chair", "")],
+    [("walk", "", "desk"), ("clap", "", ""), ("think", "", ""), ("bow", "", ""), ("wipe_table", "desk", "")],
+]
+
+
+def make_scene(rng: np.random.Generator) -> Scene:
+    yaw = float(rng.uniform(-np.pi, np.pi))
+    c, s = np.cos(yaw), np.sin(yaw)
+    desk = np.array([rng.uniform(-1, 1), 0.0, rng.uniform(-1, 1)])
+    chair = desk + np.array([s, 0.0, c]) * 0.75
+    return Scene(room=Room(room_type="office", width=8, depth=8, height=3), objects=[
+        PlacedObject(id="desk", category="desk", position=tuple(desk), yaw=yaw),
+        PlacedObject(id="chair", category="office_chair", position=tuple(chair), yaw=yaw + np.pi),
+        PlacedObject(id="bed", category="bed", position=(rng.uniform(-3, -2), 0.0, rng.uniform(2, 3)), yaw=float(rng.uniform(-1, 1))),
+        PlacedObject(id="elevator_button", category="elevator_button", position=(3.0, 1.1, rng.uniform(-1, 1)), yaw=-np.pi / 2),
+    ])
+
+
+def foot_slide(pos: np.ndarray, contacts: np.ndarray) -> list[float]:
+    """Per-frame horizontal foot displacement in cm while the foot is in contact on both frames."""
+    out = []
+    for k, name in enumerate(("LeftFoot", "RightFoot")):
+        f = pos[:, JOINT_INDEX[name]][:, [0, 2]]
+        both = (contacts[1:, k] > 0) & (contacts[:-1, k] > 0)
+        out.extend((np.linalg.norm(np.diff(f, axis=0), axis=1)[both] * 100).tolist())
+    return out
+
+
+def path_error(root: np.ndarray, waypoints: np.ndarray) -> float:
+    """Mean distance (cm) from the root's ground track to the planned polyline, plus nothing else."""
+    p = root[:, [0, 2]]
+    best = np.full(len(p), np.inf)
+    for a, b in zip(waypoints[:-1], waypoints[1:], strict=True):
+        d = b - a
+        u = np.clip(((p - a) @ d) / max(d @ d, 1e-12), 0, 1)
+        best = np.minimum(best, np.linalg.norm(p - (a + u[:, None] * d), axis=1))
+    if len(waypoints) == 1:
+        best = np.linalg.norm(p - waypoints[0], axis=1)
+    return float(best.mean() * 100)
+
+
+def jerk(pos: np.ndarray) -> float:
+    """Mean joint jerk magnitude, m/s^3."""
+    if len(pos) < 4:
+        return 0.0
+    return float(np.linalg.norm(np.diff(pos, n=3, axis=0) * 30 ** 3, axis=-1).mean())
+
+
+def run_scenario(character: CharacterNode, scene: Scene, start) -> dict:
+    plan = plan_actions(character, scene, start)
+    motion, pieces, _ = synthesise(plan)
+    root = from_wire(motion.root_position).astype(np.float64)
+    rot = from_wire(motion.rotations).astype(np.float64)
+    contacts = from_wire(motion.foot_contact)
+    pos, _ = global_transforms(rot, root)
+    slides = foot_slide(pos, contacts)
+    paths, contact = [], []
+    f0 = 0
+    for p in pieces:
+        n = len(p.root)
+        if p.segment.kind == "locomotion" and len(p.segment.waypoints) >= 2:
+            start_xz = np.array([[p.root[0, 0], p.root[0, 2]]])
+            wps = np.concatenate([start_xz, np.asarray(p.segment.waypoints)])
+            paths.append(path_error(p.root, wps))
+        for joint, (frames, target) in p.contact_frames.items():
+            if len(frames):
+                contact.extend((np.linalg.norm(pos[f0 + frames, JOINT_INDEX[joint]] - target, axis=1) * 100).tolist())
+        f0 += n
+    return {"slides": slides, "paths": paths, "contact": contact, "jerk": jerk(pos), "frames": len(root)}
+
+
+def scenarios(n: int, seed: int):
+    rng = np.random.default_rng(seed)
+    for i in range(n):
+        scene = make_scene(rng)
+        start = (float(rng.uniform(-3, 3)), float(rng.uniform(-3, -2)), float(rng.uniform(-np.pi, np.pi)))
+        if i % 3 == 2:  # free locomotion along random waypoints
+            acts = [ActionNode(verb="walk", action=rng.choice(["walk", "run", "walk_slowly", "jog"]), destination=d)
+                    for d in rng.choice(["desk", "bed", "chair", "elevator_button"], 3)]
+        else:
+            script = SCRIPTS[i % len(SCRIPTS)]
+            acts = [ActionNode(verb=a, action=a, target=t, destination=d) for a, t, d in script]
+        yield f"scenario_{i:02d}", CharacterNode(name=f"c{i}", actions=acts), scene, start
+
+
+def cmu_heldout(quick: bool) -> list[dict]:
+    """Replay held-out CMU root paths through the controller; report path error and foot sliding."""
+    from services.motion.bvh import read_bvh
+    from services.motion.locomotion import locomote
+    from services.motion.retarget import retarget_clip
+    from services.motion.train_locomotion import HELD_OUT, SHARED
+
+    out = []
+    for rel in HELD_OUT[:1] if quick else HELD_OUT:
+        path = SHARED / "cmu_mocap_iclone" / rel
+        if not path.is_file():
+            continue
+        root, rot = retarget_clip(read_bvh(path))
+        track = root[:, [0, 2]]
+        speed = float(np.linalg.norm(np.diff(track, axis=0), axis=1).mean() * 30)
+        wps = track[::10]
+        heading0 = float(np.arctan2(*(track[10] - track[0])))
+        loco = locomote(wps, speed, heading0)
+        pos, _ = global_transforms(loco.rotations, loco.root_position)
+        from services.motion.ik import lock_feet
+
+        locked = lock_feet(loco.rotations, loco.root_position, loco.contacts)
+        pos_locked, _ = global_transforms(locked, loco.root_position)
+        out.append({"clip": rel, "speed_m_s": speed, "path_error_cm": path_error(loco.root_position, wps),
+                    "foot_slide_raw_cm": float(np.mean(foot_slide(pos, loco.contacts) or [0])),
+                    "foot_slide_cm": float(np.mean(foot_slide(pos_locked, loco.contacts) or [0])), "source": loco.source})
+    return out
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--quick", action="store_true", help="10 scenarios and one CMU clip (< 30 s)")
+    parser.add_argument("--json", type=Path, default=None, help="write the metrics here")
+    parser.add_argument("--seed", type=int, default=7)
+    args = parser.parse_args(argv)
+    t0 = time.time()
+    n = 10 if args.quick else 36
+    slides, paths, contact, jerks, frames = [], [], [], [], 0
+    for _name, ch, scene, start in scenarios(n, args.seed):
+        r = run_scenario(ch, scene, start)
+        slides += r["slides"]
+        paths += r["paths"]
+        contact += r["contact"]
+        jerks.append(r["jerk"])
+        frames += r["frames"]
+    cmu = cmu_heldout(args.quick)
+    result = {
+        "foot_slide_cm": round(float(np.mean(slides)), 4) if slides else 0.0,
+        "path_error_cm": round(float(np.mean(paths)), 4) if paths else 0.0,
+        "contact_cm": round(float(np.mean(contact)), 4) if contact else 0.0,
+        "contact_p95_cm": round(float(np.percentile(contact, 95)), 4) if contact else 0.0,
+        "jerk": round(float(np.mean(jerks)), 3),
+        "actions": len(load_library()),
+        "scenarios": n,
+        "frames": frames,
+        "cmu_clips": len(cmu),
+        "cmu_path_error_cm": round(float(np.mean([c["path_error_cm"] for c in cmu])), 4) if cmu else None,
+        "cmu_foot_slide_cm": round(float(np.mean([c["foot_slide_cm"] for c in cmu])), 4) if cmu else None,
+        "cmu_foot_slide_raw_cm": round(float(np.mean([c["foot_slide_raw_cm"] for c in cmu])), 4) if cmu else None,
+        "seed": args.seed,
+        "seconds": round(time.time() - t0, 2),
+    }
+    print(f"{'metric':24s} value")
+    for k, v in result.items():
+        print(f"{k:24s} {v}")
+    if args.json:
+        args.json.parent.mkdir(parents=True, exist_ok=True)
+        args.json.write_text(json.dumps(result, indent=2) + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

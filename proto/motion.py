@@ -1,0 +1,74 @@
+"""Messages of the motion service: plan + synthesise a character's motion, list the action library.
+
+Metres, world frame, Y up, 30 fps, quaternions (x, y, z, w). See services/motion/__init__.py.
+"""
+
+from __future__ import annotations
+
+from typing import Literal
+
+import msgspec
+
+from proto.common import Header, Status
+from proto.motion_data import Motion
+from proto.scene import Scene
+from proto.ssg import CharacterNode
+
+
+class SegmentEndState(msgspec.Struct, frozen=True, kw_only=True):
+    """Where a character is after a segment (the input of the next one); compare for early cutoff."""
+
+    x: float = 0.0  # metres, world
+    z: float = 0.0  # metres, world
+    yaw: float = 0.0  # radians about +Y, 0 faces +Z
+    posture: str = "stand"  # stand | sit | lie | sit_floor
+    phase: float = 0.0  # gait phase in [0, 1)
+
+
+class SynthesizeRequest(msgspec.Struct, frozen=True, kw_only=True, tag="synthesize_request"):
+    """Synthesise one character's motion from its ordered actions in a scene."""
+
+    header: Header
+    character: CharacterNode
+    scene: Scene
+    start: tuple[float, float, float] = (0.0, 0.0, 0.0)  # x, z metres and yaw radians where the character starts
+    from_segment: int = 0  # recompute from this segment on (earlier ones are skipped)
+    start_state: SegmentEndState | None = None  # end state of segment from_segment-1 (None: from `start`)
+    routes: list[list[tuple[float, float]]] = []  # optional precomputed waypoints, one list per locomotion segment
+
+
+class SynthesizeReply(msgspec.Struct, frozen=True, kw_only=True, tag="synthesize_reply"):
+    header: Header
+    status: Status = "ok"
+    motion: Motion  # frames of segments from_segment.. (all of them when from_segment = 0)
+    end_states: list[SegmentEndState] = []  # one per synthesised segment
+    diagnostics: list[str] = []  # e.g. unknown actions replaced by a wait
+
+
+class ActionInfo(msgspec.Struct, frozen=True, kw_only=True):
+    name: str
+    tags: list[str] = []
+    synonyms: list[str] = []
+    duration_s: float = 0.0
+    looping: bool = False
+    body_parts: list[str] = []
+    contact_joints: list[str] = []
+    interaction: str = ""  # kind of object point needed: seat, keyboard, handheld, ...; "" = none
+
+
+class LibraryRequest(msgspec.Struct, frozen=True, kw_only=True, tag="library_request"):
+    """List the action library (for the NLP verb mapping and the editor)."""
+
+    header: Header
+    tag: str = ""  # only actions with this tag; "" = all
+
+
+class LibraryReply(msgspec.Struct, frozen=True, kw_only=True, tag="library_reply"):
+    header: Header
+    status: Status = "ok"
+    actions: list[ActionInfo] = []
+
+
+MotionRequest = SynthesizeRequest | LibraryRequest
+__all__ = ["ActionInfo", "LibraryReply", "LibraryRequest", "Literal", "MotionRequest", "SegmentEndState",
+           "SynthesizeReply", "SynthesizeRequest"]

@@ -1,0 +1,65 @@
+"""Pure request -> reply handlers of the motion service (no zmq)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from proto.common import Header
+from proto.motion import (
+    ActionInfo,
+    LibraryReply,
+    LibraryRequest,
+    SegmentEndState,
+    SynthesizeReply,
+    SynthesizeRequest,
+)
+from services.motion.library import load_library
+from services.motion.planning import plan_actions
+from services.motion.synthesis import SegmentState, assemble, synthesise_segment
+from wana.bus.service import InvalidInput
+
+
+def _reply_header(h: Header) -> Header:
+    return Header(parent_id=h.msg_id, doc_id=h.doc_id, revision=h.revision)
+
+
+def handle_synthesize(req: SynthesizeRequest) -> SynthesizeReply:
+    """Plan the character's actions in the scene and synthesise segments from_segment on."""
+    if not all(np.isfinite(req.start)):
+        raise InvalidInput("start must be finite (x, z, yaw)")
+    routes = list(req.routes)
+
+    def route_fn(scene, a, b):  # noqa: ANN001 - precomputed routes first, else a straight line
+        if routes:
+            r = np.asarray(routes.pop(0), float).reshape(-1, 2)
+            if len(r) >= 2:
+                return r
+        return np.array([a, b], float)
+
+    plan = plan_actions(req.character, req.scene, req.start, route_fn)
+    if req.from_segment < 0 or req.from_segment > len(plan.segments):
+        raise InvalidInput(f"from_segment {req.from_segment} outside 0..{len(plan.segments)}")
+    state = plan.start_state() if req.start_state is None else SegmentState(
+        req.start_state.x, req.start_state.z, req.start_state.yaw, req.start_state.posture, req.start_state.phase).rounded()
+    pieces, ends = [], []
+    for k in range(req.from_segment, len(plan.segments)):
+        piece, state = synthesise_segment(plan, k, state)
+        pieces.append(piece)
+        ends.append(SegmentEndState(x=state.x, z=state.z, yaw=state.yaw, posture=state.posture, phase=state.phase))
+    motion = assemble(req.character.name, pieces, state)
+    return SynthesizeReply(header=_reply_header(req.header), motion=motion, end_states=ends, diagnostics=list(plan.diagnostics))
+
+
+def handle_library(req: LibraryRequest) -> LibraryReply:
+    """The action library, optionally filtered by tag."""
+    out = []
+    for name, c in sorted(load_library().items()):
+        if req.tag and req.tag not in c.tags:
+            continue
+        out.append(ActionInfo(name=name, tags=list(c.tags), synonyms=list(c.synonyms), duration_s=c.duration_s,
+                              looping=c.looping, body_parts=list(c.body_parts), contact_joints=list(c.contact_joints),
+                              interaction=c.interaction.object if c.interaction else ""))
+    return LibraryReply(header=_reply_header(req.header), actions=out)
+
+
+CONTRACT = {SynthesizeRequest: handle_synthesize, LibraryRequest: handle_library}

@@ -1,0 +1,87 @@
+"""PFNN input/output features from canonical motion (shared by training and the controller)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from services.motion import quat
+from services.motion.pfnn import N_JOINTS, N_SENSOR, TRAJ_OFFSETS
+from wana.skeleton import forward_kinematics
+
+
+def to_local(points: np.ndarray, ground: np.ndarray, heading: np.ndarray) -> np.ndarray:
+    """Express world points (T, ..., 3) in the root frame (ground (T, 2) position, heading (T,))."""
+    inv = quat.yaw(-heading)
+    shape = points.shape
+    p = points.reshape(shape[0], -1, 3).copy()
+    p[..., 0] -= ground[:, None, 0]
+    p[..., 2] -= ground[:, None, 1]
+    return quat.rotate(inv[:, None], p).reshape(shape)
+
+
+def trajectory_features(pos: np.ndarray, heading: np.ndarray) -> np.ndarray:
+    """(T, 48) trajectory samples around every frame: local x, z and direction x, z, edges clamped."""
+    t = len(pos)
+    idx = np.clip(np.arange(t)[:, None] + np.array(TRAJ_OFFSETS)[None], 0, t - 1)  # (T, 12)
+    rel = pos[idx] - pos[:, None]  # (T, 12, 2)
+    c, s = np.cos(-heading)[:, None], np.sin(-heading)[:, None]
+    # Rotation by -heading about +Y acting on (x, z): x' = x cos + z sin, z' = -x sin + z cos
+    lx = rel[..., 0] * c + rel[..., 1] * s
+    lz = -rel[..., 0] * s + rel[..., 1] * c
+    dh = heading[idx] - heading[:, None]
+    return np.concatenate([lx, lz, np.sin(dh), np.cos(dh)], axis=1)
+
+
+def sensor_features(pos: np.ndarray, heading: np.ndarray, occupied=None) -> np.ndarray:
+    """(T, 12) occupancy at the 6 future samples, 0.5 m to the left and right; occupied(xz (N, 2)) -> bool (N,)."""
+    t = len(pos)
+    if occupied is None:
+        return np.zeros((t, N_SENSOR))
+    fut = [5, 10, 15, 20, 25, 30]
+    idx = np.clip(np.arange(t)[:, None] + np.array(fut)[None], 0, t - 1)
+    left = np.stack([np.cos(heading), -np.sin(heading)], -1)[:, None] * 0.5
+    pts = np.concatenate([pos[idx] + left, pos[idx] - left], axis=1)  # (T, 12, 2)
+    return occupied(pts.reshape(-1, 2)).reshape(t, N_SENSOR).astype(np.float64)
+
+
+def pose_features(root_position: np.ndarray, rotations: np.ndarray, ground: np.ndarray, heading: np.ndarray) -> np.ndarray:
+    """(T, J*6) joint positions in the root frame and their per-frame velocities (first frame: zero)."""
+    pos, _ = forward_kinematics(rotations, root_position)
+    local = to_local(pos, ground, heading).reshape(len(pos), -1)
+    vel = np.zeros_like(local)
+    vel[1:] = local[1:] - local[:-1]
+    return np.concatenate([local, vel], axis=1)
+
+
+def rotation_features(rotations: np.ndarray, heading: np.ndarray) -> np.ndarray:
+    """(T, J*4) local rotations with the hips made relative to the heading, sign-canonical."""
+    r = rotations.copy()
+    r[:, 0] = quat.mul(quat.yaw(-heading), r[:, 0])
+    return quat.canonical(r).reshape(len(r), -1)
+
+
+def root_deltas(pos: np.ndarray, heading: np.ndarray) -> np.ndarray:
+    """(T, 3) root motion from frame t-1 to t in the t-1 frame: dx, dz, dyaw (first row zero)."""
+    d = np.zeros((len(pos), 3))
+    rel = pos[1:] - pos[:-1]
+    c, s = np.cos(-heading[:-1]), np.sin(-heading[:-1])
+    d[1:, 0] = rel[:, 0] * c + rel[:, 1] * s
+    d[1:, 1] = -rel[:, 0] * s + rel[:, 1] * c
+    dh = heading[1:] - heading[:-1]
+    d[1:, 2] = np.arctan2(np.sin(dh), np.cos(dh))
+    return d
+
+
+def build_xy(root_position: np.ndarray, rotations: np.ndarray, heading: np.ndarray, phase: np.ndarray,
+             contacts: np.ndarray, occupied=None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Training pairs of one sequence: X (T-1, N_IN), phase (T-1, 1) of the previous frame, Y (T-1, N_OUT)."""
+    ground = root_position[:, [0, 2]]
+    traj = trajectory_features(ground, heading)
+    sensor = sensor_features(ground, heading, occupied)
+    pose = pose_features(root_position, rotations, ground, heading)
+    rot = rotation_features(rotations, heading)
+    dphase = np.mod(np.diff(phase), 1.0)
+    x = np.concatenate([traj[1:], sensor[1:], pose[:-1]], axis=1)
+    y = np.concatenate([pose[1:], rot[1:], root_deltas(ground, heading)[1:], dphase[:, None], contacts[1:]], axis=1)
+    assert y.shape[1] == N_JOINTS * 10 + 6
+    return x.astype(np.float32), phase[:-1, None].astype(np.float32), y.astype(np.float32)

@@ -1,0 +1,187 @@
+"""Plan a character's actions (from the SSG) into locomotion and action segments.
+
+Target objects' stand points and contact points come from the asset catalog
+(wana.assets.catalog); routes from route_fn(scene, start_xz, goal_xz) -> (N, 2) waypoints
+(default: a straight line; the optimizer provides A*).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+
+from proto.scene import PlacedObject, Scene
+from proto.ssg import ActionNode, CharacterNode
+from services.motion.library import ActionClip, get_clip, load_library
+from services.motion.synthesis import MotionPlan, PlannedSegment
+
+RouteFn = Callable[[Scene, tuple[float, float], tuple[float, float]], np.ndarray]
+SPEEDS = {"walk": 1.3, "walk_slowly": 0.8, "run": 3.2, "jog": 2.2, "tiptoe": 0.7, "march": 1.2, "limp": 0.7,
+          "walk_backward": 0.8, "sidestep_left": 0.8, "sidestep_right": 0.8}
+MANNER_SPEED = {"slowly": 0.6, "slow": 0.6, "quickly": 1.5, "fast": 1.5, "hurriedly": 1.6, "leisurely": 0.7}
+# Catalog contact-point names preferred for each interaction kind, best first.
+PREFERRED_POINTS = {"seat": ("sit", "sit_0"), "bed": ("lie", "sit"), "keyboard": ("work", "write", "touch"),
+                    "instrument": ("work", "touch"), "surface": ("touch", "write", "work", "eat", "cook"),
+                    "button": ("touch",), "door": ("touch",), "container": ("touch", "pick_up"), "tool": ("work", "touch"),
+                    "bag": ("touch",), "floor_item": ("pick_up", "touch")}
+SEAT_BACK = 0.22  # metres the hips travel backwards while sitting down (sit clip)
+REACH = 0.42  # metres from the contact points to where the character stands
+
+
+def straight_route(scene: Scene, start: tuple[float, float], goal: tuple[float, float]) -> np.ndarray:
+    """Default route: the straight line."""
+    return np.array([start, goal], dtype=np.float64)
+
+
+def _object_geometry(placed: PlacedObject):
+    """(stand point xz, contact points name -> [(joint, world xyz)]) or None when the catalog lacks it."""
+    try:
+        from wana.assets.catalog import asset_for, to_world
+    except Exception:  # noqa: BLE001 - the catalog is optional for synthesis
+        return None
+    try:
+        obj = asset_for(placed)
+    except Exception:  # noqa: BLE001 - unknown category: plan without contacts
+        return None
+    stand = to_world(placed, np.asarray(obj.stand_point, float))
+    points: dict[str, list[tuple[str, np.ndarray]]] = {}
+    for name, cp in obj.contact_points.items():
+        lst = [(cp.joint, to_world(placed, np.asarray(cp.position, float)))]
+        lst += [(j, to_world(placed, np.asarray(p, float))) for j, p in cp.extra.items()]
+        points[name] = lst
+    return stand[[0, 2]], points
+
+
+def _fallback_geometry(placed: PlacedObject):
+    front = np.array([np.sin(placed.yaw), np.cos(placed.yaw)])
+    stand = np.array([placed.position[0], placed.position[2]]) + front * 0.6
+    return stand, {}
+
+
+def contact_targets(clip: ActionClip, points: dict[str, list[tuple[str, np.ndarray]]]) -> dict[str, tuple[float, float, float]]:
+    """joint -> world target for the clip's contact joints, from the object's contact points."""
+    if not clip.interaction or not points:
+        return {}
+    names = [n for n in PREFERRED_POINTS.get(clip.interaction.object, ()) if n in points] + sorted(points)
+    wanted = set(clip.interaction.contacts)
+    for name in names:
+        pairs = points[name]
+        joints = {j for j, _ in pairs}
+        sides = {j.replace("Middle1", "") for j in joints} | joints
+        if wanted & sides or (clip.interaction.object in ("seat", "bed") and "Hips" in joints):
+            return {j: tuple(float(v) for v in p) for j, p in pairs}  # type: ignore[misc]
+    return {}
+
+
+def _find_object(scene: Scene, ref: str) -> PlacedObject | None:
+    if not ref:
+        return None
+    for o in scene.objects:
+        if o.id == ref:
+            return o
+    for o in scene.objects:
+        if o.id.split("#")[0] == ref or o.category == ref:
+            return o
+    return None
+
+
+def plan_actions(character: CharacterNode, scene: Scene, start: tuple[float, float, float],
+                 route_fn: RouteFn | None = None) -> MotionPlan:
+    """Turn a character's ordered actions into a MotionPlan.
+
+    Args:
+        character: the SSG character with its ordered ActionNodes.
+        scene: the composed scene (objects placed in the world).
+        start: (x, z, yaw) where the character starts.
+        route_fn: route planner; defaults to a straight line.
+
+    Returns:
+        the plan; unknown actions become a 1 s wait and a diagnostic.
+    """
+    route = route_fn or straight_route
+    lib = load_library()
+    segs: list[PlannedSegment] = []
+    diags: list[str] = []
+    x, z, yaw = start
+    pos = np.array([x, z], float)
+
+    def add(**kw) -> None:
+        segs.append(PlannedSegment(index=len(segs), **kw))
+
+    def walk_to(goal: np.ndarray, speed: float, face: float | None, action: str, ai: int, target: str = "") -> None:
+        nonlocal pos, yaw
+        if np.linalg.norm(goal - pos) < 0.05 and face is None:
+            return
+        wps = np.asarray(route(scene, (float(pos[0]), float(pos[1])), (float(goal[0]), float(goal[1]))), float).reshape(-1, 2)
+        add(kind="locomotion", action=action, waypoints=tuple(map(tuple, np.round(wps, 4))), speed=speed, face_yaw=face,
+            target_id=target, action_index=ai)
+        if len(wps) > 1:
+            d = wps[-1] - wps[-2]
+            yaw = float(np.arctan2(d[0], d[1])) if np.linalg.norm(d) > 1e-6 else yaw
+        pos = wps[-1].copy()
+        if face is not None:
+            yaw = face
+
+    for ai, node in enumerate(character.actions):
+        node: ActionNode
+        name = node.action
+        if not name or name not in lib:
+            try:
+                name = get_clip(node.action or node.verb).name
+            except KeyError:
+                diags.append(f"unknown action {node.action or node.verb!r}: waiting 1 s instead")
+                add(kind="wait", action="idle", duration_s=1.0, action_index=ai)
+                continue
+        clip = lib[name]
+        speed_k = MANNER_SPEED.get(node.manner, 1.0)
+        if "locomotion" in clip.tags:
+            obj = _find_object(scene, node.destination or node.target)
+            if obj is not None:
+                geo = _object_geometry(obj) or _fallback_geometry(obj)
+                goal = geo[0]
+            else:
+                fwd = np.array([np.sin(yaw), np.cos(yaw)])
+                goal = pos + fwd * (2.0 if node.destination or not node.target else 1.5)
+            walk_to(goal, SPEEDS.get(name, 1.3) * speed_k, None, name, ai, obj.id if obj else "")
+            continue
+        if name in ("turn_left", "turn_right", "turn_around"):
+            add(kind="action", action=name, action_index=ai)
+            yaw += {"turn_left": np.pi / 2, "turn_right": -np.pi / 2, "turn_around": np.pi}[name]
+            continue
+        obj = _find_object(scene, node.target or node.instrument or node.destination)
+        targets: dict[str, tuple[float, float, float]] = {}
+        if obj is not None and clip.interaction and clip.interaction.object not in ("handheld", "person"):
+            geo = _object_geometry(obj) or _fallback_geometry(obj)
+            stand, points = geo
+            targets = contact_targets(clip, points)
+            if clip.interaction.object in ("seat", "bed") and "Hips" in targets:
+                face = float(obj.yaw)
+                seat = np.array([targets["Hips"][0], targets["Hips"][2]])
+                approach = seat + np.array([np.sin(face), np.cos(face)]) * SEAT_BACK
+                walk_to(approach, 1.2, face, "walk", ai, obj.id)
+            elif clip.interaction.object not in ("seat", "bed"):
+                centre = np.array([obj.position[0], obj.position[2]])
+                if targets:  # stand within arm's reach of the contact points (catalog stand points can be far)
+                    centre = np.mean([[p[0], p[2]] for p in targets.values()], axis=0)
+                    away = stand - centre
+                    if np.linalg.norm(away) > 1e-6:
+                        stand = centre + away / np.linalg.norm(away) * min(np.linalg.norm(away), REACH)
+                d = centre - stand
+                face = float(np.arctan2(d[0], d[1])) if np.linalg.norm(d) > 1e-6 else yaw
+                already_there = np.linalg.norm(stand - pos) < 0.35
+                seated = segs and any(s.action in ("sit", "lie_down") for s in segs[-2:])
+                if not already_there and not seated:
+                    walk_to(stand, 1.2, face, "walk", ai, obj.id)
+                elif not seated and abs(np.arctan2(np.sin(face - yaw), np.cos(face - yaw))) > 0.3:
+                    walk_to(pos.copy(), 1.0, face, "turn", ai, obj.id)  # close enough, but facing away: turn in place
+        elif obj is not None and clip.interaction is None and name in ("look_at", "point", "wave", "talk"):
+            d = np.array([obj.position[0], obj.position[2]]) - pos
+            if np.linalg.norm(d) > 0.3:
+                face = float(np.arctan2(d[0], d[1]))
+                if abs(np.arctan2(np.sin(face - yaw), np.cos(face - yaw))) > 0.3:
+                    walk_to(pos.copy(), 1.0, face, "turn", ai, obj.id)
+        add(kind="action", action=name, duration_s=float(node.duration_s), targets=tuple(sorted(targets.items())),
+            target_id=obj.id if obj else node.target, action_index=ai)
+    return MotionPlan(character=character.name, start=(float(x), float(z), float(start[2])), segments=tuple(segs),
+                      diagnostics=tuple(diags))

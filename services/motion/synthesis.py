@@ -1,0 +1,261 @@
+"""Segment-wise synthesis: a MotionPlan -> proto.motion_data.Motion.
+
+Each planned segment is synthesised from the end state of the previous one only
+(`synthesise_segment(plan, k, start_state) -> (MotionPiece, end_state)`), so the orchestrator can
+recompute from segment k on and stop as soon as an end state comes out unchanged. Every piece
+starts and ends in its posture's rest pose, so pieces join with short cross-fades. Upper body from
+the action, lower body from locomotion or the posture; IK brings contact joints to the object's
+contact points; foot locking removes sliding.
+"""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+
+from proto.motion_data import Motion, Segment
+from services.motion import quat
+from services.motion.blend import fade_from, layer, upper_body_mask
+from services.motion.ik import bend_spine_to_reach, joint_globals, lock_feet, two_bone_ik
+from services.motion.library import ActionClip, get_clip, neutral_rotations
+from services.motion.locomotion import locomote
+from wana.arrays import to_wire
+from wana.skeleton import JOINT_INDEX, JOINT_NAMES, N_JOINTS, REST_OFFSETS
+
+FPS = 30
+FADE = 6  # frames of cross-fade at the start of each piece
+POSTURE_AFTER = {"sit": "sit", "lie_down": "lie", "sleep": "lie", "sit_on_floor": "sit_floor", "stand": "stand"}
+POSTURE_CLIP = {"sit": "sit", "lie": "lie_down", "sit_floor": "sit_on_floor"}
+
+
+@dataclass(frozen=True)
+class SegmentState:
+    """Where a character is between segments (hashable; floats rounded to mm / mrad)."""
+
+    x: float = 0.0
+    z: float = 0.0
+    yaw: float = 0.0
+    posture: str = "stand"
+    phase: float = 0.0
+
+    def rounded(self) -> SegmentState:
+        return SegmentState(round(self.x, 3), round(self.z, 3), round(float(np.arctan2(np.sin(self.yaw), np.cos(self.yaw))), 3),
+                            self.posture, round(self.phase, 3))
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+@dataclass(frozen=True)
+class PlannedSegment:
+    """One step of a character's plan.
+
+    kind: "locomotion" (waypoints, speed, face_yaw), "action" (a library clip, optional contact
+    targets: joint -> world (x, y, z)), or "wait".
+    """
+
+    index: int
+    kind: str
+    action: str
+    duration_s: float = 0.0  # 0 = natural length
+    waypoints: tuple[tuple[float, float], ...] = ()
+    speed: float = 1.4
+    face_yaw: float | None = None
+    targets: tuple[tuple[str, tuple[float, float, float]], ...] = ()
+    target_id: str = ""
+    sentence_id: str = ""
+    action_index: int = -1  # index of the ActionNode this segment serves
+
+
+@dataclass(frozen=True)
+class MotionPlan:
+    character: str
+    start: tuple[float, float, float]  # x, z, yaw
+    segments: tuple[PlannedSegment, ...] = ()
+    diagnostics: tuple[str, ...] = ()
+
+    def start_state(self) -> SegmentState:
+        return SegmentState(*self.start).rounded()
+
+
+@dataclass
+class MotionPiece:
+    """Frames of one segment: root (T, 3), rotations (T, J, 4), contacts (T, 2), plus contact targets per frame."""
+
+    root: np.ndarray
+    rotations: np.ndarray
+    contacts: np.ndarray
+    segment: PlannedSegment
+    contact_frames: dict[str, tuple[np.ndarray, np.ndarray]] = field(default_factory=dict)  # joint -> (frames, target)
+
+
+@functools.lru_cache(maxsize=8)
+def posture_pose(posture: str) -> tuple[np.ndarray, np.ndarray]:
+    """(J, 4) rotations and (3,) root offset (character frame) of a posture's rest pose."""
+    if posture in POSTURE_CLIP:
+        clip = get_clip(POSTURE_CLIP[posture])
+        rot, root, _ = clip.sample()
+        return rot[-1], root[-1]
+    return neutral_rotations(), np.zeros(3)
+
+
+def _to_world(state: SegmentState, offsets: np.ndarray, yaw_track: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Character-frame root offsets (T, 3) -> world hips (T, 3); heading (T,)."""
+    heading = state.yaw + yaw_track
+    q = quat.yaw(np.full(len(offsets), state.yaw))
+    world = quat.rotate(q, offsets)
+    world[:, 0] += state.x
+    world[:, 2] += state.z
+    world[:, 1] += REST_OFFSETS[0, 1]
+    return world, heading
+
+
+def _clip_contacts(rot: np.ndarray, root: np.ndarray) -> np.ndarray:
+    out = np.zeros((len(rot), 2), np.uint8)
+    for k, name in enumerate(("LeftFoot", "RightFoot")):
+        f, _ = joint_globals(rot, root, JOINT_INDEX[name])
+        v = np.zeros(len(f))
+        v[1:] = np.linalg.norm(np.diff(f[:, [0, 2]], axis=0), axis=1)
+        out[:, k] = ((f[:, 1] < 0.09) & (v < 0.01)).astype(np.uint8)
+    return out
+
+
+def _action_piece(seg: PlannedSegment, state: SegmentState) -> tuple[MotionPiece, SegmentState]:
+    clip: ActionClip = get_clip(seg.action)
+    dur = seg.duration_s if seg.duration_s > 0 else (max(clip.duration_s, 3.0) if clip.looping else clip.duration_s)
+    rot, offs, yaw_track = clip.sample(FPS, dur)
+    t = len(rot)
+    posture = state.posture
+    if clip.drives_lower_body:
+        if posture != "stand" and seg.action not in ("stand",) and clip.name in POSTURE_AFTER:
+            pass
+        root, heading = _to_world(state, offs, yaw_track)
+    else:
+        base_rot, base_off = posture_pose(posture)
+        base = np.repeat(base_rot[None], t, 0)
+        rot = layer(base, rot, upper_body_mask())
+        root, heading = _to_world(state, np.repeat(base_off[None], t, 0), np.zeros(t))
+    rot = rot.copy()
+    rot[:, 0] = quat.mul(quat.yaw(heading), rot[:, 0])
+    start_rot, start_off = posture_pose(posture)
+    start_pose = start_rot.copy()
+    start_pose[0] = quat.mul(quat.yaw(state.yaw), start_pose[0])
+    rot = fade_from(start_pose, rot, FADE if clip.name not in POSTURE_AFTER else 0)
+    contact_frames: dict[str, tuple[np.ndarray, np.ndarray]] = {}
+    targets = dict(seg.targets)
+    if "Hips" in targets and clip.interaction:  # move the root so the hips land on the seat / bed point
+        w0, w1 = clip.interaction.window
+        frames = np.arange(t)
+        ramp = np.clip((frames / FPS - (w0 - 0.6)) / 0.6, 0, 1)
+        ramp = ramp * ramp * (3 - 2 * ramp)
+        hit = min(int(w0 * FPS), t - 1)
+        delta = np.asarray(targets["Hips"]) - root[hit]
+        root = root + ramp[:, None] * delta
+        inside = frames[(frames >= int(w0 * FPS)) & (frames < max(int(w1 * FPS), int(w0 * FPS) + 1))]
+        contact_frames["Hips"] = (inside, np.asarray(targets["Hips"]))
+    stand_feet = not clip.drives_lower_body or seg.action in POSTURE_AFTER
+    contacts = np.ones((t, 2), np.uint8) if stand_feet else _clip_contacts(rot, root)
+    rot = lock_feet(rot, root, contacts)
+    if clip.interaction and clip.interaction.object not in ("handheld", "person"):
+        w0, w1 = clip.interaction.window
+        frames = np.arange(t)
+        if clip.looping:
+            w0, w1 = 0.0, dur
+        tt = frames / FPS
+        weight = np.clip(np.minimum((tt - (w0 - 0.4)) / 0.4, ((w1 + 0.4) - tt) / 0.4), 0, 1)
+        for joint, target in targets.items():
+            if joint == "Hips" or joint not in ("LeftHand", "RightHand", "LeftHandMiddle1", "RightHandMiddle1"):
+                continue
+            tgt = np.broadcast_to(np.asarray(target, dtype=np.float64), (t, 3))
+            rot = bend_spine_to_reach(rot, root, joint, tgt, weight)
+            rot = two_bone_ik(rot, root, joint, tgt, weight)
+            inside = frames[weight >= 0.999]
+            contact_frames[joint] = (inside, np.asarray(target))
+    end_off = offs[-1] if clip.drives_lower_body else np.zeros(3)
+    end_yaw = state.yaw + float(yaw_track[-1])
+    new_posture = POSTURE_AFTER.get(clip.name, posture)
+    if clip.drives_lower_body and new_posture == "stand" and clip.name not in POSTURE_AFTER:
+        # Travel built into the clip (a step, a jump forward) moves the character.
+        moved = quat.rotate(quat.yaw(np.array(state.yaw)), np.array([end_off[0], 0.0, end_off[2]]))
+        end = SegmentState(state.x + moved[0], state.z + moved[2], end_yaw, new_posture, state.phase)
+    else:
+        end = SegmentState(state.x, state.z, end_yaw, new_posture, state.phase)
+    return MotionPiece(root, quat.normalize(rot), contacts, seg, contact_frames), end.rounded()
+
+
+def _locomotion_piece(seg: PlannedSegment, state: SegmentState) -> tuple[MotionPiece, SegmentState]:
+    pieces: list[MotionPiece] = []
+    if state.posture != "stand":  # get up first
+        up, state = _action_piece(PlannedSegment(index=seg.index, kind="action", action="stand"), state)
+        pieces.append(up)
+    wps = np.asarray(seg.waypoints, dtype=np.float64).reshape(-1, 2) if seg.waypoints else np.zeros((0, 2))
+    wps = np.concatenate([[[state.x, state.z]], wps]) if len(wps) == 0 or np.linalg.norm(wps[0] - [state.x, state.z]) > 1e-3 else wps
+    loco = locomote(wps, seg.speed, state.yaw, seg.face_yaw, state.phase)
+    rot = fade_from(_standing_pose(state.yaw), loco.rotations, FADE)
+    rot = lock_feet(rot, loco.root_position, loco.contacts)
+    piece = MotionPiece(loco.root_position, rot, loco.contacts, seg)
+    end = SegmentState(float(loco.root_position[-1, 0]), float(loco.root_position[-1, 2]), float(loco.heading[-1]), "stand",
+                       float(loco.phase[-1]) if loco.source == "pfnn" else 0.0).rounded()
+    if pieces:
+        piece = MotionPiece(np.concatenate([pieces[0].root, piece.root]), np.concatenate([pieces[0].rotations, piece.rotations]),
+                            np.concatenate([pieces[0].contacts, piece.contacts]), seg)
+    return piece, end
+
+
+def _standing_pose(yaw: float) -> np.ndarray:
+    p = neutral_rotations().copy()
+    p[0] = quat.mul(quat.yaw(np.array(yaw)), p[0])
+    return p
+
+
+def synthesise_segment(plan: MotionPlan, k: int, start_state: SegmentState) -> tuple[MotionPiece, SegmentState]:
+    """Synthesise segment k of a plan from the end state of segment k-1 (or plan.start_state())."""
+    seg = plan.segments[k]
+    if seg.kind == "locomotion":
+        return _locomotion_piece(seg, start_state)
+    if seg.kind == "wait":
+        base_rot, base_off = posture_pose(start_state.posture)
+        t = max(1, int(round(seg.duration_s * FPS)))
+        rot = np.repeat(base_rot[None], t, 0)
+        rot[:, 0] = quat.mul(quat.yaw(np.full(t, start_state.yaw)), rot[:, 0])
+        root, _ = _to_world(start_state, np.repeat(base_off[None], t, 0), np.zeros(t))
+        return MotionPiece(root, rot, np.ones((t, 2), np.uint8), seg), start_state
+    return _action_piece(seg, start_state)
+
+
+def synthesise(plan: MotionPlan) -> tuple[Motion, list[MotionPiece], list[SegmentState]]:
+    """All segments in order; returns the Motion, the pieces and the end state of each segment."""
+    state = plan.start_state()
+    pieces, states = [], []
+    for k in range(len(plan.segments)):
+        piece, state = synthesise_segment(plan, k, state)
+        pieces.append(piece)
+        states.append(state)
+    return assemble(plan.character, pieces, plan.start_state()), pieces, states
+
+
+def assemble(character: str, pieces: list[MotionPiece], start: SegmentState | None = None) -> Motion:
+    """Concatenate pieces into a proto Motion (float32 arrays, segments with frame ranges)."""
+    if not pieces:
+        s = start or SegmentState()
+        rot = _standing_pose(s.yaw)[None]
+        root = np.array([[s.x, REST_OFFSETS[0, 1], s.z]])
+        contacts = np.ones((1, 2), np.uint8)
+        segments: list[Segment] = []
+    else:
+        rot = np.concatenate([p.rotations for p in pieces])
+        root = np.concatenate([p.root for p in pieces])
+        contacts = np.concatenate([p.contacts for p in pieces])
+        segments, f = [], 0
+        for p in pieces:
+            n = len(p.root)
+            segments.append(Segment(index=p.segment.index, action=p.segment.action, start_frame=f, end_frame=f + n,
+                                    sentence_id=p.segment.sentence_id))
+            f += n
+    return Motion(character=character, fps=FPS, joint_names=list(JOINT_NAMES), root_position=to_wire(root.astype(np.float32)),
+                  rotations=to_wire(rot.astype(np.float32)), foot_contact=to_wire(contacts.astype(np.uint8)), segments=segments)
+
+
+assert N_JOINTS == len(JOINT_NAMES)
