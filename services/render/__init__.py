@@ -1,0 +1,12 @@
+"""The render service: frames, MP4 video, animated GLB and BVH exports of an animation.
+
+CONTRACT:
+    RenderRequest (proto.render) -> RenderReply: frames [start_frame, end_frame) as PNG, JPEG or raw RGB
+        bytes, or one H.264 MP4 chunk (chunks of one animation join with services.render.video.join_chunks).
+    ExportRequest (proto.render) -> ExportReply: the whole MP4, the animated GLB, or one character's BVH.
+    Either may instead answer proto.common.ErrorReply (E010 invalid input, E009 handler failure).
+
+In-process API: services.render.export.write_outputs (what ``wana animate`` writes),
+services.render.renderer.FrameRenderer, services.render.gltf_export.scene_glb,
+services.render.bvh_export.motion_bvh, services.render.video.encode_mp4 / join_chunks.
+"""

@@ -1,0 +1,159 @@
+"""Render throughput: frames per second of one render worker at 640x480, and the speed-up with 2 workers.
+
+    .venv/bin/python bench/render.py [--quick] [--json PATH] [--frames N] [--width W --height H]
+
+fps: one FrameRenderer in this process renders the demo office (4 objects, room, 2 skinned
+characters walking, projected shadows) frame by frame after one warm-up frame; skinning, shading,
+read-back and colour grading are all counted, encoding is not.
+
+speedup_2_workers: a real broker and two render worker processes (ipc socket); the whole video is
+asked for as two MP4 chunks (``RenderRequest(encoding="mp4")``) and joined, first one chunk after the
+other (one worker busy at a time), then both at once (one per worker); speed-up = time(one at a
+time) / time(both at once). Worker start-up and the first scene build are not timed. The machine's CPU count and load are printed: on a shared 2-core machine the speed-up is
+bounded by the cores other processes leave free.
+
+JSON keys: fps, speedup_2_workers (plus context: frames, width, height, seconds_1_worker,
+seconds_2_workers, cpu_count, load_average).
+"""
+
+from __future__ import annotations
+
+import argparse
+import io
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(REPO))
+
+import msgspec  # noqa: E402
+from tqdm import tqdm  # noqa: E402
+
+from proto.common import Header  # noqa: E402
+from proto.render import RenderReply, RenderRequest  # noqa: E402
+from services.render.demo import demo_scene, walk_motion  # noqa: E402
+
+
+def demo_motions(frames: int) -> list:
+    return [walk_motion("Eve", (-2.0, 1.5), (1.0, -0.5), frames, sentence_id="s1"),
+            walk_motion("Tom", (1.5, 1.8), (-0.5, 1.2), frames, expression="frown", sentence_id="s1")]
+
+
+def measure_fps(frames: int, width: int, height: int) -> float:
+    from services.render.renderer import FrameRenderer
+
+    with FrameRenderer(demo_scene(), demo_motions(frames + 1), [], width=width, height=height) as r:
+        r.render(0)  # warm-up: GL context, buffers
+        t0 = time.perf_counter()
+        for _ in tqdm(r.frames(1, frames + 1), total=frames, desc="fps", unit="frame", leave=False):
+            pass
+        return frames / (time.perf_counter() - t0)
+
+
+def _start_workers(url: str, n: int, logs: Path) -> list[subprocess.Popen]:
+    env = dict(os.environ, PYTHONPATH=str(REPO), OMP_NUM_THREADS="1")
+    code = "import sys; from services.render.worker import main; main(sys.argv[1])"
+    procs = []
+    for i in range(n):
+        with open(logs / f"worker-{i}.log", "wb") as err:
+            procs.append(subprocess.Popen([sys.executable, "-c", code, url], cwd=REPO, env=env, stderr=err))
+    return procs
+
+
+def time_chunked(frames: int, width: int, height: int, chunks: int = 2) -> tuple[float, float]:
+    """Seconds to render the whole video as MP4 chunks, joined: (one chunk at a time, all at once on 2 workers).
+
+    Two warmed-up workers serve both runs. Chunks sent one after another are what one worker can
+    do; sent together, the broker hands one to each worker.
+    """
+    from services.render.timeline import chunk_ranges
+    from services.render.video import join_chunks
+    from wana.bus.broker import Broker
+    from wana.bus.client import Client
+
+    n_workers = 2
+    tmp = Path(tempfile.mkdtemp(prefix="wana-bench-"))
+    url = f"ipc://{tmp}/bus.sock"
+    broker = Broker(url)
+    broker.start_thread()
+    procs = _start_workers(url, n_workers, tmp)
+    client = Client(url)
+    try:
+        end = time.monotonic() + 180
+        while True:
+            svc = client.stats().services.get("render")
+            if svc is not None and svc.workers >= n_workers:
+                break
+            if time.monotonic() > end or any(p.poll() is not None for p in procs):
+                raise RuntimeError(f"render workers did not start; see {tmp}")
+            time.sleep(0.05)
+        scene, motions = demo_scene(), demo_motions(frames)
+        warm = RenderRequest(header=Header(), scene=scene, motions=motions, start_frame=0, end_frame=1,
+                             width=width, height=height)
+        warm_jobs = [client.submit("render", msgspec.msgpack.encode(warm), deadline_s=300,
+                                   idempotency_key=f"warm-{i}") for i in range(n_workers)]
+        client.wait(warm_jobs, timeout=300)  # both workers have imported and built the scene once
+
+        def run(parallel: bool, tag: str) -> float:
+            t0 = time.perf_counter()
+            jobs, videos = [], []
+            for a, b in chunk_ranges(frames, chunks):
+                req = RenderRequest(header=Header(), scene=scene, motions=motions, start_frame=a, end_frame=b,
+                                    width=width, height=height, encoding="mp4")
+                jobs.append(client.submit("render", msgspec.msgpack.encode(req), deadline_s=600,
+                                          idempotency_key=f"{tag}-{a}"))
+                if not parallel:
+                    videos.append(msgspec.msgpack.decode(client.result(jobs[-1], timeout=600), type=RenderReply).video)
+            if parallel:
+                videos = [msgspec.msgpack.decode(client.result(j, timeout=600), type=RenderReply).video for j in jobs]
+            n = join_chunks(videos, io.BytesIO())
+            if n != frames:
+                raise RuntimeError(f"joined video has {n} frames, expected {frames}")
+            return time.perf_counter() - t0
+
+        return run(False, "one"), run(True, "two")
+    finally:
+        client.close()
+        for p in procs:
+            p.terminate()
+        for p in procs:
+            try:
+                p.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                p.kill()
+        broker.close()
+
+
+def main(argv: list[str] | None = None) -> dict:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                 formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
+    ap.add_argument("--quick", action="store_true", help="fewer frames (finishes in under 30 s)")
+    ap.add_argument("--json", metavar="PATH", help="write the results as JSON")
+    ap.add_argument("--frames", type=int, default=0, help="frames to render (default 120, quick 10)")
+    ap.add_argument("--width", type=int, default=640)
+    ap.add_argument("--height", type=int, default=480)
+    args = ap.parse_args(argv)
+    frames = args.frames or (10 if args.quick else 120)
+    fps = measure_fps(frames, args.width, args.height)
+    t1, t2 = time_chunked(frames, args.width, args.height)
+    result = {"fps": round(fps, 2), "speedup_2_workers": round(t1 / t2, 2), "frames": frames, "width": args.width,
+              "height": args.height, "seconds_1_worker": round(t1, 2), "seconds_2_workers": round(t2, 2),
+              "cpu_count": os.cpu_count(), "load_average": [round(x, 2) for x in os.getloadavg()]}
+    print(f"{'metric':<22}{'value':>10}")
+    print(f"{'fps (1 worker)':<22}{result['fps']:>10}")
+    print(f"{'speedup_2_workers':<22}{result['speedup_2_workers']:>10}")
+    print(f"{'seconds 1 / 2 workers':<22}{result['seconds_1_worker']:>5} / {result['seconds_2_workers']}")
+    print(f"{'frames, size':<22}{frames:>5}, {args.width}x{args.height}")
+    print(f"{'cpus, load average':<22}{os.cpu_count():>5}, {result['load_average']}")
+    if args.json:
+        Path(args.json).write_text(json.dumps(result, indent=2))
+    return result
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,97 @@
+"""Messages of the render service: frames of a frame range, and whole-file exports.
+
+A render request is self-contained: the scene, every character's motion, the camera/weather
+commands already placed on frames and the captions. Each frame depends only on those, never on
+earlier frames, so a long video is split into frame ranges that several render workers render
+at once and that join without a seam (``services.render.video.join_chunks``).
+"""
+
+from __future__ import annotations
+
+from typing import Literal
+
+import msgspec
+
+from proto.common import Header, Status
+from proto.motion_data import Motion
+from proto.scene import Scene
+from proto.ssg import Command
+
+FrameEncoding = Literal["png", "jpeg", "raw", "mp4"]
+ExportFormat = Literal["mp4", "glb", "bvh"]
+
+
+class TimedCommand(msgspec.Struct, frozen=True, kw_only=True):
+    """A camera or weather command that takes effect at a frame."""
+
+    frame: int  # 0-based frame index (30 fps) from which the command applies
+    command: Command
+
+
+class Caption(msgspec.Struct, frozen=True, kw_only=True):
+    """The sentence shown under the picture for frames [start_frame, end_frame)."""
+
+    start_frame: int
+    end_frame: int
+    text: str
+    sentence_id: str = ""
+
+
+class RenderRequest(msgspec.Struct, frozen=True, kw_only=True, tag="render_request"):
+    """Render frames [start_frame, end_frame) of the animation."""
+
+    header: Header
+    scene: Scene
+    motions: list[Motion] = []
+    commands: list[TimedCommand] = []
+    captions: list[Caption] = []  # drawn into the frames when show_captions
+    start_frame: int = 0
+    end_frame: int = -1  # exclusive; -1 = the last frame of the animation
+    n_frames: int = 0  # length of the whole animation; 0 = the longest motion (1 s without motion)
+    width: int = 640  # pixels
+    height: int = 480  # pixels
+    encoding: FrameEncoding = "png"  # per-frame png/jpeg/raw RGB bytes, or one H.264 MP4 chunk
+    show_captions: bool = True
+
+
+class RenderReply(msgspec.Struct, frozen=True, kw_only=True, tag="render_reply"):
+    """Frames of the requested range.
+
+    ``frames`` holds one entry per frame for png/jpeg (image file bytes) and raw (height*width*3
+    bytes, RGB, row-major, top row first); for mp4 it is empty and ``video`` is the chunk.
+    """
+
+    header: Header
+    status: Status = "ok"
+    start_frame: int
+    end_frame: int  # exclusive
+    n_frames: int  # length of the whole animation
+    width: int
+    height: int
+    fps: int = 30
+    encoding: FrameEncoding = "png"
+    frames: list[bytes] = []
+    video: bytes = b""
+
+
+class ExportRequest(msgspec.Struct, frozen=True, kw_only=True, tag="export_request"):
+    """Produce one whole file: the MP4 video, the animated GLB scene or one character's BVH."""
+
+    header: Header
+    format: ExportFormat
+    scene: Scene
+    motions: list[Motion] = []
+    commands: list[TimedCommand] = []
+    captions: list[Caption] = []
+    character: str = ""  # BVH: which character ("" = the first motion)
+    width: int = 640
+    height: int = 480
+
+
+class ExportReply(msgspec.Struct, frozen=True, kw_only=True, tag="export_reply"):
+    header: Header
+    status: Status = "ok"
+    format: ExportFormat
+    filename: str  # suggested file name, e.g. "scene.glb", "Eve.bvh"
+    media_type: str  # "video/mp4", "model/gltf-binary", "application/octet-stream"
+    data: bytes

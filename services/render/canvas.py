@@ -1,0 +1,185 @@
+"""Headless open3d rasteriser: triangle meshes, lines and points drawn offscreen into RGB arrays.
+
+Why the legacy ``open3d.visualization.Visualizer`` and not ``rendering.OffscreenRenderer``: on this
+machine (no display, Mesa llvmpipe) the Filament renderer runs on its Vulkan backend and renders the
+first frame, but the next ``render_to_image`` after any ``add_geometry`` / ``remove_geometry`` /
+``show_geometry`` blocks forever in ``FilamentRenderer::BeginFrame`` (a condition wait seen with gdb);
+only ``set_geometry_transform`` keeps working, which cannot deform a skinned mesh. The legacy
+visualizer falls back to an EGL pbuffer context on Mesa ("EGLOffscreenContext") with no display,
+updates vertex buffers in place every frame and reads back colour and depth, at about 10 frames per
+second at 640x480 on one llvmpipe core. Lighting there is the renderer's fixed Phong set; weather
+is applied through colours, background, fog (from the depth buffer) and particle geometry, and
+shadows are projected planar shadows (see ``services.render.shadows``).
+
+One Canvas per process is open at a time (one GL context): opening a new one closes the previous
+one, whose owner reopens a fresh canvas when it draws again (``FrameRenderer`` does).
+"""
+
+from __future__ import annotations
+
+import os
+import threading
+
+import numpy as np
+
+from services.render.camera import CameraPose, intrinsics
+
+os.environ.setdefault("XDG_RUNTIME_DIR", "/tmp")
+
+_LOCK = threading.Lock()  # guards _ACTIVE
+_ACTIVE: list[Canvas] = []  # the open canvas, if any
+
+
+class Canvas:
+    """An offscreen drawing surface of a fixed size.
+
+    Args:
+        width: image width in pixels.
+        height: image height in pixels.
+    """
+
+    def __init__(self, width: int = 640, height: int = 480) -> None:
+        import open3d as o3d
+
+        if not (16 <= width <= 4096 and 16 <= height <= 4096):
+            raise ValueError(f"image size must be 16..4096 pixels a side, got {width}x{height}")
+        self._o3d = o3d
+        o3d.utility.set_verbosity_level(o3d.utility.VerbosityLevel.Error)
+        self._closed = True
+        with _LOCK:
+            while _ACTIVE:
+                _ACTIVE.pop().close()
+            self.width, self.height = int(width), int(height)
+            self._vis = o3d.visualization.Visualizer()
+            if not self._vis.create_window(window_name="wana", width=self.width, height=self.height, visible=False):
+                raise RuntimeError("open3d could not create an offscreen (EGL) rendering context")
+            _ACTIVE.append(self)
+        opt = self._vis.get_render_option()
+        opt.mesh_show_back_face = False  # walls are one-sided: the camera sees into the room through them
+        opt.point_size = 3.0
+        opt.line_width = 1.0
+        opt.light_on = True
+        self._geoms: dict[str, object] = {}
+        self._closed = False
+
+    @property
+    def closed(self) -> bool:
+        return self._closed
+
+    # ------------------------------------------------------------------ geometry
+    def set_mesh(self, name: str, vertices: np.ndarray, faces: np.ndarray | None = None,
+                 colours: np.ndarray | None = None) -> None:
+        """Add or update a triangle mesh.
+
+        Args:
+            name: key; a second call with the same name updates the mesh in place.
+            vertices: (V, 3) world positions, metres.
+            faces: (F, 3) vertex indices; only needed when the mesh is new or its topology changes.
+            colours: (V, 3) RGB in [0, 1]; only needed when new or changed.
+        """
+        o3d = self._o3d
+        geom = self._geoms.get(name)
+        new = geom is None or faces is not None
+        if new:
+            if faces is None:
+                raise ValueError(f"mesh {name!r} is new: faces are required")
+            if geom is not None:
+                self._vis.remove_geometry(geom, reset_bounding_box=False)
+            geom = o3d.geometry.TriangleMesh()
+            geom.triangles = o3d.utility.Vector3iVector(np.ascontiguousarray(faces, dtype=np.int32))
+        geom.vertices = o3d.utility.Vector3dVector(np.ascontiguousarray(vertices, dtype=np.float64))
+        if colours is not None:
+            geom.vertex_colors = o3d.utility.Vector3dVector(np.ascontiguousarray(colours[:, :3], dtype=np.float64))
+        geom.compute_vertex_normals()
+        if new:
+            # the first geometry sets the view volume; with an empty one open3d's camera turns to NaN
+            self._vis.add_geometry(geom, reset_bounding_box=not self._geoms)
+            self._geoms[name] = geom
+        else:
+            self._vis.update_geometry(geom)
+
+    def set_lines(self, name: str, points: np.ndarray, colour: tuple[float, float, float]) -> None:
+        """Add or replace line segments: points (2N, 3), segment i joins points 2i and 2i+1."""
+        o3d = self._o3d
+        self.remove(name)
+        if len(points) == 0:
+            return
+        n = len(points) // 2
+        ls = o3d.geometry.LineSet(o3d.utility.Vector3dVector(np.asarray(points, np.float64)),
+                                  o3d.utility.Vector2iVector(np.arange(2 * n, dtype=np.int32).reshape(n, 2)))
+        ls.paint_uniform_color(colour)
+        self._vis.add_geometry(ls, reset_bounding_box=False)
+        self._geoms[name] = ls
+
+    def set_points(self, name: str, points: np.ndarray, colour: tuple[float, float, float]) -> None:
+        """Add or replace a point cloud: points (N, 3)."""
+        o3d = self._o3d
+        self.remove(name)
+        if len(points) == 0:
+            return
+        pc = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(np.asarray(points, np.float64)))
+        pc.paint_uniform_color(colour)
+        self._vis.add_geometry(pc, reset_bounding_box=False)
+        self._geoms[name] = pc
+
+    def remove(self, name: str) -> None:
+        geom = self._geoms.pop(name, None)
+        if geom is not None:
+            self._vis.remove_geometry(geom, reset_bounding_box=False)
+
+    def names(self) -> list[str]:
+        return list(self._geoms)
+
+    # ------------------------------------------------------------------ drawing
+    def draw(self, pose: CameraPose, background: tuple[float, float, float] = (0.8, 0.85, 0.9),
+             *, with_depth: bool = False) -> tuple[np.ndarray, np.ndarray | None]:
+        """Render one frame.
+
+        Args:
+            pose: camera.
+            background: RGB in [0, 1].
+            with_depth: also read back the depth buffer.
+
+        Returns:
+            rgb (H, W, 3) uint8 and, when asked, depth (H, W) float32 metres along the view axis
+            (0 where nothing was drawn).
+        """
+        o3d = self._o3d
+        opt = self._vis.get_render_option()
+        opt.background_color = np.asarray(background, dtype=np.float64)
+        ctl = self._vis.get_view_control()
+        params = o3d.camera.PinholeCameraParameters()
+        fx, fy, cx, cy = intrinsics(pose.fov_deg, self.width, self.height)
+        params.intrinsic = o3d.camera.PinholeCameraIntrinsic(self.width, self.height, fx, fy, cx, cy)
+        params.extrinsic = pose.extrinsic()
+        ctl.set_constant_z_near(0.05)
+        ctl.set_constant_z_far(100.0)
+        ctl.convert_from_pinhole_camera_parameters(params, allow_arbitrary=True)
+        self._vis.update_renderer()
+        rgb = np.asarray(self._vis.capture_screen_float_buffer(do_render=True))
+        frame = np.clip(rgb * 255.0 + 0.5, 0, 255).astype(np.uint8)
+        depth = None
+        if with_depth:
+            depth = np.asarray(self._vis.capture_depth_float_buffer(do_render=False), dtype=np.float32)
+        return frame, depth
+
+    def close(self) -> None:
+        if not self._closed:
+            self._closed = True
+            self._vis.clear_geometries()
+            self._vis.destroy_window()
+            self._geoms.clear()
+            if self in _ACTIVE:
+                _ACTIVE.remove(self)
+
+    def __enter__(self) -> Canvas:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def __del__(self) -> None:  # pragma: no cover - best effort
+        try:
+            self.close()
+        except Exception:
+            pass

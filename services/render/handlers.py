@@ -1,0 +1,140 @@
+"""Pure request -> reply functions of the render service (no sockets here).
+
+A worker keeps the renderer of its latest job: the chunks of one video that land on the same
+worker reuse its scene meshes, skinned rigs and GL canvas.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import io
+import threading
+from collections.abc import Callable
+from typing import Any
+
+import msgspec
+import numpy as np
+from PIL import Image
+
+from proto.common import Header
+from proto.render import ExportReply, ExportRequest, RenderReply, RenderRequest
+from services.render.bvh_export import motion_bvh, safe_filename
+from services.render.gltf_export import scene_glb
+from services.render.renderer import FrameRenderer
+from services.render.video import FPS, encode_mp4
+from wana.bus.service import InvalidInput
+
+MAX_REPLY_BYTES = 30 * 1024 * 1024  # under the bus's 32 MiB frame cap
+MAX_SIDE = 2048
+
+_lock = threading.Lock()
+_cache: dict[str, Any] = {"key": None, "renderer": None}
+
+
+def _reply_header(request: Any) -> Header:
+    h = request.header
+    return Header(parent_id=h.msg_id, doc_id=h.doc_id, revision=h.revision)
+
+
+def _renderer_for(req: RenderRequest | ExportRequest, n_frames: int = 0) -> FrameRenderer:
+    """The cached renderer when the job is the same, else a new one (the old one is closed)."""
+    key_src = msgspec.msgpack.encode([req.scene, req.motions, req.commands, req.captions, req.width, req.height,
+                                      n_frames, getattr(req, "show_captions", True)])
+    key = hashlib.sha256(key_src).hexdigest()
+    if _cache["key"] == key and _cache["renderer"] is not None:
+        return _cache["renderer"]
+    if _cache["renderer"] is not None:
+        _cache["renderer"].close()
+        _cache["renderer"] = _cache["key"] = None
+    captions = req.captions if getattr(req, "show_captions", True) else []
+    try:
+        r = FrameRenderer(req.scene, list(req.motions), list(req.commands), list(captions), n_frames=n_frames,
+                          width=req.width, height=req.height)
+    except (ValueError, KeyError) as exc:
+        raise InvalidInput(str(exc)) from exc
+    _cache["key"], _cache["renderer"] = key, r
+    return r
+
+
+def _check_size(width: int, height: int) -> None:
+    if not (16 <= width <= MAX_SIDE and 16 <= height <= MAX_SIDE):
+        raise InvalidInput(f"image size must be 16..{MAX_SIDE} pixels a side, got {width}x{height}")
+
+
+def _encode_image(frame: np.ndarray, encoding: str) -> bytes:
+    if encoding == "raw":
+        return np.ascontiguousarray(frame, dtype=np.uint8).tobytes()
+    buf = io.BytesIO()
+    if encoding == "png":
+        Image.fromarray(frame).save(buf, format="PNG", compress_level=1)
+    else:
+        Image.fromarray(frame).save(buf, format="JPEG", quality=90)
+    return buf.getvalue()
+
+
+def handle_render(req: RenderRequest) -> RenderReply:
+    """Render frames [start_frame, end_frame) of the request's animation."""
+    _check_size(req.width, req.height)
+    if req.n_frames < 0:
+        raise InvalidInput("n_frames must be >= 0")
+    with _lock:
+        r = _renderer_for(req, req.n_frames)
+        start = int(req.start_frame)
+        end = r.n_frames if req.end_frame < 0 else int(req.end_frame)
+        if not (0 <= start <= end <= r.n_frames):
+            raise InvalidInput(f"frame range [{start}, {end}) is outside the animation's [0, {r.n_frames})")
+        if req.encoding == "raw" and (end - start) * req.width * req.height * 3 > MAX_REPLY_BYTES:
+            raise InvalidInput(f"{end - start} raw frames of {req.width}x{req.height} exceed the "
+                               f"{MAX_REPLY_BYTES} byte reply limit; ask for a shorter range or png/jpeg/mp4")
+        frames: list[bytes] = []
+        video = b""
+        if req.encoding == "mp4":
+            buf = io.BytesIO()
+            if end > start:
+                encode_mp4(r.frames(start, end), buf, fps=FPS)
+            video = buf.getvalue()
+        else:
+            size = 0
+            for img in r.frames(start, end):
+                frames.append(_encode_image(img, req.encoding))
+                size += len(frames[-1])
+                if size > MAX_REPLY_BYTES:
+                    raise InvalidInput(f"frames [{start}, {end}) exceed the {MAX_REPLY_BYTES} byte reply limit; "
+                                       "ask for a shorter range")
+        return RenderReply(header=_reply_header(req), start_frame=start, end_frame=end, n_frames=r.n_frames,
+                           width=req.width, height=req.height, fps=FPS, encoding=req.encoding, frames=frames,
+                           video=video)
+
+
+def handle_export(req: ExportRequest) -> ExportReply:
+    """Produce the MP4, the GLB or one character's BVH."""
+    h = _reply_header(req)
+    try:
+        if req.format == "glb":
+            return ExportReply(header=h, format="glb", filename="scene.glb", media_type="model/gltf-binary",
+                               data=scene_glb(req.scene, list(req.motions)))
+        if req.format == "bvh":
+            if not req.motions:
+                raise InvalidInput("a BVH export needs at least one motion")
+            pick = [m for m in req.motions if m.character == req.character] if req.character else [req.motions[0]]
+            if not pick:
+                raise InvalidInput(f"no motion for character {req.character!r}; have "
+                                   f"{', '.join(m.character for m in req.motions)}")
+            m = pick[0]
+            return ExportReply(header=h, format="bvh", filename=f"{safe_filename(m.character)}.bvh",
+                               media_type="application/octet-stream", data=motion_bvh(m).encode())
+    except (ValueError, KeyError) as exc:
+        if isinstance(exc, InvalidInput):
+            raise
+        raise InvalidInput(str(exc)) from exc
+    _check_size(req.width, req.height)
+    with _lock:
+        r = _renderer_for(req)
+        buf = io.BytesIO()
+        encode_mp4(r.frames(0, r.n_frames), buf, fps=FPS)
+    if buf.tell() > MAX_REPLY_BYTES:
+        raise InvalidInput("the video is larger than one reply may be; render it in chunks with RenderRequest")
+    return ExportReply(header=h, format="mp4", filename="animation.mp4", media_type="video/mp4", data=buf.getvalue())
+
+
+CONTRACT: dict[type, Callable[[Any], Any]] = {RenderRequest: handle_render, ExportRequest: handle_export}

@@ -1,0 +1,173 @@
+"""Render frames of an animation: scene, skinned characters, shadows, camera, weather, captions.
+
+    >>> with FrameRenderer(scene, motions, commands, width=640, height=480) as r:
+    ...     for frame in r.frames(0, r.n_frames):  # (480, 640, 3) uint8 each
+    ...         ...
+
+Any frame range can be rendered on its own and gives the same pixels as inside a longer range
+(every input of a frame is a function of its index), which is what chunked rendering relies on.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterator
+
+import numpy as np
+
+from proto.motion_data import Motion
+from proto.render import Caption, TimedCommand
+from proto.scene import Scene
+from services.render import captions as captions_mod
+from services.render.camera import CameraPose, camera_at
+from services.render.canvas import Canvas
+from services.render.scene_geometry import (
+    FLOOR_RGBA,
+    merge,
+    object_meshes,
+    project_to_floor,
+    room_meshes,
+    shadow_faces,
+)
+from services.render.skinning import Rig
+from services.render.timeline import (
+    camera_keys,
+    caption_at,
+    n_frames_of,
+    weather_keys,
+)
+from services.render.weather import background_for_render, grade, look_at, rain_segments, snow_points
+
+MAX_FRAMES = 30 * 60 * 20  # 20 minutes at 30 fps
+
+
+class FrameRenderer:
+    """Holds the GL canvas, the static scene and the rigs; renders frames by index.
+
+    Args:
+        scene: the composed scene.
+        motions: one Motion per character.
+        commands: camera/weather commands placed on frames.
+        captions: sentences to draw under the picture (empty: none).
+        n_frames: animation length; 0 = the longest motion (at least 1 s).
+        width, height: image size in pixels.
+    """
+
+    def __init__(self, scene: Scene, motions: list[Motion], commands: list[TimedCommand] | None = None,
+                 captions: list[Caption] | None = None, *, n_frames: int = 0, width: int = 640,
+                 height: int = 480) -> None:
+        self.scene = scene
+        self.width, self.height = int(width), int(height)
+        self.rigs = {m.character: Rig.from_motion(m) for m in motions}
+        self.n_frames = int(n_frames) if n_frames > 0 else n_frames_of(motions)
+        if self.n_frames > MAX_FRAMES:
+            raise ValueError(f"{self.n_frames} frames is more than the {MAX_FRAMES} one render may have")
+        cmds = list(commands or [])
+        self.camera_keys = camera_keys(cmds)
+        self.weather_keys = weather_keys(cmds)
+        self.captions = list(captions or [])
+        self.tracks = {name: rig.track() for name, rig in self.rigs.items()}
+        room_parts = room_meshes(scene.room)
+        objects = object_meshes(scene)
+        self._static = merge(room_parts + objects)
+        self._objects = merge(objects, "objects")
+        self._canvas: Canvas | None = None
+        self._shadow_look: float | None = None
+
+    # ------------------------------------------------------------------ lifetime
+    def _open(self) -> Canvas:
+        if self._canvas is not None and self._canvas.closed:  # another renderer took the GL context
+            self._canvas = None
+            self._shadow_look = None
+        if self._canvas is None:
+            c = Canvas(self.width, self.height)
+            st = self._static
+            if len(st.faces):
+                c.set_mesh("static", st.vertices, st.faces, st.colours[:, :3] / 255.0)
+            for name, rig in self.rigs.items():
+                ch = rig.character
+                c.set_mesh(f"char:{name}", ch.vertices.astype(np.float64), ch.faces.astype(np.int64),
+                           ch.colours[:, :3] / 255.0)
+            self._canvas = c
+        return self._canvas
+
+    def close(self) -> None:
+        if self._canvas is not None:
+            self._canvas.close()
+            self._canvas = None
+
+    def __enter__(self) -> FrameRenderer:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    # ------------------------------------------------------------------ frames
+    def camera(self, frame: int) -> CameraPose:
+        return camera_at(frame, self.camera_keys, self.tracks, self.scene.room)
+
+    def _shadow_colour(self, strength: float) -> np.ndarray:
+        floor = np.asarray(FLOOR_RGBA[:3], dtype=np.float64) / 255.0
+        return floor * (1.0 - strength)
+
+    def _update_shadows(self, c: Canvas, look, char_verts: dict[str, np.ndarray]) -> None:  # noqa: ANN001
+        colour = self._shadow_colour(look.shadow)
+        room = self.scene.room
+        key = (round(float(look.shadow), 3), tuple(np.round(look.sun, 3)))
+        if len(self._objects.faces) and self._shadow_look != key:
+            sv = project_to_floor(self._objects.vertices, look.sun, room)
+            c.set_mesh("shadow:objects", sv, shadow_faces(self._objects.faces), np.tile(colour, (len(sv), 1)))
+            self._shadow_look = key
+        for name, verts in char_verts.items():
+            faces = self.rigs[name].character.faces.astype(np.int64)
+            sv = project_to_floor(verts, look.sun, room)
+            new = f"shadow:{name}" not in c.names()
+            c.set_mesh(f"shadow:{name}", sv, shadow_faces(faces) if new else None,
+                       np.tile(colour, (len(sv), 1)))
+
+    def render(self, frame: int, pose: CameraPose | None = None) -> np.ndarray:
+        """One frame (H, W, 3) uint8; ``pose`` overrides the commanded camera (tests, previews)."""
+        if not 0 <= frame < self.n_frames:
+            raise ValueError(f"frame {frame} is outside the animation's [0, {self.n_frames})")
+        posed = {name: rig.vertices([frame])[0] for name, rig in self.rigs.items()}
+        return self._draw(frame, posed, pose)
+
+    def _draw(self, f: int, verts: dict[str, np.ndarray], pose: CameraPose | None = None) -> np.ndarray:
+        c = self._open()
+        look = look_at(f, self.weather_keys)
+        for name, v in verts.items():
+            c.set_mesh(f"char:{name}", v)
+        self._update_shadows(c, look, verts)
+        room = self.scene.room
+        c.set_lines("rain", rain_segments(f, room, look.rain), (0.78, 0.82, 0.9))
+        c.set_points("snow", snow_points(f, room, look.snow), (1.0, 1.0, 1.0))
+        rgb, depth = c.draw(pose or self.camera(f), tuple(background_for_render(look)), with_depth=look.fog > 1e-4)
+        img = grade(rgb, depth, look)
+        text = caption_at(self.captions, f)
+        if text:
+            img = captions_mod.draw_caption(img, text)
+        return img
+
+    def frames(self, start: int = 0, end: int | None = None,
+               progress: Callable[[int], None] | None = None) -> Iterator[np.ndarray]:
+        """Frames [start, end) as (H, W, 3) uint8 arrays.
+
+        Args:
+            start: first frame (0-based).
+            end: exclusive end; None or -1 = the end of the animation.
+            progress: called with 1 after each frame.
+
+        Raises:
+            ValueError: a range outside [0, n_frames].
+        """
+        end = self.n_frames if end is None or end < 0 else int(end)
+        if not (0 <= start <= end <= self.n_frames):
+            raise ValueError(f"frame range [{start}, {end}) is outside the animation's [0, {self.n_frames})")
+        block = 16  # skin a block of frames at once (vectorised), then draw them one by one
+        for b0 in range(start, end, block):
+            idx = np.arange(b0, min(b0 + block, end))
+            posed = {name: rig.vertices(idx) for name, rig in self.rigs.items()}
+            for i, f in enumerate(idx):
+                img = self._draw(int(f), {name: v[i] for name, v in posed.items()})
+                if progress is not None:
+                    progress(1)
+                yield img
