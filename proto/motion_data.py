@@ -13,6 +13,7 @@ class Segment(msgspec.Struct, frozen=True, kw_only=True):
     start_frame: int
     end_frame: int  # exclusive
     sentence_id: str = ""
+    action_index: int = -1  # index of the character's ActionNode this segment serves; -1 = none
 
 
 class Motion(msgspec.Struct, frozen=True, kw_only=True):

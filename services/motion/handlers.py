@@ -36,7 +36,8 @@ def handle_synthesize(req: SynthesizeRequest) -> SynthesizeReply:
                 return r
         return np.array([a, b], float)
 
-    plan = plan_actions(req.character, req.scene, req.start, route_fn)
+    posture = req.start_state.posture if req.start_state is not None else "stand"
+    plan = plan_actions(req.character, req.scene, req.start, route_fn, posture=posture)
     if req.from_segment < 0 or req.from_segment > len(plan.segments):
         raise InvalidInput(f"from_segment {req.from_segment} outside 0..{len(plan.segments)}")
     state = plan.start_state() if req.start_state is None else SegmentState(

@@ -87,7 +87,7 @@ def _find_object(scene: Scene, ref: str) -> PlacedObject | None:
 
 
 def plan_actions(character: CharacterNode, scene: Scene, start: tuple[float, float, float],
-                 route_fn: RouteFn | None = None) -> MotionPlan:
+                 route_fn: RouteFn | None = None, posture: str = "stand") -> MotionPlan:
     """Turn a character's ordered actions into a MotionPlan.
 
     Args:
@@ -95,6 +95,7 @@ def plan_actions(character: CharacterNode, scene: Scene, start: tuple[float, flo
         scene: the composed scene (objects placed in the world).
         start: (x, z, yaw) where the character starts.
         route_fn: route planner; defaults to a straight line.
+        posture: the posture the character starts in ("stand", "sit", ...), when planning resumes mid-story.
 
     Returns:
         the plan; unknown actions become a 1 s wait and a diagnostic.
@@ -170,7 +171,8 @@ def plan_actions(character: CharacterNode, scene: Scene, start: tuple[float, flo
                 d = centre - stand
                 face = float(np.arctan2(d[0], d[1])) if np.linalg.norm(d) > 1e-6 else yaw
                 already_there = np.linalg.norm(stand - pos) < 0.35
-                seated = segs and any(s.action in ("sit", "lie_down") for s in segs[-2:])
+                seated = (segs and any(s.action in ("sit", "lie_down") for s in segs[-2:])) or (
+                    not segs and posture in ("sit", "lie"))
                 if not already_there and not seated:
                     walk_to(stand, 1.2, face, "walk", ai, obj.id)
                 elif not seated and abs(np.arctan2(np.sin(face - yaw), np.cos(face - yaw))) > 0.3:

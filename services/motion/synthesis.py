@@ -196,8 +196,10 @@ def _locomotion_piece(seg: PlannedSegment, state: SegmentState) -> tuple[MotionP
     rot = fade_from(_standing_pose(state.yaw), loco.rotations, FADE)
     rot = lock_feet(rot, loco.root_position, loco.contacts)
     piece = MotionPiece(loco.root_position, rot, loco.contacts, seg)
+    # The character comes to rest at the goal, so the next walk starts from a standing pose at phase 0: the end
+    # state depends on where the walk ends, not on how it got there (edits to the manner stop early).
     end = SegmentState(float(loco.root_position[-1, 0]), float(loco.root_position[-1, 2]), float(loco.heading[-1]), "stand",
-                       float(loco.phase[-1]) if loco.source == "pfnn" else 0.0).rounded()
+                       0.0).rounded()
     if pieces:
         piece = MotionPiece(np.concatenate([pieces[0].root, piece.root]), np.concatenate([pieces[0].rotations, piece.rotations]),
                             np.concatenate([pieces[0].contacts, piece.contacts]), seg)
@@ -252,7 +254,7 @@ def assemble(character: str, pieces: list[MotionPiece], start: SegmentState | No
         for p in pieces:
             n = len(p.root)
             segments.append(Segment(index=p.segment.index, action=p.segment.action, start_frame=f, end_frame=f + n,
-                                    sentence_id=p.segment.sentence_id))
+                                    sentence_id=p.segment.sentence_id, action_index=p.segment.action_index))
             f += n
     return Motion(character=character, fps=FPS, joint_names=list(JOINT_NAMES), root_position=to_wire(root.astype(np.float32)),
                   rotations=to_wire(rot.astype(np.float32)), foot_contact=to_wire(contacts.astype(np.uint8)), segments=segments)

@@ -6,7 +6,7 @@ Query nodes (DESIGN §3), each keyed by the content hash of its inputs:
 - `scene`                 every scene sentence's objects + relations -> the composed room
 - `draft:<name>:<k>`      actions, layout before optimising action k -> the motion the optimiser starts from
 - `optimise:<name>:<k>`   layout, draft motion, action k             -> layout (+ motion) around action k
-- `motion:<name>`         actions, the final layout                  -> the character's motion
+- `segment:<name>:<k>`    action k, the final layout, end state k-1  -> frames of action k + its end state
 A stage whose service is not in this build is reported in `unavailable`; nothing is faked.
 """
 
@@ -17,14 +17,16 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import msgspec
+import numpy as np
 
 from proto.common import Header, Span
-from proto.motion_data import Motion
+from proto.motion_data import Motion, Segment
 from proto.scene import Scene
 from proto.ssg import ActionNode, CharacterNode, Command, Diagnostic, SentenceGraph
 from services.orchestrator.backend import Backend, StageFailed, StageUnavailable
 from services.orchestrator.document import Document
 from services.orchestrator.queries import QueryEngine
+from wana.arrays import from_wire, to_wire
 
 STAGES = ("parse", "scene", "motion")
 
@@ -109,11 +111,12 @@ class Pipeline:
         return reply.scene, reply
 
     def _synthesise(self, character: CharacterNode, scene: Scene, start: tuple[float, float, float],
-                    version: int) -> Any:
+                    version: int, start_state: Any = None) -> Any:
         SynthesizeRequest, SynthesizeReply = _messages("motion", "motion", "SynthesizeRequest", "SynthesizeReply")
         return self.backend.call(
             "motion",
-            SynthesizeRequest(header=self._header(version), character=character, scene=scene, start=start),
+            SynthesizeRequest(header=self._header(version), character=character, scene=scene, start=start,
+                              start_state=start_state),
             SynthesizeReply,
         )
 
@@ -162,13 +165,35 @@ class Pipeline:
         result.scene = scene
         for name, (node, sids) in characters.items():
             tick("motion", done, total)
-            reply = engine.query(f"motion:{name}", [node, scene, starts[name]],
-                                 lambda n=node, st=starts[name]: self._synthesise(n, scene, st, version))
-            segments = [msgspec.structs.replace(seg, sentence_id=sids[seg.index] if seg.index < len(sids) else "")
-                        for seg in reply.motion.segments]
-            result.motions[name] = msgspec.structs.replace(reply.motion, segments=segments)
+            result.motions[name] = self._segments(name, node, sids, scene, starts[name], engine, version)
             done += 1
         tick("motion", done, total)
+
+    def _segments(self, name: str, node: CharacterNode, sids: list[str], scene: Scene,
+                  start: tuple[float, float, float], engine: QueryEngine, version: int) -> Motion:
+        """The character's motion, one query node per action, each starting from the end state of the last.
+
+        `segment:<name>:<k>` depends on action k, the layout and the end state of action k-1; when an edit
+        leaves an end state unchanged, the actions after it are reused (early cutoff).
+        """
+        SegmentEndState, = _messages("motion", "motion", "SegmentEndState")
+        state = SegmentEndState(x=start[0], z=start[1], yaw=start[2])
+        pieces: list[Motion] = []
+        actions = node.actions or []
+        for k, action in enumerate(actions):
+            single = CharacterNode(name=name, actions=[msgspec.structs.replace(action, verb="")])
+            reply = engine.query(
+                f"segment:{name}:{k}", [single, scene, state],
+                lambda c=single, st=state: self._synthesise(c, scene, (st.x, st.z, st.yaw), version, st))
+            segments = [msgspec.structs.replace(seg, action_index=k, sentence_id=sids[k])
+                        for seg in reply.motion.segments]
+            pieces.append(msgspec.structs.replace(reply.motion, segments=segments))
+            state = reply.end_states[-1] if reply.end_states else state
+        if not pieces:
+            idle = engine.query(f"segment:{name}:idle", [name, scene, state],
+                                lambda: self._synthesise(CharacterNode(name=name), scene, start, version))
+            return idle.motion  # type: ignore[no-any-return]
+        return _concatenate(name, pieces)
 
     # -- the run -------------------------------------------------------------------------------------
     def run(
@@ -292,3 +317,22 @@ def _start_positions(scene: Scene, names: list[str]) -> dict[str, tuple[float, f
     z = -room.depth / 2 + 0.6
     x0 = -min(room.width / 2 - 0.6, 0.45 * (len(names) - 1))
     return {name: (round(x0 + 0.9 * i, 3), round(z, 3), 0.0) for i, name in enumerate(names)}
+
+
+def _concatenate(name: str, pieces: list[Motion]) -> Motion:
+    """Join per-action motions into one, shifting segment frame ranges."""
+    roots = [from_wire(p.root_position) for p in pieces]
+    rotations = [from_wire(p.rotations) for p in pieces]
+    contacts = [from_wire(p.foot_contact) if p.foot_contact is not None else np.ones((len(r), 2), np.uint8)
+                for p, r in zip(pieces, roots, strict=True)]
+    segments: list[Segment] = []
+    offset = 0
+    for p, r in zip(pieces, roots, strict=True):
+        segments.extend(msgspec.structs.replace(seg, index=len(segments) + i, start_frame=seg.start_frame + offset,
+                                                end_frame=seg.end_frame + offset)
+                        for i, seg in enumerate(p.segments))
+        offset += len(r)
+    first = pieces[0]
+    return Motion(character=name, fps=first.fps, joint_names=list(first.joint_names),
+                  root_position=to_wire(np.concatenate(roots)), rotations=to_wire(np.concatenate(rotations)),
+                  foot_contact=to_wire(np.concatenate(contacts)), segments=segments)

@@ -50,15 +50,29 @@ def test_the_first_compute_runs_every_node(orchestrator):
     result = s.compute()
     parses = [f"parse:{x.id}" for x in s.doc.sentences]
     assert result.ran[: len(parses) + 2] == parses + ["resolve", "scene"]
-    assert {"motion:Eve", "motion:Tom"} <= set(result.ran)
+    assert {"segment:Eve:0", "segment:Tom:0"} <= set(result.ran)
     assert result.unavailable == {}
     assert set(result.motions) == {"Eve", "Tom"}
 
 
-def test_editing_one_action_reruns_its_parse_and_that_characters_motion_only(session):
+def test_editing_one_action_reruns_its_parse_and_that_action_of_that_character_only(session):
     replace(session, "Tom waves", "Tom claps")
     result = session.compute()
-    assert result.ran == [f"parse:{sid_of(session, 'Tom claps')}", "resolve", "motion:Tom"]
+    assert result.ran == [f"parse:{sid_of(session, 'Tom claps')}", "resolve", "segment:Tom:1"]
+    assert [seg.action for seg in result.motions["Tom"].segments][-1] == "clap"
+
+
+def test_an_action_whose_end_state_changes_reruns_the_actions_after_it(session):
+    replace(session, "Tom walks to the window", "Tom walks to the desk")
+    result = session.compute()
+    assert result.ran == [f"parse:{sid_of(session, 'Tom walks to the desk')}", "resolve", "segment:Tom:0",
+                          "segment:Tom:1"]
+
+
+def test_an_action_whose_end_state_is_unchanged_stops_early(session):
+    replace(session, "Tom walks to the window", "Tom walks slowly to the window")
+    result = session.compute()
+    assert result.ran == [f"parse:{sid_of(session, 'slowly')}", "resolve", "segment:Tom:0"]
 
 
 def test_a_whitespace_only_edit_recomputes_nothing(session):
@@ -88,14 +102,14 @@ def test_changing_a_scene_object_recomposes_the_scene_and_the_motion_in_it(sessi
     replace(session, "A laptop is on the desk$", "A lamp is on the desk$")
     result = session.compute()
     assert result.ran[:3] == [f"parse:{sid_of(session, 'A lamp')}", "resolve", "scene"]
-    assert "motion:Eve" in result.ran and "motion:Tom" in result.ran
+    assert "segment:Eve:0" in result.ran and "segment:Tom:0" in result.ran
     assert "lamp" in {o.category for o in result.scene.objects}
 
 
 def test_deleting_a_sentence_reruns_resolve_and_the_affected_character(session):
     replace(session, " Tom waves.", "")
     result = session.compute()
-    assert result.ran == ["resolve", "motion:Tom"]
+    assert result.ran == ["resolve"]
     assert all(seg.action != "wave" for seg in result.motions["Tom"].segments)
 
 
