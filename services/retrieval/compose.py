@@ -20,11 +20,12 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 from proto.retrieval import ObjectMatch, RelationCheck
-from proto.scene import PlacedObject, Room, Scene
+from proto.scene import Room, Scene
 from proto.ssg import RELATIONS, Diagnostic, ObjectNode, RelationNode
+from services.retrieval.checks import MemoHolds, default_holds, outer_bounds, overlapping_pairs
 from services.retrieval.database import SceneGraphDB, default_db
 from services.retrieval.errors import code
-from services.retrieval.geometry import OVERLAP_EPS, footprint
+from services.retrieval.geometry import footprint
 from services.retrieval.layout import Holds, Item, Layout, RoomBox, object_seed, to_placed_object
 from services.retrieval.matching import Matching, match_relation_first
 from services.retrieval.room import base_size, context_objects, fit_size, normalize_room_type, vote_room_type
@@ -54,12 +55,6 @@ class ComposeReport:
     def relations_held(self) -> float:
         """Share of the stated relations the scene keeps (1.0 when none were stated)."""
         return sum(r.held for r in self.relations) / len(self.relations) if self.relations else 1.0
-
-
-def _default_holds() -> Holds:
-    from wana.assets.relations import relation_holds
-
-    return relation_holds  # type: ignore[no-any-return]
 
 
 def instance_ids(node: ObjectNode) -> list[str]:
@@ -171,7 +166,7 @@ def compose_scene(
         objects "ctx_..."), and the matching map, relation checks, overlaps and diagnostics.
     """
     db = db if db is not None else default_db()
-    holds = holds if holds is not None else _default_holds()
+    holds = MemoHolds(holds if holds is not None else default_holds())
     report = ComposeReport()
     kept, rels, report.diagnostics = _validate(objects, relations)
     matching = match_relation_first(kept, rels, db)
@@ -298,29 +293,4 @@ def _check(
             )
 
 
-def overlapping_pairs(scene: Scene, eps: float = OVERLAP_EPS) -> list[tuple[str, str]]:
-    """Pairs of placed objects whose world collision boxes interpenetrate by more than eps.
-
-    An object and the one it rests on count as touching, not overlapping.
-    """
-    from services.retrieval.geometry import aabb, boxes_overlap
-
-    boxes = {p.id: catalog.world_collision_boxes(p) for p in scene.objects}
-    bounds = {k: aabb(v) for k, v in boxes.items()}
-    objs: list[PlacedObject] = list(scene.objects)
-    pairs = []
-    for i, a in enumerate(objs):
-        for b in objs[i + 1 :]:
-            if a.support == b.id or b.support == a.id:
-                continue
-            ba, bb = bounds[a.id], bounds[b.id]
-            if (
-                (ba[0] < bb[1] - eps).all()
-                and (bb[0] < ba[1] - eps).all()
-                and boxes_overlap(boxes[a.id], boxes[b.id], eps)
-            ):
-                pairs.append((a.id, b.id))
-    return pairs
-
-
-__all__ = ["ComposeReport", "compose_scene", "instance_ids", "overlapping_pairs"]
+__all__ = ["ComposeReport", "MemoHolds", "compose_scene", "instance_ids", "outer_bounds", "overlapping_pairs"]

@@ -51,6 +51,9 @@ class SceneGraphDB:
         edge_subject, edge_anchor: (N_edge,) int flat object indices of each indexed relation.
         edge_relation: (N_edge,) int index into proto.ssg.RELATIONS.
         edge_scene: (N_edge,) int record index.
+        scene_edges: per record, its edge indices.
+        edge_order: (N_edge,) edge indices sorted by record (stable).
+        edge_scenes: (S',) records that have edges; edge_starts: (S',) where each starts in edge_order.
     """
 
     def __init__(self, records: Sequence[SceneRecordLike]) -> None:
@@ -98,6 +101,11 @@ class SceneGraphDB:
         self.scene_edges: list[np.ndarray] = [
             order[bounds[i] : bounds[i + 1]] for i in range(len(self.records))
         ]
+        # The same, for per-scene reductions over all edges at once: edges in scene order, and the
+        # first position of each scene that has edges (edge_scenes) in that order.
+        self.edge_order: np.ndarray = order
+        self.edge_scenes: np.ndarray = np.flatnonzero(bounds[1:] > bounds[:-1])
+        self.edge_starts: np.ndarray = bounds[:-1][self.edge_scenes]
         self.room_types: list[str] = [r.room_type for r in self.records]
 
     def __len__(self) -> int:

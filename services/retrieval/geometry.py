@@ -39,6 +39,7 @@ class Footprint:
     bounds: np.ndarray
     surfaces: tuple[SupportSurface, ...] = field(repr=False)
     mount: str
+    extents_by_yaw: dict[float, np.ndarray] = field(default_factory=dict, repr=False)
 
     @property
     def height(self) -> float:
@@ -113,9 +114,16 @@ def footprint(category: str, attributes: dict[str, str], seed: int) -> Footprint
 
 
 def yaw_matrix(yaw: float) -> np.ndarray:
-    """(3, 3) rotation about +Y (same convention as wana.assets.catalog.yaw_matrix)."""
+    """(3, 3) rotation about +Y (same convention as wana.assets.catalog.yaw_matrix); read-only, cached."""
+    return _yaw_matrix(float(yaw))
+
+
+@lru_cache(maxsize=4096)
+def _yaw_matrix(yaw: float) -> np.ndarray:
     c, s = np.cos(yaw), np.sin(yaw)
-    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+    r = np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+    r.setflags(write=False)
+    return r
 
 
 def boxes_at(boxes: np.ndarray, position: np.ndarray, yaw: float) -> np.ndarray:
@@ -135,6 +143,30 @@ def boxes_at(boxes: np.ndarray, position: np.ndarray, yaw: float) -> np.ndarray:
     return np.stack([centre - half, centre + half], axis=1)
 
 
+@lru_cache(maxsize=65536)
+def _rotated(fp: Footprint, yaw: float) -> tuple[np.ndarray, np.ndarray]:
+    r = yaw_matrix(yaw)
+    centre = (fp.boxes[:, 0] + fp.boxes[:, 1]) * 0.5 @ r.T
+    half = (fp.boxes[:, 1] - fp.boxes[:, 0]) * 0.5 @ np.abs(r).T
+    centre.setflags(write=False)
+    half.setflags(write=False)
+    return centre, half
+
+
+def footprint_boxes_at(fp: Footprint, position: np.ndarray, yaw: float) -> np.ndarray:
+    """World AABBs of a footprint's boxes: ``boxes_at(fp.boxes, position, yaw)``, bit for bit.
+
+    The rotated box centres and half sizes are cached per (footprint, yaw), so a pose costs one
+    addition; the arithmetic is the same as boxes_at's, in the same order, so the corners are equal.
+
+    Returns:
+        (N, 2, 3) world min/max corners.
+    """
+    centre, half = _rotated(fp, float(yaw))
+    centre = centre + position
+    return np.stack([centre - half, centre + half], axis=1)
+
+
 def aabb(boxes: np.ndarray) -> np.ndarray:
     """(2, 3) AABB of (N, 2, 3) boxes."""
     return np.stack([boxes[:, 0].min(axis=0), boxes[:, 1].max(axis=0)])
@@ -148,8 +180,17 @@ def _extents(fp: Footprint, yaw: float) -> np.ndarray:
 
 
 def extents(fp: Footprint, yaw: float) -> np.ndarray:
-    """(2, 3) AABB of the footprint's boxes after a yaw, relative to its origin (cached)."""
-    return _extents(fp, round(float(yaw), 9))
+    """(2, 3) AABB of the footprint's boxes after a yaw, relative to its origin (cached).
+
+    Yaws equal to 9 decimals share one entry; each exact yaw seen is also remembered on the
+    footprint itself, so a repeated yaw costs one dict lookup.
+    """
+    found = fp.extents_by_yaw.get(yaw)
+    if found is None:
+        if len(fp.extents_by_yaw) >= 4096:  # continuous yaws ("facing") would grow it without end
+            fp.extents_by_yaw.clear()
+        found = fp.extents_by_yaw[yaw] = _extents(fp, round(float(yaw), 9))
+    return found
 
 
 def boxes_overlap(a: np.ndarray, b: np.ndarray, eps: float = OVERLAP_EPS) -> bool:
@@ -165,6 +206,34 @@ def boxes_overlap(a: np.ndarray, b: np.ndarray, eps: float = OVERLAP_EPS) -> boo
         return False
     sep = (a[:, None, 0] >= b[None, :, 1] - eps) | (b[None, :, 0] >= a[:, None, 1] - eps)  # (N, M, 3)
     return bool(np.any(~np.any(sep, axis=2)))
+
+
+def first_overlapping(
+    boxes: np.ndarray, others: np.ndarray, owner: np.ndarray | None = None, eps: float = OVERLAP_EPS
+) -> int:
+    """The lowest owner of any box in ``others`` that interpenetrates a box of ``boxes``, or -1.
+
+    One broadcast test over every pair of boxes at once; for each owner it agrees with
+    ``boxes_overlap(boxes, others[owner == k], eps)`` (whose pruning to the common region never
+    changes the answer).
+
+    Args:
+        boxes: (N, 2, 3) world boxes of one object.
+        others: (M, 2, 3) world boxes of several objects, concatenated.
+        owner: (M,) int owner number of each box in ``others`` (any order); None: all one owner, 0.
+        eps: metres the boxes must interpenetrate on every axis.
+
+    Returns:
+        The smallest owner number that overlaps, -1 when none does.
+    """
+    if len(boxes) == 0 or len(others) == 0:
+        return -1
+    sep = (boxes[:, None, 0] >= others[None, :, 1] - eps) | (others[None, :, 0] >= boxes[:, None, 1] - eps)
+    hit = ~(sep[..., 0] | sep[..., 1] | sep[..., 2])  # (N, M)
+    cols = hit.any(axis=0)
+    if not cols.any():
+        return -1
+    return 0 if owner is None else int(owner[cols].min())
 
 
 def aabbs_overlap(a: np.ndarray, b: np.ndarray, eps: float = OVERLAP_EPS) -> bool:

@@ -12,6 +12,9 @@ Determinism and locality: candidate lists come from each object's own generator 
 composition seed and its id), components are placed in document order, and a pose from the previous
 scene is tried first, so an edit moves only the objects whose relations changed or that would now
 collide.
+
+Length: the search, its candidate order and its fallbacks share the layout's state and read as one
+algorithm, so they stay in one module (the batched checks live in trials.py and collide.py).
 """
 
 from __future__ import annotations
@@ -19,6 +22,7 @@ from __future__ import annotations
 import hashlib
 import itertools
 import math
+from collections import OrderedDict
 from collections.abc import Callable, Container, Iterator, Sequence
 from dataclasses import dataclass, field
 
@@ -26,21 +30,17 @@ import numpy as np
 
 from proto.scene import PlacedObject
 from proto.ssg import RelationNode
-from services.retrieval.geometry import (
-    OVERLAP_EPS,
-    Footprint,
-    boxes_overlap,
-    extents,
-    inside_room,
-    surface_rects,
-)
+from services.retrieval.collide import ObstacleIndex
+from services.retrieval.geometry import Footprint, extents, inside_room, surface_rects
 from services.retrieval.placement import Candidate, Placed, mount_height, relation_candidates
 from services.retrieval.screen import screen
+from services.retrieval.trials import Trials
 
 ROOT_CANDIDATES = 2000  # free poses tried per root
 MEMBER_TRIES = 120  # candidate poses tried per member
 SEARCH_BUDGET = 3000  # candidate poses evaluated per component before giving up
 GRID_STEP = 0.25  # metres between free floor positions scanned for roots
+INDEXES_KEPT = 16  # collision indexes kept per layout (sets of placed objects a search returns to)
 
 # How tightly a relation pins its subject: the tightest are placed first, so that "right of the desk"
 # takes the desk's right side before "next to the desk" has to choose one.
@@ -146,6 +146,7 @@ class Layout:
         self.holds = holds
         self.result = LayoutResult()
         self._placed_objects: dict[str, PlacedObject] = {}
+        self._indexes: OrderedDict[tuple[int, ...], ObstacleIndex] = OrderedDict()
         self.touching: dict[str, list[RelationNode]] = {i: [] for i in self.items}
         for r in self.relations:
             self.touching[r.subject].append(r)
@@ -192,17 +193,19 @@ class Layout:
 
     def _collider(self, p: Placed, others: dict[str, Placed]) -> str | None:
         """The first placed object p interpenetrates (its support aside), or None."""
-        candidates = [q for q in others.values() if q.id != p.support and q.support != p.id]
-        if not candidates:
-            return None
-        boxes = np.stack([q.box for q in candidates])  # (K, 2, 3)
-        near = np.all(p.box[0] < boxes[:, 1] - OVERLAP_EPS, axis=1) & np.all(
-            boxes[:, 0] < p.box[1] - OVERLAP_EPS, axis=1
-        )
-        for k in np.flatnonzero(near):
-            if boxes_overlap(p.boxes, candidates[k].boxes):
-                return candidates[k].id
-        return None
+        return self._obstacles(others).first_collider(p)
+
+    def _obstacles(self, others: dict[str, Placed]) -> ObstacleIndex:
+        """The collision index of these placed objects (rebuilt only when the set changes)."""
+        key = tuple(map(id, others.values()))  # the index holds the objects, so ids stay unique
+        index = self._indexes.get(key)
+        if index is None:
+            index = self._indexes[key] = ObstacleIndex(list(others.values()))
+            if len(self._indexes) > INDEXES_KEPT:
+                self._indexes.popitem(last=False)
+        else:
+            self._indexes.move_to_end(key)
+        return index
 
     def _supported(self, p: Placed, others: dict[str, Placed]) -> bool:
         """A resting object stands on a support surface of its support, its centre over the surface."""
@@ -355,6 +358,19 @@ class Layout:
             return itertools.islice(self._root_candidates(item), ROOT_CANDIDATES)
         return itertools.islice(self._member_candidates(item, via, local), MEMBER_TRIES)
 
+    @property
+    def room_size(self) -> tuple[float, float, float]:
+        return self.room.width, self.room.depth, self.room.height
+
+    def _trials(self, m: str, via: RelationNode | None, local: dict[str, Placed]) -> Trials:
+        """A member's candidate poses with their verdicts (as _check gives them), checked in batches."""
+        item = self.items[m]
+
+        def make(pos: np.ndarray, yaw: float, support: str) -> Placed:
+            return Placed(m, item.fp, pos, yaw, support, item.from_text)
+
+        return Trials(self, self._candidates(m, via, local), make, local)
+
     def _check(self, p: Placed, local: dict[str, Placed]) -> tuple[str, str | None]:
         """("ok", None), or why not: ("room", None), ("relation", None), ("collision", the other id)."""
         if not inside_room(p.box, self.room.width, self.room.depth, self.room.height):
@@ -381,19 +397,16 @@ class Layout:
         if not plan:
             return True, best
         level = {m: i for i, (m, _) in enumerate(plan)}
-        gens = [self._candidates(plan[0][0], plan[0][1], local)]
+        gens = [self._trials(plan[0][0], plan[0][1], local)]
         blame: list[set[str]] = [set()]
         seen = [[False, False]]  # per level: a candidate inside the room, one keeping its relations
         evals = 0
         while gens:
             i = len(gens) - 1
             m, via = plan[i]
-            item = self.items[m]
             found = None
-            for pos, yaw, support in gens[i]:
+            for p, (why, other) in gens[i]:
                 evals += 1
-                p = Placed(m, item.fp, pos, yaw, support, item.from_text)
-                why, other = self._check(p, local)
                 seen[i][0] |= why != "room"
                 seen[i][1] |= why in ("ok", "collision")
                 if why == "ok":
@@ -412,7 +425,7 @@ class Layout:
                 if i + 1 == len(plan):
                     return True, best
                 nm, nvia = plan[i + 1]
-                gens.append(self._candidates(nm, nvia, local))
+                gens.append(self._trials(nm, nvia, local))
                 blame.append(set())
                 seen.append([False, False])
                 continue

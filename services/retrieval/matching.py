@@ -112,8 +112,10 @@ def _edge_scores(
 ) -> np.ndarray:
     """(R, N_edge) agreement of each query relation with each indexed database relation."""
     rel = REL_SIM[q_relation][:, db.edge_relation]
-    nodes = 0.5 * (node_sim[q_subject][:, db.edge_subject] + node_sim[q_anchor][:, db.edge_anchor])
-    both = (node_sim[q_subject][:, db.edge_subject] > 0) & (node_sim[q_anchor][:, db.edge_anchor] > 0)
+    subject = node_sim[q_subject][:, db.edge_subject]
+    anchor = node_sim[q_anchor][:, db.edge_anchor]
+    nodes = 0.5 * (subject + anchor)
+    both = (subject > 0) & (anchor > 0)
     return rel * nodes * both
 
 
@@ -133,23 +135,25 @@ def _grow_in_scene(
     edges = db.scene_edges[scene]
     if len(edges) == 0:
         return {}, [], 0.0
-    block = edge_scores[np.ix_(np.asarray(pending, dtype=np.int64), edges)]  # (P, E_s)
-    flat = np.argsort(-block, axis=None, kind="stable")
+    block = edge_scores[np.asarray(pending, dtype=np.int64)][:, edges]  # (P, E_s)
+    # Pairs in decreasing score (ties in flat order, as a stable sort of the whole block gives them),
+    # only those scoring at least MIN_EDGE_SCORE: the rest would never be taken.
+    values = block.ravel()
+    (strong,) = np.nonzero(values >= MIN_EDGE_SCORE)
+    strong = strong[np.argsort(-values[strong], kind="stable")]
+    rows, cols = np.divmod(strong, block.shape[1])
+    subjects = db.edge_subject[edges[cols]].tolist()
+    anchors = db.edge_anchor[edges[cols]].tolist()
     mapping: dict[int, int] = {}
     used: set[int] = set()
     matched: list[int] = []
     total = 0.0
     done: set[int] = set()
-    for f in flat:
-        p, e = divmod(int(f), block.shape[1])
-        s = float(block[p, e])
-        if s < MIN_EDGE_SCORE:
-            break
+    for p, s, ds, da in zip(rows.tolist(), values[strong].tolist(), subjects, anchors, strict=True):
         if p in done:
             continue
         r = pending[p]
         qs, qa = int(q_subject[r]), int(q_anchor[r])
-        ds, da = int(db.edge_subject[edges[e]]), int(db.edge_anchor[edges[e]])
         # One-to-one correspondence: a query object keeps its database object, and back.
         if (qs in mapping and mapping[qs] != ds) or (qa in mapping and mapping[qa] != da):
             continue
@@ -164,6 +168,23 @@ def _grow_in_scene(
         done.add(p)
         total += s
     return mapping, matched, total
+
+
+def scene_bounds(scores: np.ndarray, db: SceneGraphDB) -> np.ndarray:
+    """Per scene, the sum over query relations of each one's best edge score in that scene.
+
+    Args:
+        scores: (P, N_edge) edge scores (>= 0) of the pending query relations.
+
+    Returns:
+        (S,) upper bound of what growing a subgraph in each scene can score (0 for a scene without
+        relations).
+    """
+    per_scene = np.zeros((len(db), scores.shape[0]))  # (S, P)
+    if len(db.edge_starts):
+        best = np.maximum.reduceat(scores[:, db.edge_order], db.edge_starts, axis=1)  # (P, S')
+        per_scene[db.edge_scenes] = np.maximum(best.T, 0.0)
+    return per_scene.sum(axis=1)
 
 
 def match_relation_first(
@@ -193,9 +214,7 @@ def match_relation_first(
         pending = list(range(len(valid)))
         while pending:
             # Upper bound per scene: each pending relation's best edge there; grow the most promising.
-            per_scene = np.zeros((len(db), len(pending)))
-            np.maximum.at(per_scene, db.edge_scene, scores[pending].T)
-            bound = per_scene.sum(axis=1)
+            bound = scene_bounds(scores[pending], db)
             order = np.argsort(-bound, kind="stable")[:SCENES_TRIED]
             best: tuple[float, int, dict[int, int], list[int]] | None = None
             for scene in order:

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from services.retrieval.geometry import Footprint, boxes_at, extents, yaw_matrix
+from services.retrieval.geometry import Footprint, extents, footprint_boxes_at, yaw_matrix
 
 LEFT_SIGN = 1.0  # the anchor's left is its +X side (characters face +Z with their left on +X)
 WALL_GAP = 0.005  # metres between a wall and what hangs on it
@@ -60,7 +60,7 @@ class Placed:
     def boxes(self) -> np.ndarray:
         """(N, 2, 3) world collision boxes (computed on first use)."""
         if self._boxes is None:
-            self._boxes = boxes_at(self.fp.boxes, self.position, self.yaw)
+            self._boxes = footprint_boxes_at(self.fp, self.position, self.yaw)
         return self._boxes
 
 
