@@ -17,16 +17,15 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import msgspec
-import numpy as np
 
 from proto.common import Header, Span
-from proto.motion_data import Motion, Segment
+from proto.motion_data import Motion
 from proto.scene import Scene
 from proto.ssg import ActionNode, CharacterNode, Command, Diagnostic, SentenceGraph
 from services.orchestrator.backend import Backend, StageFailed, StageUnavailable
 from services.orchestrator.document import Document
 from services.orchestrator.queries import QueryEngine
-from wana.arrays import from_wire, to_wire
+from services.orchestrator.timeline import Beat, assemble, schedule
 
 STAGES = ("parse", "scene", "motion")
 
@@ -163,15 +162,29 @@ class Pipeline:
             result.optimisations.append(reply)
             done += 1
         result.scene = scene
+        pieces: dict[str, list[Motion]] = {}
         for name, (node, sids) in characters.items():
             tick("motion", done, total)
-            result.motions[name] = self._segments(name, node, sids, scene, starts[name], engine, version)
+            pieces[name] = self._segments(name, node, sids, scene, starts[name], engine, version)
             done += 1
         tick("motion", done, total)
+        # Story timing: sentence order sets when actions start; gaps hold the pose.
+        beats = [Beat(sid, name, k, _frames(pieces[name][k]))
+                 for s in sentences for name, (node, sids) in characters.items()
+                 for k, sid in enumerate(sids) if sid == s.id]
+        waits = {sid: c.seconds for sid, c in result.commands if c.kind == "wait"}
+        start_frames = schedule(beats, waits, [s.id for s in sentences])
+        length = max([start_frames[(b.character, b.k)] + b.frames for b in beats] or [1])
+        for name, (node, _) in characters.items():
+            if node.actions:
+                result.motions[name] = assemble(
+                    name, pieces[name], [start_frames[(name, k)] for k in range(len(node.actions))], total=length)
+            else:
+                result.motions[name] = assemble(name, pieces[name], [0], total=length)
 
     def _segments(self, name: str, node: CharacterNode, sids: list[str], scene: Scene,
-                  start: tuple[float, float, float], engine: QueryEngine, version: int) -> Motion:
-        """The character's motion, one query node per action, each starting from the end state of the last.
+                  start: tuple[float, float, float], engine: QueryEngine, version: int) -> list[Motion]:
+        """The character's motion per action, one query node per action, each starting from the end state of the last.
 
         `segment:<name>:<k>` depends on action k, the layout and the end state of action k-1; when an edit
         leaves an end state unchanged, the actions after it are reused (early cutoff).
@@ -192,8 +205,8 @@ class Pipeline:
         if not pieces:
             idle = engine.query(f"segment:{name}:idle", [name, scene, state],
                                 lambda: self._synthesise(CharacterNode(name=name), scene, start, version))
-            return idle.motion  # type: ignore[no-any-return]
-        return _concatenate(name, pieces)
+            return [idle.motion]
+        return pieces
 
     # -- the run -------------------------------------------------------------------------------------
     def run(
@@ -319,20 +332,5 @@ def _start_positions(scene: Scene, names: list[str]) -> dict[str, tuple[float, f
     return {name: (round(x0 + 0.9 * i, 3), round(z, 3), 0.0) for i, name in enumerate(names)}
 
 
-def _concatenate(name: str, pieces: list[Motion]) -> Motion:
-    """Join per-action motions into one, shifting segment frame ranges."""
-    roots = [from_wire(p.root_position) for p in pieces]
-    rotations = [from_wire(p.rotations) for p in pieces]
-    contacts = [from_wire(p.foot_contact) if p.foot_contact is not None else np.ones((len(r), 2), np.uint8)
-                for p, r in zip(pieces, roots, strict=True)]
-    segments: list[Segment] = []
-    offset = 0
-    for p, r in zip(pieces, roots, strict=True):
-        segments.extend(msgspec.structs.replace(seg, index=len(segments) + i, start_frame=seg.start_frame + offset,
-                                                end_frame=seg.end_frame + offset)
-                        for i, seg in enumerate(p.segments))
-        offset += len(r)
-    first = pieces[0]
-    return Motion(character=name, fps=first.fps, joint_names=list(first.joint_names),
-                  root_position=to_wire(np.concatenate(roots)), rotations=to_wire(np.concatenate(rotations)),
-                  foot_contact=to_wire(np.concatenate(contacts)), segments=segments)
+def _frames(motion: Motion) -> int:
+    return int(motion.root_position.shape[0])
