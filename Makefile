@@ -15,8 +15,9 @@ setup:  ## apt packages (as root), .venv, pinned pip install, npm tools
 demo:  ## animate the example story into $(OUT)/
 	$(VENV)/bin/wana animate $(EXAMPLE) -o $(OUT)
 
-test:  ## the whole suite, slow tests included (what CI runs)
+test:  ## the whole suite, slow tests included (what CI runs): pytest, then the editor's node tests
 	$(PY) -m pytest -q
+	cd editor && npm test --silent
 
 test-fast:  ## skip tests marked slow
 	$(PY) -m pytest -q -m "not slow"

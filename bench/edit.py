@@ -1,0 +1,244 @@
+#!/usr/bin/env python
+"""Edit-to-animation latency through the gateway's WebSocket, incremental against full recompute.
+
+A real gateway (uvicorn on a free loopback port, in this process) over a fresh SQLite file; a real
+WebSocket client. For a 20-sentence document it measures the time from sending an edit message to
+receiving the `animation` message of the version that edit produced:
+
+- action edit: one word of one action sentence changes (walks <-> runs, rotating over the sentences);
+- scene edit: one word of one scene sentence changes (window <-> door);
+- full: a new document holding the whole text, from opening its WebSocket to its first animation
+  message (cold: nothing memoised for it; the services' models are warmed up on another document first).
+
+ratio = action_edit_p50_ms / full_ms. Targets (issue 9): action edit p50 <= 150 ms, ratio <= 0.1.
+
+    .venv/bin/python bench/edit.py --quick --json bench/results/edit.json
+
+Writes exactly {"action_edit_p50_ms", "scene_edit_p50_ms", "full_ms", "ratio"}; p95 is in the table.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import json
+import sys
+import tempfile
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+SEED = 0  # the pipeline's seed: the same edits give the same animations
+
+SCENE = [
+    "In the office there is a desk near a window$.",
+    "A laptop is on the desk$.",
+    "A chair is in front of the desk$.",
+    "A sofa is next to the bookshelf$.",
+    "A lamp is on the side table$.",
+]
+ACTIONS = [
+    "Eve walks to the chair.",
+    "Eve sits on the chair.",
+    "Eve types on the laptop.",
+    "camera left",
+    "Tom walks to the sofa.",
+    "Tom waves at Eve.",
+    "They are colleagues.",
+    "Tom sits on the sofa.",
+    "Eve stands up.",
+    "Eve walks to the window.",
+    "Tom walks to the lamp.",
+    "Eve waves at Tom.",
+    "Tom walks to the desk.",
+    "night",
+    "Eve walks to the sofa.",
+]
+WARM_UP = "In the kitchen there is a table$. A cup is on the table$. Ann walks to the table. Ann drinks."
+
+
+def document() -> str:
+    """The 20-sentence benchmark document (5 scene sentences, 13 action sentences, 2 commands)."""
+    lines = [" ".join(SCENE)] + ACTIONS
+    text = "\n".join(lines)
+    assert len(SCENE) + len(ACTIONS) == 20
+    return text
+
+
+class LiveClient:
+    """A WebSocket client of one document that tracks the text and version."""
+
+    def __init__(self, ws_base: str, doc_id: str) -> None:
+        from websockets.sync.client import connect
+
+        self.overheads: list[float] = []  # ms of each edit's latency not spent in Session.compute
+        self._stack = contextlib.ExitStack()
+        self.ws = self._stack.enter_context(connect(f"{ws_base}/api/documents/{doc_id}/live", max_size=None))
+        state = self.until(lambda m: m["type"] == "state")
+        self.text, self.version = state["text"], state["version"]
+        self.last_animation = self.until(lambda m: m["type"] == "animation" and m["version"] == self.version)
+
+    def until(self, wanted: Any, timeout: float = 600.0) -> dict[str, Any]:
+        deadline = time.monotonic() + timeout
+        while True:
+            msg = json.loads(self.ws.recv(timeout=max(deadline - time.monotonic(), 0.01)))
+            if msg["type"] == "error":
+                raise RuntimeError(f"gateway error {msg['code']}: {msg['message']}")
+            if wanted(msg):
+                return msg
+
+    def edit_to_animation(self, start: int, end: int, text: str) -> float:
+        """Send one edit; milliseconds until the animation of the version it produced arrives."""
+        t0 = time.perf_counter()
+        self.ws.send(
+            json.dumps(
+                {
+                    "type": "edit",
+                    "base_version": self.version,
+                    "changes": [{"start": start, "end": end, "text": text}],
+                }
+            )
+        )
+        ack = self.until(lambda m: m["type"] in ("ack", "stale"))
+        if ack["type"] == "stale":
+            raise RuntimeError("the benchmark's edit was stale")
+        self.last_animation = self.until(
+            lambda m: m["type"] == "animation" and m["version"] == ack["version"]
+        )
+        elapsed = (time.perf_counter() - t0) * 1000.0
+        self.overheads.append(elapsed - float(self.last_animation["stats"]["compute_ms"]))
+        self.text = self.text[:start] + text + self.text[end:]
+        self.version = ack["version"]
+        return elapsed
+
+    def swap_word(self, old: str, new: str, occurrence: int) -> float:
+        spots = [i for i in range(len(self.text)) if self.text.startswith(old, i)]
+        if not spots:
+            raise ValueError(f"{old!r} is not in the document")
+        i = spots[occurrence % len(spots)]
+        return self.edit_to_animation(i, i + len(old), new)
+
+    def close(self) -> None:
+        self._stack.close()
+
+
+def run(reps: int, backend: str, progress: bool, budget_s: float | None = None) -> dict[str, Any]:
+    """Measure; with budget_s, each kind of edit stops after that many seconds (at least one edit each)."""
+    import httpx
+    from tqdm import tqdm
+
+    from services.gateway.server import GatewayThread
+    from services.gateway.settings import Settings
+
+    tmp = tempfile.TemporaryDirectory(prefix="wana-bench-edit-")
+    settings = Settings(db=Path(tmp.name) / "sessions.sqlite", backend=backend, seed=SEED)
+    gateway = GatewayThread(settings).start()
+    base, ws_base = gateway.base_url, gateway.ws_url
+    try:
+        http = httpx.Client(base_url=base, timeout=600)
+        warm = LiveClient(ws_base, http.post("/api/documents", json={"text": WARM_UP}).json()["doc_id"])
+        warm.close()
+
+        # cold full document: a new document holding the whole text (nothing memoised for it), from
+        # opening its WebSocket to its first animation message
+        doc_id = http.post("/api/documents", json={"text": document()}).json()["doc_id"]
+        t0 = time.perf_counter()
+        client = LiveClient(ws_base, doc_id)
+        full_ms = (time.perf_counter() - t0) * 1000.0
+        anim = client.last_animation
+
+        action_ms, scene_ms = [], []
+        bar = tqdm(total=2 * reps, desc="edits", disable=not progress, unit="edit")
+        started = time.monotonic()
+        for k in range(reps):  # walks -> runs in the next action sentence, then back
+            if budget_s is not None and action_ms and time.monotonic() - started > budget_s:
+                break
+            old, new, occurrence = ("walks", "runs", k // 2) if k % 2 == 0 else ("runs", "walks", 0)
+            action_ms.append(client.swap_word(old, new, occurrence))
+            bar.update()
+        if "runs" in client.text:  # leave the action sentences as written
+            client.swap_word("runs", "walks", 0)
+        started = time.monotonic()
+        places = [("window", "door"), ("door", "window")]
+        for k in range(reps):
+            if budget_s is not None and scene_ms and time.monotonic() - started > budget_s:
+                break
+            old, new = places[k % 2]
+            scene_ms.append(client.swap_word(old, new, 0))
+            bar.update()
+        bar.close()
+        client.close()
+        http.close()
+    finally:
+        gateway.stop()
+        tmp.cleanup()
+    return {
+        "full_ms": full_ms,
+        "action": np.asarray(action_ms),
+        "scene": np.asarray(scene_ms),
+        "unavailable": anim.get("unavailable", {}),
+        "overhead": np.asarray(client.overheads),
+        "characters": len(anim["characters"]),
+        "objects": len(anim["objects"]),
+        "frames": anim["frames"],
+    }
+
+
+def main(argv: list[str] | None = None) -> int:
+    p = argparse.ArgumentParser(
+        description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    p.add_argument(
+        "--quick",
+        action="store_true",
+        help="at most 5 edits of each kind and 5 s of edits per kind, instead of 30 edits",
+    )
+    p.add_argument("--reps", type=int, default=None, help="edits of each kind (overrides --quick)")
+    p.add_argument(
+        "--backend",
+        choices=("inprocess", "embedded", "auto"),
+        default="inprocess",
+        help="how the orchestrator reaches the services (default inprocess: handler calls)",
+    )
+    p.add_argument("--json", type=Path, default=None, metavar="PATH", help="write the numbers as JSON here")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    args = p.parse_args(argv)
+    reps = args.reps or (5 if args.quick else 30)
+    r = run(reps, args.backend, not args.no_progress, budget_s=5.0 if args.quick and not args.reps else None)
+    action_p50, action_p95 = np.percentile(r["action"], [50, 95])
+    scene_p50, scene_p95 = np.percentile(r["scene"], [50, 95])
+    ratio = float(action_p50 / r["full_ms"]) if r["full_ms"] > 0 else float("nan")
+    print(
+        f"\nedit -> animation over the gateway WebSocket, 20 sentences, {reps} edits each at most, backend {args.backend}"
+    )
+    print(f"measured {len(r['action'])} action edits and {len(r['scene'])} scene edits")
+    print(f"result: {r['objects']} objects, {r['characters']} characters, {r['frames']} frames")
+    if r["unavailable"]:
+        print("stages not available in this build: " + ", ".join(sorted(r["unavailable"])))
+    print(f"{'measure':<28}{'p50 ms':>10}{'p95 ms':>10}{'target':>14}")
+    print(f"{'action edit (one word)':<28}{action_p50:>10.1f}{action_p95:>10.1f}{'p50 <= 150':>14}")
+    print(f"{'scene edit (one word)':<28}{scene_p50:>10.1f}{scene_p95:>10.1f}{'':>14}")
+    print(f"{'full document (cold)':<28}{r['full_ms']:>10.1f}{'':>10}{'':>14}")
+    print(f"{'ratio incremental / full':<28}{ratio:>10.3f}{'':>10}{'<= 0.1':>14}")
+    if len(r["overhead"]):
+        o50, o95 = np.percentile(r["overhead"], [50, 95])
+        print(f"{'gateway share (not compute)':<28}{o50:>10.1f}{o95:>10.1f}{'':>14}")
+    if args.json:
+        args.json.parent.mkdir(parents=True, exist_ok=True)
+        out = {
+            "action_edit_p50_ms": round(float(action_p50), 3),
+            "scene_edit_p50_ms": round(float(scene_p50), 3),
+            "full_ms": round(float(r["full_ms"]), 3),
+            "ratio": round(ratio, 4),
+        }
+        args.json.write_text(json.dumps(out, indent=2) + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,84 @@
+// REST calls to the gateway, with the token (when the page was opened with ?token=...) on every request.
+
+const TOKEN_KEY = "wana.token";
+
+function readToken() {
+  const params = new URLSearchParams(location.search);
+  const fromUrl = params.get("token");
+  if (fromUrl) {
+    sessionStorage.setItem(TOKEN_KEY, fromUrl);
+    params.delete("token");
+    const query = params.toString();
+    history.replaceState(null, "", location.pathname + (query ? `?${query}` : "") + location.hash);
+  }
+  return sessionStorage.getItem(TOKEN_KEY) || "";
+}
+
+export const token = readToken();
+
+export function authHeaders() {
+  return token ? { Authorization: `Bearer ${token}` } : {};
+}
+
+/** Absolute URL of a gateway path (the page is served by the gateway, possibly under a prefix). */
+export function apiUrl(path) {
+  return new URL(path.replace(/^\//, ""), new URL(".", location.href)).toString();
+}
+
+/** The WebSocket URL of a document, resuming from `version` when given. */
+export function liveUrl(docId, version) {
+  const url = new URL(apiUrl(`/api/documents/${encodeURIComponent(docId)}/live`));
+  url.protocol = url.protocol === "https:" ? "wss:" : "ws:";
+  if (version !== null && version !== undefined) url.searchParams.set("version", String(version));
+  if (token) url.searchParams.set("token", token);
+  return url.toString();
+}
+
+async function call(method, path, body) {
+  const response = await fetch(apiUrl(path), {
+    method,
+    headers: { ...authHeaders(), ...(body !== undefined ? { "Content-Type": "application/json" } : {}) },
+    body: body !== undefined ? JSON.stringify(body) : undefined,
+  });
+  if (!response.ok) {
+    let message = `${response.status} ${response.statusText}`;
+    try {
+      const detail = (await response.json()).detail;
+      message = detail?.message || (typeof detail === "string" ? detail : message);
+    } catch {
+      /* not JSON */
+    }
+    const error = new Error(message);
+    error.status = response.status;
+    throw error;
+  }
+  return response.status === 204 ? null : response.json();
+}
+
+export const listDocuments = () => call("GET", "/api/documents");
+export const createDocument = (text = "", title = "") => call("POST", "/api/documents", { text, title });
+export const getDocument = (docId) => call("GET", `/api/documents/${encodeURIComponent(docId)}`);
+
+/** Download an export; resolves to a message for the status line. */
+export async function downloadExport(docId, format) {
+  const response = await fetch(apiUrl(`/api/documents/${encodeURIComponent(docId)}/export/${format}`), {
+    headers: authHeaders(),
+  });
+  if (!response.ok) {
+    let message = `${format.toUpperCase()} export failed (${response.status})`;
+    try {
+      message = (await response.json()).detail?.message || message;
+    } catch {
+      /* not JSON */
+    }
+    return message;
+  }
+  const blob = await response.blob();
+  const name = /filename="([^"]+)"/.exec(response.headers.get("Content-Disposition") || "")?.[1] || `wana.${format}`;
+  const link = document.createElement("a");
+  link.href = URL.createObjectURL(blob);
+  link.download = name;
+  link.click();
+  setTimeout(() => URL.revokeObjectURL(link.href), 10000);
+  return `saved ${name}`;
+}

@@ -1,0 +1,167 @@
+// The wana editor: text on the left, the live animation on the right, one WebSocket per document.
+
+import "./style.css";
+import { createDocument, downloadExport, getDocument, listDocuments } from "./api.js";
+import { LiveDocument } from "./connection.js";
+import { TextPane } from "./textpane.js";
+import { Timeline } from "./timeline.js";
+import { Viewer } from "./viewer.js";
+
+const $ = (id) => document.getElementById(id);
+
+const state = {
+  docId: null,
+  live: null,
+  version: null, // version of the last animation shown
+  animation: null,
+  diagnostics: null,
+  progress: null,
+  messages: 0,
+};
+
+const viewer = new Viewer($("viewport"));
+const pane = new TextPane({
+  textarea: $("text"),
+  backdrop: $("backdrop"),
+  list: $("diagnostics"),
+  onInput: () => state.live?.flush(),
+});
+const timeline = new Timeline({
+  playButton: $("play"),
+  scrub: $("scrub"),
+  label: $("time"),
+  onFrame: (f) => {
+    viewer.setFrame(f);
+    pane.setActive(viewer.characters.flatMap((c) => c.activeSentences(f)));
+  },
+});
+
+function showProgress(msg) {
+  const fraction = msg.total ? msg.done / msg.total : 1;
+  $("progress-bar").style.width = `${Math.round(60 * fraction)}px`;
+  $("progress-text").textContent = `${msg.stage} ${msg.done}/${msg.total}`;
+}
+
+function onMessage(msg) {
+  state.messages += 1;
+  switch (msg.type) {
+    case "state":
+      $("doc-version").textContent = `v${msg.version}`;
+      break;
+    case "ack":
+      $("doc-version").textContent = `v${msg.version}`;
+      break;
+    case "progress":
+      state.progress = msg;
+      showProgress(msg);
+      break;
+    case "diagnostics":
+      state.diagnostics = msg;
+      pane.setDiagnostics(msg, state.live.version === msg.version ? state.live.confirmed : null);
+      break;
+    case "animation":
+      state.animation = msg;
+      state.version = msg.version;
+      viewer.setRoom(msg.room);
+      viewer.setObjects(msg.objects);
+      viewer.setCharacters(msg.characters);
+      viewer.setCommands(msg.commands);
+      viewer.invalidate();
+      timeline.setLength(msg.frames, msg.fps);
+      $("progress-bar").style.width = "0";
+      $("progress-text").textContent = msg.characters.length || msg.objects.length
+        ? `v${msg.version}: ${msg.objects.length} objects, ${msg.characters.length} characters, ${msg.stats.total_ms ?? msg.stats.compute_ms} ms`
+        : `v${msg.version}: nothing to animate yet`;
+      break;
+    case "error":
+      $("progress-text").textContent = `${msg.code}: ${msg.message}`;
+      break;
+    default:
+      break;
+  }
+}
+
+async function open(docId) {
+  state.live?.close();
+  state.docId = docId;
+  state.version = null;
+  if (location.hash !== `#doc=${docId}`) history.replaceState(null, "", `#doc=${docId}`);
+  state.live = new LiveDocument(docId, {
+    getText: () => pane.getText(),
+    setText: (text, change) => pane.setText(text, change),
+    onMessage,
+    onStatus: (status) => {
+      const badge = $("connection");
+      badge.textContent = status;
+      badge.classList.toggle("online", status === "online");
+    },
+  });
+  await refreshPicker();
+}
+
+async function refreshPicker() {
+  const picker = $("doc-picker");
+  const docs = await listDocuments().catch(() => []);
+  picker.innerHTML = "";
+  for (const d of docs) {
+    const option = document.createElement("option");
+    option.value = d.doc_id;
+    option.textContent = `${d.title || d.doc_id} (v${d.version})`;
+    option.selected = d.doc_id === state.docId;
+    picker.appendChild(option);
+  }
+}
+
+$("doc-picker").addEventListener("change", (e) => open(e.target.value));
+$("new-doc").addEventListener("click", async () => {
+  const doc = await createDocument("", `untitled ${new Date().toLocaleString()}`);
+  await open(doc.doc_id);
+  $("text").focus();
+});
+for (const button of document.querySelectorAll("#exports button")) {
+  button.addEventListener("click", async () => {
+    $("export-status").textContent = `${button.dataset.format.toUpperCase()}…`;
+    $("export-status").textContent = await downloadExport(state.docId, button.dataset.format);
+  });
+}
+$("focus").addEventListener("click", () => viewer.frameCharacters());
+document.addEventListener("keydown", (e) => {
+  if (e.target !== document.body) return; // typing in the text area
+  if (e.code === "Space") {
+    e.preventDefault();
+    timeline.toggle();
+  } else if (e.key === "f") {
+    viewer.frameCharacters();
+  }
+});
+
+function frameLoop(now) {
+  timeline.tick(now);
+  viewer.render();
+  requestAnimationFrame(frameLoop);
+}
+requestAnimationFrame(frameLoop);
+
+async function start() {
+  const wanted = /#doc=([A-Za-z0-9_-]+)/.exec(location.hash)?.[1];
+  try {
+    if (wanted) {
+      await getDocument(wanted);
+      return open(wanted);
+    }
+    const docs = await listDocuments();
+    if (docs.length) return open(docs[0].doc_id);
+    const doc = await createDocument("", "untitled");
+    return open(doc.doc_id);
+  } catch (error) {
+    $("connection").textContent = `error: ${error.message}`;
+  }
+}
+window.addEventListener("hashchange", () => {
+  const wanted = /#doc=([A-Za-z0-9_-]+)/.exec(location.hash)?.[1];
+  if (wanted && wanted !== state.docId) open(wanted);
+});
+
+// For tests and the curious: the scene graph and the live state.
+window.wana = { state, viewer, pane, timeline, onMessage };
+start();

@@ -1,0 +1,103 @@
+"""Exports of a document (MP4 video, animated GLB scene, BVH motion) through the render service.
+
+The document is brought up to date first (a no-op when the live session already computed the current
+version); the scene, motions, commands placed on frames and captions then go to the render service as
+one `proto.render.ExportRequest`, through the same backend as the pipeline (embedded bus or in-process).
+"""
+
+from __future__ import annotations
+
+from services.orchestrator.backend import StageFailed, StageUnavailable
+from services.orchestrator.pipeline import PipelineResult
+from services.orchestrator.session import Session
+
+FORMATS: dict[str, str] = {"mp4": "video/mp4", "glb": "model/gltf-binary", "bvh": "application/octet-stream"}
+
+
+class ExportUnavailable(RuntimeError):
+    """The render/export service is not in this build (or not enabled in this gateway)."""
+
+
+class NothingToExport(RuntimeError):
+    """The document has no scene or no motion yet (a stage could not run, or the text describes none)."""
+
+
+class ExportFailed(RuntimeError):
+    """The render service answered with an error."""
+
+    def __init__(self, code: str, message: str) -> None:
+        super().__init__(message)
+        self.code = code
+
+
+def current_result(session: Session) -> PipelineResult:
+    """The pipeline result of the document's current version (computed when the session has none)."""
+    with session.lock:
+        last = session.last
+        if last is not None and last.version == session.doc.version:
+            return last
+        return session.compute()
+
+
+def export_document(
+    session: Session, fmt: str, *, character: str = "", width: int = 640, height: int = 480
+) -> tuple[bytes, str, str]:
+    """Render or export the document's current animation.
+
+    Args:
+        session: the open document.
+        fmt: "mp4", "glb" or "bvh".
+        character: for BVH, the character to export ("" = the first one).
+        width, height: video size in pixels (MP4).
+
+    Returns:
+        (file bytes, media type, file name).
+
+    Raises:
+        ValueError: an unknown format.
+        ExportUnavailable: the render service is not in this build.
+        NothingToExport: no scene (or, for BVH, no motion) to export yet.
+        ExportFailed: the render service refused or failed (its error code and message).
+    """
+    if fmt not in FORMATS:
+        raise ValueError(f"unknown export format {fmt!r}; choose one of {', '.join(FORMATS)}")
+    try:
+        from proto.common import Header
+        from proto.render import ExportReply, ExportRequest
+        from services.render.timeline import as_motion_list, make_captions, place_commands
+    except ImportError as exc:
+        raise ExportUnavailable(
+            f"the {fmt.upper()} export is not available yet: the render service is not in this build ({exc})"
+        ) from exc
+    missing = getattr(session.pipeline.backend, "missing", {})  # services this gateway cannot reach
+    if "render" in missing:
+        raise ExportUnavailable(f"the {fmt.upper()} export is not available: {missing['render']}")
+    try:
+        result = current_result(session)
+    except Exception as exc:  # a failing stage must not take the request down with a bare 500
+        raise ExportFailed("E009", f"computing the animation failed: {type(exc).__name__}: {exc}") from exc
+    if result.scene is None:
+        why = "; ".join(result.unavailable.values()) or "the text describes no scene yet"
+        raise NothingToExport(f"nothing to export yet: {why}")
+    motions = as_motion_list(result.motions)
+    if fmt == "bvh" and not motions:
+        why = result.unavailable.get("motion", "the text makes no character move yet")
+        raise NothingToExport(f"no character motion to export as BVH: {why}")
+    request = ExportRequest(
+        header=Header(doc_id=result.doc_id, revision=result.version),
+        format=fmt,  # type: ignore[arg-type]
+        scene=result.scene,
+        motions=motions,
+        commands=place_commands(result.commands, result.sentences, motions),
+        captions=make_captions(result.sentences, motions),
+        character=character,
+        width=width,
+        height=height,
+    )
+    try:
+        reply = session.pipeline.backend.call("render", request, ExportReply)
+    except StageUnavailable as exc:
+        raise ExportUnavailable(f"the {fmt.upper()} export is not available: {exc}") from exc
+    except StageFailed as exc:
+        raise ExportFailed(exc.code, str(exc)) from exc
+    return bytes(reply.data), str(reply.media_type), str(reply.filename)

@@ -1,0 +1,216 @@
+"""Live documents: the WebSocket clients of each open document and its coalescing compute loop.
+
+One `DocumentChannel` per open document. Edits are applied (and persisted: acknowledged) in the order a
+client sends them; every edit marks the channel dirty. One compute loop per channel runs
+`Session.compute` in a thread pool, off the event loop; edits that arrive while it runs are coalesced into
+the next run, and results are pushed only when they belong to the newest version, so a fast typist never
+waits for intermediate versions.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+import time
+from concurrent.futures import Executor
+from dataclasses import dataclass, field
+from typing import Any
+
+from starlette.concurrency import run_in_threadpool
+from starlette.websockets import WebSocket, WebSocketState
+
+from services.gateway import messages
+from services.orchestrator.document import BadEdit, StaleEdit, TextChange
+from services.orchestrator.session import Orchestrator, Session
+
+log = logging.getLogger(__name__)
+
+PROGRESS_INTERVAL_S = 0.05  # at most one progress message per stage per interval (plus the last one)
+
+
+@dataclass(eq=False)
+class Client:
+    """One WebSocket connection; sends are serialised so messages never interleave."""
+
+    ws: WebSocket
+    lock: asyncio.Lock = field(default_factory=asyncio.Lock)
+
+    async def send(self, message: dict[str, Any]) -> bool:
+        async with self.lock:
+            if self.ws.client_state != WebSocketState.CONNECTED:
+                return False
+            try:
+                await self.ws.send_json(message)
+            except Exception:  # a closed socket: the receive loop will detach it
+                return False
+            return True
+
+
+class DocumentChannel:
+    """The live state of one document: its clients, its latest results, its compute loop."""
+
+    def __init__(self, session: Session, executor: Executor, title: str = "") -> None:
+        self.session = session
+        self.executor = executor
+        self.title = title
+        self.clients: set[Client] = set()
+        self.latest: tuple[dict[str, Any], dict[str, Any]] | None = None  # (diagnostics, animation)
+        self._dirty = False
+        self._task: asyncio.Task[None] | None = None
+        self._progress_sent: dict[str, float] = {}
+
+    @property
+    def version(self) -> int:
+        return self.session.doc.version
+
+    # -- clients -------------------------------------------------------------------------------------
+    async def attach(self, client: Client, known_version: int | None = None) -> None:
+        """Send the current text (the client rebases onto it), then the newest results or start a compute."""
+        state = await run_in_threadpool(self._state)
+        state["resumed_from"] = known_version
+        await client.send(state)  # first, before any broadcast can reach this client
+        self.clients.add(client)
+        if self.version != state["version"]:  # an edit landed while the state was on its way
+            state = await run_in_threadpool(self._state)
+            state["resumed_from"] = known_version
+            await client.send(state)
+        if self.latest is not None and self.latest[0]["version"] == self.version:
+            for message in self.latest:
+                await client.send(message)
+        else:
+            self.request_compute()
+
+    def detach(self, client: Client) -> None:
+        self.clients.discard(client)
+
+    async def broadcast(self, message: dict[str, Any], *, exclude: Client | None = None) -> None:
+        targets = [c for c in list(self.clients) if c is not exclude]
+        if targets:
+            await asyncio.gather(*(c.send(message) for c in targets))
+
+    def _state(self) -> dict[str, Any]:
+        with self.session.lock:
+            return messages.state_message(self.session.doc, title=self.title)
+
+    # -- edits ---------------------------------------------------------------------------------------
+    async def edit(
+        self, base_version: int, changes: list[TextChange], *, origin: Client | None = None
+    ) -> dict[str, Any]:
+        """Apply one edit; returns the message for its sender (ack, stale or error) and tells the others."""
+        try:
+            ack = await run_in_threadpool(self.session.edit, base_version, changes)
+        except StaleEdit as exc:
+            state = await run_in_threadpool(self._state)
+            return {
+                "type": "stale",
+                "base_version": exc.base_version,
+                "current_version": state["version"],
+                "text": state["text"],
+            }
+        except BadEdit as exc:
+            return {"type": "error", "code": "E010", "message": str(exc)}
+        changes_json = [{"start": c.start, "end": c.end, "text": c.text} for c in changes]
+        await self.broadcast(
+            {
+                "type": "remote_edit",
+                "base_version": ack.version - 1,
+                "version": ack.version,
+                "changes": changes_json,
+            },
+            exclude=origin,
+        )
+        self.request_compute()
+        return {"type": "ack", "version": ack.version, "changed": list(ack.changed)}
+
+    # -- computing -----------------------------------------------------------------------------------
+    def request_compute(self) -> None:
+        """Mark the document dirty; start the compute loop unless one is running (it will pick this up)."""
+        self._dirty = True
+        if self._task is None:
+            self._task = asyncio.get_running_loop().create_task(self._compute_loop())
+
+    async def wait_idle(self) -> None:
+        """Wait until no compute is pending (tests and benchmarks)."""
+        while self._task is not None:
+            await asyncio.shield(self._task)
+
+    async def _compute_loop(self) -> None:
+        loop = asyncio.get_running_loop()
+        try:
+            while self._dirty:
+                self._dirty = False
+                started = time.perf_counter()
+                try:
+                    diag, anim = await loop.run_in_executor(self.executor, self._compute, loop)
+                except Exception as exc:
+                    log.exception("compute of %s failed", self.session.doc_id)
+                    await self.broadcast(
+                        {
+                            "type": "error",
+                            "code": "E009",
+                            "message": f"computing the animation failed: {type(exc).__name__}: {exc}",
+                        }
+                    )
+                    continue
+                if diag["version"] != self.version:
+                    self._dirty = True  # an edit landed meanwhile: only the newest version is pushed
+                    continue
+                anim["stats"]["total_ms"] = round((time.perf_counter() - started) * 1000.0, 2)
+                self.latest = (diag, anim)
+                await self.broadcast(diag)
+                await self.broadcast(anim)
+        finally:
+            self._task = None
+
+    def _compute(self, loop: asyncio.AbstractEventLoop) -> tuple[dict[str, Any], dict[str, Any]]:
+        """Runs in the compute pool: bring the session up to date and build both messages."""
+        version = self.version
+        self._progress_sent.clear()
+
+        def progress(stage: str, done: int, total: int) -> None:
+            now = time.perf_counter()
+            last = self._progress_sent.get(stage)
+            if done < total and last is not None and now - last < PROGRESS_INTERVAL_S:
+                return
+            self._progress_sent[stage] = now
+            message = {"type": "progress", "version": version, "stage": stage, "done": done, "total": total}
+            asyncio.run_coroutine_threadsafe(self.broadcast(message), loop)
+
+        started = time.perf_counter()
+        with self.session.lock:
+            result = self.session.compute(progress=progress)
+            compute_ms = (time.perf_counter() - started) * 1000.0
+            diag = messages.diagnostics_message(result, self.session.doc)
+        anim = messages.animation_message(result, compute_ms=compute_ms)
+        return diag, anim
+
+
+class LiveHub:
+    """The channels of every document that has live clients or pending work."""
+
+    def __init__(self, orchestrator: Orchestrator, executor: Executor) -> None:
+        self.orchestrator = orchestrator
+        self.executor = executor
+        self.channels: dict[str, DocumentChannel] = {}
+
+    def channel(self, doc_id: str) -> DocumentChannel:
+        """The document's channel (raises store.DocumentNotFound for an unknown id)."""
+        channel = self.channels.get(doc_id)
+        if channel is None:
+            session = self.orchestrator.open(doc_id)
+            title = next((str(d["title"]) for d in self.orchestrator.list() if d["doc_id"] == doc_id), "")
+            channel = DocumentChannel(session, self.executor, title)
+            self.channels[doc_id] = channel
+        return channel
+
+    async def drop(self, doc_id: str, *, code: int = 4404, reason: str = "document deleted") -> None:
+        """Close every client of a document and forget its channel."""
+        channel = self.channels.pop(doc_id, None)
+        if channel is None:
+            return
+        for client in list(channel.clients):
+            try:
+                await client.ws.close(code=code, reason=reason)
+            except Exception:
+                pass
+        channel.clients.clear()

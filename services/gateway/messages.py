@@ -1,0 +1,156 @@
+"""JSON messages the gateway pushes to the editor, built from the orchestrator's results.
+
+The animation message is compact: arrays travel as base64 of little-endian float32 bytes, so a client
+decodes them with one `new Float32Array(...)`. Its layout is documented in services/gateway/README.md.
+"""
+
+from __future__ import annotations
+
+import base64
+import json
+from typing import Any
+from urllib.parse import quote
+
+import numpy as np
+
+from proto.motion_data import Motion
+from proto.scene import PlacedObject
+from services.orchestrator.document import Document
+from services.orchestrator.pipeline import PipelineResult
+from wana import skeleton
+from wana.arrays import from_wire
+
+FPS = 30
+
+
+def b64_f32(array: np.ndarray) -> str:
+    """Base64 of the array as C-order little-endian float32 bytes."""
+    return base64.b64encode(np.ascontiguousarray(array, dtype="<f4").tobytes()).decode("ascii")
+
+
+def mesh_url(obj: PlacedObject) -> str:
+    """The URL of one object variant's GLB; equal for equal (category, attributes, seed)."""
+    query = f"seed={obj.seed}"
+    if obj.attributes:
+        attrs = json.dumps(dict(sorted(obj.attributes.items())), separators=(",", ":"))
+        query += f"&attributes={quote(attrs, safe='')}"
+    return f"/api/meshes/{quote(obj.category, safe='')}.glb?{query}"
+
+
+def sentence_list(result: PipelineResult | None, doc: Document) -> list[dict[str, Any]]:
+    """Sentences with offsets and kinds; before the parser answers, kinds are 'unknown'."""
+    if result is not None and result.sentences and result.version == doc.version:
+        return [{"id": s.id, "start": s.start, "end": s.end, "kind": s.kind} for s in result.sentences]
+    return [{"id": s.id, "start": s.start, "end": s.end, "kind": "unknown"} for s in doc.sentences]
+
+
+def diagnostics_message(result: PipelineResult, doc: Document) -> dict[str, Any]:
+    """Per-sentence diagnostics with document offsets, and the stages that could not run."""
+    diags = []
+    for sid, items in result.diagnostics.items():
+        for d in items:
+            diags.append(
+                {
+                    "sentence_id": sid,
+                    "code": d.code,
+                    "message": d.message,
+                    "severity": d.severity,
+                    "start": d.span.start,
+                    "end": d.span.end,
+                }
+            )
+    diags.sort(key=lambda d: (d["start"], d["end"], d["code"]))
+    return {
+        "type": "diagnostics",
+        "version": result.version,
+        "sentences": sentence_list(result, doc),
+        "diagnostics": diags,
+        "unavailable": dict(result.unavailable),
+    }
+
+
+def _character(motion: Motion) -> dict[str, Any]:
+    rotations = from_wire(motion.rotations)  # (T, J, 4)
+    root = from_wire(motion.root_position)  # (T, 3)
+    if rotations.ndim != 3 or rotations.shape[2] != 4 or root.shape != (rotations.shape[0], 3):
+        raise ValueError(
+            f"motion of {motion.character}: rotations {rotations.shape} and root {root.shape} disagree"
+        )
+    names = list(motion.joint_names) or list(skeleton.JOINT_NAMES)
+    index = [skeleton.JOINT_INDEX[n] for n in names]
+    parents = [names.index(skeleton.JOINT_NAMES[p]) if p >= 0 else -1 for p in skeleton.PARENTS[index]]
+    return {
+        "name": motion.character,
+        "fps": motion.fps,
+        "frames": int(rotations.shape[0]),
+        "joints": names,
+        "parents": parents,
+        "offsets": b64_f32(skeleton.REST_OFFSETS[index]),  # (J, 3) metres
+        "root_position": b64_f32(root),  # (T, 3) metres, world
+        "rotations": b64_f32(rotations),  # (T, J, 4) local quaternions x, y, z, w
+        "segments": [
+            {
+                "index": s.index,
+                "action": s.action,
+                "start_frame": s.start_frame,
+                "end_frame": s.end_frame,
+                "sentence_id": s.sentence_id,
+            }
+            for s in motion.segments
+        ],
+    }
+
+
+def animation_message(result: PipelineResult, *, compute_ms: float = 0.0) -> dict[str, Any]:
+    """The scene and every character's motion for one version, plus what the pipeline ran."""
+    scene = result.scene
+    room = None
+    objects: list[dict[str, Any]] = []
+    if scene is not None:
+        r = scene.room
+        room = {"room_type": r.room_type, "width": r.width, "depth": r.depth, "height": r.height}
+        objects = [
+            {
+                "id": o.id,
+                "category": o.category,
+                "attributes": dict(o.attributes),
+                "seed": o.seed,
+                "position": list(o.position),
+                "yaw": o.yaw,
+                "scale": list(o.scale),
+                "support": o.support,
+                "from_text": o.from_text,
+                "mesh_url": mesh_url(o),
+            }
+            for o in scene.objects
+        ]
+    characters = [_character(m) for _, m in sorted(result.motions.items())]
+    frames = max((c["frames"] for c in characters), default=0)
+    commands = [
+        {"sentence_id": sid, "kind": c.kind, "value": c.value, "seconds": c.seconds, "target": c.target}
+        for sid, c in result.commands
+    ]
+    return {
+        "type": "animation",
+        "version": result.version,
+        "fps": characters[0]["fps"] if characters else FPS,
+        "frames": frames,
+        "room": room,
+        "objects": objects,
+        "characters": characters,
+        "commands": commands,
+        "unavailable": dict(result.unavailable),
+        "stats": {"ran": list(result.ran), "reused": len(result.reused), "compute_ms": round(compute_ms, 2)},
+    }
+
+
+def state_message(doc: Document, *, title: str = "") -> dict[str, Any]:
+    """The whole text and version: sent on connect and resume."""
+    return {
+        "type": "state",
+        "doc_id": doc.doc_id,
+        "title": title,
+        "version": doc.version,
+        "text": doc.text,
+        "sentences": sentence_list(None, doc),
+    }

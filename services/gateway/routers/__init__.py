@@ -1,0 +1,1 @@
+"""One router per resource: documents, exports, meshes, the live WebSocket."""
