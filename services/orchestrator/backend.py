@@ -63,7 +63,13 @@ class InProcessBackend:
     def call(self, service: str, request: Any, reply_type: type) -> Any:
         if service not in self._contracts:
             self._contracts[service] = load_contract(service)
-        return _check(service, call_in_process(self._contracts[service], request))
+        contract = self._contracts[service]
+        try:
+            reply = call_in_process(contract, request)
+        except Exception as exc:  # a handler bug is that stage's failure, as over the bus (E009)
+            code = "E010" if type(exc).__name__ == "InvalidInput" else "E009"
+            raise StageFailed(service, code, f"{type(exc).__name__}: {exc}") from exc
+        return _check(service, reply)
 
 
 class BusBackend:

@@ -20,11 +20,11 @@ import msgspec
 
 from proto.common import Header, Span
 from proto.motion_data import Motion
-from proto.scene import Scene
+from proto.scene import Room, Scene
 from proto.ssg import ActionNode, CharacterNode, Command, Diagnostic, SentenceGraph
 from services.orchestrator.backend import Backend, StageFailed, StageUnavailable
 from services.orchestrator.document import Document
-from services.orchestrator.queries import QueryEngine
+from services.orchestrator.queries import QueryEngine, content_hash
 from services.orchestrator.timeline import Beat, assemble, schedule
 
 STAGES = ("parse", "scene", "motion")
@@ -99,6 +99,9 @@ class Pipeline:
         return list(reply.graphs)
 
     def _compose(self, part: dict[str, Any], version: int) -> tuple[Scene, Any]:
+        if not part["objects"]:  # nothing to retrieve: an empty room for the characters
+            return Scene(room=Room(room_type=part["room_type"] or "room", width=5.0, depth=5.0, height=2.8),
+                         seed=self.seed), None
         ComposeRequest, ComposeReply = _messages("retrieval", "retrieval", "ComposeRequest", "ComposeReply")
 
         reply = self.backend.call(
@@ -133,26 +136,29 @@ class Pipeline:
 
     def _motion_stage(self, result: PipelineResult, resolved: list[SentenceGraph], sentences: list[Any],
                       engine: QueryEngine, version: int, tick: Callable[[str, int, int], None]) -> None:
-        """Motion per character, then the layout optimised around each interaction, then the final motion."""
+        """Drafts on the composed layout, the layout optimised around each interaction, then the final motion."""
         assert result.scene is not None
         characters = _characters(resolved, sentences)
         starts = _start_positions(result.scene, list(characters))
         scene = result.scene
         ids = {o.id for o in scene.objects}
-        # Optimise the layout around every action that touches an object of the scene.
+        # Interactions: actions that touch an object of the scene; the layout is optimised around each.
         interactions = [(name, k, a) for name, (node, _) in characters.items()
                         for k, a in enumerate(node.actions) if a.action and (a.target in ids or a.instrument in ids)]
-        done = 0
-        total = len(interactions) + len(characters)
+        done, total = 0, len(interactions) + len(characters)
+        drafts: dict[str, list[Motion]] = {}
+        for name, (node, sids) in characters.items():
+            last = max([k for n, k, _ in interactions if n == name], default=-1)
+            if last >= 0:
+                drafts[name] = self._segments("draft", name, node.actions[: last + 1], sids, scene, starts[name],
+                                              engine, version)
         for name, k, action in interactions:
             tick("optimise", done, total)
-            node = characters[name][0]
-            first = engine.query(f"draft:{name}:{k}", [node, scene, starts[name]],
-                                 lambda n=node, sc=scene, st=starts[name]: self._synthesise(n, sc, st, version))
+            draft = drafts[name][k]
             try:
                 reply = engine.query(
-                    f"optimise:{name}:{k}", [scene, first.motion, action],
-                    lambda sc=scene, m=first.motion, n=name, a=action: self._optimise(sc, m, n, a, version))
+                    f"optimise:{name}:{k}", [scene, draft, action],
+                    lambda sc=scene, m=draft, n=name, a=action: self._optimise(sc, m, n, a, version))
             except StageFailed as exc:
                 result.diagnostics.setdefault(characters[name][1][k], []).append(Diagnostic(
                     code="W301", message=f"the layout around this action could not be optimised: {exc}",
@@ -165,7 +171,7 @@ class Pipeline:
         pieces: dict[str, list[Motion]] = {}
         for name, (node, sids) in characters.items():
             tick("motion", done, total)
-            pieces[name] = self._segments(name, node, sids, scene, starts[name], engine, version)
+            pieces[name] = self._segments("segment", name, node.actions, sids, scene, starts[name], engine, version)
             done += 1
         tick("motion", done, total)
         # Story timing: sentence order sets when actions start; gaps hold the pose.
@@ -176,35 +182,35 @@ class Pipeline:
         start_frames = schedule(beats, waits, [s.id for s in sentences])
         length = max([start_frames[(b.character, b.k)] + b.frames for b in beats] or [1])
         for name, (node, _) in characters.items():
-            if node.actions:
-                result.motions[name] = assemble(
-                    name, pieces[name], [start_frames[(name, k)] for k in range(len(node.actions))], total=length)
-            else:
-                result.motions[name] = assemble(name, pieces[name], [0], total=length)
+            firsts = [start_frames[(name, k)] for k in range(len(node.actions))] or [0]
+            result.motions[name] = assemble(name, pieces[name], firsts, total=length)
 
-    def _segments(self, name: str, node: CharacterNode, sids: list[str], scene: Scene,
+    def _segments(self, kind: str, name: str, actions: list[ActionNode], sids: list[str], scene: Scene,
                   start: tuple[float, float, float], engine: QueryEngine, version: int) -> list[Motion]:
-        """The character's motion per action, one query node per action, each starting from the end state of the last.
+        """A character's motion, one query node `<kind>:<name>:<k>` per action.
 
-        `segment:<name>:<k>` depends on action k, the layout and the end state of action k-1; when an edit
-        leaves an end state unchanged, the actions after it are reused (early cutoff).
+        Action k starts from the end state of action k-1 and sees only the part of the layout it can touch:
+        the objects on the floor (which routes go around) and the objects it names with what they rest on.
+        So an edit that leaves an end state unchanged stops there (early cutoff), and moving a lamp on a desk
+        re-runs only the actions that use the lamp.
         """
         SegmentEndState, = _messages("motion", "motion", "SegmentEndState")
         state = SegmentEndState(x=start[0], z=start[1], yaw=start[2])
         pieces: list[Motion] = []
-        actions = node.actions or []
         for k, action in enumerate(actions):
             single = CharacterNode(name=name, actions=[msgspec.structs.replace(action, verb="")])
+            view = _scene_view(scene, action)
             reply = engine.query(
-                f"segment:{name}:{k}", [single, scene, state],
-                lambda c=single, st=state: self._synthesise(c, scene, (st.x, st.z, st.yaw), version, st))
+                f"{kind}:{name}:{k}", [single, view, state],
+                lambda c=single, v=view, st=state: self._synthesise(c, v, (st.x, st.z, st.yaw), version, st))
             segments = [msgspec.structs.replace(seg, action_index=k, sentence_id=sids[k])
                         for seg in reply.motion.segments]
             pieces.append(msgspec.structs.replace(reply.motion, segments=segments))
             state = reply.end_states[-1] if reply.end_states else state
         if not pieces:
-            idle = engine.query(f"segment:{name}:idle", [name, scene, state],
-                                lambda: self._synthesise(CharacterNode(name=name), scene, start, version))
+            view = _scene_view(scene, None)
+            idle = engine.query(f"{kind}:{name}:idle", [name, view, state],
+                                lambda: self._synthesise(CharacterNode(name=name), view, start, version))
             return [idle.motion]
         return pieces
 
@@ -227,16 +233,25 @@ class Pipeline:
         try:
             for i, s in enumerate(sentences):
                 tick("parse", i, len(sentences))
-                parsed[s.id] = engine.query(
-                    f"parse:{s.id}", s.key_text, lambda s=s: self._parse(s.id, s.key_text, doc.version)
-                )
+                try:
+                    parsed[s.id] = engine.query(
+                        f"parse:{s.id}", s.key_text, lambda s=s: self._parse(s.id, s.key_text, doc.version)
+                    )
+                except StageFailed as exc:  # not memoised: the next compute tries again
+                    parsed[s.id] = SentenceGraph(sentence_id=s.id, text=s.key_text, kind="empty", diagnostics=[
+                        Diagnostic(code=exc.code, message=f"this sentence could not be parsed: {exc}",
+                                   span=Span(0, len(s.key_text)), severity="error")])
             tick("parse", len(sentences), len(sentences))
             ordered = [parsed[s.id] for s in sentences]
-            resolved = engine.query(
-                "resolve",
-                [engine.result_hash(f"parse:{s.id}") for s in sentences],
-                lambda: self._resolve(ordered, doc.version),
-            )
+            try:
+                resolved = engine.query(
+                    "resolve",
+                    [content_hash(g) for g in ordered],
+                    lambda: self._resolve(ordered, doc.version),
+                )
+            except StageFailed as exc:
+                resolved = ordered
+                result.unavailable["resolve"] = str(exc)
         except StageUnavailable as exc:
             result.unavailable["parse"] = str(exc)
             self._finish(result, engine, sentences)
@@ -334,3 +349,21 @@ def _start_positions(scene: Scene, names: list[str]) -> dict[str, tuple[float, f
 
 def _frames(motion: Motion) -> int:
     return int(motion.root_position.shape[0])
+
+
+def _scene_view(scene: Scene, action: ActionNode | None) -> Scene:
+    """The part of the layout an action can depend on: floor objects, plus what it names and their supports."""
+    by_id = {o.id: o for o in scene.objects}
+    wanted = {o.id for o in scene.objects if not o.support}
+    named = [] if action is None else [action.target, action.instrument, action.destination]
+    for name in named:
+        if not name:
+            continue
+        # An action names an object by id ("chair", "chair/2") or, failing that, by category.
+        refs = [name] if name in by_id else [o.id for o in scene.objects
+                                             if o.category == name or o.id.split("/")[0].split("#")[0] == name]
+        for ref in refs:
+            while ref and ref in by_id and ref not in wanted:
+                wanted.add(ref)
+                ref = by_id[ref].support
+    return msgspec.structs.replace(scene, objects=[o for o in scene.objects if o.id in wanted])

@@ -7,6 +7,7 @@ derived values (parse, scene, motion, ...) up to date, re-running only the query
 
 from __future__ import annotations
 
+import dataclasses
 import threading
 import uuid
 from collections.abc import Callable
@@ -35,7 +36,8 @@ class Session:
     store: SessionStore
     pipeline: Pipeline
     engine: QueryEngine = field(default_factory=QueryEngine)
-    lock: threading.RLock = field(default_factory=threading.RLock)
+    lock: threading.RLock = field(default_factory=threading.RLock)  # guards the document (edits)
+    compute_lock: threading.Lock = field(default_factory=threading.Lock)  # one pipeline run at a time
     last: PipelineResult | None = None
 
     @property
@@ -55,11 +57,17 @@ class Session:
             return EditAck(self.doc_id, self.doc.version, changed)
 
     def compute(self, *, stages: tuple[str, ...] | None = None, progress: Progress | None = None) -> PipelineResult:
-        """Bring every derived value up to date for the current version."""
+        """Bring every derived value up to date for the current version.
+
+        Runs on a snapshot of the document, so edits are acknowledged while a compute is running; the
+        result names the version it was computed for.
+        """
         with self.lock:
+            doc = dataclasses.replace(self.doc, sentences=list(self.doc.sentences))
+        with self.compute_lock:
             self.engine.new_revision()
-            result = self.pipeline.run(self.doc, self.engine, stages=stages, progress=progress)
-            live = {s.id for s in self.doc.sentences}
+            result = self.pipeline.run(doc, self.engine, stages=stages, progress=progress)
+            live = {s.id for s in doc.sentences}
             self.engine.forget(lambda key: not key.startswith("parse:") or key.split(":", 1)[1] in live)
             self.engine.trim_log()
             self.last = result
@@ -93,6 +101,12 @@ class Orchestrator:
 
     def list(self) -> list[dict[str, object]]:
         return self.store.list()
+
+    def delete(self, doc_id: str) -> None:
+        """Forget a document: its session and everything stored about it."""
+        with self._lock:
+            self._sessions.pop(doc_id, None)
+            self.store.delete(doc_id)
 
     def close(self) -> None:
         self.store.close()

@@ -1,0 +1,122 @@
+"""Anneal with the fast anchored surrogate, then verify the winner with the motion service.
+
+The surrogate (services.optimizer.resynthesis.anchored_motion_fn) makes the search cheap but cannot
+see what only a full re-synthesis changes (a route that opens up, an approach point that becomes
+reachable). So the search's last few best layouts are re-synthesised through the motion service
+and scored exactly. A candidate qualifies when its walk hits no more boxes than the input's and
+either its cost C is lower or its walk hits fewer boxes without losing contact (C_T within 5 cm or
+the input's); among those, a walk with fewer hit boxes wins, then the lower C. Without a qualifying candidate the input comes back.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from proto.motion_data import Motion
+from proto.optimizer import CostReport, Interaction, OptimiseSettings
+from proto.scene import Scene
+from proto.ssg import CharacterNode
+from services.optimizer.annealing import OptimisationResult, optimise_interaction
+from services.optimizer.costs import SceneGeometry
+from services.optimizer.resynthesis import MotionFn, anchored_motion_fn, motion_service_fn
+from services.optimizer.scoring import InteractionScorer
+
+CONTACT_OK_M = 0.05  # contact distance (metres) counted as contact
+
+
+@dataclass
+class VerifiedResult:
+    """The annealing result plus what the motion service made of its winner.
+
+    Attributes:
+        search: the annealing result (its motion is the surrogate's).
+        scene: the layout returned (the winner, or the input when the winner did not verify).
+        motion: the motion returned.
+        after: exact costs of the returned scene and motion.
+        made: "motion_service" (verified winner), "input" (winner rejected) or "anchored" (no verifier).
+    """
+
+    search: OptimisationResult
+    scene: Scene
+    motion: Motion
+    after: CostReport
+    made: str
+
+
+def optimise_and_verify(
+    scene: Scene,
+    interaction: Interaction,
+    motion: Motion,
+    *,
+    character: CharacterNode | None = None,
+    start: tuple[float, float, float] = (0.0, 0.0, 0.0),
+    settings: OptimiseSettings | None = None,
+    verifier: MotionFn | None = None,
+    geometry: SceneGeometry | None = None,
+    candidates: int = 4,
+) -> VerifiedResult:
+    """Optimise one interaction with the anchored surrogate and verify the result.
+
+    Args:
+        scene: input layout.
+        interaction: the interaction (its first target anchors the motion).
+        motion: the motion in ``scene``.
+        character: the character's actions; with ``start`` they make the motion-service verifier.
+        start: (x, z, yaw) where the character starts.
+        settings: annealing settings (seed, steps, budget included).
+        verifier: scene -> Motion used instead of the motion service (tests, other synthesisers).
+        geometry: the scene's object geometry (read from the catalog when None).
+        candidates: how many of the search's successive best layouts to re-synthesise, spread from the
+            best back to the first improvement.
+
+    Returns:
+        The verified result.
+    """
+    st = settings or OptimiseSettings()
+    geom = geometry if geometry is not None else SceneGeometry.from_scene(scene)
+    search = optimise_interaction(
+        scene,
+        anchored_motion_fn(scene, motion, interaction, geom),
+        interaction,
+        seed=st.seed,
+        steps=st.steps,
+        budget_s=st.budget_s if st.budget_s > 0 else None,
+        settings=st,
+        motion=motion,
+        geometry=geom,
+        ik_search=verifier is not None or character is not None,
+    )
+    if verifier is None and character is not None:
+        verifier = motion_service_fn(character, start)
+    if verifier is None:
+        return VerifiedResult(search, search.scene, search.motion, search.after, "anchored")
+    if search.scene == scene:
+        return VerifiedResult(search, scene, motion, search.before, "input")
+    reporter = InteractionScorer(
+        scene, interaction, lambda_d=st.lambda_d, lambda_t=st.lambda_t, frame_stride=1, geometry=geom
+    )
+    base = search.before
+    chosen: tuple[tuple[int, float], Scene, Motion, CostReport] | None = None
+    history = search.candidates  # best first
+    picks = (
+        sorted({round(i * (len(history) - 1) / max(candidates - 1, 1)) for i in range(candidates)})
+        if history
+        else []
+    )
+    for cand in [history[i] for i in picks]:
+        real = verifier(cand)
+        rep = reporter.score_scenes([cand], [real]).report(0, reporter.pairs)
+        fewer_walk_hits = (
+            rep.locomotion_collided_boxes < base.locomotion_collided_boxes
+            and rep.contact_cost <= max(base.contact_cost, CONTACT_OK_M)
+        )
+        no_new_walk_hits = rep.locomotion_collided_boxes <= base.locomotion_collided_boxes
+        if no_new_walk_hits and (rep.cost < base.cost or fewer_walk_hits):
+            key = (rep.locomotion_collided_boxes, rep.cost)
+            if chosen is None or key < chosen[0]:
+                chosen = (key, cand, real, rep)
+        if chosen is not None and chosen[0][0] == 0:
+            break  # a verified layout whose walk is collision-free: take it
+    if chosen is None:
+        return VerifiedResult(search, scene, motion, base, "input")
+    return VerifiedResult(search, chosen[1], chosen[2], chosen[3], "motion_service")

@@ -1,0 +1,181 @@
+"""The optimizer worker on a real socket answers its contract (real broker, real worker process)."""
+
+from __future__ import annotations
+
+import msgpack
+import msgspec
+import numpy as np
+import pytest
+
+from proto.common import Header
+from proto.motion_data import Motion, Segment
+from proto.optimizer import (
+    ContactPair,
+    CostRequest,
+    Interaction,
+    OptimiseRequest,
+    OptimiseSettings,
+    RouteRequest,
+)
+from proto.scene import PlacedObject, Room, Scene
+from services.optimizer.handlers import CONTRACT
+from tests.contract.harness import check_contract, service_fixture
+from wana.arrays import from_wire, to_wire
+from wana.skeleton import JOINT_NAMES, N_JOINTS
+
+optimizer = service_fixture("optimizer")
+
+ROOM = Room(room_type="office", width=5.0, depth=5.0, height=3.0)
+DESK_SCENE = Scene(room=ROOM, objects=[PlacedObject(id="desk", category="desk", position=(0.0, 0.0, 0.0))])
+
+
+def _standing(x: float, z: float, frames: int = 20) -> Motion:
+    rot = np.zeros((frames, N_JOINTS, 4), dtype=np.float32)
+    rot[..., 3] = 1.0
+    root = np.tile(np.array([x, 0.95, z], dtype=np.float32), (frames, 1))
+    return Motion(
+        character="Eve",
+        joint_names=list(JOINT_NAMES),
+        root_position=to_wire(root),
+        rotations=to_wire(rot),
+        segments=[Segment(index=0, action="idle", start_frame=0, end_frame=frames)],
+    )
+
+
+@pytest.mark.contract
+def test_route_request_gets_a_route_around_the_desk(optimizer):
+    req = RouteRequest(
+        header=Header(doc_id="doc", revision=2), scene=DESK_SCENE, start=(0.0, -1.5), goal=(0.0, 1.5)
+    )
+    raw = optimizer.request("optimizer", msgspec.msgpack.encode(req))
+    reply = check_contract(CONTRACT, req, raw)
+    wps = from_wire(reply.waypoints)
+    assert wps.shape[1] == 2 and len(wps) >= 3  # the straight line crosses the desk
+    np.testing.assert_allclose(wps[[0, -1]], [[0.0, -1.5], [0.0, 1.5]], atol=1e-5)
+    assert reply.length > 3.0 and reply.header.revision == 2
+    assert msgpack.unpackb(raw)["type"] == "route_reply"
+
+
+@pytest.mark.contract
+def test_an_enclosed_goal_gets_an_invalid_input_error(optimizer):
+    walls = [
+        PlacedObject(id=f"w{i}", category="bookshelf", position=p, yaw=y, scale=(3.0, 1.0, 1.0))
+        for i, (p, y) in enumerate(
+            [
+                ((0.0, 0.0, 1.0), 0.0),
+                ((0.0, 0.0, -1.0), 0.0),
+                ((1.0, 0.0, 0.0), np.pi / 2),
+                ((-1.0, 0.0, 0.0), np.pi / 2),
+            ]
+        )
+    ]
+    req = RouteRequest(
+        header=Header(),
+        scene=Scene(room=Room(room_type="office", width=6, depth=6, height=3), objects=walls),
+        start=(2.5, 2.5),
+        goal=(0.0, 0.0),
+        radius=0.3,
+    )
+    reply = check_contract(
+        CONTRACT,
+        req,
+        optimizer.request("optimizer", msgspec.msgpack.encode(req)),
+        expect="error",
+        code="E010",
+    )
+    assert "no route" in reply.message
+
+
+@pytest.mark.contract
+def test_cost_request_counts_the_desk_boxes_a_body_stands_in(optimizer):
+    inside = CostRequest(
+        header=Header(),
+        scene=DESK_SCENE,
+        motion=_standing(0.0, 0.0),
+        interaction=Interaction(character="Eve", action="idle"),
+    )
+    clear = msgspec.structs.replace(inside, motion=_standing(1.5, 1.5))
+    hit = check_contract(
+        CONTRACT, inside, optimizer.request("optimizer", msgspec.msgpack.encode(inside))
+    ).report
+    miss = check_contract(
+        CONTRACT, clear, optimizer.request("optimizer", msgspec.msgpack.encode(clear))
+    ).report
+    assert (
+        hit.collided_boxes > 0
+        and 0 < hit.collision_cost <= 1
+        and hit.cost == pytest.approx(hit.collision_cost)
+    )
+    assert miss.collided_boxes == 0 and miss.cost == 0.0
+
+
+@pytest.mark.contract
+def test_optimise_request_moves_the_desk_off_the_body_and_returns_its_curve(optimizer):
+    req = OptimiseRequest(
+        header=Header(doc_id="doc", revision=5),
+        scene=DESK_SCENE,
+        motion=_standing(0.0, 0.42),
+        interaction=Interaction(character="Eve", action="idle", movable=["desk"]),
+        settings=OptimiseSettings(steps=60, seed=3),
+    )
+    raw = optimizer.request("optimizer", msgspec.msgpack.encode(req), deadline_s=120)
+    reply = check_contract(CONTRACT, req, raw)
+    assert reply.before.collided_boxes > 0
+    assert reply.after.cost < reply.before.cost
+    assert len(reply.cost_curve) == reply.steps_run + 1 == 61 and reply.movable == ["desk"]
+    assert reply.scene.objects[0].position != DESK_SCENE.objects[0].position
+    assert reply.scene.objects[0].position[1] == 0.0 and reply.resynthesis == "anchored"
+    again = check_contract(
+        CONTRACT, req, optimizer.request("optimizer", msgspec.msgpack.encode(req), deadline_s=120)
+    )
+    assert again.scene == reply.scene and again.cost_curve == reply.cost_curve  # fixed seed, same answer
+
+
+@pytest.mark.contract
+def test_bad_requests_get_error_replies_and_the_worker_keeps_serving(optimizer):
+    assert msgpack.unpackb(optimizer.request("optimizer", b"\x92garbage"))["code"] == "E001"
+    bad = CostRequest(
+        header=Header(),
+        scene=DESK_SCENE,
+        motion=_standing(0.0, 0.0),
+        interaction=Interaction(character="Eve", action="sit", targets=["chair"]),
+    )
+    check_contract(
+        CONTRACT,
+        bad,
+        optimizer.request("optimizer", msgspec.msgpack.encode(bad)),
+        expect="error",
+        code="E010",
+    )
+    wrong_point = msgspec.structs.replace(
+        bad,
+        interaction=Interaction(
+            character="Eve",
+            action="sit",
+            targets=["desk"],
+            contacts=[ContactPair(object_id="desk", point="nope")],
+        ),
+    )
+    check_contract(
+        CONTRACT,
+        wrong_point,
+        optimizer.request("optimizer", msgspec.msgpack.encode(wrong_point)),
+        expect="error",
+        code="E010",
+    )
+    hybrid = OptimiseRequest(
+        header=Header(),
+        scene=DESK_SCENE,
+        motion=_standing(0.0, 0.0),
+        interaction=Interaction(character="Eve", action="idle"),
+        resynthesis="hybrid",
+    )
+    check_contract(
+        CONTRACT,
+        hybrid,
+        optimizer.request("optimizer", msgspec.msgpack.encode(hybrid)),
+        expect="error",
+        code="E010",
+    )
+    ok = RouteRequest(header=Header(), scene=DESK_SCENE, start=(-2.0, -2.0), goal=(2.0, -2.0))
+    check_contract(CONTRACT, ok, optimizer.request("optimizer", msgspec.msgpack.encode(ok)))
