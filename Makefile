@@ -4,7 +4,7 @@ PY := $(VENV)/bin/python
 EXAMPLE ?= examples/office.txt
 OUT ?= out
 
-.PHONY: help setup demo test test-fast lint bench eval models clean
+.PHONY: help setup demo serve test test-fast lint bench eval models clean
 
 help:  ## list the targets
 	@grep -E '^[a-z-]+:.*## ' Makefile | sed 's/:.*## /\t/'
@@ -14,6 +14,9 @@ setup:  ## apt packages (as root), .venv, pinned pip install, npm tools
 
 demo:  ## animate the example story into $(OUT)/
 	$(VENV)/bin/wana animate $(EXAMPLE) -o $(OUT)
+
+serve:  ## the web editor on http://127.0.0.1:8765
+	$(VENV)/bin/wana serve
 
 test:  ## the whole suite, slow tests included (what CI runs): pytest, then the editor's node tests
 	$(PY) -m pytest -q
@@ -34,6 +37,12 @@ bench:  ## every benchmark, quick mode, JSON under bench/results/
 eval:  ## every evaluation, quick mode, JSON under eval/results/
 	mkdir -p eval/results
 	for e in eval/*.py; do $(PY) $$e --quick --json eval/results/$$(basename $$e .py).json || exit 1; done
+
+models:  ## rebuild every committed model and generated asset (needs ../shared/data; about 40 min on 2 cores)
+	$(PY) scripts/train_nlp.py --force
+	OMP_NUM_THREADS=1 nice -n 10 $(PY) -m services.motion.train_locomotion
+	$(PY) -m services.motion.author_actions
+	$(PY) -m wana.assets.scenedb --per-room 10
 
 clean:
 	rm -rf $(OUT) .pytest_cache .ruff_cache .mypy_cache
