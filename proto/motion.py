@@ -35,6 +35,7 @@ class SynthesizeRequest(msgspec.Struct, frozen=True, kw_only=True, tag="synthesi
     from_segment: int = 0  # recompute from this segment on (earlier ones are skipped)
     start_state: SegmentEndState | None = None  # end state of segment from_segment-1 (None: from `start`)
     routes: list[list[tuple[float, float]]] = []  # optional precomputed waypoints, one list per locomotion segment
+    others: dict[str, tuple[float, float]] = {}  # other characters' x, z (metres, world) when the first action starts
 
 
 class SynthesizeReply(msgspec.Struct, frozen=True, kw_only=True, tag="synthesize_reply"):

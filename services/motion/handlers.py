@@ -27,6 +27,9 @@ def handle_synthesize(req: SynthesizeRequest) -> SynthesizeReply:
     """Plan the character's actions in the scene and synthesise segments from_segment on."""
     if not all(np.isfinite(req.start)):
         raise InvalidInput("start must be finite (x, z, yaw)")
+    for name, xz in req.others.items():
+        if not all(np.isfinite(xz)):
+            raise InvalidInput(f"others[{name!r}] must be finite (x, z)")
     routes = list(req.routes)
 
     def route_fn(scene, a, b):  # noqa: ANN001 - precomputed routes first, else a straight line
@@ -37,7 +40,8 @@ def handle_synthesize(req: SynthesizeRequest) -> SynthesizeReply:
         return np.array([a, b], float)
 
     posture = req.start_state.posture if req.start_state is not None else "stand"
-    plan = plan_actions(req.character, req.scene, req.start, route_fn, posture=posture)
+    plan = plan_actions(req.character, req.scene, req.start, route_fn, posture=posture,
+                        others={k: (float(v[0]), float(v[1])) for k, v in req.others.items()})
     if req.from_segment < 0 or req.from_segment > len(plan.segments):
         raise InvalidInput(f"from_segment {req.from_segment} outside 0..{len(plan.segments)}")
     state = plan.start_state() if req.start_state is None else SegmentState(

@@ -3,6 +3,11 @@
 Target objects' stand points and contact points come from the asset catalog
 (wana.assets.catalog); routes from route_fn(scene, start_xz, goal_xz) -> (N, 2) waypoints
 (default: a straight line; the optimizer provides A*).
+
+Actions aimed at another character use where that character is (``others``: name -> x, z when the
+first planned action starts; held there for the rest of the plan): "walks to Eve" stops
+PERSON_DISTANCE short of her, "shakes hands with / hugs / high-fives Eve" walks up to her first, and
+every action aimed at her ("waves at Eve") turns to face her.
 """
 
 from __future__ import annotations
@@ -27,6 +32,9 @@ PREFERRED_POINTS = {"seat": ("sit", "sit_0"), "bed": ("lie", "sit"), "keyboard":
                     "bag": ("touch",), "floor_item": ("pick_up", "touch")}
 SEAT_BACK = 0.22  # metres the hips travel backwards while sitting down (sit clip)
 REACH = 0.42  # metres from the contact points to where the character stands
+PERSON_DISTANCE = 0.8  # metres between two characters after one walks up to the other
+CLOSE_DISTANCE = {"hug": 0.45, "shake_hands": 0.75, "high_five": 0.75}  # metres, per touching action
+TURN_TOLERANCE = 0.3  # radians off the wanted facing before the character turns in place
 
 
 def straight_route(scene: Scene, start: tuple[float, float], goal: tuple[float, float]) -> np.ndarray:
@@ -86,8 +94,41 @@ def _find_object(scene: Scene, ref: str) -> PlacedObject | None:
     return None
 
 
+def _other_character(node: ActionNode, clip: ActionClip | None, others: dict[str, tuple[float, float]],
+                     scene: Scene, me: str) -> str:
+    """The name of the character an action is aimed at ("" when none).
+
+    The target or destination names a character of ``others``; a touching action (hug, shake hands,
+    high five) whose target is no character and no scene object ("shakes hands with Eve" parsed with
+    target "hand") goes to the only other character there is.
+    """
+    for ref in (node.target, node.destination):
+        if ref and ref != me and ref in others:
+            return ref
+    touching = clip is not None and clip.interaction is not None and clip.interaction.object == "person"
+    candidates = [n for n in others if n != me]
+    if touching and len(candidates) == 1 and _find_object(scene, node.target or node.destination) is None:
+        return candidates[0]
+    return ""
+
+
+def _yaw_to(frm: np.ndarray, to: np.ndarray, default: float) -> float:
+    d = to - frm
+    return float(np.arctan2(d[0], d[1])) if np.linalg.norm(d) > 1e-6 else default
+
+
+def _short_of(pos: np.ndarray, other: np.ndarray, distance: float) -> np.ndarray:
+    """The point on the line from pos to other that stops ``distance`` metres short of other."""
+    d = other - pos
+    n = float(np.linalg.norm(d))
+    if n <= distance:
+        return pos.copy()
+    return other - d / n * distance
+
+
 def plan_actions(character: CharacterNode, scene: Scene, start: tuple[float, float, float],
-                 route_fn: RouteFn | None = None, posture: str = "stand") -> MotionPlan:
+                 route_fn: RouteFn | None = None, posture: str = "stand",
+                 others: dict[str, tuple[float, float]] | None = None) -> MotionPlan:
     """Turn a character's ordered actions into a MotionPlan.
 
     Args:
@@ -96,10 +137,13 @@ def plan_actions(character: CharacterNode, scene: Scene, start: tuple[float, flo
         start: (x, z, yaw) where the character starts.
         route_fn: route planner; defaults to a straight line.
         posture: the posture the character starts in ("stand", "sit", ...), when planning resumes mid-story.
+        others: other characters' (x, z) metres, world, when the first action starts; actions aimed at
+            one of them face it, and walking / touching actions go up to it.
 
     Returns:
         the plan; unknown actions become a 1 s wait and a diagnostic.
     """
+    others = dict(others or {})
     route = route_fn or straight_route
     lib = load_library()
     segs: list[PlannedSegment] = []
@@ -136,6 +180,29 @@ def plan_actions(character: CharacterNode, scene: Scene, start: tuple[float, flo
                 continue
         clip = lib[name]
         speed_k = MANNER_SPEED.get(node.manner, 1.0)
+        person = _other_character(node, clip, others, scene, character.name)
+        if person:
+            there = np.asarray(others[person], dtype=float)
+            touching = clip.interaction is not None and clip.interaction.object == "person"
+            seated = (segs and any(s.action in ("sit", "lie_down") for s in segs[-2:])) or (
+                not segs and posture in ("sit", "lie"))
+            if "locomotion" in clip.tags or name in CLOSE_DISTANCE or touching:
+                near = CLOSE_DISTANCE.get(name, PERSON_DISTANCE)
+                goal = _short_of(pos, there, near)
+                face = _yaw_to(goal, there, yaw)
+                if "locomotion" in clip.tags:
+                    walk_to(goal, SPEEDS.get(name, 1.3) * speed_k, face, name, ai, person)
+                    continue
+                if np.linalg.norm(goal - pos) > 0.1:
+                    walk_to(goal, 1.2, face, "walk", ai, person)
+                elif abs(np.arctan2(np.sin(face - yaw), np.cos(face - yaw))) > TURN_TOLERANCE:
+                    walk_to(pos.copy(), 1.0, face, "turn", ai, person)
+            elif not seated:
+                face = _yaw_to(pos, there, yaw)
+                if abs(np.arctan2(np.sin(face - yaw), np.cos(face - yaw))) > TURN_TOLERANCE:
+                    walk_to(pos.copy(), 1.0, face, "turn", ai, person)
+            add(kind="action", action=name, duration_s=float(node.duration_s), target_id=person, action_index=ai)
+            continue
         if "locomotion" in clip.tags:
             obj = _find_object(scene, node.destination or node.target)
             if obj is not None:

@@ -4,6 +4,13 @@ Every frame's camera is a pure function of the frame index, the camera keys and 
 whole tracks (no state carried from frame to frame), so that chunks rendered by different workers
 join without a seam.
 
+When the scene's occluders are given (services.render.framing), a commanded pose that cannot see
+its character (a tall cabinet in between) moves along the arc, rises or comes closer until it can;
+the choice is made every DECISION_STEP frames from the frames around it (keeping the previous
+choice while it stays clear, else moving to the nearest clear one) and eased in between, so the
+camera glides instead of jumping. The establishing overview picks, among views from around the
+room, the first that sees the characters while it is on screen.
+
 Conventions: world Y up, metres. ``CameraPose.extrinsic()`` is the OpenCV-style world -> camera
 matrix (x right, y down, z forward) that open3d's pinhole parameters expect.
 """
@@ -15,10 +22,22 @@ from dataclasses import dataclass
 import numpy as np
 
 from proto.scene import Room
+from services.render.framing import ADJUSTMENTS, Adjust, Occluders, adjust_eye, blend_adjust, sight_points
 
 CAMERA_MODES = ("overview", "front", "back", "left", "right", "top", "follow", "close")
 TRANSITION_FRAMES = 24  # a camera change eases in over 0.8 s at 30 fps
 SMOOTH_RADIUS = 12  # frames either side averaged for the look-at point (removes gait bob)
+DECISION_STEP = 20  # frames between occlusion decisions (eased in between)
+DECISION_LOOK = (-10, 0, 10)  # frames around a decision whose views must be clear
+UNBLOCKED_MODES = ("front", "back", "left", "right", "follow", "close")
+OVERVIEW_SAMPLES = 8  # character frames checked for the overview
+ROOM_WEIGHT = 0.4  # how much a hidden part of the room counts against an overview, against a hidden character
+OVERVIEW_ADJUSTMENTS = tuple(
+    Adjust(turn=np.radians(a) * sgn, rise=r)
+    for r in (0.0, 0.8)
+    for a in (0, 25, 45, 70, 90)
+    for sgn in ((1,) if a == 0 else (1, -1))
+) + tuple(Adjust(turn=np.radians(a) * sgn, rise=1.2, scale=0.6) for a in (0, 45, 90) for sgn in (1, -1))
 
 
 @dataclass(frozen=True)
@@ -153,7 +172,45 @@ def _blend(a: CameraPose, b: CameraPose, s: float) -> CameraPose:
                       up=a.up + (b.up - a.up) * s if s < 1 else b.up, fov_deg=a.fov_deg + (b.fov_deg - a.fov_deg) * s)
 
 
-def camera_at(frame: int, keys: list[CameraKey], tracks: dict[str, CharacterTrack], room: Room) -> CameraPose:
+def _with_adjust(pose: CameraPose, adj: Adjust) -> CameraPose:
+    if adj == Adjust():
+        return pose
+    return CameraPose(eye=adjust_eye(pose.eye, pose.target, adj), target=pose.target, up=pose.up,
+                      fov_deg=pose.fov_deg)
+
+
+def room_points(room: Room) -> np.ndarray:
+    """(9, 3) a grid over the room's floor at table height: what an establishing shot should show."""
+    xs, zs = (room.width / 3.0) * np.array([-1.0, 0.0, 1.0]), (room.depth / 3.0) * np.array([-1.0, 0.0, 1.0])
+    return np.array([[x, 0.6, z] for x in xs for z in zs])
+
+
+def clear_overview(room: Room, tracks: dict[str, CharacterTrack], occluders: Occluders | None,
+                   until: int) -> CameraPose:
+    """The overview turned about the room (and raised) until it sees the characters of frames [0, until).
+
+    Among the views that see the characters, the one that sees most of the room (room_points) wins;
+    ties go to the least turned.
+    """
+    base = overview_pose(room)
+    if occluders is None or not tracks:
+        return base
+    memo_key = ("overview", until)
+    adj = occluders.memo.get(memo_key)
+    if adj is None:
+        n = max(1, until)
+        frames = sorted({int(round(x)) for x in np.linspace(0, n - 1, OVERVIEW_SAMPLES)})
+        points = [sight_points(t.at(f)[0], t.at(f)[2]) for t in tracks.values() for f in frames]
+        characters = occluders.shares([(base.eye, base.target, np.concatenate(points))], OVERVIEW_ADJUSTMENTS)
+        floor = occluders.shares([(base.eye, base.target, room_points(room))], OVERVIEW_ADJUSTMENTS)
+        rank = np.arange(len(OVERVIEW_ADJUSTMENTS)) / (100.0 * len(OVERVIEW_ADJUSTMENTS))
+        adj = OVERVIEW_ADJUSTMENTS[int(np.argmin(characters + ROOM_WEIGHT * floor + rank))]
+        occluders.memo[memo_key] = adj
+    return _with_adjust(base, adj)
+
+
+def camera_at(frame: int, keys: list[CameraKey], tracks: dict[str, CharacterTrack], room: Room,
+              occluders: Occluders | None = None) -> CameraPose:
     """The camera of one frame.
 
     Args:
@@ -161,23 +218,62 @@ def camera_at(frame: int, keys: list[CameraKey], tracks: dict[str, CharacterTrac
         keys: camera keys sorted by frame; before the first key the camera shows the room overview.
         tracks: character name -> track.
         room: the room (for the overview).
+        occluders: the scene's boxes; when given, the camera moves until it sees its character.
     """
     active = [k for k in keys if k.frame <= frame]
+    first_key = keys[0].frame if keys else max((len(t.hips) for t in tracks.values()), default=1)
+
+    def overview() -> CameraPose:
+        return clear_overview(room, tracks, occluders, first_key)
+
+    def commanded(k: CameraKey, track: CharacterTrack | None, f: int) -> CameraPose:
+        held = None
+        if track is not None and k.mode in ("front", "back", "left", "right"):
+            held = track.smoothed(k.frame)[1]  # the side is fixed when the command starts
+        if track is None or k.mode == "overview":
+            return overview()
+        return _mode_pose(k.mode, track, f, room, held)
+
+    def decide(k: CameraKey, track: CharacterTrack, d: int, previous: Adjust | None) -> Adjust:
+        assert occluders is not None
+        views = []
+        for g in sorted({max(k.frame, d + off) for off in DECISION_LOOK}):
+            p = commanded(k, track, g)
+            hips, _, head = track.smoothed(g)
+            pts = sight_points(hips, head)[:1] if k.mode == "close" else sight_points(hips, head)
+            views.append((p.eye, p.target, pts))
+        return occluders.choose(views, ADJUSTMENTS, previous)
+
+    def decision(k: CameraKey, track: CharacterTrack, d: int) -> Adjust:
+        """The choice at decision frame d; each depends on the one before (computed forward, memoised)."""
+        assert occluders is not None
+        key = (k.frame, k.mode, k.character)
+        start = d
+        while start > k.frame and (*key, start - DECISION_STEP) not in occluders.memo:
+            start -= DECISION_STEP
+        for g in range(start, d + 1, DECISION_STEP):
+            if (*key, g) not in occluders.memo:
+                previous = occluders.memo.get((*key, g - DECISION_STEP)) if g > k.frame else None
+                occluders.memo[(*key, g)] = decide(k, track, g, previous)
+        return occluders.memo[(*key, d)]
 
     def pose_of(i: int, f: int) -> CameraPose:
         if i < 0:
-            return overview_pose(room)
+            return overview()
         k = active[i]
         track = tracks.get(k.character) if k.character else None
         if track is None and tracks and k.mode != "overview":
             track = tracks[sorted(tracks)[0]]
-        held = None
-        if track is not None and k.mode in ("front", "back", "left", "right"):
-            held = track.smoothed(k.frame)[1]  # the side is fixed when the command starts
-        return _mode_pose(k.mode, track, f, room, held)
+        pose = commanded(k, track, f)
+        if occluders is None or track is None or k.mode not in UNBLOCKED_MODES:
+            return pose
+        d0 = k.frame + (f - k.frame) // DECISION_STEP * DECISION_STEP
+        s = _smoothstep((f - d0) / DECISION_STEP)
+        adj = blend_adjust(decision(k, track, d0), decision(k, track, d0 + DECISION_STEP), s)
+        return _with_adjust(pose, adj)
 
     if not active:
-        return overview_pose(room)
+        return overview()
     cur = pose_of(len(active) - 1, frame)
     since = frame - active[-1].frame
     if since >= TRANSITION_FRAMES:

@@ -20,6 +20,7 @@ from proto.scene import Scene
 from services.render import captions as captions_mod
 from services.render.camera import CameraPose, camera_at
 from services.render.canvas import Canvas
+from services.render.framing import Occluders
 from services.render.scene_geometry import (
     FLOOR_RGBA,
     merge,
@@ -66,6 +67,7 @@ class FrameRenderer:
         self.weather_keys = weather_keys(cmds)
         self.captions = list(captions or [])
         self.tracks = {name: rig.track() for name, rig in self.rigs.items()}
+        self.occluders = Occluders.from_scene(scene)
         room_parts = room_meshes(scene.room)
         objects = object_meshes(scene)
         self._static = merge(room_parts + objects)
@@ -103,7 +105,7 @@ class FrameRenderer:
 
     # ------------------------------------------------------------------ frames
     def camera(self, frame: int) -> CameraPose:
-        return camera_at(frame, self.camera_keys, self.tracks, self.scene.room)
+        return camera_at(frame, self.camera_keys, self.tracks, self.scene.room, self.occluders)
 
     def _shadow_colour(self, strength: float) -> np.ndarray:
         floor = np.asarray(FLOOR_RGBA[:3], dtype=np.float64) / 255.0

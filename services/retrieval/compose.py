@@ -9,7 +9,8 @@
    with a variant seed derived from its id.
 3. Objects are placed component by component so that each stated relation holds exactly and nothing
    interpenetrates (services.retrieval.layout); when something cannot fit, the room grows and the
-   layout runs again.
+   layout runs again. Context objects come last: against the walls, clear of the text objects'
+   stand points, the entrance and the walkways between them (services.retrieval.clearance).
 4. Every stated relation is checked with wana.assets.relations.relation_holds, and every pair of
    objects for interpenetrating collision boxes; the report carries both with the matching map.
 """
@@ -23,6 +24,7 @@ from proto.retrieval import ObjectMatch, RelationCheck
 from proto.scene import Room, Scene
 from proto.ssg import RELATIONS, Diagnostic, ObjectNode, RelationNode
 from services.retrieval.checks import MemoHolds, default_holds, outer_bounds, overlapping_pairs
+from services.retrieval.clearance import keep_clear_zones
 from services.retrieval.database import SceneGraphDB, default_db
 from services.retrieval.errors import code
 from services.retrieval.geometry import footprint
@@ -231,6 +233,8 @@ def compose_scene(
         )
     assert layout is not None
     if ctx_items:
+        text_placed = [to_placed_object(p, layout.items[pid]) for pid, p in layout.result.placed.items()]
+        layout.keep_clear = keep_clear_zones(text_placed, w, d)
         for members in layout.components([it.id for it in ctx_items]):
             layout.place_component(members, optional=True)
         report.context_scene = context.scene_id if context else ""

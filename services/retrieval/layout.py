@@ -30,6 +30,7 @@ import numpy as np
 
 from proto.scene import PlacedObject
 from proto.ssg import RelationNode
+from services.retrieval.clearance import KeepClear, against_wall, along_walls, wall_of, wall_order
 from services.retrieval.collide import ObstacleIndex
 from services.retrieval.geometry import Footprint, extents, inside_room, surface_rects
 from services.retrieval.placement import Candidate, Placed, mount_height, relation_candidates
@@ -145,6 +146,7 @@ class Layout:
         self.seed = seed
         self.holds = holds
         self.result = LayoutResult()
+        self.keep_clear: KeepClear | None = None  # set before placing context objects (clearance.py)
         self._placed_objects: dict[str, PlacedObject] = {}
         self._indexes: OrderedDict[tuple[int, ...], ObstacleIndex] = OrderedDict()
         self.touching: dict[str, list[RelationNode]] = {i: [] for i in self.items}
@@ -295,6 +297,11 @@ class Layout:
                         x = plane - e[0, 0] + 0.005 if plane < 0 else plane - e[1, 0] - 0.005
                         yield np.array([x, y, t]), yaw, ""
             return
+        if against_wall(item.fp, item.from_text):
+            load = None if item.from_text else self._wall_load()
+            yield from along_walls(item.fp, w, d, wall_order(rng, load), rng)
+            if not item.from_text:
+                return  # context furniture stands against a wall or not at all
         yaws = [float(rng.choice([0.0, math.pi / 2.0, math.pi, -math.pi / 2.0]))]
         yaws += [y for y in (0.0, math.pi, math.pi / 2.0, -math.pi / 2.0) if y != yaws[0]]
         x0 = float(rng.uniform(-w / 2.0, w / 2.0) * 0.5)
@@ -305,6 +312,16 @@ class Layout:
         for x, z in [(x0, z0), *grid]:
             for yaw in yaws:
                 yield np.array([x, 0.0, z]), yaw, ""
+
+    def _wall_load(self) -> dict[str, int]:
+        """How many context objects already stand against each wall."""
+        load: dict[str, int] = {}
+        for p in self.result.placed.values():
+            if not p.from_text and not p.support:
+                wall = wall_of(p.box, self.room.width, self.room.depth)
+                if wall:
+                    load[wall] = load.get(wall, 0) + 1
+        return load
 
     def _member_candidates(
         self, item: Item, via: RelationNode, placed: dict[str, Placed]
@@ -355,8 +372,13 @@ class Layout:
     def _candidates(self, m: str, via: RelationNode | None, local: dict[str, Placed]) -> Iterator[Candidate]:
         item = self.items[m]
         if via is None:
-            return itertools.islice(self._root_candidates(item), ROOT_CANDIDATES)
-        return itertools.islice(self._member_candidates(item, via, local), MEMBER_TRIES)
+            poses = self._root_candidates(item)
+        else:
+            poses = self._member_candidates(item, via, local)
+        zones = self.keep_clear
+        if zones is not None and not item.from_text and item.fp.mount != "wall":
+            poses = (c for c in poses if c[2] or not zones.blocks(extents(item.fp, c[1]) + c[0]))
+        return itertools.islice(poses, ROOT_CANDIDATES if via is None else MEMBER_TRIES)
 
     @property
     def room_size(self) -> tuple[float, float, float]:

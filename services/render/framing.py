@@ -1,0 +1,208 @@
+"""Keep the character in sight: test camera rays against the scene's boxes and move the camera until clear.
+
+A commanded camera (left of Tom, behind Eve) is a wish; a tall cabinet between it and the character
+makes it useless. Here the scene's world collision boxes (wana.assets.catalog.world_collision_boxes)
+become occluders; a camera sees a character when the segments from the eye to the head, chest and hips
+pass through no box. When the commanded pose is blocked, the camera tries, in order of preference,
+moving along the arc around the character, rising, and coming closer (ADJUSTMENTS), and takes the
+first clear one (the least blocked one when none is).
+
+    occluders = Occluders.from_scene(scene)
+    share = occluders.blocked_share(eye, points)  # 0.0 = every point visible
+
+Everything here is a pure function of its inputs, so frames rendered apart agree.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from proto.scene import Scene
+
+STOP_SHORT = 0.25  # metres a sight line stops before its point (a seat under the hips does not hide them)
+HIPS_TO_CHEST = 0.35  # metres from the hips joint up to the chest
+MAX_MOVE = 1.6  # metres the eye may move from one decision to the next when it has a choice
+
+
+@dataclass(frozen=True)
+class Adjust:
+    """A change of a camera pose about its target: turn along the arc, rise, come closer."""
+
+    turn: float = 0.0  # radians about +Y around the target
+    rise: float = 0.0  # metres added to the eye height
+    scale: float = 1.0  # factor on the horizontal eye-target distance
+
+
+def _adjustments() -> tuple[Adjust, ...]:
+    deg = math.radians
+    out = [Adjust()]
+    out += [Adjust(turn=s * deg(a)) for a in (20, 40) for s in (1, -1)]
+    out += [Adjust(turn=s * deg(a), rise=r) for r in (0.7, 1.4) for a in (0, 20, 40) for s in ((1,) if a == 0 else (1, -1))]
+    out += [Adjust(turn=s * deg(a), scale=k) for k in (0.7, 0.5) for a in (0, 25) for s in ((1,) if a == 0 else (1, -1))]
+    out += [Adjust(turn=s * deg(a), rise=r) for a in (65, 90) for r in (0.0, 0.8) for s in (1, -1)]
+    out += [Adjust(turn=s * deg(a), rise=1.0, scale=0.6) for a in (0, 45, 90, 135) for s in ((1,) if a == 0 else (1, -1))]
+    return tuple(out)
+
+
+ADJUSTMENTS = _adjustments()  # preference order: the commanded pose first
+
+
+def adjust_eye(eye: np.ndarray, target: np.ndarray, adj: Adjust) -> np.ndarray:
+    """The eye (3,) moved by an adjustment about the target (3,)."""
+    v = eye - target
+    c, s = math.cos(adj.turn), math.sin(adj.turn)
+    x = (c * v[0] + s * v[2]) * adj.scale
+    z = (-s * v[0] + c * v[2]) * adj.scale
+    return np.array([target[0] + x, eye[1] + adj.rise, target[2] + z])
+
+
+def blend_adjust(a: Adjust, b: Adjust, s: float) -> Adjust:
+    """Interpolate two adjustments (s = 0: a, s = 1: b)."""
+    return Adjust(turn=a.turn + (b.turn - a.turn) * s, rise=a.rise + (b.rise - a.rise) * s,
+                  scale=a.scale + (b.scale - a.scale) * s)
+
+
+def segments_hit_boxes(starts: np.ndarray, ends: np.ndarray, boxes: np.ndarray) -> np.ndarray:
+    """Slab test of segments against axis-aligned boxes.
+
+    Args:
+        starts, ends: (S, 3) segment end points.
+        boxes: (B, 2, 3) min/max corners.
+
+    Returns:
+        (S, B) bool, True where the segment passes through the box.
+    """
+    d = ends - starts  # (S, 3)
+    safe = np.where(np.abs(d) < 1e-12, 1e-12, d)
+    inv = 1.0 / safe
+    t0 = (boxes[None, :, 0, :] - starts[:, None, :]) * inv[:, None, :]  # (S, B, 3)
+    t1 = (boxes[None, :, 1, :] - starts[:, None, :]) * inv[:, None, :]
+    lo = np.minimum(t0, t1)
+    hi = np.maximum(t0, t1)
+    # A segment parallel to a slab is inside it or misses the box.
+    parallel = np.abs(d) < 1e-12
+    inside = (starts[:, None, :] >= boxes[None, :, 0, :]) & (starts[:, None, :] <= boxes[None, :, 1, :])
+    lo = np.where(parallel[:, None, :], np.where(inside, -np.inf, np.inf), lo)
+    hi = np.where(parallel[:, None, :], np.where(inside, np.inf, -np.inf), hi)
+    enter = np.maximum(lo.max(axis=2), 0.0)
+    leave = np.minimum(hi.min(axis=2), 1.0)
+    return enter <= leave
+
+
+class Occluders:
+    """The scene's collision boxes, grouped per object for a broad phase.
+
+    Args:
+        groups: one (N_i, 2, 3) array of world boxes per object.
+    """
+
+    def __init__(self, groups: Sequence[np.ndarray]) -> None:
+        kept = [np.asarray(g, dtype=np.float64).reshape(-1, 2, 3) for g in groups]
+        self.groups = [g for g in kept if len(g)]
+        self.bounds = (
+            np.array([[g[:, 0].min(axis=0), g[:, 1].max(axis=0)] for g in self.groups])
+            if self.groups else np.zeros((0, 2, 3))
+        )  # (K, 2, 3)
+        self.memo: dict[object, Adjust] = {}  # camera decisions (pure functions of their keys), see camera.py
+
+    @classmethod
+    def from_scene(cls, scene: Scene) -> Occluders:
+        """Every placed object's world collision boxes (objects the catalog lacks are skipped)."""
+        from wana.assets.catalog import world_collision_boxes
+
+        groups = []
+        for p in scene.objects:
+            try:
+                groups.append(world_collision_boxes(p))
+            except KeyError:
+                continue
+        return cls(groups)
+
+    def blocked(self, starts: np.ndarray, ends: np.ndarray) -> np.ndarray:
+        """(S,) bool: which sight lines from starts (S, 3) to ends (S, 3) pass through a box.
+
+        Each line stops STOP_SHORT metres before its end point.
+        """
+        starts = np.asarray(starts, dtype=np.float64).reshape(-1, 3)
+        ends = np.asarray(ends, dtype=np.float64).reshape(-1, 3)
+        out = np.zeros(len(starts), dtype=bool)
+        if not len(self.groups) or not len(starts):
+            return out
+        d = ends - starts
+        length = np.linalg.norm(d, axis=1, keepdims=True)
+        keep = np.clip(1.0 - STOP_SHORT / np.maximum(length, 1e-9), 0.0, 1.0)
+        ends = starts + d * keep
+        coarse = segments_hit_boxes(starts, ends, self.bounds)  # (S, K)
+        for k in np.nonzero(coarse.any(axis=0))[0]:
+            rows = np.nonzero(coarse[:, k] & ~out)[0]
+            if len(rows):
+                out[rows] |= segments_hit_boxes(starts[rows], ends[rows], self.groups[k]).any(axis=1)
+        return out
+
+    def blocked_share(self, eye: np.ndarray, points: np.ndarray) -> float:
+        """Share of the points (P, 3) the eye (3,) cannot see."""
+        points = np.asarray(points, dtype=np.float64).reshape(-1, 3)
+        if not len(points):
+            return 0.0
+        return float(self.blocked(np.broadcast_to(eye, points.shape), points).mean())
+
+    def shares(self, views: Sequence[tuple[np.ndarray, np.ndarray, np.ndarray]],
+               adjustments: Sequence[Adjust] = ADJUSTMENTS) -> np.ndarray:
+        """(A,) share of the sight lines each adjustment leaves blocked over all the views.
+
+        Args:
+            views: (eye (3,), target (3,), points (P, 3)) of the commanded camera at a few frames.
+            adjustments: A candidate changes of that camera.
+        """
+        if not views or not self.groups:
+            return np.zeros(len(adjustments))
+        starts, ends, owner = [], [], []
+        for a, adj in enumerate(adjustments):
+            for eye, target, points in views:
+                e = adjust_eye(eye, target, adj)
+                pts = np.asarray(points, dtype=np.float64).reshape(-1, 3)
+                starts.append(np.broadcast_to(e, pts.shape))
+                ends.append(pts)
+                owner.append(np.full(len(pts), a))
+        hit = self.blocked(np.concatenate(starts), np.concatenate(ends))
+        per = np.bincount(np.concatenate(owner), weights=hit.astype(float), minlength=len(adjustments))
+        total = np.bincount(np.concatenate(owner), minlength=len(adjustments))
+        return per / np.maximum(total, 1)
+
+    def choose(self, views: Sequence[tuple[np.ndarray, np.ndarray, np.ndarray]],
+               adjustments: Sequence[Adjust] = ADJUSTMENTS, previous: Adjust | None = None) -> Adjust:
+        """The adjustment of a camera that sees the points from every view.
+
+        Without a previous choice: the most preferred clear one. With one: the most preferred clear one
+        within MAX_MOVE metres of it (so the camera returns to the commanded pose step by step), else
+        the clear one nearest to it. When nothing is clear: the least blocked.
+
+        Args:
+            views: (eye (3,), target (3,), points (P, 3)) of the commanded camera at a few frames.
+            adjustments: candidates, most preferred first.
+            previous: what the camera chose at the decision before (None: none).
+        """
+        candidates = list(adjustments)
+        if previous is not None and previous not in candidates:
+            candidates.append(previous)
+        share = self.shares(views, candidates)
+        clear = np.nonzero(share == 0.0)[0]
+        if not len(clear):
+            rank = np.arange(len(candidates)) / (100.0 * len(candidates))  # ties go to the preferred one
+            return candidates[int(np.argmin(share + rank))]
+        if previous is None:
+            return candidates[int(clear[0])]
+        eye, target, _ = views[len(views) // 2]
+        here = adjust_eye(eye, target, previous)
+        gaps = np.array([np.linalg.norm(adjust_eye(eye, target, candidates[k]) - here) for k in clear])
+        within = clear[gaps <= MAX_MOVE]
+        return candidates[int(within[0])] if len(within) else candidates[int(clear[int(np.argmin(gaps))])]
+
+
+def sight_points(hips: np.ndarray, head: np.ndarray) -> np.ndarray:
+    """(3, 3) head, chest and hips: what a camera must see of a character."""
+    return np.stack([head, hips + np.array([0.0, HIPS_TO_CHEST, 0.0]), hips])
