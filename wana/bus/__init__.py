@@ -18,7 +18,7 @@ Python API:
 
     Broker(bind, *, heartbeat_s=1.0, liveness=3, queue_limit=256, max_frame=32 MiB, max_attempts=3,
            context=None).run(stop) / .start_thread() / .close() / .stats()
-    Worker(service, handler, connect, *, heartbeat_s=1.0, liveness=3, max_frame=32 MiB, capacity=1,
+    Worker(service, handler, connect, *, heartbeat_s=1.0, liveness=3, max_frame=32 MiB, capacity=4,
            context=None).run(stop)
     serve(service, handler, connect)                  blocking; SIGTERM/SIGINT end it cleanly
     Client(connect, *, heartbeat_s=1.0, liveness=3, context=None)      one per thread

@@ -4,7 +4,8 @@ Rules (proto/PROTOCOL.md is the authoritative description):
 
 - Workers send READY with their service name; idle workers are kept per service in least-recently-used
   order, and a job goes to the worker that has waited longest. A worker announcing ``capacity`` > 1
-  may be handed further jobs, but only when no worker of its service is idle.
+  may be handed further jobs, but only when no worker of its service is idle and only while its jobs
+  are short (its last one took, and its current one has run, less than 50 ms).
 - Heartbeats both ways every ``heartbeat_s``; a worker silent for ``liveness`` intervals is dead. Its
   jobs are re-queued at the front of their service queue with the attempt count raised; a job dispatched
   ``max_attempts`` times whose worker died each time gets an E007 error reply.
@@ -19,7 +20,7 @@ Rules (proto/PROTOCOL.md is the authoritative description):
 The broker keeps everything in memory: after a restart, workers re-register and clients re-send
 their pending jobs (see wana/bus/client.py), so pending work completes.
 
-This module runs a little over 400 lines because every rule above acts on the same state from one
+This module runs to about 500 lines because every rule above acts on the same state from one
 event loop; splitting the rules apart would hide how they interact. The plain bookkeeping classes
 live in wana/bus/broker_state.py.
 """
@@ -59,6 +60,7 @@ _TICK_S = 0.05  # longest sleep of the event loop: bounds deadline precision and
 _DONE_MEMORY = 65536  # job ids remembered after their reply, to drop duplicates
 _UNDELIVERED_MEMORY = 256  # replies kept when the client was unreachable, re-sent if it asks again
 _MAX_SERVICES = 1024  # distinct service names the broker will track
+_PREFETCH_MAX_JOB_S = 0.05  # prefetch only while a worker's jobs take less than this (see _next_worker)
 _HEARTBEAT = wire.encoder.encode(HeartbeatFrame())
 _DISCONNECT = wire.encoder.encode(DisconnectFrame())
 _STATS = wire.encoder.encode(StatsFrame())
@@ -134,6 +136,8 @@ class Broker:
         self.duplicate_replies = 0
         self.duplicate_requests = 0
         self.errors: collections.Counter[str] = collections.Counter()
+        self._worker_ttl = self.heartbeat_s * self.liveness
+        self._now = time.monotonic()  # read once per message by the loop (run)
 
     # ----------------------------------------------------------------------------------- lifetime
 
@@ -142,17 +146,14 @@ class Broker:
         stopped = self._stop.is_set if stop is None else (lambda: stop.is_set() or self._stop.is_set())
         sock = self._socket
         recv = wire.recv
+        poll = wire.poll
         on_message = self._on_message
         monotonic = time.monotonic
-        next_heartbeat = monotonic() + self.heartbeat_s
-        next_tick = monotonic()
+        now = self._now = monotonic()
+        next_heartbeat = now + self.heartbeat_s
+        next_tick = now
+        draining, backlog_s = False, wire.BACKLOG_S
         while True:
-            frames = recv(sock)
-            if frames is not None:
-                on_message(frames)
-                if monotonic() < next_tick:
-                    continue
-            now = monotonic()
             if now >= next_tick:
                 if stopped():
                     return
@@ -160,9 +161,22 @@ class Broker:
                     self._heartbeat(now)
                     next_heartbeat = now + self.heartbeat_s
                 self._expire_jobs(now)
-                next_tick = now + _TICK_S
+                next_tick = min(now + _TICK_S, next_heartbeat)
+            # Drain with plain receives while a backlog lasts, else poll first (see wire.py).
+            frames = recv(sock) if draining else None
             if frames is None:
-                wire.wait(sock, min(next_tick, next_heartbeat) - now)
+                before = monotonic()
+                readable = poll(sock, next_tick - before)
+                now = self._now = monotonic()  # the one clock reading each message's handling uses
+                draining = now - before < backlog_s
+                if not readable:
+                    continue
+                frames = recv(sock)
+                if frames is None:
+                    continue
+            else:
+                now = self._now = monotonic()
+            on_message(frames)
 
     def start_thread(self) -> threading.Thread:
         """Run the broker in a daemon thread; ``close()`` stops it."""
@@ -190,11 +204,9 @@ class Broker:
 
     # ------------------------------------------------------------------------------------ inbound
 
-    def _on_message(self, frames: list[zmq.Frame]) -> None:
-        sender = frames[0].bytes
-        if len(frames) < 2:
-            log.warning("dropped a message with no envelope from %r", sender)
-            return
+    def _on_message(self, frames: list) -> None:
+        """Handle one message: ``[routing id (bytes), envelope Frame, body Frames...]``."""
+        sender = frames[0]  # wire.recv always returns the routing id and at least one frame
         try:
             msg = wire.envelope_decoder.decode(frames[1])
         except (msgspec.DecodeError, msgspec.ValidationError) as exc:
@@ -211,7 +223,7 @@ class Broker:
             return
         worker = self._workers.get(sender)
         if worker is not None:
-            worker.expiry = time.monotonic() + self.heartbeat_s * self.liveness
+            worker.expiry = self._now + self._worker_ttl
         if kind is ReplyFrame:
             if len(frames) != 3:
                 log.warning("dropped a REPLY with %d body frames from %r", len(frames) - 2, sender)
@@ -266,7 +278,7 @@ class Broker:
             why = f"service {request.service!r} has {len(svc.queue)} jobs waiting"
             self._client_error(client, job_id, "E005", why, request.doc_id, request.revision, retryable=True)
             return
-        self._jobs[job_id] = Job(client, request, payload, time.monotonic())
+        self._jobs[job_id] = Job(client, request, payload, self._now)
         svc.queue.append(job_id)
         if svc.idle or svc.prefetching:
             self._dispatch(svc)
@@ -281,7 +293,7 @@ class Broker:
                 self._send(sender, _DISCONNECT)
                 return
             svc = self._services[ready.service] = Service(ready.service)
-        worker = WorkerEntry(sender, ready, time.monotonic() + self.heartbeat_s * self.liveness)
+        worker = WorkerEntry(sender, ready, self._now + self._worker_ttl)
         self._workers[sender] = worker
         svc.workers.add(sender)
         svc.idle.append(sender)
@@ -299,17 +311,27 @@ class Broker:
         else:
             # The first reply wins, even from a worker presumed dead whose job went to another worker;
             # that other worker finishes and its reply is dropped as a duplicate.
-            self._remember_done(job_id)
-            if len(frames[2]) > self.max_frame:
-                why = f"reply of {len(frames[2])} bytes exceeds the {self.max_frame}-byte cap"
+            done = self._done
+            done[job_id] = None
+            if len(done) > _DONE_MEMORY:
+                del done[next(iter(done))]
+            body = frames[2]
+            if len(body) > self.max_frame:
+                why = f"reply of {len(body)} bytes exceeds the {self.max_frame}-byte cap"
                 self._client_error(job.client, job_id, "E002", why, job.request.doc_id, job.request.revision)
             else:
                 self.completed += 1
-                self._send_to_client(job.client, job_id, frames[1], frames[2])  # envelope forwarded as is
+                try:  # the envelope is forwarded as it came
+                    wire.send(self._socket, (job.client, frames[1], body))
+                except zmq.ZMQError:  # the client is gone: keep the reply in case it asks again
+                    self._keep_undelivered(job.client, job_id, frames[1], body)
         if worker is None:
             self._send(sender, _DISCONNECT)  # e.g. a worker of the broker before a restart
             return
         if worker.jobs.pop(job_id, 0) is None:  # it held this job (values are None)
+            now = self._now
+            worker.job_s = now - worker.started
+            worker.started = now  # its next job (if it holds one) starts now
             svc = self._services[worker.service]
             if not worker.jobs:
                 svc.idle.append(sender)
@@ -319,26 +341,48 @@ class Broker:
     # ----------------------------------------------------------------------------------- dispatch
 
     def _next_worker(self, svc: Service) -> WorkerEntry | None:
-        """The idle worker that waited longest, else (prefetch) the least loaded one with a free slot."""
+        """The idle worker that waited longest, else (prefetch) the least loaded one with a free slot.
+
+        A worker is prefetched to only while its jobs are short: its last job took less than
+        ``_PREFETCH_MAX_JOB_S`` and the one it runs now started less than that long ago. Short jobs
+        then travel in batches (throughput), while no job is parked behind a long one; a worker
+        that has not finished a job yet gets none.
+        """
         while svc.idle:
             worker = self._workers.get(svc.idle.popleft())
             if worker is not None and not worker.jobs:
+                worker.started = self._now
                 return worker
         if not svc.prefetching:
             return None
         best = None
+        fresh = self._now - _PREFETCH_MAX_JOB_S
         for wid in svc.workers:
             worker = self._workers[wid]
-            if len(worker.jobs) < worker.capacity and (best is None or len(worker.jobs) < len(best.jobs)):
+            held = len(worker.jobs)
+            if (
+                held < worker.capacity
+                and worker.job_s < _PREFETCH_MAX_JOB_S
+                and worker.started >= fresh
+                and (best is None or held < len(best.jobs))
+            ):
                 best = worker
         return best
 
     def _dispatch(self, svc: Service) -> None:
-        while svc.queue:
-            worker = self._next_worker(svc)
-            if worker is None:
-                return
-            job = self._jobs.get(svc.queue.popleft())
+        sock, send, encode = self._socket, wire.send, wire.encoder.encode
+        queue, idle, workers, jobs = svc.queue, svc.idle, self._workers, self._jobs
+        while queue:
+            if idle:  # the idle worker that waited longest (inlined _next_worker: this is hot)
+                worker = workers.get(idle.popleft())
+                if worker is None or worker.jobs:
+                    continue
+                worker.started = self._now
+            else:
+                worker = self._next_worker(svc)
+                if worker is None:
+                    return
+            job = jobs.get(queue.popleft())
             if job is None:  # expired while queued
                 if not worker.jobs:
                     svc.idle.appendleft(worker.identity)
@@ -347,11 +391,11 @@ class Broker:
             job.worker = worker.identity
             worker.jobs[job.job_id] = None
             r = job.request
-            left_ms = max(1, int((job.deadline - time.monotonic()) * 1000))
-            envelope = wire.encoder.encode(
-                JobFrame(r.job_id, r.key, job.attempt, left_ms, r.doc_id, r.revision)
-            )
-            if not self._send(worker.identity, envelope, job.payload):
+            left_ms = max(1, int((job.deadline - self._now) * 1000))
+            envelope = encode(JobFrame(r.job_id, r.key, job.attempt, left_ms, r.doc_id, r.revision))
+            try:
+                send(sock, (worker.identity, envelope, job.payload))
+            except zmq.ZMQError:  # EHOSTUNREACH (ROUTER_MANDATORY): the worker is gone
                 job.attempt -= 1  # the job never reached it: not an attempt
                 self._remove_worker(worker, "it is unreachable", undelivered=job.job_id)
 
@@ -433,9 +477,12 @@ class Broker:
 
     def _send_to_client(self, client: bytes, job_id: str, envelope: object, body: object) -> None:
         if not self._send(client, envelope, body):
-            self._undelivered[job_id] = (client, (envelope, body))
-            if len(self._undelivered) > _UNDELIVERED_MEMORY:
-                self._undelivered.popitem(last=False)
+            self._keep_undelivered(client, job_id, envelope, body)
+
+    def _keep_undelivered(self, client: bytes, job_id: str, envelope: object, body: object) -> None:
+        self._undelivered[job_id] = (client, (envelope, body))
+        if len(self._undelivered) > _UNDELIVERED_MEMORY:
+            self._undelivered.popitem(last=False)
 
     def _client_error(
         self,

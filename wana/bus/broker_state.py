@@ -28,7 +28,7 @@ class Job:
 
 
 class WorkerEntry:
-    __slots__ = ("identity", "service", "expiry", "jobs", "capacity", "ready")
+    __slots__ = ("identity", "service", "expiry", "jobs", "capacity", "ready", "started", "job_s")
 
     def __init__(self, identity: bytes, ready: ReadyFrame, expiry: float):
         self.identity = identity
@@ -37,6 +37,10 @@ class WorkerEntry:
         self.jobs: dict[str, None] = {}  # job ids it holds, in dispatch order
         self.capacity = max(1, ready.capacity)
         self.ready = ready
+        # Prefetch guard (see Broker._next_worker): when the job it runs now started (its dispatch
+        # to the idle worker, or the reply to the job before), and how long its last job took.
+        self.started = 0.0
+        self.job_s = float("inf")  # none finished yet
 
 
 class Service:

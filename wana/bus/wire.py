@@ -1,10 +1,24 @@
 """Frame I/O shared by broker, worker and client, tuned for the hot path.
 
-pyzmq's convenience layer (``send_multipart``, ``recv_multipart``, ``Socket.poll``) costs several
-microseconds per call in flag enums and a fresh Poller; on a busy machine that was most of a round
-trip. These helpers call the Cython socket methods directly with integer flags, receive frames
-without copying (``zmq.Frame`` supports the buffer protocol, so msgspec decodes it in place and the
-broker forwards payloads untouched), and poll only when a non-blocking receive found nothing.
+Measured on the project's shared 2-core machine (``bench/bus.py`` and micro-benchmarks, pyzmq 27):
+every pyzmq call costs microseconds, so the hot path makes as few as it can.
+
+- pyzmq's convenience layer (``send_multipart``, ``recv_multipart``, ``Socket.poll``) builds flag
+  enums and a fresh Poller per call; these helpers call the Cython socket methods directly with
+  integer flags.
+- ``recv(copy=True)`` of a 1 kB frame is about 3 times cheaper than ``copy=False``: a ``zmq.Frame``
+  is a heavy object. But ``getsockopt(RCVMORE)`` costs more than a Frame (pyzmq maps the option
+  through an enum), and ``Frame.more`` is free. So the broker, which faces peers it cannot trust to
+  frame their messages right, takes the routing id as bytes (a ROUTER socket always puts at least
+  one frame after it) and the rest as Frames (their ``more`` flag counts the parts; a payload is
+  forwarded without copying it); workers and clients, which hear only from the broker, take whole
+  frames as bytes and know from the envelope whether a body frame follows.
+- A non-blocking receive that finds nothing raises ``zmq.Again``; the exception costs three to four
+  times a ``zmq_poll`` with timeout 0 (about 6 against 1.5 us of CPU), while a receive of a waiting
+  message needs no poll at all. So the loops poll (level-triggered: it returns at once while a
+  message is waiting) and, when the poll found a message already waiting (it returned within
+  ``BACKLOG_S``: a backlog, as under load), drain with plain receives until EAGAIN; in a closed loop
+  of one request at a time they keep to one poll per message and never pay the exception.
 """
 
 from __future__ import annotations
@@ -15,7 +29,7 @@ from typing import Any
 import msgspec
 import zmq
 
-from proto.bus import Envelope
+from proto.bus import Envelope, ErrorFrame, JobFrame, ReplyFrame, StatsFrame
 
 _send: Any
 _recv: Any
@@ -31,16 +45,28 @@ except ImportError:  # pragma: no cover - the CFFI backend (PyPy): plain methods
     _recv = zmq.Socket.recv
     _get = zmq.Socket.getsockopt
 
+_zmq_poll = zmq.zmq_poll
 NOBLOCK = int(zmq.NOBLOCK)
 SNDMORE = int(zmq.SNDMORE)
 _MORE_NOBLOCK = NOBLOCK | SNDMORE
-_EVENTS = int(zmq.EVENTS)
 _POLLIN = int(zmq.POLLIN)
+_RCVMORE = int(zmq.RCVMORE)
 _MAX_PARTS = 16  # no bus message has more; the rest of a longer one is read and dropped
+BACKLOG_S = 20e-6  # a poll answering faster than this found a message already waiting
 
 encoder = msgspec.msgpack.Encoder()
 # Typed as Any because zmq.Frame (buffer protocol) is not declared a Buffer in pyzmq's stubs.
 envelope_decoder: Any = msgspec.msgpack.Decoder(Envelope)
+
+# Envelopes the broker sends with one body frame (STATS only in that direction).
+_FROM_BROKER_WITH_BODY = frozenset((JobFrame, ReplyFrame, ErrorFrame, StatsFrame))
+
+
+class Undecodable:
+    """Marker returned by ``recv_from_broker`` for a message whose envelope does not decode."""
+
+    def __init__(self, reason: str):
+        self.reason = reason
 
 
 def send(sock: zmq.Socket, frames: Sequence[object]) -> None:
@@ -59,18 +85,34 @@ def send(sock: zmq.Socket, frames: Sequence[object]) -> None:
         _send(sock, frames[-1], NOBLOCK)
 
 
+def poll(sock: zmq.Socket, timeout_s: float) -> bool:
+    """True when a message is waiting, blocking up to ``timeout_s`` seconds for one (0: do not block)."""
+    ms = int(timeout_s * 1000) + 1 if timeout_s > 0 else 0
+    return bool(_zmq_poll([(sock, _POLLIN)], ms))
+
+
 def readable(sock: zmq.Socket) -> bool:
-    """True when a message is waiting (cheaper than a poll)."""
-    return bool(_get(sock, _EVENTS) & _POLLIN)
+    """True when a message is waiting (does not block)."""
+    return bool(_zmq_poll([(sock, _POLLIN)], 0))
 
 
-def recv(sock: zmq.Socket) -> list[zmq.Frame] | None:
-    """Receive one whole multipart message as zero-copy frames, or None when nothing is waiting."""
-    try:  # cheaper than asking getsockopt(EVENTS) first when messages are flowing
-        frame = _recv(sock, NOBLOCK, False)
+def wait(sock: zmq.Socket, timeout_s: float) -> bool:
+    """Block until a message is waiting or ``timeout_s`` passed; True when readable."""
+    return poll(sock, timeout_s)
+
+
+def recv(sock: zmq.Socket) -> list[Any] | None:
+    """Receive one message from a ROUTER socket: ``[routing id (bytes), Frame, ...]``, or None.
+
+    Frames after the routing id are ``zmq.Frame`` objects (buffer protocol, ``len``, ``.bytes``),
+    at most ``_MAX_PARTS`` in all; the rest of a longer message is read and dropped.
+    """
+    try:
+        identity = _recv(sock, NOBLOCK, True)
     except zmq.Again:
         return None
-    frames = [frame]
+    frame = _recv(sock, NOBLOCK, False)  # a ROUTER always delivers a frame after the routing id
+    frames = [identity, frame]
     while frame.more:
         frame = _recv(sock, NOBLOCK, False)
         if len(frames) < _MAX_PARTS:
@@ -78,8 +120,30 @@ def recv(sock: zmq.Socket) -> list[zmq.Frame] | None:
     return frames
 
 
-def wait(sock: zmq.Socket, timeout_s: float) -> bool:
-    """Block until a message is waiting or ``timeout_s`` passed; True when readable."""
-    if timeout_s <= 0:
-        return readable(sock)
-    return bool(zmq.zmq_poll([(sock, _POLLIN)], int(timeout_s * 1000) + 1))
+def recv_from_broker(sock: zmq.Socket) -> tuple[Any, bytes | None] | None:
+    """Receive one message the broker sent to a worker or client: ``(envelope, body or None)``.
+
+    The envelope decides whether a body frame follows (the broker frames its messages right). An
+    envelope that does not decode comes back as ``(Undecodable, None)`` with the rest of its
+    message read and dropped. None when nothing is waiting.
+    """
+    try:
+        head = _recv(sock, NOBLOCK, True)
+    except zmq.Again:
+        return None
+    try:
+        msg = envelope_decoder.decode(head)
+    except (msgspec.DecodeError, msgspec.ValidationError) as exc:
+        _drop_rest(sock)
+        return Undecodable(str(exc)), None
+    if type(msg) in _FROM_BROKER_WITH_BODY:
+        try:
+            return msg, _recv(sock, NOBLOCK, True)
+        except zmq.Again:  # a body-less message where a body belongs: not from a wana broker
+            return Undecodable(f"{type(msg).__name__} without its body frame"), None
+    return msg, None
+
+
+def _drop_rest(sock: zmq.Socket) -> None:
+    while _get(sock, _RCVMORE):
+        _recv(sock, NOBLOCK, True)

@@ -17,11 +17,11 @@ import threading
 import time
 import uuid
 from collections.abc import Callable
+from typing import cast
 
-import msgspec
 import zmq
 
-from proto.bus import DisconnectFrame, HeartbeatFrame, JobFrame, ReadyFrame, ReplyFrame
+from proto.bus import DisconnectFrame, HeartbeatFrame, JobFrame, ReadyFrame
 from proto.common import ErrorReply, Header
 from wana.bus import wire
 
@@ -32,6 +32,13 @@ Handler = Callable[[bytes], bytes]
 _TICK_S = 0.05  # longest sleep of the loop: bounds stop latency
 _HEARTBEAT = wire.encoder.encode(HeartbeatFrame())
 _DISCONNECT = wire.encoder.encode(DisconnectFrame())
+_REPLY_HEAD = b"\x92" + wire.encoder.encode("REPLY")  # ["REPLY", job_id]: a 2-array, then the tag
+DEFAULT_CAPACITY = 4  # jobs the broker may hand a worker at once (see Worker)
+
+
+def reply_envelope(job_id: str) -> bytes:
+    """The REPLY envelope for ``job_id``, byte for byte ``encode(ReplyFrame(job_id))``, built cheaper."""
+    return _REPLY_HEAD + wire.encoder.encode(job_id)
 
 
 class Worker:
@@ -46,10 +53,12 @@ class Worker:
         liveness: broker heartbeats that may be missed before the worker reconnects.
         max_frame: largest request payload handled and reply payload sent (E002 otherwise).
         reconnect_max_s: ceiling of the exponential reconnect back-off (which starts at heartbeat_s).
-        capacity: jobs the broker may hand this worker at once. 1 is classic Majordomo; 2 lets the
-            next job travel while the current one runs (more throughput for short jobs), at the cost
-            of a job sometimes waiting behind another here while a different worker is free. The
-            broker still prefers idle workers.
+        capacity: jobs the broker may hand this worker at once (default ``DEFAULT_CAPACITY``, 4).
+            1 is classic Majordomo; more lets the next jobs travel while the current one runs, so
+            short jobs arrive in batches and the broker round trip between them disappears (the
+            bus's throughput target needs it). The broker still gives a job to an idle worker
+            first, and prefetches only while this worker's jobs are short (its last one took, and
+            its current one has run, under 50 ms), so no job is parked behind a long one.
         context: ZeroMQ context; pass the broker's to use ``inproc://``.
 
     ``run`` blocks; it may be called from any one thread. ``stop`` (an Event) ends it after the
@@ -66,7 +75,7 @@ class Worker:
         liveness: int = 3,
         max_frame: int = 32 * 1024 * 1024,
         reconnect_max_s: float = 30.0,
-        capacity: int = 1,
+        capacity: int = DEFAULT_CAPACITY,
         context: zmq.Context | None = None,
     ):
         if not service:
@@ -79,6 +88,7 @@ class Worker:
         self.heartbeat_s = float(heartbeat_s)
         self.liveness = int(liveness)
         self.max_frame = int(max_frame)
+        self.capacity = int(capacity)
         self.reconnect_max_s = float(reconnect_max_s)
         self._context = context or zmq.Context.instance()
         self._socket: zmq.Socket | None = None
@@ -87,6 +97,8 @@ class Worker:
         self._last_sent = 0.0
         self._broker_expiry = 0.0
         self._backoff = self.heartbeat_s
+        self._broker_ttl = self.heartbeat_s * self.liveness
+        self._draining = False  # receive without polling first: jobs were waiting (wire.py)
         self._stop = threading.Event()
         self._ready = wire.encoder.encode(
             ReadyFrame(
@@ -178,45 +190,45 @@ class Worker:
                 beat.join(timeout=2.0)
 
     def _serve_once(self, stop: threading.Event) -> None:
+        """Send a heartbeat or reconnect when due, then handle at most one message."""
         sock = self._socket
         assert sock is not None
-        while True:
-            frames = wire.recv(sock)
-            if frames is None:
-                break
-            self._broker_expiry = time.monotonic() + self.heartbeat_s * self.liveness
-            try:
-                msg = wire.envelope_decoder.decode(frames[0])
-            except (msgspec.DecodeError, msgspec.ValidationError) as exc:
-                log.warning(
-                    "%s worker: dropped a message with an undecodable envelope: %s", self.service, exc
-                )
-                continue
-            kind = type(msg)
-            if kind is not DisconnectFrame:
-                self._backoff = self.heartbeat_s  # the broker knows us: the next outage starts over
-            if kind is JobFrame:
-                self._on_job(msg, frames)
-            elif kind is DisconnectFrame:
-                self._reconnect(stop)  # the broker does not know us (it restarted): register again
-                return
-            elif kind is not HeartbeatFrame:
-                log.warning("%s worker: dropped a %s envelope", self.service, kind.__name__)
-            if stop.is_set():
-                return
         now = time.monotonic()
         if now >= self._broker_expiry:
             self._reconnect(stop)
-        elif now >= self._last_sent + self.heartbeat_s:
-            self._send(_HEARTBEAT)
-        else:
-            wire.wait(sock, min(self._last_sent + self.heartbeat_s, self._broker_expiry, now + _TICK_S) - now)
-
-    def _on_job(self, job: JobFrame, frames: list[zmq.Frame]) -> None:
-        if len(frames) != 2:
-            log.warning("%s worker: dropped a JOB with %d body frames", self.service, len(frames) - 1)
             return
-        payload = frames[1]
+        if now >= self._last_sent + self.heartbeat_s:
+            self._send(_HEARTBEAT)
+        got = wire.recv_from_broker(sock) if self._draining else None
+        if got is None:  # nothing waiting, or not draining (see wire.py): poll first
+            self._draining = False
+            if not wire.poll(
+                sock, min(self._last_sent + self.heartbeat_s, self._broker_expiry, now + _TICK_S) - now
+            ):
+                return
+            got = wire.recv_from_broker(sock)
+            if got is None:
+                return
+            self._draining = time.monotonic() - now < wire.BACKLOG_S
+        self._broker_expiry = time.monotonic() + self._broker_ttl
+        msg, body = got
+        kind = type(msg)
+        if kind is JobFrame:
+            self._backoff = self.heartbeat_s  # the broker knows us: the next outage starts over
+            self._on_job(msg, cast(bytes, body))  # a JOB always carries its body (wire.py)
+        elif kind is HeartbeatFrame:
+            self._backoff = self.heartbeat_s
+        elif kind is DisconnectFrame:
+            self._reconnect(stop)  # the broker does not know us (it restarted): register again
+        elif kind is wire.Undecodable:
+            log.warning(
+                "%s worker: dropped a message with an undecodable envelope: %s", self.service, msg.reason
+            )
+        else:
+            self._backoff = self.heartbeat_s
+            log.warning("%s worker: dropped a %s envelope", self.service, kind.__name__)
+
+    def _on_job(self, job: JobFrame, payload: bytes) -> None:
         if len(payload) > self.max_frame:
             reply = self._error(
                 job, "E002", f"request of {len(payload)} bytes exceeds the {self.max_frame}-byte cap"
@@ -227,7 +239,7 @@ class Worker:
             self._in_handler = True
             self._lock.release()  # the heartbeat thread may use the socket while the handler runs
             try:
-                reply = self.handler(payload.bytes)
+                reply = self.handler(payload)
             except Exception as exc:  # the frame handler already catches; a raw handler might not
                 log.exception("%s worker: handler raised", self.service)
                 reply = self._error(job, "E009", f"{type(exc).__name__}: {exc}")
@@ -241,7 +253,7 @@ class Worker:
                     job, "E002", f"reply of {len(reply)} bytes exceeds the {self.max_frame}-byte cap"
                 )
         if self._socket is not None:
-            self._send(wire.encoder.encode(ReplyFrame(job.job_id)), reply)
+            self._send(reply_envelope(job.job_id), reply)
             self.jobs_done += 1
 
     @staticmethod
@@ -274,12 +286,13 @@ def serve(
     """Serve ``service`` until SIGTERM or SIGINT (then finish the current job, DISCONNECT and return).
 
     ``heartbeat_s`` defaults to the environment variable ``WANA_BUS_HEARTBEAT_S`` or 1.0 s; it must
-    match the broker's. ``capacity`` (see Worker) defaults to ``WANA_BUS_CAPACITY`` or 1.
+    match the broker's. ``capacity`` (see Worker) defaults to ``WANA_BUS_CAPACITY`` or
+    ``DEFAULT_CAPACITY``.
     """
     if heartbeat_s is None:
         heartbeat_s = float(os.environ.get("WANA_BUS_HEARTBEAT_S", "1.0"))
     if capacity is None:
-        capacity = int(os.environ.get("WANA_BUS_CAPACITY", "1"))
+        capacity = int(os.environ.get("WANA_BUS_CAPACITY", str(DEFAULT_CAPACITY)))
     stop = threading.Event()
     previous = {}
     if threading.current_thread() is threading.main_thread():

@@ -147,3 +147,19 @@ def test_a_job_waiting_in_the_queue_past_its_deadline_gets_e006(
         client.request("echo", b"0", deadline_s=0.2)
     assert err.value.code == "E006" and "in the queue" in err.value.message
     assert client.result(busy, timeout=5) == b"0.5"
+
+
+def test_a_worker_busy_with_a_long_job_is_not_handed_another_one(
+    ipc_url, make_broker, make_client, thread_worker
+):
+    make_broker(ipc_url)
+    worker = thread_worker("echo", lambda p: (time.sleep(float(p)), p)[1], ipc_url)  # default capacity
+    assert worker.capacity > 1
+    client = make_client(ipc_url)
+    assert client.request("echo", b"0") == b"0"  # a short job first: its worker may be prefetched to
+    busy = client.submit("echo", b"0.6", deadline_s=5)
+    time.sleep(0.2)  # the worker has been inside its job for longer than the broker's prefetch window
+    with pytest.raises(BusError) as err:
+        client.request("echo", b"0", deadline_s=0.2)
+    assert err.value.code == "E006" and "in the queue" in err.value.message
+    assert client.result(busy, timeout=5) == b"0.6"

@@ -130,7 +130,7 @@ def test_the_broker_reports_queue_depths_and_workers(
 def test_a_worker_with_capacity_two_holds_a_second_job_only_when_no_worker_is_idle(
     ipc_url, make_broker, make_client, raw_peer, wait_workers
 ):
-    from proto.bus import JobFrame, ReadyFrame
+    from proto.bus import JobFrame, ReadyFrame, ReplyFrame
 
     broker = make_broker(ipc_url, heartbeat_s=1.0)  # the raw peers do not heartbeat: give them 3 s
     first, second = raw_peer(ipc_url), raw_peer(ipc_url)
@@ -139,6 +139,12 @@ def test_a_worker_with_capacity_two_holds_a_second_job_only_when_no_worker_is_id
     wait_workers(client, "echo", 1)
     second.send(ReadyFrame("echo", capacity=2))
     wait_workers(client, "echo", 2)
+    for peer in (first, second):  # each answers a quick job: the broker prefetches only to such workers
+        warm = client.submit("echo", b"warm")
+        envelope, _ = peer.recv()
+        assert isinstance(envelope, JobFrame) and envelope.job_id == warm
+        peer.send(ReplyFrame(warm), b"ok")
+        assert client.result(warm, timeout=5) == b"ok"
     jobs = [client.submit("echo", f"{i}".encode()) for i in range(5)]
 
     def job_ids(peer):
