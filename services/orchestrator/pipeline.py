@@ -113,12 +113,12 @@ class Pipeline:
         return reply.scene, reply
 
     def _synthesise(self, character: CharacterNode, scene: Scene, start: tuple[float, float, float],
-                    version: int, start_state: Any = None) -> Any:
+                    version: int, start_state: Any = None, others: dict[str, tuple[float, float]] | None = None) -> Any:
         SynthesizeRequest, SynthesizeReply = _messages("motion", "motion", "SynthesizeRequest", "SynthesizeReply")
         return self.backend.call(
             "motion",
             SynthesizeRequest(header=self._header(version), character=character, scene=scene, start=start,
-                              start_state=start_state),
+                              start_state=start_state, others=others or {}),
             SynthesizeReply,
         )
 
@@ -146,12 +146,8 @@ class Pipeline:
         interactions = [(name, k, a) for name, (node, _) in characters.items()
                         for k, a in enumerate(node.actions) if a.action and (a.target in ids or a.instrument in ids)]
         done, total = 0, len(interactions) + len(characters)
-        drafts: dict[str, list[Motion]] = {}
-        for name, (node, sids) in characters.items():
-            last = max([k for n, k, _ in interactions if n == name], default=-1)
-            if last >= 0:
-                drafts[name] = self._segments("draft", name, node.actions[: last + 1], sids, scene, starts[name],
-                                              engine, version)
+        last = {name: max([k for n, k, _ in interactions if n == name], default=-1) for name in characters}
+        drafts = self._segments("draft", characters, sentences, scene, starts, engine, version, upto=last)
         for name, k, action in interactions:
             tick("optimise", done, total)
             draft = drafts[name][k]
@@ -168,12 +164,9 @@ class Pipeline:
             result.optimisations.append(reply)
             done += 1
         result.scene = scene
-        pieces: dict[str, list[Motion]] = {}
-        for name, (node, sids) in characters.items():
-            tick("motion", done, total)
-            pieces[name] = self._segments("segment", name, node.actions, sids, scene, starts[name], engine, version)
-            done += 1
         tick("motion", done, total)
+        pieces = self._segments("segment", characters, sentences, scene, starts, engine, version)
+        tick("motion", total, total)
         # Story timing: sentence order sets when actions start; gaps hold the pose.
         beats = [Beat(sid, name, k, _frames(pieces[name][k]))
                  for s in sentences for name, (node, sids) in characters.items()
@@ -185,33 +178,47 @@ class Pipeline:
             firsts = [start_frames[(name, k)] for k in range(len(node.actions))] or [0]
             result.motions[name] = assemble(name, pieces[name], firsts, total=length)
 
-    def _segments(self, kind: str, name: str, actions: list[ActionNode], sids: list[str], scene: Scene,
-                  start: tuple[float, float, float], engine: QueryEngine, version: int) -> list[Motion]:
-        """A character's motion, one query node `<kind>:<name>:<k>` per action.
+    def _segments(self, kind: str, characters: dict[str, tuple[CharacterNode, list[str]]], sentences: list[Any],
+                  scene: Scene, starts: dict[str, tuple[float, float, float]], engine: QueryEngine, version: int,
+                  upto: dict[str, int] | None = None) -> dict[str, list[Motion]]:
+        """Every character's motion, one query node `<kind>:<name>:<k>` per action, in document order.
 
-        Action k starts from the end state of action k-1 and sees only the part of the layout it can touch:
-        the objects on the floor (which routes go around) and the objects it names with what they rest on.
-        So an edit that leaves an end state unchanged stops there (early cutoff), and moving a lamp on a desk
-        re-runs only the actions that use the lamp.
+        Action k starts from the end state of action k-1 and sees only what it can touch: the objects on the
+        floor (which routes go around), the objects it names with what they rest on, and where a character it
+        names stands by then. So an edit that leaves an end state unchanged stops there (early cutoff), and
+        moving a lamp on a desk re-runs only the actions that use the lamp.
         """
         SegmentEndState, = _messages("motion", "motion", "SegmentEndState")
-        state = SegmentEndState(x=start[0], z=start[1], yaw=start[2])
-        pieces: list[Motion] = []
-        for k, action in enumerate(actions):
+        states = {name: SegmentEndState(x=st[0], z=st[1], yaw=st[2]) for name, st in starts.items()}
+        pieces: dict[str, list[Motion]] = {name: [] for name in characters}
+        object_ids = {o.id for o in scene.objects}
+        order = [(name, k) for s in sentences for name, (_, sids) in characters.items()
+                 for k, sid in enumerate(sids) if sid == s.id]
+        for name, k in order:
+            if upto is not None and k > upto.get(name, -1):
+                continue
+            node, sids = characters[name]
+            action = node.actions[k]
             single = CharacterNode(name=name, actions=[msgspec.structs.replace(action, verb="")])
             view = _scene_view(scene, action)
+            others = _others(action, name, states, object_ids)
+            state = states[name]
             reply = engine.query(
-                f"{kind}:{name}:{k}", [single, view, state],
-                lambda c=single, v=view, st=state: self._synthesise(c, v, (st.x, st.z, st.yaw), version, st))
+                f"{kind}:{name}:{k}", [single, view, state, others],
+                lambda c=single, v=view, st=state, o=others: self._synthesise(c, v, (st.x, st.z, st.yaw), version,
+                                                                            st, o))
             segments = [msgspec.structs.replace(seg, action_index=k, sentence_id=sids[k])
                         for seg in reply.motion.segments]
-            pieces.append(msgspec.structs.replace(reply.motion, segments=segments))
-            state = reply.end_states[-1] if reply.end_states else state
-        if not pieces:
-            view = _scene_view(scene, None)
-            idle = engine.query(f"{kind}:{name}:idle", [name, view, state],
-                                lambda: self._synthesise(CharacterNode(name=name), view, start, version))
-            return [idle.motion]
+            pieces[name].append(msgspec.structs.replace(reply.motion, segments=segments))
+            states[name] = reply.end_states[-1] if reply.end_states else state
+        for name, (node, _) in characters.items():
+            if not node.actions and upto is None:
+                view = _scene_view(scene, None)
+                st = starts[name]
+                idle = engine.query(f"{kind}:{name}:idle", [name, view, st],
+                                    lambda n=name, v=view, st=st: self._synthesise(CharacterNode(name=n), v, st,
+                                                                                   version))
+                pieces[name] = [idle.motion]
         return pieces
 
     # -- the run -------------------------------------------------------------------------------------
@@ -367,3 +374,19 @@ def _scene_view(scene: Scene, action: ActionNode | None) -> Scene:
                 wanted.add(ref)
                 ref = by_id[ref].support
     return msgspec.structs.replace(scene, objects=[o for o in scene.objects if o.id in wanted])
+
+
+def _others(action: ActionNode, name: str, states: dict[str, Any], object_ids: set[str]) -> dict[str, tuple[float, float]]:
+    """Where the characters an action is aimed at stand (by the time it starts); {} when it names none.
+
+    An action aimed at something that is neither an object nor a known character ("shakes hands") gets
+    every other character, so that planning can pick the only one.
+    """
+    named = [r for r in (action.target, action.destination, action.instrument) if r]
+    people = {c: (round(st.x, 3), round(st.z, 3)) for c, st in states.items() if c != name}
+    chosen = {c: p for c, p in people.items() if c in named}
+    if chosen:
+        return chosen
+    if action.target and action.target not in object_ids and action.target not in states:
+        return people
+    return {}
