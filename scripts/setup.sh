@@ -35,8 +35,10 @@ sys.exit(0 if p.is_relative_to(pathlib.Path('.').resolve()) else f'wrong proto p
 for dir in tools/node editor; do
   if [ -f "$dir/package.json" ]; then
     echo "==> npm ci in $dir"
-    (cd "$dir" && if [ -f package-lock.json ]; then npm ci --no-audit --no-fund --loglevel=error; \
-      else npm install --no-audit --no-fund --loglevel=error; fi)
+    # npm ci installs exactly the lock file; some npm versions reject a lock that lacks other platforms'
+    # optional packages (rollup's), so fall back to npm install, which still honours the locked versions.
+    (cd "$dir" && { npm ci --no-audit --no-fund --loglevel=error 2>/dev/null \
+      || npm install --no-audit --no-fund --loglevel=error; })
     if grep -q '"build"' "$dir/package.json"; then (cd "$dir" && npm run --silent build); fi
   fi
 done
