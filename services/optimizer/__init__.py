@@ -18,5 +18,7 @@ Python API (in-process, no bus):
 
 Modules: routes (grid, A*, smoothing), geometry (catalog boxes as oriented boxes), body (FK, bone
 spheres), costs (eq. 1, eq. 2, batched layouts), collisions (voxel-grid collider), contacts (contact
-pairs), scoring (K proposals as one batch), annealing (Algorithm 2), resynthesis, verify, handlers, worker.
+pairs), scoring (K proposals as one batch), shifted (the annealing's fast path: K proposals of the
+anchored surrogate as shifts of one motion, all objects in one broad phase), annealing (Algorithm 2),
+resynthesis, clearing (obstacles pushed off a blocked walk, for re-planning), verify, handlers, worker.
 """

@@ -25,6 +25,7 @@ from proto.optimizer import CostReport, Interaction, OptimiseSettings
 from proto.scene import Scene
 from services.optimizer.costs import LayoutBatch, SceneGeometry
 from services.optimizer.scoring import InteractionScorer
+from services.optimizer.shifted import ShiftedScorer
 
 MotionFn = Callable[[Scene], Motion]
 SCALE_RANGE = (0.8, 1.25)  # scale factors stay plausible: ±20 % of the object's own size
@@ -271,11 +272,19 @@ def optimise_interaction(
     model = LayoutModel(scene, default_movable(scene, interaction, scorer, m0, hit_objects))
     before = reporter.score(base, [m0]).report(0, reporter.pairs)
     state, cost = model.identity(), float(s0.cost[0])
-    best = (cost, state, m0, 0)
+    best: tuple[float, np.ndarray, Motion | None, int] = (cost, state, m0, 0)
     curve, best_curve = [cost], [cost]
     history: list[np.ndarray] = []
     k_ = max(1, int(st.proposals))
     steps_run = 0
+    # A motion_fn whose motions are its base motion translated per frame (the anchored surrogate)
+    # is scored as shifts of that base: no Motion is built per proposal.
+    shifts_fn = getattr(motion_fn, "shifts", None)
+    fast = (
+        ShiftedScorer(scorer, m0, base)
+        if shifts_fn is not None and getattr(motion_fn, "base_motion", None) is m0
+        else None
+    )
     if len(model.movable):
         for step in range(max(0, int(steps))):
             if budget_s is not None and time.perf_counter() - t_start >= budget_s:
@@ -285,9 +294,12 @@ def optimise_interaction(
             cand = state[None] + delta
             cand[..., 2:] = np.clip(state[None, :, 2:] * (1.0 + delta[..., 2:]), *SCALE_RANGE)
             layouts = model.layouts(cand)
-            motions, ok = [], np.ones(k_, dtype=bool)
+            motions: list[Motion | None] = []
+            ok = np.ones(k_, dtype=bool)
             batch = getattr(motion_fn, "from_layouts", None)
-            if batch is not None:  # a motion_fn that follows layouts directly (the anchored surrogate)
+            if fast is not None and shifts_fn is not None:
+                motions = [None] * k_  # made for the best layout only, at the end
+            elif batch is not None:  # a motion_fn that follows layouts directly (the anchored surrogate)
                 motions = batch(layouts)
             else:
                 for k in range(k_):
@@ -296,7 +308,11 @@ def optimise_interaction(
                     except Exception:  # noqa: BLE001 - a proposal the motion cannot follow is rejected
                         motions.append(m0)
                         ok[k] = False
-            sc = scorer.score(layouts, motions)
+            sc = (
+                fast.score(layouts, shifts_fn(layouts))
+                if fast is not None and shifts_fn is not None
+                else scorer.score(layouts, motions)  # type: ignore[arg-type]
+            )
             costs = np.where(ok, sc.cost, np.inf)
             k = int(np.argmin(costs))
             u = rng.random()
@@ -309,13 +325,16 @@ def optimise_interaction(
             curve.append(cost)
             best_curve.append(best[0])
     best_layout = model.layouts(best[1][None])
-    after = reporter.score(best_layout, [best[2]]).report(0, reporter.pairs) if best[3] else before
+    if best[2] is None:
+        best = (best[0], best[1], motion_fn.from_layouts(best_layout)[0], best[3])  # type: ignore[attr-defined]
+    best_motion: Motion = best[2] if best[2] is not None else m0
+    after = reporter.score(best_layout, [best_motion]).report(0, reporter.pairs) if best[3] else before
     if after.cost > before.cost:  # the search's (coarser) cost misled it: keep the input
-        best, after = (best[0], model.identity(), m0, 0), before
+        best, after, best_motion = (best[0], model.identity(), m0, 0), before, m0
         best_layout = model.layouts(best[1][None])
     return OptimisationResult(
         scene=model.scene_at(best_layout, 0) if best[3] else scene,
-        motion=best[2],
+        motion=best_motion,
         cost_curve=curve,
         before=before,
         after=after,

@@ -172,7 +172,38 @@ class BodyCollider:
         kk, nn, p, rr = kk[near], nn[near], p[near], rr[near]
         if len(kk) == 0:
             return empty
-        sc = scale[kk]  # (M, 3)
+        return self.local_hits(o, kk, nn, p, rr, scale[kk], k_, coarse)
+
+    def local_hits(
+        self,
+        o: int,
+        kk: np.ndarray,
+        nn: np.ndarray,
+        p: np.ndarray,
+        rr: np.ndarray,
+        sc: np.ndarray,
+        k_: int,
+        coarse: bool = False,
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Narrow phase of object ``o`` for spheres already in its frame (after the broad phase).
+
+        Args:
+            o: object index.
+            kk: (M,) layout of each sphere.
+            nn: (M,) sphere index (within its layout's list).
+            p: (M, 3) sphere centres in the object's frame, scaled (rotated and translated, not
+                divided by the scale), metres.
+            rr: (M,) reach of each sphere (> 0).
+            sc: (M, 3) the object's scale in each sphere's layout.
+            k_: number of layouts.
+            coarse: cell-level test (see ``hits``).
+
+        Returns:
+            ((H, 2) layout and sphere index, (H,) global box index) of the touching pairs.
+        """
+        empty = (np.zeros((0, 2), np.int64), np.zeros(0, np.int64))
+        if len(kk) == 0 or self.geom.boxes_per_object[o] == 0:
+            return empty
         grid = self.grids[o]
         start = self.box_start[o]
         if grid is None:  # generic: every box of the object
@@ -238,26 +269,25 @@ class BodyCollider:
         Never misses a hit of the exact test (so a layout the search finds collision-free is), and
         overcounts only around the sphere's corners.
         """
-        pad = 2
-        g = np.floor((p / sc - grid.origin) / grid.size).astype(np.int64) + pad
-        dims = grid.dims + 2 * pad
-        ok = np.all((g >= 0) & (g < dims), axis=1)
-        cells = np.minimum(np.ceil(rr[ok] / (grid.size * sc[ok]).min(axis=1)).astype(np.int64), 2)
-        g, k = g[ok], kk[ok]
-        hit = np.zeros((k_, *dims), dtype=bool)
+        g = np.floor((p / sc - grid.origin) / grid.size).astype(np.int64)  # (M, 3) centre cells
+        cells = np.minimum(np.ceil(rr / (grid.size * sc).min(axis=1)).astype(np.int64), 2)
+        flat_box = grid.cell_box.ravel()
+        ks, boxes = [], []
         for reach_cells in (1, 2):
             sel = cells == reach_cells
             if not sel.any():
                 continue
-            # Distinct centre cells first (poses overlap a lot), then their neighbourhoods.
-            flat = np.unique(np.ravel_multi_index((k[sel], *g[sel].T), (k_, *dims)))
-            kc, *axes = np.unravel_index(flat, (k_, *dims))
-            centre_cells = np.stack(axes, axis=1)
-            offs = _OFFSETS[reach_cells]
-            nb = centre_cells[:, None, :] + offs[None]  # (U, W, 3)
-            nb = np.clip(nb, 0, dims - 1).reshape(-1, 3)
-            hit[np.repeat(kc, len(offs)), nb[:, 0], nb[:, 1], nb[:, 2]] = True
-        hit = hit[:, pad:-pad, pad:-pad, pad:-pad] & (grid.cell_box >= 0)[None]
-        hk, h0, h1, h2 = np.nonzero(hit)
+            # Each sphere's neighbourhood, sparse: only cells inside the grid and occupied count.
+            nb = g[sel][:, None, :] + _OFFSETS[reach_cells][None]  # (M', W, 3)
+            inside = np.all((nb >= 0) & (nb < grid.dims), axis=-1)
+            m, w = np.nonzero(inside)
+            cell = nb[m, w]
+            box = flat_box[(cell[:, 0] * grid.dims[1] + cell[:, 1]) * grid.dims[2] + cell[:, 2]]
+            filled = box >= 0
+            ks.append(kk[sel][m[filled]])
+            boxes.append(box[filled])
+        if not ks:
+            return np.zeros((0, 2), np.int64), np.zeros(0, np.int64)
+        hk = np.concatenate(ks)
         # One representative sphere index per hit (only the layout matters for the counts).
-        return np.stack([hk, np.zeros_like(hk)], axis=1), start + grid.cell_box[h0, h1, h2]
+        return np.stack([hk, np.zeros_like(hk)], axis=1), start + np.concatenate(boxes)

@@ -26,7 +26,7 @@ import numpy as np
 
 from proto.scene import Scene
 from services.optimizer.body import BodySpheres
-from services.optimizer.geometry import object_shape, to_world_points
+from services.optimizer.geometry import object_shape
 from wana.skeleton import JOINT_INDEX
 
 
@@ -194,12 +194,14 @@ def world_boxes(geom: SceneGeometry, layout: LayoutBatch) -> tuple[np.ndarray, n
 def contact_points_world(geom: SceneGeometry, layout: LayoutBatch, index: np.ndarray) -> np.ndarray:
     """(K, P, 3) world positions of the contact points ``index`` (P,) under each layout."""
     own = geom.contact_owner[index]
+    p = geom.contact_local[index][None] * layout.scale[:, own]  # (K, P, 3) object frame, scaled
+    yaw = layout.yaw[:, own]
+    c, s = np.cos(yaw), np.sin(yaw)
     out = np.empty((layout.position.shape[0], len(index), 3))
-    for i, (ci, o) in enumerate(zip(index, own, strict=True)):
-        out[:, i] = to_world_points(
-            geom.contact_local[ci][None], layout.position[:, o], layout.yaw[:, o], layout.scale[:, o]
-        )[:, 0]
-    return out
+    out[..., 0] = c * p[..., 0] + s * p[..., 2]
+    out[..., 1] = p[..., 1]
+    out[..., 2] = -s * p[..., 0] + c * p[..., 2]
+    return out + layout.position[:, own]
 
 
 @functools.lru_cache(maxsize=8)
@@ -324,11 +326,12 @@ def collision_cost(box_hit: np.ndarray, geom: SceneGeometry) -> np.ndarray:
     Returns:
         (K,) C_D in [0, 1].
     """
-    k_ = box_hit.shape[0]
     n_obj = len(geom.ids)
-    hit_per_object = np.zeros((k_, n_obj))
-    for o in range(n_obj):  # few objects; boxes of an object are contiguous
-        hit_per_object[:, o] = box_hit[:, geom.box_owner == o].sum(axis=1)
+    # Boxes of an object are contiguous: one bincount over (layout, owner) counts them all.
+    k_idx, b_idx = np.nonzero(box_hit)
+    hit_per_object = np.bincount(
+        k_idx * n_obj + geom.box_owner[b_idx], minlength=box_hit.shape[0] * n_obj
+    ).reshape(box_hit.shape[0], n_obj)
     share = hit_per_object / np.maximum(geom.boxes_per_object, 1)[None]
     touched = hit_per_object > 0
     return np.where(touched.any(axis=1), share.sum(axis=1) / np.maximum(touched.sum(axis=1), 1), 0.0)

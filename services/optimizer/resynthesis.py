@@ -165,7 +165,16 @@ def anchored_motion_fn(
         d = _anchor_point(geom, layouts, anchor, point) - ref  # (K, 3)
         return [moved_by(dk) for dk in d]
 
+    def shifts(layouts: LayoutBatch) -> np.ndarray:
+        """(K, T, 3) per-frame translation of the root (as stored, float32-rounded) in each layout."""
+        d = _anchor_point(geom, layouts, anchor, point) - ref  # (K, 3)
+        shift = np.stack([w_xz * d[:, :1], w_y * d[:, 1:2], w_xz * d[:, 2:]], axis=-1)  # (K, T, 3)
+        return (root0[None] + shift).astype(np.float32).astype(np.float64) - root0[None]
+
     motion_fn.from_layouts = from_layouts  # type: ignore[attr-defined]  # batch path used by the annealing
+    # The fast path: proposals scored as shifts of `base_motion` (services.optimizer.shifted).
+    motion_fn.shifts = shifts  # type: ignore[attr-defined]
+    motion_fn.base_motion = motion  # type: ignore[attr-defined]
     return motion_fn
 
 

@@ -5,11 +5,15 @@ see what only a full re-synthesis changes (a route that opens up, an approach po
 reachable). So the search's last few best layouts are re-synthesised through the motion service
 and scored exactly. A candidate qualifies when its walk hits no more boxes than the input's and
 either its cost C is lower or its walk hits fewer boxes without losing contact (C_T within 5 cm or
-the input's); among those, a walk with fewer hit boxes wins, then the lower C. Without a qualifying candidate the input comes back.
+the input's); among those, a walk with fewer hit boxes wins, then the lower C. When none of them
+walks collision-free and the input's walk hits boxes, layouts with those obstacles pushed off the walk
+(services.optimizer.clearing) are re-synthesised too, the route re-planned by A* in each. Without a
+qualifying candidate the input comes back.
 """
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass
 
 from proto.motion_data import Motion
@@ -17,6 +21,7 @@ from proto.optimizer import CostReport, Interaction, OptimiseSettings
 from proto.scene import Scene
 from proto.ssg import CharacterNode
 from services.optimizer.annealing import OptimisationResult, optimise_interaction
+from services.optimizer.clearing import clearing_layouts
 from services.optimizer.costs import SceneGeometry
 from services.optimizer.resynthesis import MotionFn, anchored_motion_fn, motion_service_fn
 from services.optimizer.scoring import InteractionScorer
@@ -54,6 +59,7 @@ def optimise_and_verify(
     verifier: MotionFn | None = None,
     geometry: SceneGeometry | None = None,
     candidates: int = 4,
+    clearing: int = 6,
 ) -> VerifiedResult:
     """Optimise one interaction with the anchored surrogate and verify the result.
 
@@ -68,6 +74,9 @@ def optimise_and_verify(
         geometry: the scene's object geometry (read from the catalog when None).
         candidates: how many of the search's successive best layouts to re-synthesise, spread from the
             best back to the first improvement.
+        clearing: when none of those gives a collision-free walk and the input's walk hits boxes, at
+            most this many layouts with the obstacles pushed off the walk (services.optimizer.clearing)
+            are re-synthesised too.
 
     Returns:
         The verified result.
@@ -90,22 +99,48 @@ def optimise_and_verify(
         verifier = motion_service_fn(character, start)
     if verifier is None:
         return VerifiedResult(search, search.scene, search.motion, search.after, "anchored")
-    if search.scene == scene:
+    base = search.before
+    if search.scene == scene and base.locomotion_collided_boxes == 0:
         return VerifiedResult(search, scene, motion, search.before, "input")
     reporter = InteractionScorer(
         scene, interaction, lambda_d=st.lambda_d, lambda_t=st.lambda_t, frame_stride=1, geometry=geom
     )
-    base = search.before
     chosen: tuple[tuple[int, float], Scene, Motion, CostReport] | None = None
-    history = search.candidates  # best first
+    history = search.candidates if search.scene != scene else []  # best first
     picks = (
         sorted({round(i * (len(history) - 1) / max(candidates - 1, 1)) for i in range(candidates)})
         if history
         else []
     )
-    for cand in [history[i] for i in picks]:
+
+    tried: list[tuple[int, Scene, Motion]] = []  # verified clearing layouts: walk hits, scene, motion
+
+    def unsolved() -> bool:
+        return bool(base.locomotion_collided_boxes) and (chosen is None or chosen[0][0] > 0)
+
+    def queue() -> Iterator[tuple[Scene, bool]]:
+        yield from ((history[i], False) for i in picks)
+        if not unsolved():
+            return
+        # The walk still runs into something: move those obstacles off it and let the motion service
+        # re-plan the route (the surrogate cannot see a route open up). A second round clears what
+        # the new route of the most promising first-round layout runs into.
+        walk_hits = reporter.score_scenes([scene], [motion]).locomotion_box_hit[0]
+        yield from (
+            (c, True) for c in clearing_layouts(scene, interaction, motion, walk_hits, geom)[:clearing]
+        )
+        if not unsolved() or not tried:
+            return
+        _, first, first_motion = min(tried, key=lambda t: t[0])
+        walk_hits = reporter.score_scenes([first], [first_motion]).locomotion_box_hit[0]
+        again = clearing_layouts(first, interaction, first_motion, walk_hits, geom)
+        yield from ((c, False) for c in again[: max(1, clearing // 2)])
+
+    for cand, clearing_round in queue():
         real = verifier(cand)
         rep = reporter.score_scenes([cand], [real]).report(0, reporter.pairs)
+        if clearing_round and rep.locomotion_collided_boxes:
+            tried.append((rep.locomotion_collided_boxes, cand, real))
         fewer_walk_hits = (
             rep.locomotion_collided_boxes < base.locomotion_collided_boxes
             and rep.contact_cost <= max(base.contact_cost, CONTACT_OK_M)
