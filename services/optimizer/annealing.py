@@ -22,7 +22,7 @@ import numpy as np
 
 from proto.motion_data import Motion
 from proto.optimizer import CostReport, Interaction, OptimiseSettings
-from proto.scene import Scene
+from proto.scene import PlacedObject, Scene
 from services.optimizer.costs import LayoutBatch, SceneGeometry
 from services.optimizer.scoring import InteractionScorer
 from services.optimizer.shifted import ShiftedScorer
@@ -108,6 +108,59 @@ class LayoutModel:
         self.base = LayoutBatch.from_scenes([scene])
         self.parent = np.array([ids.index(o.support) if o.support in ids else -1 for o in scene.objects])
         self.order = support_order(scene)
+        # Each object's world footprint relative to its position, per unit of its own scale, for the room check.
+        from wana.assets.catalog import world_bounds
+
+        pos0 = self.base.position[0]
+
+        def bounds(o: PlacedObject) -> np.ndarray:
+            try:
+                return world_bounds(o)
+            except KeyError:  # not in the catalog (geometry given as arrays): treat it as a point
+                return np.array([o.position, o.position], dtype=float)
+
+        self.extent = np.stack([bounds(o) for o in scene.objects]) - pos0[:, None, :] if ids else np.zeros((0, 2, 3))
+        self.extent = self.extent / self.base.scale[0][:, None, :]
+        half_w, half_d = scene.room.width / 2 + 1e-3, scene.room.depth / 2 + 1e-3
+        self.room_min = np.array([-half_w, -half_d])
+        self.room_max = np.array([half_w, half_d])
+        lo = pos0[:, [0, 2]] + self.extent[:, 0][:, [0, 2]] * self.base.scale[0][:, [0, 2]]
+        hi = pos0[:, [0, 2]] + self.extent[:, 1][:, [0, 2]] * self.base.scale[0][:, [0, 2]]
+        # Objects already poking out (a window set into its wall) may not go further out, nothing more.
+        self.slack_lo = np.minimum(lo - self.room_min, 0.0)
+        self.slack_hi = np.minimum(self.room_max - hi, 0.0)
+
+    def _bounds(self, layout: LayoutBatch) -> tuple[np.ndarray, np.ndarray]:
+        lo = layout.position + self.extent[None, :, 0] * layout.scale
+        hi = layout.position + self.extent[None, :, 1] * layout.scale
+        return lo, hi
+
+    def no_new_overlaps(self, layout: LayoutBatch) -> np.ndarray:
+        """(K,) True where no two objects' bounds intersect that did not already (an object and its support
+        may touch)."""
+        lo, hi = self._bounds(layout)
+        inter = np.all((lo[:, :, None] < hi[:, None, :] - 1e-3) & (lo[:, None, :] < hi[:, :, None] - 1e-3), axis=-1)
+        if not hasattr(self, "_allowed"):
+            blo, bhi = self._bounds(self.base)
+            base = np.all((blo[:, :, None] < bhi[:, None, :] - 1e-3) & (blo[:, None, :] < bhi[:, :, None] - 1e-3),
+                          axis=-1)[0]
+            n = len(self.parent)
+            allowed = base | np.eye(n, dtype=bool)
+            for i, p in enumerate(self.parent):  # an object rests on its support, and on its support's support
+                while p >= 0:
+                    allowed[i, p] = allowed[p, i] = True
+                    p = self.parent[p]
+            self._allowed = allowed
+        return ~np.any(inter & ~self._allowed[None], axis=(1, 2))
+
+    def inside_room(self, layout: LayoutBatch) -> np.ndarray:
+        """(K,) True where every object of the layout stays inside the room (x and z)."""
+        xz = layout.position[..., [0, 2]]
+        scale = layout.scale[..., [0, 2]]
+        lo = xz + self.extent[None, :, 0][..., [0, 2]] * scale
+        hi = xz + self.extent[None, :, 1][..., [0, 2]] * scale
+        ok = (lo - self.room_min >= self.slack_lo - 1e-9) & (self.room_max - hi >= self.slack_hi - 1e-9)
+        return np.all(ok, axis=(1, 2))
 
     def identity(self) -> np.ndarray:
         """(M, 4) the state of the input layout."""
@@ -175,12 +228,19 @@ def default_movable(
         if i in by_id and i not in chosen:
             chosen.append(i)
 
+    from wana.assets.vocabulary import CATEGORIES
+
+    def on_wall(i: str) -> bool:  # windows, paintings, shelves on walls stay where the wall is
+        info = CATEGORIES.get(by_id[i].category) if i in by_id else None
+        return info is not None and info.mount == "wall"
+
     for t in interaction.targets:
         add(t)
         if by_id.get(t) is not None and by_id[t].support:
             add(by_id[t].support)
     for p in scorer.pairs:
         add(p.object_id)
+    chosen[:] = [i for i in chosen if not on_wall(i)]
     root = motion_joint_positions(motion)[:, 0, [0, 2]]  # (T, 2)
     layout = LayoutBatch.from_scenes([scene])
     for i, o in enumerate(scene.objects):
@@ -190,7 +250,7 @@ def default_movable(
         mine = scorer.geom.box_owner == i
         corners = np.abs(scorer.geom.box_centre[mine][:, [0, 2]]) + scorer.geom.box_half[mine][:, [0, 2]]
         reach = float(np.linalg.norm(corners, axis=1).max() * max(o.scale)) if mine.any() else 0.0
-        if d <= reach + NEAR_MOTION_M or (hit_objects is not None and hit_objects[i]):
+        if (d <= reach + NEAR_MOTION_M or (hit_objects is not None and hit_objects[i])) and not on_wall(o.id):
             add(o.id)
     return chosen
 
@@ -313,7 +373,7 @@ def optimise_interaction(
                 if fast is not None and shifts_fn is not None
                 else scorer.score(layouts, motions)  # type: ignore[arg-type]
             )
-            costs = np.where(ok, sc.cost, np.inf)
+            costs = np.where(ok & model.inside_room(layouts) & model.no_new_overlaps(layouts), sc.cost, np.inf)
             k = int(np.argmin(costs))
             u = rng.random()
             steps_run = step + 1

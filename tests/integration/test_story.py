@@ -47,3 +47,17 @@ def test_odd_documents_give_diagnostics_not_crashes(orchestrator, text):
     assert result.version == 0
     for sentence in result.sentences:
         assert sentence.id in result.diagnostics
+
+
+def test_the_optimised_office_keeps_every_object_inside_the_room_and_apart(orchestrator, repo_root):
+    from services.retrieval.compose import overlapping_pairs
+    from wana.assets.catalog import world_bounds
+
+    result = orchestrator.create((repo_root / "examples" / "office.txt").read_text()).compute()
+    assert result.optimisations, "the office story has interactions to optimise"
+    room = result.scene.room
+    for placed in result.scene.objects:
+        lo, hi = world_bounds(placed)
+        assert -room.width / 2 - 1e-3 <= lo[0] and hi[0] <= room.width / 2 + 1e-3, placed.id
+        assert -room.depth / 2 - 1e-3 <= lo[2] and hi[2] <= room.depth / 2 + 1e-3, placed.id
+    assert overlapping_pairs(result.scene) == []
