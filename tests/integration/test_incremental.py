@@ -122,3 +122,23 @@ def test_the_same_text_gives_the_same_animation(orchestrator, session):
     a, b = session.compute(), other.compute()
     assert a.scene == b.scene
     assert a.motions == b.motions
+
+
+def test_inserting_an_action_runs_only_its_parse_and_its_new_motion_node(session):
+    at = session.doc.text.index("camera left")
+    session.edit(session.doc.version, [TextChange(start=at, end=at, text="Eve waves. ")])
+    result = session.compute()
+    assert result.ran == [f"parse:{sid_of(session, 'Eve waves')}", "resolve", "segment:Eve:2"]
+
+
+def test_reordering_two_sentences_reparses_nothing_and_reruns_that_characters_motion(session):
+    replace(session, "Tom walks to the window. Tom waves.", "Tom waves. Tom walks to the window.")
+    result = session.compute()
+    assert result.ran == ["resolve", "segment:Tom:0", "segment:Tom:1"]
+    assert [s.action for s in result.motions["Tom"].segments if s.action != "hold"][0] == "wave"
+
+
+def test_a_pronoun_that_names_the_same_character_changes_no_motion(session):
+    replace(session, "Tom waves", "He waves")
+    result = session.compute()
+    assert result.ran == [f"parse:{sid_of(session, 'He waves')}", "resolve"]
