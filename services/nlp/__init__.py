@@ -1,0 +1,22 @@
+"""The NLP service: sentence text -> semantic scene graph fragment (proto.ssg.SentenceGraph).
+
+CONTRACT:
+    ParseRequest          -> ParseReply          one sentence, unresolved (pronouns as written)
+    ParseBatchRequest     -> ParseBatchReply     several sentences, same order
+    ResolveRequest        -> ResolveReply        names/pronouns resolved across a document's graphs
+    ParseDocumentRequest  -> ParseDocumentReply  split + parse + resolve a whole text
+    anything else / bad input -> proto.common.ErrorReply (E001 undecodable, E010 invalid input)
+
+Python API (in-process, pure, cached):
+    services.nlp.segment.split_sentences(text) -> list[(start, end, kind_hint)]
+    services.nlp.parse.parse_sentence(text, sentence_id="", offset=0, kind_hint="") -> SentenceGraph
+    services.nlp.parse.shift_spans(graph, delta) -> SentenceGraph
+    services.nlp.resolve.resolve(graphs, offsets=None) -> list[SentenceGraph]
+    services.nlp.parse.parse_document(text) -> list[SentenceGraph]
+
+Modules: segment (sentence splitting), commands (camera/weather/wait/speed lines), pipeline (the
+trained spaCy pipeline, lazily loaded), lemmatizer, lexicon (words -> catalog categories and action
+names), compounds (glued words), mentions (noun phrases -> objects/characters), scene (relations),
+actions (characters, actions, social), builder, parse, resolve, errors (diagnostic codes), cli.
+The pipeline is rebuilt by ``scripts/train_nlp.py``.
+"""

@@ -1,0 +1,247 @@
+"""Noun phrases of a parsed sentence -> object mentions and character mentions.
+
+An object mention is a noun (with its compounds, adjectives, numbers and determiner) that names a
+catalog category; a character mention is a name, a person noun or a personal pronoun.
+"""
+
+from __future__ import annotations
+
+import functools
+import re
+from dataclasses import dataclass, field
+
+from spacy.tokens import Token
+
+from services.nlp import lexicon
+from services.nlp.compounds import split_glued
+from wana.assets import vocabulary
+
+MODIFIER_DEPS = frozenset({"compound", "amod", "nmod:npmod", "flat", "nummod", "det", "nmod:poss", "advmod"})
+QUANTITY_HEADS = {"couple": 2, "pair": 2, "lot": 3, "lots": 3, "number": 3, "set": 3, "group": 3, "bunch": 3,
+                  "stack": 3, "pile": 3, "row": 3, "few": 3}
+DEFINITE_DETS = frozenset({"the", "this", "that", "these", "those", "its", "his", "her", "their", "my", "your"})
+NUMBER_RE = re.compile(r"^\d+$")
+PLURALE_TANTUM = frozenset({"headphones", "earphones", "drums", "gloves", "scissors", "pliers", "glasses", "jeans",
+                            "trousers", "binoculars", "dumbbells", "blinds", "curtains", "drapes"})
+
+
+@dataclass
+class ObjectMention:
+    """A noun phrase naming a catalog category (sentence-local character offsets)."""
+
+    head: Token
+    category: str
+    word: str
+    attributes: dict[str, str] = field(default_factory=dict)
+    count: int = 1
+    start: int = 0
+    end: int = 0
+    definite: bool = False
+
+
+@dataclass
+class CharacterMention:
+    head: Token
+    name: str  # "Eve", "man"; "" for a pronoun (resolved later)
+    mention: str  # as written: "Eve", "He", "the old man"
+    pronoun: str = ""  # "he" / "she" / "they" / "i" / "you" when a pronoun
+
+
+@functools.lru_cache(maxsize=1)
+def _exact_index() -> dict[str, str]:
+    """Category names and synonyms (lower case, spaces) -> category; no attribute stripping."""
+    index: dict[str, str] = {}
+    for name, info in vocabulary.CATEGORIES.items():
+        index.setdefault(name.replace("_", " "), name)
+        for syn in info.synonyms:
+            index.setdefault(syn, name)
+    return index
+
+
+def _singular(word: str) -> str:
+    w = word.lower()
+    if w.endswith("ies") and len(w) > 4:
+        return w[:-3] + "y"
+    if w.endswith(("ches", "shes", "sses", "xes")):
+        return w[:-2]
+    if w.endswith("ves") and len(w) > 4:
+        return w[:-3] + "f"
+    if w.endswith("s") and not w.endswith("ss") and len(w) > 3:
+        return w[:-1]
+    return w
+
+
+def exact_category(words: list[str]) -> str | None:
+    """Category whose name or synonym is exactly these words (last word may be plural)."""
+    index = _exact_index()
+    phrase = " ".join(w.lower() for w in words)
+    if phrase in index:
+        return index[phrase]
+    if words:
+        singular = " ".join([*(w.lower() for w in words[:-1]), _singular(words[-1])])
+        return index.get(singular)
+    return None
+
+
+def _left_modifiers(head: Token) -> list[Token]:
+    """Contiguous compound/adjective tokens right before the head, in order."""
+    mods: list[Token] = []
+    for child in reversed(list(head.lefts)):
+        if child.dep_ in ("compound", "amod", "flat", "nmod:npmod") or (
+                child.dep_ == "nummod" and not child.like_num and child.pos_ != "NUM"):
+            mods.insert(0, child)
+            # "dark blue chair": the adverb/adjective modifying the adjective
+            mods[0:0] = [g for g in child.lefts if g.dep_ in ("advmod", "amod", "compound")]
+        elif child.dep_ in ("det", "nummod", "punct", "nmod:poss", "case"):
+            continue
+        else:
+            break
+    return mods
+
+
+def _count(head: Token) -> int:
+    for child in head.children:
+        if child.dep_ == "nummod" or (child.like_num and child.i < head.i):
+            text = child.lower_
+            if NUMBER_RE.match(text):
+                return max(1, min(int(text), 100))
+            if text in lexicon.COUNT_WORDS:
+                return lexicon.COUNT_WORDS[text]
+        if child.dep_ == "det" and child.lower_ in lexicon.COUNT_WORDS and child.lower_ != "some":
+            return lexicon.COUNT_WORDS[child.lower_]
+        if child.dep_ in ("det", "amod") and child.lower_ in ("another", "a", "an", "one", "single"):
+            return 1
+    plural = "Plur" in head.morph.get("Number", []) or head.tag_ in ("NNS", "NNPS")
+    if plural and head.lower_ not in PLURALE_TANTUM:
+        return lexicon.PLURAL_DEFAULT_COUNT
+    return 1
+
+
+def _attributes(mods: list[Token], attributes: dict[str, str]) -> None:
+    i = 0
+    while i < len(mods):
+        if i + 1 < len(mods):
+            pair = f"{mods[i].lower_} {mods[i + 1].lower_}"
+            hit = lexicon.attribute_of(pair)
+            if hit:
+                attributes.setdefault(hit[0], hit[1])
+                i += 2
+                continue
+        hit = lexicon.attribute_of(mods[i].lower_)
+        if hit:
+            attributes.setdefault(hit[0], hit[1])
+        elif mods[i].pos_ in ("NOUN", "PROPN", "X") and mods[i].dep_ in ("compound", "flat"):
+            attributes.setdefault("kind", mods[i].lower_)
+        i += 1
+
+
+def _glued_attributes(parts: list[str], attributes: dict[str, str]) -> None:
+    for part in parts:
+        hit = lexicon.attribute_of(part)
+        if hit:
+            attributes.setdefault(hit[0], hit[1])
+        else:
+            attributes.setdefault("kind", part)
+
+
+def object_mention(head: Token) -> ObjectMention | None:
+    """The object a noun token names, with its attributes and count, or None."""
+    if head.text[:1].isupper() and (head.lower_ in lexicon.FEMALE_NAMES or head.lower_ in lexicon.MALE_NAMES):
+        return None  # "Mike" is a person here, not a microphone
+    if head.lower_ in lexicon.PERSON_NOUNS or head.lemma_.lower() in lexicon.PERSON_NOUNS:
+        return None
+    if head.pos_ not in ("NOUN", "PROPN", "X", "ADJ", "VERB", "NUM") or head.lower_ in lexicon.OBJECT_PRONOUNS:
+        return None
+    if head.lower_ in lexicon.NON_OBJECT_NOUNS or head.lemma_.lower() in lexicon.NON_OBJECT_NOUNS:
+        return None
+    if lexicon.room_of(head.lower_) and exact_category([head.lower_]) is None:
+        return None
+    mods = _left_modifiers(head)
+    words = [t.text for t in mods] + [head.text]
+    category = None
+    used = len(words)
+    for k in range(len(words)):  # longest exact phrase ending at the head
+        category = exact_category(words[k:])
+        if category is not None:
+            used = k
+            break
+    attributes: dict[str, str] = {}
+    word = " ".join(words[used:]) if category else head.text
+    if category is None:
+        parts = split_glued(head.text)
+        if parts:
+            category = exact_category(parts) or exact_category(parts[-1:])
+            if category is not None:
+                if exact_category(parts) is None:
+                    _glued_attributes(parts[:-1], attributes)
+                used = len(words) - 1
+                word = head.text
+    if category is None:
+        category = lexicon.category_of(head.lemma_) or lexicon.category_of(head.text)
+        used = len(words) - 1
+    if category is None:
+        return None
+    _attributes(mods[:used], attributes)
+    # Attribute words the category's own synonym swallowed ("wooden table" is a synonym of table).
+    for m in mods[used:]:
+        hit = lexicon.attribute_of(m.lower_)
+        if hit:
+            attributes.setdefault(hit[0], hit[1])
+    if parts := (split_glued(head.text) if category and exact_category([head.text]) is None else None):
+        for part in parts[:-1]:
+            hit = lexicon.attribute_of(part)
+            if hit:
+                attributes.setdefault(hit[0], hit[1])
+    # Predicative attributes come from the caller; only the phrase's own words are used here.
+    definite = any(c.dep_ in ("det", "nmod:poss") and c.lower_ in DEFINITE_DETS for c in head.children)
+    start_tok = min([head.i] + [c.i for c in head.lefts if c.dep_ in MODIFIER_DEPS or c in mods])
+    doc = head.doc
+    count = _count(head)
+    return ObjectMention(head=head, category=category, word=word.lower(), attributes=attributes, count=count,
+                         start=doc[start_tok].idx, end=head.idx + len(head.text), definite=definite)
+
+
+def quantity_target(head: Token) -> tuple[Token, int] | None:
+    """For "a couple of chairs" / "a stack of books": (the noun after "of", its count)."""
+    if head.lower_ not in QUANTITY_HEADS:
+        return None
+    for child in head.children:
+        if child.dep_ == "nmod" and any(c.lower_ == "of" for c in child.children if c.dep_ == "case"):
+            return child, QUANTITY_HEADS[head.lower_]
+    return None
+
+
+def is_unknown_object_word(head: Token) -> bool:
+    """A common noun in an object slot that names no category, person, room or place (W101)."""
+    if head.pos_ not in ("NOUN", "X") or head.lower_ in lexicon.OBJECT_PRONOUNS:
+        return False
+    lemma = head.lemma_.lower()
+    if lemma in lexicon.PERSON_NOUNS or lemma in lexicon.NON_OBJECT_NOUNS or head.lower_ in lexicon.NON_OBJECT_NOUNS:
+        return False
+    if lemma in lexicon.RELATION_NOUNS or lemma in lexicon.SOCIAL_RELATION_WORDS or lemma in QUANTITY_HEADS:
+        return False
+    if lexicon.room_of(head.lower_) or lexicon.room_of(lemma):
+        return False
+    return object_mention(head) is None
+
+
+def character_mention(tok: Token) -> CharacterMention | None:
+    """A character named by a token: a proper name, a person noun or a personal pronoun."""
+    lower = tok.lower_
+    if tok.pos_ == "PRON" or lower in lexicon.PRONOUNS:
+        pron = lexicon.PRONOUNS.get(lower)
+        if pron is None:
+            return None
+        return CharacterMention(head=tok, name="", mention=tok.text, pronoun=pron)
+    if tok.lemma_.lower() in lexicon.PERSON_NOUNS or lower in lexicon.PERSON_NOUNS:
+        start = min([tok.i] + [c.i for c in tok.lefts if c.dep_ in ("det", "amod", "compound")])
+        return CharacterMention(head=tok, name=tok.lemma_.lower(), mention=tok.doc[start:tok.i + 1].text)
+    known_name = tok.text[:1].isupper() and (lower in lexicon.FEMALE_NAMES or lower in lexicon.MALE_NAMES)
+    if known_name or tok.pos_ == "PROPN" or (tok.text[:1].isupper() and tok.i > 0 and tok.pos_ in ("NOUN", "X", "ADJ")):
+        if not known_name and (exact_category([lower]) is not None or lexicon.room_of(lower)):
+            return None
+        parts = [c for c in tok.lefts if c.dep_ in ("compound", "flat") and c.pos_ == "PROPN"] + [tok]
+        parts += [c for c in tok.rights if c.dep_ == "flat" and c.pos_ == "PROPN"]
+        name = " ".join(p.text for p in sorted(parts, key=lambda t: t.i))
+        return CharacterMention(head=tok, name=name, mention=name)
+    return None

@@ -1,0 +1,94 @@
+"""The trained spaCy pipeline: lazy cached loading, packaging after training, treebank evaluation.
+
+The pipeline (``models/nlp/en_wana``) is trained by ``scripts/train_nlp.py``: tok2vec (CNN), tagger
+(XPOS), morphologizer (UPOS + features), dependency parser, wana's lookup lemmatizer; senter ships
+disabled because the parser already sets sentence boundaries.
+"""
+
+from __future__ import annotations
+
+import threading
+from pathlib import Path
+
+import spacy
+from spacy.language import Language
+
+from services.nlp import lemmatizer as _lemmatizer  # noqa: F401 - registers the "wana_lemmatizer" factory
+
+REPO = Path(__file__).resolve().parents[2]
+MODEL_DIR = REPO / "models" / "nlp" / "en_wana"
+MODEL_VERSION = "0.1.0"
+
+_lock = threading.Lock()
+_nlp: Language | None = None
+
+
+class ModelMissing(RuntimeError):
+    """Raised when the trained pipeline is not where it should be."""
+
+
+def get_nlp() -> Language:
+    """The process-wide pipeline, loaded on first use (thread-safe)."""
+    global _nlp
+    if _nlp is None:
+        with _lock:
+            if _nlp is None:
+                if not (MODEL_DIR / "config.cfg").exists():
+                    raise ModelMissing(f"no trained pipeline at {MODEL_DIR}; run scripts/train_nlp.py")
+                _nlp = spacy.load(MODEL_DIR, exclude=["senter"])
+    return _nlp
+
+
+def package_model(trained_dir: Path, out_dir: Path, tables: _lemmatizer.LemmaTables) -> None:
+    """Load spaCy's ``model-best``, add the lookup lemmatizer, disable senter and write ``out_dir``."""
+    import shutil
+
+    nlp = spacy.load(trained_dir)
+    lem = nlp.add_pipe("wana_lemmatizer", after="morphologizer")
+    lem.tables = tables  # type: ignore[attr-defined]
+    if "senter" in nlp.pipe_names:
+        nlp.disable_pipe("senter")
+    nlp.meta.update(name="wana", version=MODEL_VERSION,
+                    description="wana English pipeline: UD English-EWT v2.16 + wana domain treebank",
+                    license="CC BY-SA 4.0 (trained on UD English-EWT)",
+                    sources=[{"name": "UD English-EWT", "url": "https://github.com/UniversalDependencies/UD_English-EWT",
+                              "license": "CC BY-SA 4.0"}])
+    for key in ("train", "dev"):  # no paths of the machine that trained it
+        nlp.config["paths"][key] = None
+    if out_dir.exists():
+        shutil.rmtree(out_dir)
+    nlp.to_disk(out_dir)
+
+
+def evaluate_treebank(conllu: Path, nlp: Language | None = None, limit: int = 0) -> dict[str, float]:
+    """POS, XPOS, lemma accuracy and UAS/LAS of the pipeline on a CoNLL-U file.
+
+    Raw sentence text goes through the pipeline's own tokenizer (as users' text does); scores are
+    aligned to the gold tokens by spaCy's scorer. Punctuation is excluded from UAS/LAS as spaCy does.
+
+    Args:
+        conllu: path of a CoNLL-U file.
+        nlp: pipeline to score (default: the shipped one).
+        limit: score only the first ``limit`` sentences (0 = all).
+    """
+    from spacy.training import Example
+    from spacy.training.converters import conllu_to_docs
+
+    nlp = nlp or get_nlp()
+    text = conllu.read_text(encoding="utf-8")
+    gold_docs = list(conllu_to_docs(text, n_sents=1, no_print=True))
+    if limit:
+        gold_docs = gold_docs[:limit]
+    examples = [Example(nlp.make_doc(g.text), g) for g in gold_docs]
+    preds = list(nlp.pipe([e.predicted for e in examples], batch_size=256))
+    examples = [Example(p, e.reference) for p, e in zip(preds, examples, strict=True)]
+    from spacy.scorer import Scorer
+
+    scores: dict[str, float] = {}
+    scores.update(Scorer.score_token_attr(examples, "pos"))
+    scores.update(Scorer.score_token_attr(examples, "tag"))
+    scores.update(Scorer.score_token_attr(examples, "lemma"))
+    scores.update(Scorer.score_deps(examples, "dep", getter=lambda t, a: getattr(t, a + "_").lower(),
+                                    ignore_labels=("p", "punct")))
+    return {"pos": float(scores["pos_acc"]), "tag": float(scores["tag_acc"]), "lemma": float(scores["lemma_acc"]),
+            "uas": float(scores["dep_uas"]), "las": float(scores["dep_las"]), "sentences": float(len(examples))}

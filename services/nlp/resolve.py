@@ -1,0 +1,214 @@
+"""Document-level resolution of names and pronouns across sentence graphs (cheap, pure).
+
+Kept apart from the per-sentence parse so that editing one sentence re-parses only that sentence
+and then re-runs this pass over all graphs (microseconds per sentence).
+
+Rules, in document order:
+- a name or person noun introduces (or repeats) a character; its spelling at first mention wins;
+- "he"/"she" -> the most recent character of that gender (names and person nouns carry a gender when
+  known; a character of unknown gender matches either);
+- "they" -> the characters of the most recent sentence that had two or more, else the last two;
+- a sentence without a subject ("Walk to the door.") -> the most recent acting character;
+- "him"/"her"/"them" as targets -> as above, never the acting character itself;
+- "it"/"this"/"that" as targets -> the most recent object mentioned;
+- what cannot be resolved stays "" and gets a W105/W109 diagnostic.
+"""
+
+from __future__ import annotations
+
+import re
+
+import msgspec
+
+from proto.common import Span
+from proto.ssg import ActionNode, CharacterNode, Diagnostic, SentenceGraph, SocialNode
+from services.nlp import lexicon
+from services.nlp.errors import diagnostic
+
+PRONOUN_WORDS = {"he": "he", "him": "he", "his": "he", "she": "she", "her": "she", "they": "they",
+                 "them": "they", "their": "they"}
+
+
+class _State:
+    def __init__(self) -> None:
+        self.characters: list[str] = []  # in order of last mention, most recent last
+        self.spelling: dict[str, str] = {}
+        self.gender: dict[str, str] = {}
+        self.last_group: list[str] = []
+        self.last_actor = ""
+        self.last_object = ""
+        self.object_categories: dict[str, str] = {}
+
+    def mention(self, name: str, recent: bool = True) -> str:
+        """Register a mention; ``recent=False`` (an object of a verb) keeps the subject the most recent."""
+        key = name.lower()
+        canonical = self.spelling.setdefault(key, name)
+        if not recent:
+            if canonical not in self.characters:
+                self.characters.insert(0, canonical)
+        else:
+            if canonical in self.characters:
+                self.characters.remove(canonical)
+            self.characters.append(canonical)
+        if key not in self.gender:
+            first = key.split()[0]
+            if first in lexicon.FEMALE_NAMES or first in lexicon.FEMALE_NOUNS:
+                self.gender[key] = "she"
+            elif first in lexicon.MALE_NAMES or first in lexicon.MALE_NOUNS:
+                self.gender[key] = "he"
+            else:
+                self.gender[key] = ""
+        return canonical
+
+    def pronoun(self, pron: str, exclude: str = "") -> list[str]:
+        if pron == "they":
+            group = [c for c in self.last_group if c != exclude]
+            if len(group) >= 2 or (group and exclude):
+                return group
+            others = [c for c in self.characters if c != exclude]
+            return others[-2:]
+        for c in reversed(self.characters):
+            if c != exclude and self.gender.get(c.lower(), "") in ("", pron):
+                return [c]
+        return []
+
+
+def _pronoun_of(mention: str) -> str:
+    return PRONOUN_WORDS.get(mention.lower().strip(), "")
+
+
+def _span_of(graph: SentenceGraph, word: str, offset: int | None, fallback: Span) -> Span:
+    if offset is not None and word:
+        m = re.search(rf"\b{re.escape(word)}\b", graph.text)
+        if m:
+            return Span(offset + m.start(), offset + m.end())
+    return fallback
+
+
+def _resolve_ref(value: str, state: _State, actor: str, graph: SentenceGraph, before: int = -1) -> str:
+    """A target/destination that is a pronoun or a character name -> canonical name or object id.
+
+    ``before``: document offset of the action; "it" means the last object mentioned before it.
+    """
+    if not value:
+        return value
+    lower = value.lower()
+    if lower in lexicon.OBJECT_PRONOUNS and lower != "them":
+        ids = [o.id for o in graph.objects if before < 0 or o.span.end <= before]
+        return ids[-1] if ids else state.last_object
+    pron = _pronoun_of(lower)
+    if pron:
+        names = state.pronoun(pron, exclude=actor)
+        return names[0] if names else ""
+    if lower in state.spelling:
+        return state.spelling[lower]
+    return value
+
+
+def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> list[SentenceGraph]:
+    """Resolve names and pronouns across a document's sentence graphs (in document order).
+
+    Args:
+        graphs: the per-sentence graphs, in document order.
+        offsets: document offset of each sentence, for exact spans of pronoun diagnostics
+            (without it, a diagnostic points at the sentence's first action).
+
+    Returns:
+        New graphs; character names canonical, "they" expanded into one node per character.
+    """
+    state = _State()
+    out: list[SentenceGraph] = []
+    for gi, graph in enumerate(graphs):
+        offset = offsets[gi] if offsets is not None and gi < len(offsets) else None
+        for o in graph.objects:
+            state.object_categories.setdefault(o.id, o.category)
+        diagnostics: list[Diagnostic] = list(graph.diagnostics)
+        sentence_names: list[str] = []
+        merged: dict[str, list[ActionNode]] = {}
+        mentions: dict[str, str] = {}
+        unresolved: list[CharacterNode] = []
+        for char in graph.characters:
+            first_span = char.actions[0].span if char.actions else Span(0, 0)
+            if char.name:
+                names = [state.mention(char.name)]
+            elif char.mention:
+                pron = _pronoun_of(char.mention)
+                names = state.pronoun(pron) if pron else []
+                if not names:
+                    diagnostics.append(diagnostic("W105", f"'{char.mention}'",
+                                                  *_astuple(_span_of(graph, char.mention, offset, first_span))))
+                    unresolved.append(char)
+                    continue
+                names = [state.mention(n) for n in names]
+            else:
+                names = [state.last_actor] if state.last_actor else []
+                if not names:
+                    diagnostics.append(diagnostic("W109", "say who does it, e.g. 'Eve walks to the door'",
+                                                  first_span.start, first_span.end))
+                    unresolved.append(char)
+                    continue
+            for name in names:
+                actions = [_resolve_action(a, state, name, graph) for a in char.actions]
+                merged.setdefault(name, []).extend(actions)
+                mentions.setdefault(name, char.mention or name)
+                if name not in sentence_names:
+                    sentence_names.append(name)
+                object_ids = {o.id for o in graph.objects}
+                for a in actions:
+                    for ref in (a.target, a.destination):
+                        if ref and ref not in object_ids and ref[0].isupper():
+                            ref = state.mention(ref, recent=False)
+                            if ref not in sentence_names:
+                                sentence_names.append(ref)
+        social: list[SocialNode] = []
+        for node in graph.social:
+            subjects: list[str] = []
+            for s in node.subjects:
+                pron = _pronoun_of(s)
+                resolved = state.pronoun(pron, exclude=subjects[0] if subjects and pron != "they" else "") \
+                    if pron else [state.mention(s) if s.lower() not in state.spelling else state.spelling[s.lower()]]
+                if not resolved:
+                    diagnostics.append(diagnostic("W105", f"'{s}'", node.span.start, node.span.end))
+                for r in resolved:
+                    if r not in subjects:
+                        subjects.append(r)
+            for r in subjects:
+                if r not in sentence_names:
+                    sentence_names.append(r)
+            social.append(msgspec.structs.replace(node, subjects=subjects))
+        named = [a.span for acts in merged.values() for a in acts if a.action]
+        diagnostics = [d for d in diagnostics if not (d.code == "W102" and any(
+            s.start <= d.span.start and d.span.end <= s.end for s in named))]
+        characters = [CharacterNode(name=n, actions=merged[n], mention=mentions[n]) for n in merged]
+        characters += [c for c in unresolved]
+        for c in characters:
+            if c.name and c.actions:
+                state.last_actor = c.name
+        if len(sentence_names) >= 2:
+            state.last_group = sentence_names
+        targets = [a.target or a.destination for c in characters for a in c.actions]
+        targets = [t for t in targets if t in state.object_categories]
+        if targets:
+            state.last_object = targets[-1]  # "it" in the next sentence: what was last acted upon
+        elif graph.objects:
+            state.last_object = graph.objects[-1].id
+        out.append(msgspec.structs.replace(graph, characters=characters, social=social, diagnostics=diagnostics))
+    return out
+
+
+def _astuple(span: Span) -> tuple[int, int]:
+    return span.start, span.end
+
+
+def _resolve_action(action: ActionNode, state: _State, actor: str, graph: SentenceGraph) -> ActionNode:
+    target = _resolve_ref(action.target, state, actor, graph, action.span.start)
+    destination = _resolve_ref(action.destination, state, actor, graph, action.span.start)
+    if target == action.target and destination == action.destination:
+        return action
+    name = action.action
+    if target != action.target and target in state.object_categories:
+        # "She plays it": the verb's action depends on what "it" turned out to be.
+        category = state.object_categories[target]
+        verb, _, particle = action.verb.partition(" ")
+        name = lexicon.action_for(verb, particle, (category, *lexicon.hypernyms(category))) or name
+    return msgspec.structs.replace(action, target=target, destination=destination, action=name)

@@ -1,0 +1,280 @@
+"""Scene sentences -> object nodes (category, attributes, count) and spatial relation nodes.
+
+Relations are read off the dependency tree in the shapes UD English uses:
+  "A laptop is on the desk"          desk <-nsubj- laptop, desk -case-> on, desk -cop-> is
+  "There is a desk near a window"    is -nsubj-> desk, is|desk -obl|nmod-> window -case-> near
+  "A chair is in front of the desk"  front -nsubj-> chair, front -case-> in, front -nmod-> desk -case-> of
+  "The lamp is hanging above ..."    hanging -nsubj-> lamp, hanging -obl-> table -case-> above
+  "Put a lamp on the desk"           put -obj-> lamp, put -obl-> desk -case-> on
+  "The sofa faces the TV"            faces -nsubj-> sofa, faces -obj-> TV
+"""
+
+from __future__ import annotations
+
+from spacy.tokens import Span as SpacySpan
+from spacy.tokens import Token
+
+from services.nlp import lexicon
+from services.nlp.builder import GraphBuilder
+from services.nlp.mentions import (
+    ObjectMention,
+    character_mention,
+    is_unknown_object_word,
+    object_mention,
+    quantity_target,
+)
+
+MULTIWORD_RELATIONS = {
+    "next to": "next_to", "close to": "near", "near to": "near", "close by": "near", "across from": "facing",
+    "opposite to": "facing", "opposite of": "facing", "in front of": "in_front_of", "on top of": "on",
+    "in back of": "behind", "left of": "left_of", "right of": "right_of", "on to": "on", "up against": "next_to",
+    "adjacent to": "next_to", "beside of": "next_to", "underneath of": "under", "inside of": "in",
+}
+PLACEMENT_VERBS = frozenset({"put", "place", "add", "set", "position", "hang", "lay", "move", "stand", "lean",
+                             "mount", "install", "keep", "store", "stack", "arrange"})
+ADJ_RELATION_HEADS = {"next": "next_to", "close": "near", "near": "near", "adjacent": "next_to", "opposite": "facing"}
+SUBJECT_DEPS = ("nsubj", "nsubj:pass")
+# Placement verbs in the present tense the tagger can take for a plural noun ("a whiteboard hangs").
+SCENE_VERB_FORMS = {"hangs": "hang", "stands": "stand", "lies": "lie", "sits": "sit", "rests": "rest",
+                    "leans": "lean", "faces": "face"}
+
+
+def _misread_verb(tok: Token) -> bool:
+    """A placement verb tagged as a noun, its subject glued on as a compound ("whiteboard hangs")."""
+    return tok.pos_ in ("NOUN", "PROPN") and tok.lower_ in SCENE_VERB_FORMS and any(
+        c.dep_ in ("compound", "amod") and c.i < tok.i and c.pos_ != "DET" for c in tok.children)
+
+
+def _verb_lemma(tok: Token) -> str:
+    return SCENE_VERB_FORMS.get(tok.lower_, tok.lemma_.lower()) if _misread_verb(tok) else tok.lemma_.lower()
+
+
+def _case_words(tok: Token) -> list[Token]:
+    out: list[Token] = []
+    for c in tok.children:
+        if c.dep_ == "case" and c.i < tok.i:
+            out.append(c)
+            out += [f for f in c.children if f.dep_ == "fixed"]
+    return sorted(out, key=lambda t: t.i)
+
+
+def _relation_noun(tok: Token, case: str) -> str | None:
+    lemma = tok.lemma_.lower()
+    rel = lexicon.RELATION_NOUNS.get(lemma)
+    if rel is None:
+        return None
+    if lemma == "top" and case not in ("on", "at", "atop"):
+        return None
+    return rel
+
+
+def relation_at(tok: Token) -> tuple[str, list[Token], Token, int] | None:
+    """If ``tok`` heads a spatial phrase: (relation, anchor nouns, attachment token, phrase start char)."""
+    cases = _case_words(tok)
+    case = " ".join(c.lower_ for c in cases)
+    start = cases[0].idx if cases else tok.idx
+    # "in front of the desk", "to the left of the sofa", "on top of the shelf"
+    rel = _relation_noun(tok, case)
+    if rel is not None and cases:
+        for child in tok.children:
+            if child.dep_ in ("nmod", "obl") and any(c.lower_ == "of" for c in _case_words(child)):
+                return rel, _with_conj(child), tok, start
+        # "of the bed" attached beside "right" instead of under it
+        for sib in tok.head.children:
+            if sib.i > tok.i and sib.dep_ in ("nmod", "obl") and any(c.lower_ == "of" for c in _case_words(sib)):
+                return rel, _with_conj(sib), tok, start
+        return None
+    # "next to the desk" (two case words) and other multiword prepositions
+    if case in MULTIWORD_RELATIONS:
+        return MULTIWORD_RELATIONS[case], _with_conj(tok), tok, start
+    if case == "between":
+        return "near", _with_conj(tok), tok, start
+    if len(cases) == 1 and case in lexicon.RELATION_PREPS:
+        # the preposition's head is "next"/"close" ("next to" parsed as ADV + obl)
+        head = tok.head
+        if case == "to" and head.lemma_.lower() in ADJ_RELATION_HEADS:
+            return ADJ_RELATION_HEADS[head.lemma_.lower()], _with_conj(tok), head, head.idx
+        return lexicon.RELATION_PREPS[case], _with_conj(tok), tok, start
+    if case == "to" and tok.head.lemma_.lower() in ADJ_RELATION_HEADS and tok.head.pos_ in ("ADJ", "ADV"):
+        head = tok.head
+        return ADJ_RELATION_HEADS[head.lemma_.lower()], _with_conj(tok), head, head.idx
+    return None
+
+
+def _with_conj(tok: Token) -> list[Token]:
+    out = [tok]
+    for c in tok.children:
+        if c.dep_ == "conj" and c.pos_ in ("NOUN", "PROPN", "X"):
+            out += _with_conj(c)
+    return out
+
+
+def _subjects_of(attach: Token) -> list[Token]:
+    """Nouns a spatial phrase attached at ``attach`` is said of."""
+    head = attach.head
+    dep = attach.dep_  # spaCy labels the root "ROOT"
+    if _misread_verb(head) and head.i != attach.i:
+        compounds = [c for c in head.children if c.dep_ in ("compound", "amod") and c.i < head.i]
+        return _expand_subject(compounds[-1])
+    if dep in ("nmod", "acl", "amod") and head.pos_ in ("NOUN", "PROPN", "X", "NUM") and head.i != attach.i:
+        if head.lemma_.lower() in lexicon.NON_OBJECT_NOUNS and object_mention(head) is None:
+            return _subjects_of(head)  # "on the floor near the bed": what is on the floor is near the bed
+        q = quantity_target(head)
+        return _with_conj(q[0] if q else head)
+    if dep == "ROOT" or any(c.dep_ == "cop" for c in attach.children) or (
+            dep == "conj" and not any(c.dep_ in SUBJECT_DEPS for c in attach.children)):
+        pred = attach
+        while True:
+            subj = [c for c in pred.children if c.dep_ in SUBJECT_DEPS]
+            if subj:
+                return _expand_subject(subj[0])
+            if pred.dep_ == "conj" and pred.head.i != pred.i:
+                pred = pred.head
+                continue
+            break
+        if dep == "ROOT":
+            return []
+    if dep in ("obl", "advmod", "obl:unmarked", "advcl", "xcomp") or head.pos_ in ("VERB", "AUX"):
+        verb = head if dep != "ROOT" else attach
+        while True:
+            if any(c.dep_ == "expl" for c in verb.children) or verb.lemma_.lower() == "be":
+                subj = [c for c in verb.children if c.dep_ in SUBJECT_DEPS]
+                if subj:
+                    return _expand_subject(subj[0])
+            obj = [c for c in verb.children if c.dep_ == "obj"]
+            if obj and (verb.lemma_.lower() in PLACEMENT_VERBS or not any(c.dep_ in SUBJECT_DEPS for c in verb.children)):
+                return _expand_subject(obj[0])
+            subj = [c for c in verb.children if c.dep_ in SUBJECT_DEPS]
+            if subj:
+                return _expand_subject(subj[0])
+            if verb.dep_ in ("conj", "xcomp", "advcl") and verb.head.i != verb.i:
+                verb = verb.head
+                continue
+            return []
+    return []
+
+
+def _expand_subject(tok: Token) -> list[Token]:
+    q = quantity_target(tok)
+    return _with_conj(q[0] if q else tok)
+
+
+def _mention(tok: Token, builder: GraphBuilder, report_unknown: bool) -> str | None:
+    q = quantity_target(tok)
+    if q is not None:
+        m = object_mention(q[0])
+        if m is not None:
+            m.count = max(m.count if m.count > 1 else 0, q[1])
+            m.start = tok.idx if tok.i < q[0].i else m.start
+            for c in tok.lefts:
+                if c.dep_ == "det":
+                    m.start = min(m.start, c.idx)
+        if m is None:
+            return None
+        return builder.object_id(m)
+    m = object_mention(tok)
+    if m is None:
+        if report_unknown and is_unknown_object_word(tok):
+            builder.diagnose("W101", f"'{tok.text}' is not in the object catalog", tok.idx, tok.idx + len(tok.text))
+        return None
+    return builder.object_id(m)
+
+
+def _room(tok: Token) -> str | None:
+    words = [c.lower_ for c in tok.lefts if c.dep_ in ("compound", "amod")] + [tok.lower_]
+    for k in range(len(words)):
+        room = lexicon.room_of(" ".join(words[k:]))
+        if room and object_mention(tok) is None:
+            return room
+    return None
+
+
+def extract_scene(sent: SpacySpan, builder: GraphBuilder) -> None:
+    """Add the objects, attributes, relations and room type a scene sentence states."""
+    # Objects, in text order, so that ids follow the order of first mention.
+    for tok in sent:
+        if tok.pos_ in ("NOUN", "PROPN", "X", "ADJ", "NUM") or tok.dep_ in ("nsubj", "obj", "obl", "nmod", "ROOT"):
+            glued_subject = tok.dep_ in ("compound", "amod") and _misread_verb(tok.head) and object_mention(tok)
+            if tok.dep_ in ("compound", "amod", "flat", "det") and tok.head.pos_ in ("NOUN", "PROPN") and not (
+                    glued_subject):
+                continue
+            if tok.pos_ in ("ADJ", "NUM") and tok.dep_ not in ("nsubj", "obj", "obl", "nmod", "ROOT", "conj") and not (
+                    glued_subject):
+                continue
+            room = _room(tok)
+            if room:
+                builder.room_type = builder.room_type or room
+                continue
+            if character_mention(tok) is not None and tok.pos_ in ("PROPN", "PRON"):
+                continue
+            if tok.dep_ in ("nsubj", "nsubj:pass", "obj", "obl", "nmod", "ROOT", "conj", "appos", "nmod:npmod"):
+                _mention(tok, builder, report_unknown=tok.pos_ in ("NOUN", "X") and not _misread_verb(tok))
+            else:
+                _mention(tok, builder, report_unknown=False)
+    # Predicative attributes: "The chair is red (and old)."
+    for tok in sent:
+        if tok.pos_ == "ADJ" and any(c.dep_ == "cop" for c in tok.children):
+            subjects = [c for c in tok.children if c.dep_ in SUBJECT_DEPS]
+            adjs = [tok] + [c for c in tok.children if c.dep_ == "conj" and c.pos_ == "ADJ"]
+            for s in (subjects[:1] and _expand_subject(subjects[0])):
+                oid = builder._by_token.get(s.i)
+                for a in adjs:
+                    hit = lexicon.attribute_of(a.lower_)
+                    if oid and hit:
+                        builder.set_attribute(oid, hit[0], hit[1])
+    # Relations.
+    for tok in sent:
+        found = relation_at(tok)
+        if found is None:
+            continue
+        relation, anchors, attach, start = found
+        subjects = _subjects_of(attach)
+        verb = attach.head if attach.dep_ in ("obl", "advmod") or _misread_verb(attach.head) else attach
+        if _verb_lemma(verb) == "hang" and relation == "above":
+            relation = "hanging_above"
+        for anchor in anchors:
+            anchor_room = _room(anchor)
+            if anchor_room:
+                builder.room_type = builder.room_type or anchor_room
+                continue
+            anchor_id = _mention(anchor, builder, report_unknown=False)
+            if anchor_id is None:
+                continue
+            for s in subjects:
+                sid = _mention(s, builder, report_unknown=False)
+                if sid is not None:
+                    end = anchor.idx + len(anchor.text)
+                    builder.add_relation(sid, relation, anchor_id, min(start, s.idx), end)
+    # Verbs that are relations: "The sofa faces the TV", "a chair facing the window".
+    for tok in sent:
+        rel = lexicon.RELATION_VERBS.get(tok.lemma_.lower())
+        if rel is None or tok.pos_ not in ("VERB", "AUX"):
+            continue
+        objs = [c for c in tok.children if c.dep_ == "obj"]
+        if not objs:
+            continue
+        if tok.dep_ in ("acl", "amod") and tok.head.pos_ in ("NOUN", "PROPN"):
+            subjects = _with_conj(tok.head)
+        else:
+            subj = [c for c in tok.children if c.dep_ in SUBJECT_DEPS]
+            subjects = _expand_subject(subj[0]) if subj else []
+        for anchor in _with_conj(objs[0]):
+            anchor_id = _mention(anchor, builder, report_unknown=False)
+            if anchor_id is None:
+                continue
+            for s in subjects:
+                sid = _mention(s, builder, report_unknown=False)
+                if sid is not None:
+                    builder.add_relation(sid, rel, anchor_id, min(tok.idx, s.idx), anchor.idx + len(anchor.text))
+
+
+def is_scene_like(sent: SpacySpan) -> bool:
+    """True for a sentence without "$" that still describes the scene ("There is a desk.")."""
+    root = sent.root
+    if any(c.dep_ == "expl" for c in root.children):
+        return True
+    subj = [c for c in root.children if c.dep_ in SUBJECT_DEPS]
+    if subj:
+        m: ObjectMention | None = object_mention(subj[0])
+        return m is not None and character_mention(subj[0]) is None
+    return False
