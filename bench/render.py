@@ -40,8 +40,10 @@ from services.render.demo import demo_scene, walk_motion  # noqa: E402
 
 
 def demo_motions(frames: int) -> list:
-    return [walk_motion("Eve", (-2.0, 1.5), (1.0, -0.5), frames, sentence_id="s1"),
-            walk_motion("Tom", (1.5, 1.8), (-0.5, 1.2), frames, expression="frown", sentence_id="s1")]
+    return [
+        walk_motion("Eve", (-2.0, 1.5), (1.0, -0.5), frames, sentence_id="s1"),
+        walk_motion("Tom", (1.5, 1.8), (-0.5, 1.2), frames, expression="frown", sentence_id="s1"),
+    ]
 
 
 def measure_fps(frames: int, width: int, height: int) -> float:
@@ -93,24 +95,49 @@ def time_chunked(frames: int, width: int, height: int, chunks: int = 2) -> tuple
                 raise RuntimeError(f"render workers did not start; see {tmp}")
             time.sleep(0.05)
         scene, motions = demo_scene(), demo_motions(frames)
-        warm = RenderRequest(header=Header(), scene=scene, motions=motions, start_frame=0, end_frame=1,
-                             width=width, height=height)
-        warm_jobs = [client.submit("render", msgspec.msgpack.encode(warm), deadline_s=300,
-                                   idempotency_key=f"warm-{i}") for i in range(n_workers)]
+        warm = RenderRequest(
+            header=Header(),
+            scene=scene,
+            motions=motions,
+            start_frame=0,
+            end_frame=1,
+            width=width,
+            height=height,
+        )
+        warm_jobs = [
+            client.submit("render", msgspec.msgpack.encode(warm), deadline_s=300, idempotency_key=f"warm-{i}")
+            for i in range(n_workers)
+        ]
         client.wait(warm_jobs, timeout=300)  # both workers have imported and built the scene once
 
         def run(parallel: bool, tag: str) -> float:
             t0 = time.perf_counter()
             jobs, videos = [], []
             for a, b in chunk_ranges(frames, chunks):
-                req = RenderRequest(header=Header(), scene=scene, motions=motions, start_frame=a, end_frame=b,
-                                    width=width, height=height, encoding="mp4")
-                jobs.append(client.submit("render", msgspec.msgpack.encode(req), deadline_s=600,
-                                          idempotency_key=f"{tag}-{a}"))
+                req = RenderRequest(
+                    header=Header(),
+                    scene=scene,
+                    motions=motions,
+                    start_frame=a,
+                    end_frame=b,
+                    width=width,
+                    height=height,
+                    encoding="mp4",
+                )
+                jobs.append(
+                    client.submit(
+                        "render", msgspec.msgpack.encode(req), deadline_s=600, idempotency_key=f"{tag}-{a}"
+                    )
+                )
                 if not parallel:
-                    videos.append(msgspec.msgpack.decode(client.result(jobs[-1], timeout=600), type=RenderReply).video)
+                    videos.append(
+                        msgspec.msgpack.decode(client.result(jobs[-1], timeout=600), type=RenderReply).video
+                    )
             if parallel:
-                videos = [msgspec.msgpack.decode(client.result(j, timeout=600), type=RenderReply).video for j in jobs]
+                videos = [
+                    msgspec.msgpack.decode(client.result(j, timeout=600), type=RenderReply).video
+                    for j in jobs
+                ]
             n = join_chunks(videos, io.BytesIO())
             if n != frames:
                 raise RuntimeError(f"joined video has {n} frames, expected {frames}")
@@ -130,8 +157,11 @@ def time_chunked(frames: int, width: int, height: int, chunks: int = 2) -> tuple
 
 
 def main(argv: list[str] | None = None) -> dict:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
-                                 formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
+    ap = argparse.ArgumentParser(
+        description=__doc__.split("\n\n")[0],
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        epilog=__doc__,
+    )
     ap.add_argument("--quick", action="store_true", help="fewer frames (finishes in under 30 s)")
     ap.add_argument("--json", metavar="PATH", help="write the results as JSON")
     ap.add_argument("--frames", type=int, default=0, help="frames to render (default 120, quick 10)")
@@ -141,9 +171,17 @@ def main(argv: list[str] | None = None) -> dict:
     frames = args.frames or (10 if args.quick else 120)
     fps = measure_fps(frames, args.width, args.height)
     t1, t2 = time_chunked(frames, args.width, args.height)
-    result = {"fps": round(fps, 2), "speedup_2_workers": round(t1 / t2, 2), "frames": frames, "width": args.width,
-              "height": args.height, "seconds_1_worker": round(t1, 2), "seconds_2_workers": round(t2, 2),
-              "cpu_count": os.cpu_count(), "load_average": [round(x, 2) for x in os.getloadavg()]}
+    result = {
+        "fps": round(fps, 2),
+        "speedup_2_workers": round(t1 / t2, 2),
+        "frames": frames,
+        "width": args.width,
+        "height": args.height,
+        "seconds_1_worker": round(t1, 2),
+        "seconds_2_workers": round(t2, 2),
+        "cpu_count": os.cpu_count(),
+        "load_average": [round(x, 2) for x in os.getloadavg()],
+    }
     print(f"{'metric':<22}{'value':>10}")
     print(f"{'fps (1 worker)':<22}{result['fps']:>10}")
     print(f"{'speedup_2_workers':<22}{result['speedup_2_workers']:>10}")

@@ -20,5 +20,7 @@ def from_wire(wire: NDArray) -> np.ndarray:
     dtype = np.dtype(wire.dtype)
     expected = int(np.prod(wire.shape, dtype=np.int64)) * dtype.itemsize
     if len(wire.data) != expected:
-        raise ValueError(f"NDArray of shape {wire.shape} {wire.dtype} needs {expected} bytes, got {len(wire.data)}")
+        raise ValueError(
+            f"NDArray of shape {wire.shape} {wire.dtype} needs {expected} bytes, got {len(wire.data)}"
+        )
     return np.frombuffer(wire.data, dtype=dtype).reshape(wire.shape).copy()

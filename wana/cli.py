@@ -74,8 +74,9 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("-v", "--verbose", action="count", default=0, help="more logging (-vv for debug)")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
 
-    p = sub.add_parser("animate", help="text file -> animation.mp4, scene.glb, <character>.bvh, report.json",
-                       add_help=False)
+    p = sub.add_parser(
+        "animate", help="text file -> animation.mp4, scene.glb, <character>.bvh, report.json", add_help=False
+    )
     p.add_argument("rest", nargs=argparse.REMAINDER)
     p = sub.add_parser("serve", help="the web editor and its gateway on 127.0.0.1", add_help=False)
     p.add_argument("rest", nargs=argparse.REMAINDER)
@@ -86,15 +87,26 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("motion", help="manage the action library (import BVH clips)", add_help=False)
     p.add_argument("rest", nargs=argparse.REMAINDER)
 
-    p = sub.add_parser("broker", help="run a message broker (scale-out)",
-                       description="Run the message broker that routes requests to workers by service name.")
-    p.add_argument("--bind", action="append", required=True, metavar="URL",
-                   help="endpoint to bind, e.g. tcp://0.0.0.0:5555 or ipc:///tmp/wana.sock (repeatable)")
+    p = sub.add_parser(
+        "broker",
+        help="run a message broker (scale-out)",
+        description="Run the message broker that routes requests to workers by service name.",
+    )
+    p.add_argument(
+        "--bind",
+        action="append",
+        required=True,
+        metavar="URL",
+        help="endpoint to bind, e.g. tcp://0.0.0.0:5555 or ipc:///tmp/wana.sock (repeatable)",
+    )
     p.add_argument("--queue-limit", type=int, default=256, help="pending requests per service before 'busy'")
     p.set_defaults(func=_cmd_broker)
 
-    p = sub.add_parser("worker", help="run one worker of a service, connected to a broker",
-                       description="Run one worker that serves SERVICE for the broker at --connect.")
+    p = sub.add_parser(
+        "worker",
+        help="run one worker of a service, connected to a broker",
+        description="Run one worker that serves SERVICE for the broker at --connect.",
+    )
     p.add_argument("service", choices=SERVICES, help="which service this worker serves")
     p.add_argument("--connect", required=True, metavar="URL", help="broker endpoint, e.g. tcp://HOST:5555")
     p.set_defaults(func=_cmd_worker)

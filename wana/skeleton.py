@@ -45,8 +45,9 @@ REST_OFFSETS: np.ndarray = np.array([o for _, _, o in _JOINTS], dtype=np.float64
 N_JOINTS = len(JOINT_NAMES)
 
 # The upper body, driven by actions when blending (DESIGN §2 Motion): everything above the hips.
-UPPER_BODY: tuple[str, ...] = tuple(n for n in JOINT_NAMES if n not in ("Hips",) and "Leg" not in n
-                                    and "Foot" not in n and "Toe" not in n)
+UPPER_BODY: tuple[str, ...] = tuple(
+    n for n in JOINT_NAMES if n not in ("Hips",) and "Leg" not in n and "Foot" not in n and "Toe" not in n
+)
 LOWER_BODY: tuple[str, ...] = tuple(n for n in JOINT_NAMES if n not in UPPER_BODY)
 
 

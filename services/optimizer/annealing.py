@@ -119,7 +119,9 @@ class LayoutModel:
             except KeyError:  # not in the catalog (geometry given as arrays): treat it as a point
                 return np.array([o.position, o.position], dtype=float)
 
-        self.extent = np.stack([bounds(o) for o in scene.objects]) - pos0[:, None, :] if ids else np.zeros((0, 2, 3))
+        self.extent = (
+            np.stack([bounds(o) for o in scene.objects]) - pos0[:, None, :] if ids else np.zeros((0, 2, 3))
+        )
         self.extent = self.extent / self.base.scale[0][:, None, :]
         half_w, half_d = scene.room.width / 2 + 1e-3, scene.room.depth / 2 + 1e-3
         self.room_min = np.array([-half_w, -half_d])
@@ -139,14 +141,20 @@ class LayoutModel:
         """(K,) True where no two objects' bounds intersect that did not already (an object and its support
         may touch)."""
         lo, hi = self._bounds(layout)
-        inter = np.all((lo[:, :, None] < hi[:, None, :] - 1e-3) & (lo[:, None, :] < hi[:, :, None] - 1e-3), axis=-1)
+        inter = np.all(
+            (lo[:, :, None] < hi[:, None, :] - 1e-3) & (lo[:, None, :] < hi[:, :, None] - 1e-3), axis=-1
+        )
         if not hasattr(self, "_allowed"):
             blo, bhi = self._bounds(self.base)
-            base = np.all((blo[:, :, None] < bhi[:, None, :] - 1e-3) & (blo[:, None, :] < bhi[:, :, None] - 1e-3),
-                          axis=-1)[0]
+            base = np.all(
+                (blo[:, :, None] < bhi[:, None, :] - 1e-3) & (blo[:, None, :] < bhi[:, :, None] - 1e-3),
+                axis=-1,
+            )[0]
             n = len(self.parent)
             allowed = base | np.eye(n, dtype=bool)
-            for i, p in enumerate(self.parent):  # an object rests on its support, and on its support's support
+            for i, p in enumerate(
+                self.parent
+            ):  # an object rests on its support, and on its support's support
                 while p >= 0:
                     allowed[i, p] = allowed[p, i] = True
                     p = self.parent[p]
@@ -373,7 +381,9 @@ def optimise_interaction(
                 if fast is not None and shifts_fn is not None
                 else scorer.score(layouts, motions)  # type: ignore[arg-type]
             )
-            costs = np.where(ok & model.inside_room(layouts) & model.no_new_overlaps(layouts), sc.cost, np.inf)
+            costs = np.where(
+                ok & model.inside_room(layouts) & model.no_new_overlaps(layouts), sc.cost, np.inf
+            )
             k = int(np.argmin(costs))
             u = rng.random()
             steps_run = step + 1

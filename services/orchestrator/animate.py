@@ -33,8 +33,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--seed", type=int, default=0, help="seed for every random choice (default 0)")
     p.add_argument("--width", type=int, default=640, help="video width in pixels (default 640)")
     p.add_argument("--height", type=int, default=480, help="video height in pixels (default 480)")
-    p.add_argument("--in-process", action="store_true",
-                   help="call the services' handlers directly instead of through the embedded bus")
+    p.add_argument(
+        "--in-process",
+        action="store_true",
+        help="call the services' handlers directly instead of through the embedded bus",
+    )
     p.add_argument("--no-progress", action="store_true", help="no progress bars")
     return p
 
@@ -87,13 +90,21 @@ def summary(result: PipelineResult) -> dict[str, Any]:
     return {
         "doc_version": result.version,
         "sentences": [
-            {"id": s.id, "start": s.start, "end": s.end, "text": s.text, "kind": s.kind,
-             "ssg": to_builtins(result.graphs.get(s.id)),
-             "diagnostics": to_builtins(result.diagnostics.get(s.id, []))}
+            {
+                "id": s.id,
+                "start": s.start,
+                "end": s.end,
+                "text": s.text,
+                "kind": s.kind,
+                "ssg": to_builtins(result.graphs.get(s.id)),
+                "diagnostics": to_builtins(result.diagnostics.get(s.id, [])),
+            }
             for s in result.sentences
         ],
         "scene": to_builtins(result.scene) if result.scene is not None else None,
-        "retrieval": _without_header(to_builtins(result.scene_report)) if result.scene_report is not None else None,
+        "retrieval": _without_header(to_builtins(result.scene_report))
+        if result.scene_report is not None
+        else None,
         "optimisation": [_without_header(to_builtins(o)) for o in result.optimisations],
         "characters": sorted(result.motions),
         "unavailable": result.unavailable,
@@ -128,8 +139,17 @@ def main(argv: list[str]) -> int:
         except ImportError as exc:
             result.unavailable["render"] = f"the render stage is not available yet: {exc}"
         else:
-            paths = write_outputs(out, result.scene, result.motions, result.commands, result.sentences, report,
-                                  width=args.width, height=args.height, progress=not args.no_progress)
+            paths = write_outputs(
+                out,
+                result.scene,
+                result.motions,
+                result.commands,
+                result.sentences,
+                report,
+                width=args.width,
+                height=args.height,
+                progress=not args.no_progress,
+            )
     for sid, diags in result.diagnostics.items():
         for d in diags:
             if d.code != "E011":
@@ -137,8 +157,10 @@ def main(argv: list[str]) -> int:
     if result.unavailable:
         for why in result.unavailable.values():
             print(f"wana animate: {why}", file=sys.stderr)
-        print(f"wana animate: wrote only {out / 'report.json'}; the animation needs the stages above",
-              file=sys.stderr)
+        print(
+            f"wana animate: wrote only {out / 'report.json'}; the animation needs the stages above",
+            file=sys.stderr,
+        )
         return 3
     for name in sorted(paths):
         print(f"wrote {paths[name]}")

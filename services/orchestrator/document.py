@@ -109,7 +109,9 @@ class Document:
         prev_end = -1
         for c in ordered:
             if not (0 <= c.start <= c.end <= len(self.text)):
-                raise BadEdit(f"range [{c.start}, {c.end}) is outside the document of {len(self.text)} characters")
+                raise BadEdit(
+                    f"range [{c.start}, {c.end}) is outside the document of {len(self.text)} characters"
+                )
             if c.start < prev_end:
                 raise BadEdit(f"ranges overlap at offset {c.start}")
             prev_end = c.end
@@ -152,25 +154,25 @@ class Document:
         # First keep the ids of sentences whose text is unchanged; then the remaining old sentences hand
         # their ids, in order, to the remaining new ones (an edit inside a sentence keeps its id).
         slots: list[str | None] = []
-        for s, e in fresh_spans:
-            reuse = by_text.get(normalise(self.text[s:e]))
+        for start, end in fresh_spans:
+            reuse = by_text.get(normalise(self.text[start:end]))
             slots.append(reuse.pop(0).id if reuse else None)
         kept = {sid for sid in slots if sid is not None}
         spare = [s.id for s in old_region if s.id not in kept]
         fresh: list[Sentence] = []
         changed: list[str] = []
-        for (s, e), sid in zip(fresh_spans, slots, strict=True):
+        for (start, end), sid in zip(fresh_spans, slots, strict=True):
             if sid is None:
                 if spare:
                     sid = spare.pop(0)
-                    fresh.append(Sentence(sid, s, e, self.text[s:e]))
+                    fresh.append(Sentence(sid, start, end, self.text[start:end]))
                 else:
-                    sent = self._new_sentence(s, e)
+                    sent = self._new_sentence(start, end)
                     sid = sent.id
                     fresh.append(sent)
                 changed.append(sid)
             else:
-                fresh.append(Sentence(sid, s, e, self.text[s:e]))
+                fresh.append(Sentence(sid, start, end, self.text[start:end]))
         after = [Sentence(s.id, s.start + delta, s.end + delta, s.text) for s in self.sentences[last:]]
         self.sentences = self.sentences[:first] + fresh + after
         return changed

@@ -11,10 +11,15 @@ import logging
 import threading
 import uuid
 from types import TracebackType
+from typing import TYPE_CHECKING
 
 import zmq
 
 from services.orchestrator.backend import BusBackend
+
+if TYPE_CHECKING:
+    from wana.bus.broker import Broker
+    from wana.bus.client import Client
 
 log = logging.getLogger(__name__)
 
@@ -28,14 +33,14 @@ class Embedded:
         self.services = services
         self.deadline_s = deadline_s
         self.url = f"inproc://wana-{uuid.uuid4().hex[:8]}"
-        self.context = zmq.Context.instance()
+        self.context: zmq.Context = zmq.Context.instance()
         self.stop = threading.Event()
         self.threads: list[threading.Thread] = []
         self.available: list[str] = []
         self.missing: dict[str, str] = {}
-        self._broker = None
+        self._broker: Broker | None = None
         self._workers: list[object] = []
-        self._client = None
+        self._client: Client | None = None
 
     def __enter__(self) -> BusBackend:
         from wana.bus.broker import Broker
@@ -52,7 +57,9 @@ class Embedded:
                 self.missing[service] = str(exc)
                 continue
             worker = Worker(service, make_frame_handler(contract), self.url, context=self.context)
-            t = threading.Thread(target=worker.run, kwargs={"stop": self.stop}, name=f"wana-{service}", daemon=True)
+            t = threading.Thread(
+                target=worker.run, kwargs={"stop": self.stop}, name=f"wana-{service}", daemon=True
+            )
             t.start()
             self._workers.append(worker)
             self.threads.append(t)

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from functools import partial
 from typing import Any
 
 import msgspec
@@ -21,7 +22,7 @@ import msgspec
 from proto.common import Header, Span
 from proto.motion_data import Motion
 from proto.scene import Room, Scene
-from proto.ssg import ActionNode, CharacterNode, Command, Diagnostic, SentenceGraph
+from proto.ssg import ActionNode, CharacterNode, Command, Diagnostic, ObjectNode, RelationNode, SentenceGraph
 from services.orchestrator.backend import Backend, StageFailed, StageUnavailable
 from services.orchestrator.document import Document
 from services.orchestrator.queries import QueryEngine, content_hash
@@ -70,8 +71,9 @@ def _shift(span: Span, by: int) -> Span:
 
 
 def _stage_diag(stage: str, why: str, span: Span) -> Diagnostic:
-    return Diagnostic(code="E011", message=f"the {stage} stage is not available yet: {why}", span=span,
-                      severity="info")
+    return Diagnostic(
+        code="E011", message=f"the {stage} stage is not available yet: {why}", span=span, severity="info"
+    )
 
 
 class Pipeline:
@@ -88,54 +90,94 @@ class Pipeline:
         ParseRequest, ParseReply = _messages("nlp", "nlp", "ParseRequest", "ParseReply")
 
         reply = self.backend.call(
-            "nlp", ParseRequest(header=self._header(version), sentence_id=sid, text=text, offset=0), ParseReply
+            "nlp",
+            ParseRequest(header=self._header(version), sentence_id=sid, text=text, offset=0),
+            ParseReply,
         )
         return reply.graph  # type: ignore[no-any-return]
 
     def _resolve(self, graphs: list[SentenceGraph], version: int) -> list[SentenceGraph]:
         ResolveRequest, ResolveReply = _messages("nlp", "nlp", "ResolveRequest", "ResolveReply")
 
-        reply = self.backend.call("nlp", ResolveRequest(header=self._header(version), graphs=graphs), ResolveReply)
+        reply = self.backend.call(
+            "nlp", ResolveRequest(header=self._header(version), graphs=graphs), ResolveReply
+        )
         return list(reply.graphs)
 
     def _compose(self, part: dict[str, Any], version: int) -> tuple[Scene, Any]:
         if not part["objects"]:  # nothing to retrieve: an empty room for the characters
-            return Scene(room=Room(room_type=part["room_type"] or "room", width=5.0, depth=5.0, height=2.8),
-                         seed=self.seed), None
+            return Scene(
+                room=Room(room_type=part["room_type"] or "room", width=5.0, depth=5.0, height=2.8),
+                seed=self.seed,
+            ), None
         ComposeRequest, ComposeReply = _messages("retrieval", "retrieval", "ComposeRequest", "ComposeReply")
 
         reply = self.backend.call(
             "retrieval",
-            ComposeRequest(header=self._header(version), objects=part["objects"], relations=part["relations"],
-                           room_type=part["room_type"], seed=self.seed),
+            ComposeRequest(
+                header=self._header(version),
+                objects=part["objects"],
+                relations=part["relations"],
+                room_type=part["room_type"],
+                seed=self.seed,
+            ),
             ComposeReply,
         )
         return reply.scene, reply
 
-    def _synthesise(self, character: CharacterNode, scene: Scene, start: tuple[float, float, float],
-                    version: int, start_state: Any = None, others: dict[str, tuple[float, float]] | None = None) -> Any:
-        SynthesizeRequest, SynthesizeReply = _messages("motion", "motion", "SynthesizeRequest", "SynthesizeReply")
+    def _synthesise(
+        self,
+        character: CharacterNode,
+        scene: Scene,
+        start: tuple[float, float, float],
+        version: int,
+        start_state: Any = None,
+        others: dict[str, tuple[float, float]] | None = None,
+    ) -> Any:
+        SynthesizeRequest, SynthesizeReply = _messages(
+            "motion", "motion", "SynthesizeRequest", "SynthesizeReply"
+        )
         return self.backend.call(
             "motion",
-            SynthesizeRequest(header=self._header(version), character=character, scene=scene, start=start,
-                              start_state=start_state, others=others or {}),
+            SynthesizeRequest(
+                header=self._header(version),
+                character=character,
+                scene=scene,
+                start=start,
+                start_state=start_state,
+                others=others or {},
+            ),
             SynthesizeReply,
         )
 
-    def _optimise(self, scene: Scene, motion: Motion, character: str, action: ActionNode, version: int) -> Any:
+    def _optimise(
+        self, scene: Scene, motion: Motion, character: str, action: ActionNode, version: int
+    ) -> Any:
         OptimiseRequest, OptimiseReply, Interaction, OptimiseSettings = _messages(
-            "optimizer", "optimizer", "OptimiseRequest", "OptimiseReply", "Interaction", "OptimiseSettings")
+            "optimizer", "optimizer", "OptimiseRequest", "OptimiseReply", "Interaction", "OptimiseSettings"
+        )
         targets = [t for t in (action.target, action.instrument) if t]
         return self.backend.call(
             "optimizer",
-            OptimiseRequest(header=self._header(version), scene=scene, motion=motion,
-                            interaction=Interaction(character=character, action=action.action, targets=targets),
-                            settings=OptimiseSettings(seed=self.seed)),
+            OptimiseRequest(
+                header=self._header(version),
+                scene=scene,
+                motion=motion,
+                interaction=Interaction(character=character, action=action.action, targets=targets),
+                settings=OptimiseSettings(seed=self.seed),
+            ),
             OptimiseReply,
         )
 
-    def _motion_stage(self, result: PipelineResult, resolved: list[SentenceGraph], sentences: list[Any],
-                      engine: QueryEngine, version: int, tick: Callable[[str, int, int], None]) -> None:
+    def _motion_stage(
+        self,
+        result: PipelineResult,
+        resolved: list[SentenceGraph],
+        sentences: list[Any],
+        engine: QueryEngine,
+        version: int,
+        tick: Callable[[str, int, int], None],
+    ) -> None:
         """Drafts on the composed layout, the layout optimised around each interaction, then the final motion."""
         assert result.scene is not None
         characters = _characters(resolved, sentences)
@@ -143,8 +185,12 @@ class Pipeline:
         scene = result.scene
         ids = {o.id for o in scene.objects}
         # Interactions: actions that touch an object of the scene; the layout is optimised around each.
-        interactions = [(name, k, a) for name, (node, _) in characters.items()
-                        for k, a in enumerate(node.actions) if a.action and (a.target in ids or a.instrument in ids)]
+        interactions = [
+            (name, k, a)
+            for name, (node, _) in characters.items()
+            for k, a in enumerate(node.actions)
+            if a.action and (a.target in ids or a.instrument in ids)
+        ]
         done, total = 0, len(interactions) + len(characters)
         last = {name: max([k for n, k, _ in interactions if n == name], default=-1) for name in characters}
         drafts = self._segments("draft", characters, sentences, scene, starts, engine, version, upto=last)
@@ -153,12 +199,19 @@ class Pipeline:
             draft = drafts[name][k]
             try:
                 reply = engine.query(
-                    f"optimise:{name}:{k}", [scene, draft, action],
-                    lambda sc=scene, m=draft, n=name, a=action: self._optimise(sc, m, n, a, version))
+                    f"optimise:{name}:{k}",
+                    [scene, draft, action],
+                    partial(self._optimise, scene, draft, name, action, version),
+                )
             except StageFailed as exc:
-                result.diagnostics.setdefault(characters[name][1][k], []).append(Diagnostic(
-                    code="W301", message=f"the layout around this action could not be optimised: {exc}",
-                    span=Span(0, 0), severity="warning"))
+                result.diagnostics.setdefault(characters[name][1][k], []).append(
+                    Diagnostic(
+                        code="W301",
+                        message=f"the layout around this action could not be optimised: {exc}",
+                        span=Span(0, 0),
+                        severity="warning",
+                    )
+                )
                 continue
             scene = reply.scene
             result.optimisations.append(reply)
@@ -168,9 +221,13 @@ class Pipeline:
         pieces = self._segments("segment", characters, sentences, scene, starts, engine, version)
         tick("motion", total, total)
         # Story timing: sentence order sets when actions start; gaps hold the pose.
-        beats = [Beat(sid, name, k, _frames(pieces[name][k]))
-                 for s in sentences for name, (node, sids) in characters.items()
-                 for k, sid in enumerate(sids) if sid == s.id]
+        beats = [
+            Beat(sid, name, k, _frames(pieces[name][k]))
+            for s in sentences
+            for name, (node, sids) in characters.items()
+            for k, sid in enumerate(sids)
+            if sid == s.id
+        ]
         waits = {sid: c.seconds for sid, c in result.commands if c.kind == "wait"}
         start_frames = schedule(beats, waits, [s.id for s in sentences])
         length = max([start_frames[(b.character, b.k)] + b.frames for b in beats] or [1])
@@ -178,9 +235,17 @@ class Pipeline:
             firsts = [start_frames[(name, k)] for k in range(len(node.actions))] or [0]
             result.motions[name] = assemble(name, pieces[name], firsts, total=length)
 
-    def _segments(self, kind: str, characters: dict[str, tuple[CharacterNode, list[str]]], sentences: list[Any],
-                  scene: Scene, starts: dict[str, tuple[float, float, float]], engine: QueryEngine, version: int,
-                  upto: dict[str, int] | None = None) -> dict[str, list[Motion]]:
+    def _segments(
+        self,
+        kind: str,
+        characters: dict[str, tuple[CharacterNode, list[str]]],
+        sentences: list[Any],
+        scene: Scene,
+        starts: dict[str, tuple[float, float, float]],
+        engine: QueryEngine,
+        version: int,
+        upto: dict[str, int] | None = None,
+    ) -> dict[str, list[Motion]]:
         """Every character's motion, one query node `<kind>:<name>:<k>` per action, in document order.
 
         Action k starts from the end state of action k-1 and sees only what it can touch: the objects on the
@@ -188,12 +253,17 @@ class Pipeline:
         names stands by then. So an edit that leaves an end state unchanged stops there (early cutoff), and
         moving a lamp on a desk re-runs only the actions that use the lamp.
         """
-        SegmentEndState, = _messages("motion", "motion", "SegmentEndState")
+        (SegmentEndState,) = _messages("motion", "motion", "SegmentEndState")
         states = {name: SegmentEndState(x=st[0], z=st[1], yaw=st[2]) for name, st in starts.items()}
         pieces: dict[str, list[Motion]] = {name: [] for name in characters}
         object_ids = {o.id for o in scene.objects}
-        order = [(name, k) for s in sentences for name, (_, sids) in characters.items()
-                 for k, sid in enumerate(sids) if sid == s.id]
+        order = [
+            (name, k)
+            for s in sentences
+            for name, (_, sids) in characters.items()
+            for k, sid in enumerate(sids)
+            if sid == s.id
+        ]
         for name, k in order:
             if upto is not None and k > upto.get(name, -1):
                 continue
@@ -204,20 +274,27 @@ class Pipeline:
             others = _others(action, name, states, object_ids)
             state = states[name]
             reply = engine.query(
-                f"{kind}:{name}:{k}", [single, view, state, others],
-                lambda c=single, v=view, st=state, o=others: self._synthesise(c, v, (st.x, st.z, st.yaw), version,
-                                                                            st, o))
-            segments = [msgspec.structs.replace(seg, action_index=k, sentence_id=sids[k])
-                        for seg in reply.motion.segments]
+                f"{kind}:{name}:{k}",
+                [single, view, state, others],
+                partial(
+                    self._synthesise, single, view, (state.x, state.z, state.yaw), version, state, others
+                ),
+            )
+            segments = [
+                msgspec.structs.replace(seg, action_index=k, sentence_id=sids[k])
+                for seg in reply.motion.segments
+            ]
             pieces[name].append(msgspec.structs.replace(reply.motion, segments=segments))
             states[name] = reply.end_states[-1] if reply.end_states else state
         for name, (node, _) in characters.items():
             if not node.actions and upto is None:
                 view = _scene_view(scene, None)
                 st = starts[name]
-                idle = engine.query(f"{kind}:{name}:idle", [name, view, st],
-                                    lambda n=name, v=view, st=st: self._synthesise(CharacterNode(name=n), v, st,
-                                                                                   version))
+                idle = engine.query(
+                    f"{kind}:{name}:idle",
+                    [name, view, st],
+                    partial(self._synthesise, CharacterNode(name=name), view, st, version),
+                )
                 pieces[name] = [idle.motion]
         return pieces
 
@@ -242,12 +319,22 @@ class Pipeline:
                 tick("parse", i, len(sentences))
                 try:
                     parsed[s.id] = engine.query(
-                        f"parse:{s.id}", s.key_text, lambda s=s: self._parse(s.id, s.key_text, doc.version)
+                        f"parse:{s.id}", s.key_text, partial(self._parse, s.id, s.key_text, doc.version)
                     )
                 except StageFailed as exc:  # not memoised: the next compute tries again
-                    parsed[s.id] = SentenceGraph(sentence_id=s.id, text=s.key_text, kind="empty", diagnostics=[
-                        Diagnostic(code=exc.code, message=f"this sentence could not be parsed: {exc}",
-                                   span=Span(0, len(s.key_text)), severity="error")])
+                    parsed[s.id] = SentenceGraph(
+                        sentence_id=s.id,
+                        text=s.key_text,
+                        kind="empty",
+                        diagnostics=[
+                            Diagnostic(
+                                code=exc.code,
+                                message=f"this sentence could not be parsed: {exc}",
+                                span=Span(0, len(s.key_text)),
+                                severity="error",
+                            )
+                        ],
+                    )
             tick("parse", len(sentences), len(sentences))
             ordered = [parsed[s.id] for s in sentences]
             try:
@@ -268,7 +355,8 @@ class Pipeline:
             result.graphs[s.id] = g
             result.sentences.append(SentenceView(s.id, s.start, s.end, s.text, g.kind))
             result.diagnostics[s.id] = [
-                msgspec.structs.replace(d, span=_shift(_map_span(d.span, s.text), s.start)) for d in g.diagnostics
+                msgspec.structs.replace(d, span=_shift(_map_span(d.span, s.text), s.start))
+                for d in g.diagnostics
             ]
             result.commands.extend((s.id, c) for c in g.commands)
 
@@ -324,7 +412,9 @@ def _map_span(span: Span, original: str) -> Span:
 
 def _scene_part(graphs: list[SentenceGraph]) -> dict[str, Any]:
     """Everything the scene depends on: objects, relations and the room kind of the scene sentences."""
-    objects, relations, room_type = [], [], ""
+    objects: list[ObjectNode] = []
+    relations: list[RelationNode] = []
+    room_type = ""
     for g in graphs:
         if g.kind != "scene":
             continue
@@ -334,7 +424,9 @@ def _scene_part(graphs: list[SentenceGraph]) -> dict[str, Any]:
     return {"objects": objects, "relations": relations, "room_type": room_type}
 
 
-def _characters(graphs: list[SentenceGraph], sentences: list[Any]) -> dict[str, tuple[CharacterNode, list[str]]]:
+def _characters(
+    graphs: list[SentenceGraph], sentences: list[Any]
+) -> dict[str, tuple[CharacterNode, list[str]]]:
     """Each character's actions over the document in order, with the sentence id of each action."""
     out: dict[str, tuple[list[ActionNode], list[str]]] = {}
     for g, s in zip(graphs, sentences, strict=True):
@@ -367,8 +459,13 @@ def _scene_view(scene: Scene, action: ActionNode | None) -> Scene:
         if not name:
             continue
         # An action names an object by id ("chair", "chair/2") or, failing that, by category.
-        refs = [name] if name in by_id else [o.id for o in scene.objects
-                                             if o.category == name or o.id.split("/")[0].split("#")[0] == name]
+        refs = (
+            [name]
+            if name in by_id
+            else [
+                o.id for o in scene.objects if o.category == name or o.id.split("/")[0].split("#")[0] == name
+            ]
+        )
         for ref in refs:
             while ref and ref in by_id and ref not in wanted:
                 wanted.add(ref)
@@ -376,7 +473,9 @@ def _scene_view(scene: Scene, action: ActionNode | None) -> Scene:
     return msgspec.structs.replace(scene, objects=[o for o in scene.objects if o.id in wanted])
 
 
-def _others(action: ActionNode, name: str, states: dict[str, Any], object_ids: set[str]) -> dict[str, tuple[float, float]]:
+def _others(
+    action: ActionNode, name: str, states: dict[str, Any], object_ids: set[str]
+) -> dict[str, tuple[float, float]]:
     """Where the characters an action is aimed at stand (by the time it starts); {} when it names none.
 
     An action aimed at something that is neither an object nor a known character ("shakes hands") gets

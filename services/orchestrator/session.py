@@ -56,7 +56,9 @@ class Session:
                 raise
             return EditAck(self.doc_id, self.doc.version, changed)
 
-    def compute(self, *, stages: tuple[str, ...] | None = None, progress: Progress | None = None) -> PipelineResult:
+    def compute(
+        self, *, stages: tuple[str, ...] | None = None, progress: Progress | None = None
+    ) -> PipelineResult:
         """Bring every derived value up to date for the current version.
 
         Runs on a snapshot of the document, so edits are acknowledged while a compute is running; the

@@ -6,6 +6,7 @@ On open, the document is rebuilt from the latest snapshot plus the edits after i
 
 from __future__ import annotations
 
+import builtins
 import json
 import sqlite3
 import threading
@@ -74,7 +75,9 @@ class SessionStore:
             ).fetchall()
         return [dict(zip(("doc_id", "title", "version", "created", "updated"), r, strict=True)) for r in rows]
 
-    def append_edit(self, doc_id: str, version: int, changes: list[TextChange], text_after: str) -> None:
+    def append_edit(
+        self, doc_id: str, version: int, changes: builtins.list[TextChange], text_after: str
+    ) -> None:
         """Record the edit that produced `version`; commits before returning (the acknowledgement)."""
         payload = json.dumps([{"start": c.start, "end": c.end, "text": c.text} for c in changes])
         now = time.time()

@@ -29,8 +29,9 @@ class Beat:
     frames: int  # length of its motion
 
 
-def schedule(beats: list[Beat], waits: dict[str, float] | None = None,
-             order: list[str] | None = None) -> dict[tuple[str, int], int]:
+def schedule(
+    beats: list[Beat], waits: dict[str, float] | None = None, order: list[str] | None = None
+) -> dict[tuple[str, int], int]:
     """Start frame of every (character, k).
 
     Args:
@@ -77,12 +78,18 @@ def assemble(name: str, pieces: list[Motion], starts: list[int], total: int | No
         starts: start frame of each piece (non-decreasing, each at or after the previous piece's end).
         total: pad the end (holding the last pose) to this many frames.
     """
-    roots, rots, contacts, segments = [], [], [], []
+    roots: list[np.ndarray] = []  # (n_i, 3) float root positions per piece or hold
+    rots: list[np.ndarray] = []  # (n_i, J, 4) float joint rotations
+    contacts: list[np.ndarray] = []  # (n_i, 2) uint8 foot contacts
+    segments: list[Segment] = []
     frame = 0
     for piece, start in zip(pieces, starts, strict=True):
         root, rot = from_wire(piece.root_position), from_wire(piece.rotations)
-        foot = (from_wire(piece.foot_contact) if piece.foot_contact is not None
-                else np.ones((len(root), 2), np.uint8))
+        foot = (
+            from_wire(piece.foot_contact)
+            if piece.foot_contact is not None
+            else np.ones((len(root), 2), np.uint8)
+        )
         gap = start - frame
         if gap > 0:
             hold_root, hold_rot = (roots[-1][-1], rots[-1][-1]) if roots else (root[0], rot[0])
@@ -92,8 +99,14 @@ def assemble(name: str, pieces: list[Motion], starts: list[int], total: int | No
             segments.append(Segment(index=len(segments), action="hold", start_frame=frame, end_frame=start))
             frame = start
         for seg in piece.segments:
-            segments.append(msgspec.structs.replace(seg, index=len(segments), start_frame=seg.start_frame + frame,
-                                                    end_frame=seg.end_frame + frame))
+            segments.append(
+                msgspec.structs.replace(
+                    seg,
+                    index=len(segments),
+                    start_frame=seg.start_frame + frame,
+                    end_frame=seg.end_frame + frame,
+                )
+            )
         roots.append(root)
         rots.append(rot)
         contacts.append(foot)
@@ -105,7 +118,12 @@ def assemble(name: str, pieces: list[Motion], starts: list[int], total: int | No
         contacts.append(np.ones((gap, 2), np.uint8))
         segments.append(Segment(index=len(segments), action="hold", start_frame=frame, end_frame=total))
     first = pieces[0]
-    return Motion(character=name, fps=first.fps, joint_names=list(first.joint_names),
-                  root_position=to_wire(np.concatenate(roots).astype(np.float32)),
-                  rotations=to_wire(np.concatenate(rots).astype(np.float32)),
-                  foot_contact=to_wire(np.concatenate(contacts).astype(np.uint8)), segments=segments)
+    return Motion(
+        character=name,
+        fps=first.fps,
+        joint_names=list(first.joint_names),
+        root_position=to_wire(np.concatenate(roots).astype(np.float32)),
+        rotations=to_wire(np.concatenate(rots).astype(np.float32)),
+        foot_contact=to_wire(np.concatenate(contacts).astype(np.uint8)),
+        segments=segments,
+    )

@@ -27,8 +27,9 @@ def motion_bvh(motion: Motion) -> str:
     rig = Rig.from_motion(motion)
     with warnings.catch_warnings():  # Euler angles at gimbal lock are still exact rotations
         warnings.simplefilter("ignore", UserWarning)
-        clip = canonical_clip(rig.root, rig.rotations, fps=float(motion.fps or 30),
-                              offsets=rig.character.offsets.astype(float))
+        clip = canonical_clip(
+            rig.root, rig.rotations, fps=float(motion.fps or 30), offsets=rig.character.offsets.astype(float)
+        )
     return format_bvh(clip)
 
 

@@ -133,8 +133,9 @@ def overview_pose(room: Room) -> CameraPose:
     return CameraPose(eye=eye, target=target, up=np.array([0.0, 1.0, 0.0]), fov_deg=60.0)
 
 
-def _mode_pose(mode: str, track: CharacterTrack | None, frame: int, room: Room,
-               held_facing: np.ndarray | None) -> CameraPose:
+def _mode_pose(
+    mode: str, track: CharacterTrack | None, frame: int, room: Room, held_facing: np.ndarray | None
+) -> CameraPose:
     up = np.array([0.0, 1.0, 0.0])
     if track is None or mode == "overview":
         return overview_pose(room)
@@ -151,14 +152,20 @@ def _mode_pose(mode: str, track: CharacterTrack | None, frame: int, room: Room,
     if mode == "right":
         return CameraPose(eye=chest - left * 3.2 + np.array([0, 0.4, 0]), target=chest, up=up, fov_deg=50.0)
     if mode == "follow":
-        return CameraPose(eye=chest - facing * 2.6 + np.array([0, 0.8, 0]), target=chest + facing * 0.8, up=up,
-                          fov_deg=55.0)
+        return CameraPose(
+            eye=chest - facing * 2.6 + np.array([0, 0.8, 0]), target=chest + facing * 0.8, up=up, fov_deg=55.0
+        )
     if mode == "close":
-        return CameraPose(eye=head + facing * 0.9 + np.array([0, 0.02, 0]), target=head - np.array([0, 0.05, 0]),
-                          up=up, fov_deg=40.0)
+        return CameraPose(
+            eye=head + facing * 0.9 + np.array([0, 0.02, 0]),
+            target=head - np.array([0, 0.05, 0]),
+            up=up,
+            fov_deg=40.0,
+        )
     if mode == "top":
-        return CameraPose(eye=hips + np.array([0.0, 5.5, 0.01]), target=hips, up=np.array([0.0, 0.0, -1.0]),
-                          fov_deg=55.0)
+        return CameraPose(
+            eye=hips + np.array([0.0, 5.5, 0.01]), target=hips, up=np.array([0.0, 0.0, -1.0]), fov_deg=55.0
+        )
     raise ValueError(f"unknown camera mode {mode!r}; choose one of {', '.join(CAMERA_MODES)}")
 
 
@@ -168,15 +175,20 @@ def _smoothstep(x: float) -> float:
 
 
 def _blend(a: CameraPose, b: CameraPose, s: float) -> CameraPose:
-    return CameraPose(eye=a.eye + (b.eye - a.eye) * s, target=a.target + (b.target - a.target) * s,
-                      up=a.up + (b.up - a.up) * s if s < 1 else b.up, fov_deg=a.fov_deg + (b.fov_deg - a.fov_deg) * s)
+    return CameraPose(
+        eye=a.eye + (b.eye - a.eye) * s,
+        target=a.target + (b.target - a.target) * s,
+        up=a.up + (b.up - a.up) * s if s < 1 else b.up,
+        fov_deg=a.fov_deg + (b.fov_deg - a.fov_deg) * s,
+    )
 
 
 def _with_adjust(pose: CameraPose, adj: Adjust) -> CameraPose:
     if adj == Adjust():
         return pose
-    return CameraPose(eye=adjust_eye(pose.eye, pose.target, adj), target=pose.target, up=pose.up,
-                      fov_deg=pose.fov_deg)
+    return CameraPose(
+        eye=adjust_eye(pose.eye, pose.target, adj), target=pose.target, up=pose.up, fov_deg=pose.fov_deg
+    )
 
 
 def room_points(room: Room) -> np.ndarray:
@@ -185,8 +197,9 @@ def room_points(room: Room) -> np.ndarray:
     return np.array([[x, 0.6, z] for x in xs for z in zs])
 
 
-def clear_overview(room: Room, tracks: dict[str, CharacterTrack], occluders: Occluders | None,
-                   until: int) -> CameraPose:
+def clear_overview(
+    room: Room, tracks: dict[str, CharacterTrack], occluders: Occluders | None, until: int
+) -> CameraPose:
     """The overview turned about the room (and raised) until it sees the characters of frames [0, until).
 
     Among the views that see the characters, the one that sees most of the room (room_points) wins;
@@ -209,8 +222,13 @@ def clear_overview(room: Room, tracks: dict[str, CharacterTrack], occluders: Occ
     return _with_adjust(base, adj)
 
 
-def camera_at(frame: int, keys: list[CameraKey], tracks: dict[str, CharacterTrack], room: Room,
-              occluders: Occluders | None = None) -> CameraPose:
+def camera_at(
+    frame: int,
+    keys: list[CameraKey],
+    tracks: dict[str, CharacterTrack],
+    room: Room,
+    occluders: Occluders | None = None,
+) -> CameraPose:
     """The camera of one frame.
 
     Args:

@@ -19,10 +19,14 @@ from __future__ import annotations
 
 import os
 import threading
+from typing import TYPE_CHECKING, cast
 
 import numpy as np
 
 from services.render.camera import CameraPose, intrinsics
+
+if TYPE_CHECKING:
+    import open3d
 
 os.environ.setdefault("XDG_RUNTIME_DIR", "/tmp")
 
@@ -51,7 +55,9 @@ class Canvas:
                 _ACTIVE.pop().close()
             self.width, self.height = int(width), int(height)
             self._vis = o3d.visualization.Visualizer()
-            if not self._vis.create_window(window_name="wana", width=self.width, height=self.height, visible=False):
+            if not self._vis.create_window(
+                window_name="wana", width=self.width, height=self.height, visible=False
+            ):
                 raise RuntimeError("open3d could not create an offscreen (EGL) rendering context")
             _ACTIVE.append(self)
         opt = self._vis.get_render_option()
@@ -59,7 +65,7 @@ class Canvas:
         opt.point_size = 3.0
         opt.line_width = 1.0
         opt.light_on = True
-        self._geoms: dict[str, object] = {}
+        self._geoms: dict[str, open3d.geometry.Geometry] = {}
         self._closed = False
 
     @property
@@ -67,8 +73,13 @@ class Canvas:
         return self._closed
 
     # ------------------------------------------------------------------ geometry
-    def set_mesh(self, name: str, vertices: np.ndarray, faces: np.ndarray | None = None,
-                 colours: np.ndarray | None = None) -> None:
+    def set_mesh(
+        self,
+        name: str,
+        vertices: np.ndarray,
+        faces: np.ndarray | None = None,
+        colours: np.ndarray | None = None,
+    ) -> None:
         """Add or update a triangle mesh.
 
         Args:
@@ -78,18 +89,23 @@ class Canvas:
             colours: (V, 3) RGB in [0, 1]; only needed when new or changed.
         """
         o3d = self._o3d
-        geom = self._geoms.get(name)
-        new = geom is None or faces is not None
+        old = self._geoms.get(name)
+        new = old is None or faces is not None
+        geom: open3d.geometry.TriangleMesh
         if new:
             if faces is None:
                 raise ValueError(f"mesh {name!r} is new: faces are required")
-            if geom is not None:
-                self._vis.remove_geometry(geom, reset_bounding_box=False)
+            if old is not None:
+                self._vis.remove_geometry(old, reset_bounding_box=False)
             geom = o3d.geometry.TriangleMesh()
             geom.triangles = o3d.utility.Vector3iVector(np.ascontiguousarray(faces, dtype=np.int32))
+        else:
+            geom = cast("open3d.geometry.TriangleMesh", old)  # a name set by set_mesh holds a triangle mesh
         geom.vertices = o3d.utility.Vector3dVector(np.ascontiguousarray(vertices, dtype=np.float64))
         if colours is not None:
-            geom.vertex_colors = o3d.utility.Vector3dVector(np.ascontiguousarray(colours[:, :3], dtype=np.float64))
+            geom.vertex_colors = o3d.utility.Vector3dVector(
+                np.ascontiguousarray(colours[:, :3], dtype=np.float64)
+            )
         geom.compute_vertex_normals()
         if new:
             # the first geometry sets the view volume; with an empty one open3d's camera turns to NaN
@@ -105,8 +121,10 @@ class Canvas:
         if len(points) == 0:
             return
         n = len(points) // 2
-        ls = o3d.geometry.LineSet(o3d.utility.Vector3dVector(np.asarray(points, np.float64)),
-                                  o3d.utility.Vector2iVector(np.arange(2 * n, dtype=np.int32).reshape(n, 2)))
+        ls = o3d.geometry.LineSet(
+            o3d.utility.Vector3dVector(np.asarray(points, np.float64)),
+            o3d.utility.Vector2iVector(np.arange(2 * n, dtype=np.int32).reshape(n, 2)),
+        )
         ls.paint_uniform_color(colour)
         self._vis.add_geometry(ls, reset_bounding_box=False)
         self._geoms[name] = ls
@@ -131,8 +149,13 @@ class Canvas:
         return list(self._geoms)
 
     # ------------------------------------------------------------------ drawing
-    def draw(self, pose: CameraPose, background: tuple[float, float, float] = (0.8, 0.85, 0.9),
-             *, with_depth: bool = False) -> tuple[np.ndarray, np.ndarray | None]:
+    def draw(
+        self,
+        pose: CameraPose,
+        background: tuple[float, float, float] = (0.8, 0.85, 0.9),
+        *,
+        with_depth: bool = False,
+    ) -> tuple[np.ndarray, np.ndarray | None]:
         """Render one frame.
 
         Args:

@@ -28,7 +28,7 @@ def draw_caption(frame: np.ndarray, text: str, max_lines: int = 2) -> np.ndarray
         return frame
     band = int(len(lines) * size * 1.3 + size * 0.6)
     out = frame.copy()
-    out[h - band:] = (out[h - band:].astype(np.uint16) * 2 // 5).astype(np.uint8)
+    out[h - band :] = (out[h - band :].astype(np.uint16) * 2 // 5).astype(np.uint8)
     img = Image.fromarray(out)
     draw = ImageDraw.Draw(img)
     y = h - band + int(size * 0.3)

@@ -21,17 +21,35 @@ def demo_scene() -> Scene:
     """An office: desk with a laptop, office chair, bookshelf, sofa and plant; 6 x 5 x 2.8 m."""
     objects = [
         PlacedObject(id="desk", category="desk", position=(-1.2, 0.0, -1.6), yaw=0.0),
-        PlacedObject(id="chair", category="office_chair", attributes={"colour": "red"}, position=(-1.2, 0.0, -0.9),
-                     yaw=np.pi),
+        PlacedObject(
+            id="chair",
+            category="office_chair",
+            attributes={"colour": "red"},
+            position=(-1.2, 0.0, -0.9),
+            yaw=np.pi,
+        ),
         PlacedObject(id="bookshelf", category="bookshelf", position=(2.2, 0.0, -2.2), yaw=0.0),
-        PlacedObject(id="sofa", category="sofa", attributes={"colour": "blue"}, position=(2.3, 0.0, 0.8),
-                     yaw=-np.pi / 2),
+        PlacedObject(
+            id="sofa",
+            category="sofa",
+            attributes={"colour": "blue"},
+            position=(2.3, 0.0, 0.8),
+            yaw=-np.pi / 2,
+        ),
     ]
     return Scene(room=Room(room_type="office", width=6.0, depth=5.0, height=2.8), objects=objects, seed=0)
 
 
-def walk_motion(character: str, start: tuple[float, float], end: tuple[float, float], frames: int = 90,
-                *, expression: str = "smile", sentence_id: str = "s1", fps: int = 30) -> Motion:
+def walk_motion(
+    character: str,
+    start: tuple[float, float],
+    end: tuple[float, float],
+    frames: int = 90,
+    *,
+    expression: str = "smile",
+    sentence_id: str = "s1",
+    fps: int = 30,
+) -> Motion:
     """A straight walk from ``start`` to ``end`` (x, z floor positions in metres) over ``frames`` frames.
 
     The Hips follow ``hips_path`` exactly: at frame t they are at
@@ -41,14 +59,20 @@ def walk_motion(character: str, start: tuple[float, float], end: tuple[float, fl
     expr = np.zeros((frames, len(EXPRESSIONS)), dtype=np.float32)
     if expression in EXPRESSIONS:
         expr[:, EXPRESSIONS.index(expression)] = np.linspace(0.0, 1.0, frames)
-    return Motion(character=character, fps=fps, joint_names=list(JOINT_NAMES),
-                  root_position=to_wire(root.astype(np.float32)), rotations=to_wire(rot.astype(np.float32)),
-                  expression=to_wire(expr),
-                  segments=[Segment(index=0, action="walk", start_frame=0, end_frame=frames,
-                                    sentence_id=sentence_id)])
+    return Motion(
+        character=character,
+        fps=fps,
+        joint_names=list(JOINT_NAMES),
+        root_position=to_wire(root.astype(np.float32)),
+        rotations=to_wire(rot.astype(np.float32)),
+        expression=to_wire(expr),
+        segments=[Segment(index=0, action="walk", start_frame=0, end_frame=frames, sentence_id=sentence_id)],
+    )
 
 
-def hips_path(character: str, start: tuple[float, float], end: tuple[float, float], frames: int) -> np.ndarray:
+def hips_path(
+    character: str, start: tuple[float, float], end: tuple[float, float], frames: int
+) -> np.ndarray:
     """(frames, 3) Hips positions of ``walk_motion``."""
     hip_h = float(make_character(character).offsets[0, 1]) if _known(character) else 0.95
     s = np.linspace(0.0, 1.0, frames)[:, None]
@@ -66,8 +90,9 @@ def _known(character: str) -> bool:
         return False
 
 
-def walk_arrays(character: str, start: tuple[float, float], end: tuple[float, float], frames: int
-                ) -> tuple[np.ndarray, np.ndarray]:
+def walk_arrays(
+    character: str, start: tuple[float, float], end: tuple[float, float], frames: int
+) -> tuple[np.ndarray, np.ndarray]:
     """Root (T, 3) and local rotations (T, J, 4) of the walk."""
     root = hips_path(character, start, end, frames)
     d = np.asarray(end, float) - np.asarray(start, float)

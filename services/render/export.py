@@ -1,8 +1,8 @@
 """``write_outputs``: everything ``wana animate`` writes, from the pipeline's results.
 
-    >>> paths = write_outputs("out", scene, motions, commands, sentences, report)
-    >>> sorted(paths)  # file name -> path
-    ['Eve.bvh', 'animation.mp4', 'report.json', 'scene.glb']
+>>> paths = write_outputs("out", scene, motions, commands, sentences, report)
+>>> sorted(paths)  # file name -> path
+['Eve.bvh', 'animation.mp4', 'report.json', 'scene.glb']
 """
 
 from __future__ import annotations
@@ -22,10 +22,19 @@ from services.render.timeline import as_motion_list, make_captions, place_comman
 from services.render.video import FPS, encode_mp4
 
 
-def write_outputs(out_dir: str | Path, scene: Scene, motions: Iterable[Motion] | Mapping[str, Motion],
-                  commands: Iterable[Any] | None, sentences: Iterable[Any] | None,
-                  report: Mapping[str, Any] | None, *, width: int = 640, height: int = 480,
-                  progress: bool = True, captions: bool = True) -> dict[str, Path]:
+def write_outputs(
+    out_dir: str | Path,
+    scene: Scene,
+    motions: Iterable[Motion] | Mapping[str, Motion],
+    commands: Iterable[Any] | None,
+    sentences: Iterable[Any] | None,
+    report: Mapping[str, Any] | None,
+    *,
+    width: int = 640,
+    height: int = 480,
+    progress: bool = True,
+    captions: bool = True,
+) -> dict[str, Path]:
     """Render and export an animation.
 
     Args:
@@ -69,13 +78,30 @@ def write_outputs(out_dir: str | Path, scene: Scene, motions: Iterable[Motion] |
                 paths[p.name] = p
                 bar.update(1)
             render_info = {
-                "frames": n, "fps": FPS, "width": width, "height": height, "duration_s": n / FPS,
+                "frames": n,
+                "fps": FPS,
+                "width": width,
+                "height": height,
+                "duration_s": n / FPS,
                 "render_seconds": round(render_s, 3),
-                "commands": [{"frame": c.frame, "kind": c.command.kind, "value": c.command.value,
-                              "target": c.command.target} for c in timed],
+                "commands": [
+                    {
+                        "frame": c.frame,
+                        "kind": c.command.kind,
+                        "value": c.command.value,
+                        "target": c.command.target,
+                    }
+                    for c in timed
+                ],
                 "captions": caps,
-                "characters": [{"name": m.character, "look": renderer.rigs[m.character].character.name,
-                                "frames": renderer.rigs[m.character].n_frames} for m in mlist],
+                "characters": [
+                    {
+                        "name": m.character,
+                        "look": renderer.rigs[m.character].character.name,
+                        "frames": renderer.rigs[m.character].n_frames,
+                    }
+                    for m in mlist
+                ],
                 "files": sorted([*paths, "report.json"]),
             }
             paths["report.json"] = write_report(out / "report.json", report, render_info)

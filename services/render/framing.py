@@ -41,10 +41,24 @@ def _adjustments() -> tuple[Adjust, ...]:
     deg = math.radians
     out = [Adjust()]
     out += [Adjust(turn=s * deg(a)) for a in (20, 40) for s in (1, -1)]
-    out += [Adjust(turn=s * deg(a), rise=r) for r in (0.7, 1.4) for a in (0, 20, 40) for s in ((1,) if a == 0 else (1, -1))]
-    out += [Adjust(turn=s * deg(a), scale=k) for k in (0.7, 0.5) for a in (0, 25) for s in ((1,) if a == 0 else (1, -1))]
+    out += [
+        Adjust(turn=s * deg(a), rise=r)
+        for r in (0.7, 1.4)
+        for a in (0, 20, 40)
+        for s in ((1,) if a == 0 else (1, -1))
+    ]
+    out += [
+        Adjust(turn=s * deg(a), scale=k)
+        for k in (0.7, 0.5)
+        for a in (0, 25)
+        for s in ((1,) if a == 0 else (1, -1))
+    ]
     out += [Adjust(turn=s * deg(a), rise=r) for a in (65, 90) for r in (0.0, 0.8) for s in (1, -1)]
-    out += [Adjust(turn=s * deg(a), rise=1.0, scale=0.6) for a in (0, 45, 90, 135) for s in ((1,) if a == 0 else (1, -1))]
+    out += [
+        Adjust(turn=s * deg(a), rise=1.0, scale=0.6)
+        for a in (0, 45, 90, 135)
+        for s in ((1,) if a == 0 else (1, -1))
+    ]
     return tuple(out)
 
 
@@ -62,8 +76,11 @@ def adjust_eye(eye: np.ndarray, target: np.ndarray, adj: Adjust) -> np.ndarray:
 
 def blend_adjust(a: Adjust, b: Adjust, s: float) -> Adjust:
     """Interpolate two adjustments (s = 0: a, s = 1: b)."""
-    return Adjust(turn=a.turn + (b.turn - a.turn) * s, rise=a.rise + (b.rise - a.rise) * s,
-                  scale=a.scale + (b.scale - a.scale) * s)
+    return Adjust(
+        turn=a.turn + (b.turn - a.turn) * s,
+        rise=a.rise + (b.rise - a.rise) * s,
+        scale=a.scale + (b.scale - a.scale) * s,
+    )
 
 
 def segments_hit_boxes(starts: np.ndarray, ends: np.ndarray, boxes: np.ndarray) -> np.ndarray:
@@ -105,7 +122,8 @@ class Occluders:
         self.groups = [g for g in kept if len(g)]
         self.bounds = (
             np.array([[g[:, 0].min(axis=0), g[:, 1].max(axis=0)] for g in self.groups])
-            if self.groups else np.zeros((0, 2, 3))
+            if self.groups
+            else np.zeros((0, 2, 3))
         )  # (K, 2, 3)
         self.memo: dict[object, Adjust] = {}  # camera decisions (pure functions of their keys), see camera.py
 
@@ -150,8 +168,11 @@ class Occluders:
             return 0.0
         return float(self.blocked(np.broadcast_to(eye, points.shape), points).mean())
 
-    def shares(self, views: Sequence[tuple[np.ndarray, np.ndarray, np.ndarray]],
-               adjustments: Sequence[Adjust] = ADJUSTMENTS) -> np.ndarray:
+    def shares(
+        self,
+        views: Sequence[tuple[np.ndarray, np.ndarray, np.ndarray]],
+        adjustments: Sequence[Adjust] = ADJUSTMENTS,
+    ) -> np.ndarray:
         """(A,) share of the sight lines each adjustment leaves blocked over all the views.
 
         Args:
@@ -173,8 +194,12 @@ class Occluders:
         total = np.bincount(np.concatenate(owner), minlength=len(adjustments))
         return per / np.maximum(total, 1)
 
-    def choose(self, views: Sequence[tuple[np.ndarray, np.ndarray, np.ndarray]],
-               adjustments: Sequence[Adjust] = ADJUSTMENTS, previous: Adjust | None = None) -> Adjust:
+    def choose(
+        self,
+        views: Sequence[tuple[np.ndarray, np.ndarray, np.ndarray]],
+        adjustments: Sequence[Adjust] = ADJUSTMENTS,
+        previous: Adjust | None = None,
+    ) -> Adjust:
         """The adjustment of a camera that sees the points from every view.
 
         Without a previous choice: the most preferred clear one. With one: the most preferred clear one

@@ -37,9 +37,17 @@ class _Builder:
 
     def __init__(self) -> None:
         self.blob = bytearray()
-        self.doc: dict = {"asset": {"version": "2.0", "generator": "wana render service"}, "buffers": [],
-                          "bufferViews": [], "accessors": [], "meshes": [], "materials": [], "nodes": [],
-                          "scenes": [{"name": "wana", "nodes": []}], "scene": 0}
+        self.doc: dict = {
+            "asset": {"version": "2.0", "generator": "wana render service"},
+            "buffers": [],
+            "bufferViews": [],
+            "accessors": [],
+            "meshes": [],
+            "materials": [],
+            "nodes": [],
+            "scenes": [{"name": "wana", "nodes": []}],
+            "scene": 0,
+        }
 
     def view(self, data: bytes, target: int | None = None) -> int:
         while len(self.blob) % 4:
@@ -51,12 +59,23 @@ class _Builder:
         self.doc["bufferViews"].append(v)
         return len(self.doc["bufferViews"]) - 1
 
-    def accessor(self, array: np.ndarray, component: int, *, target: int | None = None, normalized: bool = False,
-                 bounds: bool = False) -> int:
+    def accessor(
+        self,
+        array: np.ndarray,
+        component: int,
+        *,
+        target: int | None = None,
+        normalized: bool = False,
+        bounds: bool = False,
+    ) -> int:
         a = np.ascontiguousarray(array)
         width = 1 if a.ndim == 1 else int(np.prod(a.shape[1:]))
-        acc: dict = {"bufferView": self.view(a.tobytes(), target), "componentType": component, "count": int(a.shape[0]),
-                     "type": _TYPES[width]}
+        acc: dict = {
+            "bufferView": self.view(a.tobytes(), target),
+            "componentType": component,
+            "count": int(a.shape[0]),
+            "type": _TYPES[width],
+        }
         if normalized:
             acc["normalized"] = True
         if bounds:
@@ -77,8 +96,16 @@ class _Builder:
         return i
 
     def material(self, name: str) -> int:
-        self.doc["materials"].append({"name": name, "pbrMetallicRoughness": {
-            "baseColorFactor": [1.0, 1.0, 1.0, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.85}})
+        self.doc["materials"].append(
+            {
+                "name": name,
+                "pbrMetallicRoughness": {
+                    "baseColorFactor": [1.0, 1.0, 1.0, 1.0],
+                    "metallicFactor": 0.0,
+                    "roughnessFactor": 0.85,
+                },
+            }
+        )
         return len(self.doc["materials"]) - 1
 
     def glb(self) -> bytes:
@@ -89,8 +116,13 @@ class _Builder:
         js = json.dumps(doc, separators=(",", ":")).encode("utf-8")
         js += b" " * (-len(js) % 4)
         total = 12 + 8 + len(js) + 8 + len(self.blob)
-        return (struct.pack("<III", 0x46546C67, 2, total) + struct.pack("<I4s", len(js), b"JSON") + js
-                + struct.pack("<I4s", len(self.blob), b"BIN\x00") + bytes(self.blob))
+        return (
+            struct.pack("<III", 0x46546C67, 2, total)
+            + struct.pack("<I4s", len(js), b"JSON")
+            + js
+            + struct.pack("<I4s", len(self.blob), b"BIN\x00")
+            + bytes(self.blob)
+        )
 
 
 def unit_normals(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
@@ -138,13 +170,20 @@ def _add_static(b: _Builder, mesh: ColouredMesh, material: int) -> None:
     if len(mesh.faces) == 0:
         return
     pos = mesh.vertices.astype(np.float32)
-    attrs = {"POSITION": b.accessor(pos, FLOAT, target=ARRAY_BUFFER, bounds=True),
-             "NORMAL": b.accessor(unit_normals(pos, mesh.faces), FLOAT, target=ARRAY_BUFFER),
-             "COLOR_0": b.accessor(mesh.colours.astype(np.uint8), UNSIGNED_BYTE, target=ARRAY_BUFFER,
-                                   normalized=True)}
+    attrs = {
+        "POSITION": b.accessor(pos, FLOAT, target=ARRAY_BUFFER, bounds=True),
+        "NORMAL": b.accessor(unit_normals(pos, mesh.faces), FLOAT, target=ARRAY_BUFFER),
+        "COLOR_0": b.accessor(
+            mesh.colours.astype(np.uint8), UNSIGNED_BYTE, target=ARRAY_BUFFER, normalized=True
+        ),
+    }
     idx_type = UNSIGNED_SHORT if len(pos) < 65535 else UNSIGNED_INT
     idx = mesh.faces.reshape(-1).astype(np.uint16 if idx_type == UNSIGNED_SHORT else np.uint32)
-    prim = {"attributes": attrs, "indices": b.accessor(idx, idx_type, target=ELEMENT_ARRAY_BUFFER), "material": material}
+    prim = {
+        "attributes": attrs,
+        "indices": b.accessor(idx, idx_type, target=ELEMENT_ARRAY_BUFFER),
+        "material": material,
+    }
     b.doc["meshes"].append({"name": mesh.name, "primitives": [prim]})
     b.node({"name": mesh.name, "mesh": len(b.doc["meshes"]) - 1}, root=True)
 
@@ -172,26 +211,55 @@ def _add_character(b: _Builder, rig: Rig, material: int, animation: dict, fps: f
     ibm = np.zeros((N_JOINTS, 4, 4), dtype=np.float32)
     ibm[:] = np.eye(4, dtype=np.float32)
     ibm[:, :3, 3] = -rest  # rest pose has identity rotations: the inverse bind is a translation
-    ibm_acc = b.accessor(np.ascontiguousarray(ibm.transpose(0, 2, 1)).reshape(N_JOINTS, 16), FLOAT)  # column-major
-    b.doc.setdefault("skins", []).append({"name": name, "joints": joint_nodes, "inverseBindMatrices": ibm_acc,
-                                          "skeleton": joint_nodes[0]})
+    ibm_acc = b.accessor(
+        np.ascontiguousarray(ibm.transpose(0, 2, 1)).reshape(N_JOINTS, 16), FLOAT
+    )  # column-major
+    b.doc.setdefault("skins", []).append(
+        {"name": name, "joints": joint_nodes, "inverseBindMatrices": ibm_acc, "skeleton": joint_nodes[0]}
+    )
     pos = ch.vertices.astype(np.float32)
     joints, weights = clean_skin(ch.joints, ch.weights)
-    attrs = {"POSITION": b.accessor(pos, FLOAT, target=ARRAY_BUFFER, bounds=True),
-             "NORMAL": b.accessor(unit_normals(pos, ch.faces), FLOAT, target=ARRAY_BUFFER),
-             "COLOR_0": b.accessor(ch.colours.astype(np.uint8), UNSIGNED_BYTE, target=ARRAY_BUFFER, normalized=True),
-             "JOINTS_0": b.accessor(joints, UNSIGNED_BYTE if joints.dtype == np.uint8 else UNSIGNED_SHORT,
-                                    target=ARRAY_BUFFER),
-             "WEIGHTS_0": b.accessor(weights, FLOAT, target=ARRAY_BUFFER)}
-    targets = [{"POSITION": b.accessor(ch.blendshapes.get(k, np.zeros_like(pos)).astype(np.float32), FLOAT,
-                                       target=ARRAY_BUFFER, bounds=True)} for k in EXPRESSIONS]
+    attrs = {
+        "POSITION": b.accessor(pos, FLOAT, target=ARRAY_BUFFER, bounds=True),
+        "NORMAL": b.accessor(unit_normals(pos, ch.faces), FLOAT, target=ARRAY_BUFFER),
+        "COLOR_0": b.accessor(
+            ch.colours.astype(np.uint8), UNSIGNED_BYTE, target=ARRAY_BUFFER, normalized=True
+        ),
+        "JOINTS_0": b.accessor(
+            joints, UNSIGNED_BYTE if joints.dtype == np.uint8 else UNSIGNED_SHORT, target=ARRAY_BUFFER
+        ),
+        "WEIGHTS_0": b.accessor(weights, FLOAT, target=ARRAY_BUFFER),
+    }
+    targets = [
+        {
+            "POSITION": b.accessor(
+                ch.blendshapes.get(k, np.zeros_like(pos)).astype(np.float32),
+                FLOAT,
+                target=ARRAY_BUFFER,
+                bounds=True,
+            )
+        }
+        for k in EXPRESSIONS
+    ]
     idx_type = UNSIGNED_SHORT if len(pos) < 65535 else UNSIGNED_INT
     idx = ch.faces.reshape(-1).astype(np.uint16 if idx_type == UNSIGNED_SHORT else np.uint32)
-    prim = {"attributes": attrs, "indices": b.accessor(idx, idx_type, target=ELEMENT_ARRAY_BUFFER),
-            "material": material, "targets": targets}
-    b.doc["meshes"].append({"name": name, "primitives": [prim], "weights": [0.0] * len(EXPRESSIONS),
-                            "extras": {"targetNames": list(EXPRESSIONS)}})
-    mesh_node = b.node({"name": name, "mesh": len(b.doc["meshes"]) - 1, "skin": len(b.doc["skins"]) - 1}, root=True)
+    prim = {
+        "attributes": attrs,
+        "indices": b.accessor(idx, idx_type, target=ELEMENT_ARRAY_BUFFER),
+        "material": material,
+        "targets": targets,
+    }
+    b.doc["meshes"].append(
+        {
+            "name": name,
+            "primitives": [prim],
+            "weights": [0.0] * len(EXPRESSIONS),
+            "extras": {"targetNames": list(EXPRESSIONS)},
+        }
+    )
+    mesh_node = b.node(
+        {"name": name, "mesh": len(b.doc["meshes"]) - 1, "skin": len(b.doc["skins"]) - 1}, root=True
+    )
 
     t = rig.n_frames
     times = b.accessor((np.arange(t, dtype=np.float64) / fps).astype(np.float32), FLOAT, bounds=True)

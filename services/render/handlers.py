@@ -38,8 +38,18 @@ def _reply_header(request: Any) -> Header:
 
 def _renderer_for(req: RenderRequest | ExportRequest, n_frames: int = 0) -> FrameRenderer:
     """The cached renderer when the job is the same, else a new one (the old one is closed)."""
-    key_src = msgspec.msgpack.encode([req.scene, req.motions, req.commands, req.captions, req.width, req.height,
-                                      n_frames, getattr(req, "show_captions", True)])
+    key_src = msgspec.msgpack.encode(
+        [
+            req.scene,
+            req.motions,
+            req.commands,
+            req.captions,
+            req.width,
+            req.height,
+            n_frames,
+            getattr(req, "show_captions", True),
+        ]
+    )
     key = hashlib.sha256(key_src).hexdigest()
     if _cache["key"] == key and _cache["renderer"] is not None:
         return _cache["renderer"]
@@ -48,8 +58,15 @@ def _renderer_for(req: RenderRequest | ExportRequest, n_frames: int = 0) -> Fram
         _cache["renderer"] = _cache["key"] = None
     captions = req.captions if getattr(req, "show_captions", True) else []
     try:
-        r = FrameRenderer(req.scene, list(req.motions), list(req.commands), list(captions), n_frames=n_frames,
-                          width=req.width, height=req.height)
+        r = FrameRenderer(
+            req.scene,
+            list(req.motions),
+            list(req.commands),
+            list(captions),
+            n_frames=n_frames,
+            width=req.width,
+            height=req.height,
+        )
     except (ValueError, KeyError) as exc:
         raise InvalidInput(str(exc)) from exc
     _cache["key"], _cache["renderer"] = key, r
@@ -84,8 +101,10 @@ def handle_render(req: RenderRequest) -> RenderReply:
         if not (0 <= start <= end <= r.n_frames):
             raise InvalidInput(f"frame range [{start}, {end}) is outside the animation's [0, {r.n_frames})")
         if req.encoding == "raw" and (end - start) * req.width * req.height * 3 > MAX_REPLY_BYTES:
-            raise InvalidInput(f"{end - start} raw frames of {req.width}x{req.height} exceed the "
-                               f"{MAX_REPLY_BYTES} byte reply limit; ask for a shorter range or png/jpeg/mp4")
+            raise InvalidInput(
+                f"{end - start} raw frames of {req.width}x{req.height} exceed the "
+                f"{MAX_REPLY_BYTES} byte reply limit; ask for a shorter range or png/jpeg/mp4"
+            )
         frames: list[bytes] = []
         video = b""
         if req.encoding == "mp4":
@@ -99,11 +118,22 @@ def handle_render(req: RenderRequest) -> RenderReply:
                 frames.append(_encode_image(img, req.encoding))
                 size += len(frames[-1])
                 if size > MAX_REPLY_BYTES:
-                    raise InvalidInput(f"frames [{start}, {end}) exceed the {MAX_REPLY_BYTES} byte reply limit; "
-                                       "ask for a shorter range")
-        return RenderReply(header=_reply_header(req), start_frame=start, end_frame=end, n_frames=r.n_frames,
-                           width=req.width, height=req.height, fps=FPS, encoding=req.encoding, frames=frames,
-                           video=video)
+                    raise InvalidInput(
+                        f"frames [{start}, {end}) exceed the {MAX_REPLY_BYTES} byte reply limit; "
+                        "ask for a shorter range"
+                    )
+        return RenderReply(
+            header=_reply_header(req),
+            start_frame=start,
+            end_frame=end,
+            n_frames=r.n_frames,
+            width=req.width,
+            height=req.height,
+            fps=FPS,
+            encoding=req.encoding,
+            frames=frames,
+            video=video,
+        )
 
 
 def handle_export(req: ExportRequest) -> ExportReply:
@@ -111,18 +141,34 @@ def handle_export(req: ExportRequest) -> ExportReply:
     h = _reply_header(req)
     try:
         if req.format == "glb":
-            return ExportReply(header=h, format="glb", filename="scene.glb", media_type="model/gltf-binary",
-                               data=scene_glb(req.scene, list(req.motions)))
+            return ExportReply(
+                header=h,
+                format="glb",
+                filename="scene.glb",
+                media_type="model/gltf-binary",
+                data=scene_glb(req.scene, list(req.motions)),
+            )
         if req.format == "bvh":
             if not req.motions:
                 raise InvalidInput("a BVH export needs at least one motion")
-            pick = [m for m in req.motions if m.character == req.character] if req.character else [req.motions[0]]
+            pick = (
+                [m for m in req.motions if m.character == req.character]
+                if req.character
+                else [req.motions[0]]
+            )
             if not pick:
-                raise InvalidInput(f"no motion for character {req.character!r}; have "
-                                   f"{', '.join(m.character for m in req.motions)}")
+                raise InvalidInput(
+                    f"no motion for character {req.character!r}; have "
+                    f"{', '.join(m.character for m in req.motions)}"
+                )
             m = pick[0]
-            return ExportReply(header=h, format="bvh", filename=f"{safe_filename(m.character)}.bvh",
-                               media_type="application/octet-stream", data=motion_bvh(m).encode())
+            return ExportReply(
+                header=h,
+                format="bvh",
+                filename=f"{safe_filename(m.character)}.bvh",
+                media_type="application/octet-stream",
+                data=motion_bvh(m).encode(),
+            )
     except (ValueError, KeyError) as exc:
         if isinstance(exc, InvalidInput):
             raise
@@ -133,8 +179,12 @@ def handle_export(req: ExportRequest) -> ExportReply:
         buf = io.BytesIO()
         encode_mp4(r.frames(0, r.n_frames), buf, fps=FPS)
     if buf.tell() > MAX_REPLY_BYTES:
-        raise InvalidInput("the video is larger than one reply may be; render it in chunks with RenderRequest")
-    return ExportReply(header=h, format="mp4", filename="animation.mp4", media_type="video/mp4", data=buf.getvalue())
+        raise InvalidInput(
+            "the video is larger than one reply may be; render it in chunks with RenderRequest"
+        )
+    return ExportReply(
+        header=h, format="mp4", filename="animation.mp4", media_type="video/mp4", data=buf.getvalue()
+    )
 
 
 CONTRACT: dict[type, Callable[[Any], Any]] = {RenderRequest: handle_render, ExportRequest: handle_export}

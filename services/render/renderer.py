@@ -53,9 +53,17 @@ class FrameRenderer:
         width, height: image size in pixels.
     """
 
-    def __init__(self, scene: Scene, motions: list[Motion], commands: list[TimedCommand] | None = None,
-                 captions: list[Caption] | None = None, *, n_frames: int = 0, width: int = 640,
-                 height: int = 480) -> None:
+    def __init__(
+        self,
+        scene: Scene,
+        motions: list[Motion],
+        commands: list[TimedCommand] | None = None,
+        captions: list[Caption] | None = None,
+        *,
+        n_frames: int = 0,
+        width: int = 640,
+        height: int = 480,
+    ) -> None:
         self.scene = scene
         self.width, self.height = int(width), int(height)
         self.rigs = {m.character: Rig.from_motion(m) for m in motions}
@@ -73,7 +81,7 @@ class FrameRenderer:
         self._static = merge(room_parts + objects)
         self._objects = merge(objects, "objects")
         self._canvas: Canvas | None = None
-        self._shadow_look: float | None = None
+        self._shadow_look: tuple[float, tuple[float, ...]] | None = None  # (strength, sun) last drawn
 
     # ------------------------------------------------------------------ lifetime
     def _open(self) -> Canvas:
@@ -87,8 +95,12 @@ class FrameRenderer:
                 c.set_mesh("static", st.vertices, st.faces, st.colours[:, :3] / 255.0)
             for name, rig in self.rigs.items():
                 ch = rig.character
-                c.set_mesh(f"char:{name}", ch.vertices.astype(np.float64), ch.faces.astype(np.int64),
-                           ch.colours[:, :3] / 255.0)
+                c.set_mesh(
+                    f"char:{name}",
+                    ch.vertices.astype(np.float64),
+                    ch.faces.astype(np.int64),
+                    ch.colours[:, :3] / 255.0,
+                )
             self._canvas = c
         return self._canvas
 
@@ -123,8 +135,9 @@ class FrameRenderer:
             faces = self.rigs[name].character.faces.astype(np.int64)
             sv = project_to_floor(verts, look.sun, room)
             new = f"shadow:{name}" not in c.names()
-            c.set_mesh(f"shadow:{name}", sv, shadow_faces(faces) if new else None,
-                       np.tile(colour, (len(sv), 1)))
+            c.set_mesh(
+                f"shadow:{name}", sv, shadow_faces(faces) if new else None, np.tile(colour, (len(sv), 1))
+            )
 
     def render(self, frame: int, pose: CameraPose | None = None) -> np.ndarray:
         """One frame (H, W, 3) uint8; ``pose`` overrides the commanded camera (tests, previews)."""
@@ -142,15 +155,18 @@ class FrameRenderer:
         room = self.scene.room
         c.set_lines("rain", rain_segments(f, room, look.rain), (0.78, 0.82, 0.9))
         c.set_points("snow", snow_points(f, room, look.snow), (1.0, 1.0, 1.0))
-        rgb, depth = c.draw(pose or self.camera(f), tuple(background_for_render(look)), with_depth=look.fog > 1e-4)
+        rgb, depth = c.draw(
+            pose or self.camera(f), tuple(background_for_render(look)), with_depth=look.fog > 1e-4
+        )
         img = grade(rgb, depth, look)
         text = caption_at(self.captions, f)
         if text:
             img = captions_mod.draw_caption(img, text)
         return img
 
-    def frames(self, start: int = 0, end: int | None = None,
-               progress: Callable[[int], None] | None = None) -> Iterator[np.ndarray]:
+    def frames(
+        self, start: int = 0, end: int | None = None, progress: Callable[[int], None] | None = None
+    ) -> Iterator[np.ndarray]:
         """Frames [start, end) as (H, W, 3) uint8 arrays.
 
         Args:

@@ -8,6 +8,7 @@ Shadows are planar: the mesh projected onto the floor along the light direction.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import trimesh
@@ -41,8 +42,9 @@ def _face_coloured(name: str, mesh: trimesh.Trimesh, transform: np.ndarray | Non
     if transform is not None:
         verts = verts @ transform[:3, :3].T + transform[:3, 3]
     faces = np.asarray(mesh.faces, dtype=np.int64)
+    visual: Any = mesh.visual  # ColorVisuals, TextureVisuals or None; only the first has face colours
     try:
-        fc = np.asarray(mesh.visual.face_colors, dtype=np.uint8)
+        fc = np.asarray(visual.face_colors, dtype=np.uint8)
     except Exception:  # meshes without a colour visual
         fc = np.full((len(faces), 4), 180, dtype=np.uint8)
     if fc.shape != (len(faces), 4):
@@ -50,14 +52,19 @@ def _face_coloured(name: str, mesh: trimesh.Trimesh, transform: np.ndarray | Non
     if transform is not None and np.linalg.det(transform[:3, :3]) < 0:
         faces = faces[:, ::-1]
     flat = verts[faces].reshape(-1, 3)
-    return ColouredMesh(name=name, vertices=flat, faces=np.arange(len(flat), dtype=np.int64).reshape(-1, 3),
-                        colours=np.repeat(fc, 3, axis=0))
+    return ColouredMesh(
+        name=name,
+        vertices=flat,
+        faces=np.arange(len(flat), dtype=np.int64).reshape(-1, 3),
+        colours=np.repeat(fc, 3, axis=0),
+    )
 
 
 def _quad(name: str, corners: np.ndarray, rgba: tuple[int, int, int, int], tiles: int = 1) -> ColouredMesh:
     """A one-sided quad (corners counter-clockwise seen from the visible side), split into tiles."""
     a, b, c, d = corners
-    verts, faces = [], []
+    verts: list[np.ndarray] = []
+    faces: list[list[int]] = []
     for i in range(tiles):
         for j in range(tiles):
             u0, u1, v0, v1 = i / tiles, (i + 1) / tiles, j / tiles, (j + 1) / tiles
@@ -72,7 +79,9 @@ def _quad(name: str, corners: np.ndarray, rgba: tuple[int, int, int, int], tiles
     faces_a = np.asarray(faces, dtype=np.int64)
     colours = np.tile(np.asarray(rgba, dtype=np.uint8), (len(verts_a), 1))
     if tiles > 1:  # a faint checker so motion over the floor reads on screen
-        shade = ((np.arange(len(faces_a) // 2)[:, None] // tiles + np.arange(len(faces_a) // 2)[:, None] % tiles) % 2)
+        shade = (
+            np.arange(len(faces_a) // 2)[:, None] // tiles + np.arange(len(faces_a) // 2)[:, None] % tiles
+        ) % 2
         dim = np.repeat(np.where(shade[:, 0] == 1, 0.93, 1.0), 4)
         colours = colours.copy()
         colours[:, :3] = (colours[:, :3] * dim[:, None]).astype(np.uint8)
@@ -111,12 +120,19 @@ def object_meshes(scene: Scene) -> list[ColouredMesh]:
 def merge(meshes: list[ColouredMesh], name: str = "static") -> ColouredMesh:
     """One mesh out of many (fewer draw calls)."""
     if not meshes:
-        return ColouredMesh(name=name, vertices=np.zeros((0, 3)), faces=np.zeros((0, 3), np.int64),
-                            colours=np.zeros((0, 4), np.uint8))
+        return ColouredMesh(
+            name=name,
+            vertices=np.zeros((0, 3)),
+            faces=np.zeros((0, 3), np.int64),
+            colours=np.zeros((0, 4), np.uint8),
+        )
     offsets = np.cumsum([0] + [len(m.vertices) for m in meshes[:-1]])
-    return ColouredMesh(name=name, vertices=np.concatenate([m.vertices for m in meshes]),
-                        faces=np.concatenate([m.faces + o for m, o in zip(meshes, offsets, strict=True)]),
-                        colours=np.concatenate([m.colours for m in meshes]))
+    return ColouredMesh(
+        name=name,
+        vertices=np.concatenate([m.vertices for m in meshes]),
+        faces=np.concatenate([m.faces + o for m, o in zip(meshes, offsets, strict=True)]),
+        colours=np.concatenate([m.colours for m in meshes]),
+    )
 
 
 def project_to_floor(vertices: np.ndarray, sun: np.ndarray, room: Room) -> np.ndarray:

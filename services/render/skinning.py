@@ -48,16 +48,22 @@ def motion_arrays(motion: Motion) -> tuple[np.ndarray, np.ndarray, np.ndarray | 
                 full[:, JOINT_INDEX[name]] = rot[:, i]
         rot = full
     if rot.shape[1] != N_JOINTS:
-        raise ValueError(f"motion {motion.character!r}: {rot.shape[1]} joints, the canonical skeleton has {N_JOINTS}")
+        raise ValueError(
+            f"motion {motion.character!r}: {rot.shape[1]} joints, the canonical skeleton has {N_JOINTS}"
+        )
     if root.shape != (rot.shape[0], 3):
-        raise ValueError(f"motion {motion.character!r}: root_position must be ({rot.shape[0]}, 3), got {root.shape}")
+        raise ValueError(
+            f"motion {motion.character!r}: root_position must be ({rot.shape[0]}, 3), got {root.shape}"
+        )
     norms = np.linalg.norm(rot, axis=-1, keepdims=True)
     rot = np.where(norms > 1e-9, rot / np.maximum(norms, 1e-9), np.array([0.0, 0.0, 0.0, 1.0]))
     expr = None
     if motion.expression is not None:
         expr = from_wire(motion.expression).astype(np.float64)
         if expr.ndim != 2 or expr.shape[0] != rot.shape[0]:
-            raise ValueError(f"motion {motion.character!r}: expression must be ({rot.shape[0]}, E), got {expr.shape}")
+            raise ValueError(
+                f"motion {motion.character!r}: expression must be ({rot.shape[0]}, E), got {expr.shape}"
+            )
     return root, rot, expr
 
 
@@ -82,8 +88,13 @@ class Rig:
     @classmethod
     def from_motion(cls, motion: Motion) -> Rig:
         root, rot, expr = motion_arrays(motion)
-        return cls(character=character_for(motion.character), root=root, rotations=rot, expression=expr,
-                   name=motion.character)
+        return cls(
+            character=character_for(motion.character),
+            root=root,
+            rotations=rot,
+            expression=expr,
+            name=motion.character,
+        )
 
     @property
     def n_frames(self) -> int:
@@ -106,7 +117,9 @@ class Rig:
     @cached_property
     def _blendshape_stack(self) -> np.ndarray:
         shapes = self.character.blendshapes
-        return np.stack([shapes.get(k, np.zeros_like(self.character.vertices)) for k in EXPRESSIONS]).astype(np.float64)
+        return np.stack([shapes.get(k, np.zeros_like(self.character.vertices)) for k in EXPRESSIONS]).astype(
+            np.float64
+        )
 
     def track(self) -> CharacterTrack:
         """Hips, facing (unit, XZ plane) and head over all frames, for cameras."""
@@ -115,8 +128,9 @@ class Rig:
         face[:, 1] = 0.0
         n = np.linalg.norm(face, axis=1, keepdims=True)
         face = np.where(n > 1e-6, face / np.maximum(n, 1e-6), np.array([0.0, 0.0, 1.0]))
-        return CharacterTrack(hips=self.joint_positions[:, 0], facing=face,
-                              head=self.joint_positions[:, JOINT_INDEX["Head"]])
+        return CharacterTrack(
+            hips=self.joint_positions[:, 0], facing=face, head=self.joint_positions[:, JOINT_INDEX["Head"]]
+        )
 
     def vertices(self, frames: np.ndarray | list[int]) -> np.ndarray:
         """Linear-blend-skinned vertices with blendshapes applied.
@@ -131,7 +145,11 @@ class Rig:
         ch = self.character
         rest_joints = ch.rest_joint_positions()  # (J, 3)
         pos = self.joint_positions[idx]  # (N, J, 3)
-        mats = Rotation.from_quat(self.joint_rotations[idx].reshape(-1, 4)).as_matrix().reshape(len(idx), N_JOINTS, 3, 3)
+        mats = (
+            Rotation.from_quat(self.joint_rotations[idx].reshape(-1, 4))
+            .as_matrix()
+            .reshape(len(idx), N_JOINTS, 3, 3)
+        )
         trans = pos - np.einsum("njab,jb->nja", mats, rest_joints)  # x' = R x + (p - R rest)
         base = np.broadcast_to(ch.vertices.astype(np.float64), (len(idx), *ch.vertices.shape))
         if self.expression is not None:

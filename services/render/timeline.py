@@ -50,7 +50,9 @@ def as_sentences(sentences: Iterable[Any] | None) -> list[SentenceRef]:
         elif isinstance(s, tuple) and len(s) == 2:
             out.append(SentenceRef(id=str(s[0]), text=str(s[1])))
         elif isinstance(s, Mapping):
-            out.append(SentenceRef(id=str(s.get("id", s.get("sentence_id", f"s{i}"))), text=str(s.get("text", ""))))
+            out.append(
+                SentenceRef(id=str(s.get("id", s.get("sentence_id", f"s{i}"))), text=str(s.get("text", "")))
+            )
         else:
             sid = getattr(s, "id", None) or getattr(s, "sentence_id", None) or f"s{i}"
             out.append(SentenceRef(id=str(sid), text=str(getattr(s, "text", ""))))
@@ -80,8 +82,11 @@ def _sentence_spans(motions: list[Motion]) -> dict[str, tuple[int, int, str]]:
     return spans
 
 
-def place_commands(commands: Iterable[Any] | None, sentences: Iterable[Any] | None,
-                   motions: Iterable[Motion] | Mapping[str, Motion] | None) -> list[TimedCommand]:
+def place_commands(
+    commands: Iterable[Any] | None,
+    sentences: Iterable[Any] | None,
+    motions: Iterable[Motion] | Mapping[str, Motion] | None,
+) -> list[TimedCommand]:
     """Camera and weather commands with the frame each takes effect, in frame order (stable).
 
     Camera commands without a target get the current character filled in.
@@ -102,7 +107,7 @@ def place_commands(commands: Iterable[Any] | None, sentences: Iterable[Any] | No
         frame, current = 0, default_char
         pos = order.get(sid)
         if pos is not None:
-            later = [spans[s.id] for s in sents[pos + 1:] if s.id in spans]
+            later = [spans[s.id] for s in sents[pos + 1 :] if s.id in spans]
             earlier = [spans[s.id] for s in sents[:pos] if s.id in spans]
             if later:
                 frame = later[0][0]
@@ -119,12 +124,16 @@ def place_commands(commands: Iterable[Any] | None, sentences: Iterable[Any] | No
     return [t[2] for t in out]
 
 
-def make_captions(sentences: Iterable[Any] | None, motions: Iterable[Motion] | Mapping[str, Motion] | None
-                  ) -> list[Caption]:
+def make_captions(
+    sentences: Iterable[Any] | None, motions: Iterable[Motion] | Mapping[str, Motion] | None
+) -> list[Caption]:
     """One caption per sentence that has motion, over the frames of its segments."""
     spans = _sentence_spans(as_motion_list(motions))
-    caps = [Caption(start_frame=spans[s.id][0], end_frame=spans[s.id][1], text=s.text.strip(), sentence_id=s.id)
-            for s in as_sentences(sentences) if s.id in spans and s.text.strip()]
+    caps = [
+        Caption(start_frame=spans[s.id][0], end_frame=spans[s.id][1], text=s.text.strip(), sentence_id=s.id)
+        for s in as_sentences(sentences)
+        if s.id in spans and s.text.strip()
+    ]
     return sorted(caps, key=lambda c: c.start_frame)
 
 
@@ -144,8 +153,10 @@ def camera_keys(commands: list[TimedCommand]) -> list[CameraKey]:
         if c.kind == "camera":
             mode = {"closeup": "close", "close-up": "close", "close_up": "close"}.get(c.value, c.value)
             if mode not in CAMERA_MODES:
-                raise ValueError(f"unknown camera command {c.value!r}; choose one of front, back, left, right, "
-                                 "top, follow, close")
+                raise ValueError(
+                    f"unknown camera command {c.value!r}; choose one of front, back, left, right, "
+                    "top, follow, close"
+                )
             keys.append(CameraKey(frame=max(0, tc.frame), mode=mode, character=c.target))
     return sorted(keys, key=lambda k: k.frame)
 

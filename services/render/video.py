@@ -60,12 +60,13 @@ def encode_mp4(frames: Iterable[np.ndarray], out: str | Path | io.BytesIO, fps: 
                 size = frame.shape[:2]
             elif frame.shape[:2] != size:
                 raise ValueError(f"frame {n} is {frame.shape[:2]}, the video is {size}")
+            assert stream is not None  # opened together with the container
             vf = av.VideoFrame.from_ndarray(frame, format="rgb24")
             vf.pts = n
             for packet in stream.encode(vf):
                 container.mux(packet)
             n += 1
-        if container is None:
+        if container is None or stream is None:
             raise ValueError("no frames to encode")
         for packet in stream.encode():
             container.mux(packet)
@@ -98,6 +99,8 @@ def join_chunks(chunks: Iterable[bytes | str | Path], out: str | Path | io.Bytes
                     ostream = dst.add_stream_from_template(istream)
                     ostream.time_base = istream.time_base
                 tb = istream.time_base
+                if tb is None:
+                    raise ValueError("an MP4 chunk's video stream has no time base")
                 offset = int(round(Fraction(frames_done, fps) / tb))
                 count = 0
                 for packet in src.demux(istream):
@@ -131,6 +134,11 @@ def probe(video: bytes | str | Path) -> dict[str, object]:
     with av.open(src, mode="r") as container:
         s = container.streams.video[0]
         n = sum(1 for _ in container.decode(video=0))
-        return {"codec": s.codec_context.name, "width": s.codec_context.width, "height": s.codec_context.height,
-                "frames": n, "fps": float(s.average_rate) if s.average_rate else float(FPS),
-                "duration_s": float(container.duration / av.time_base) if container.duration else n / FPS}
+        return {
+            "codec": s.codec_context.name,
+            "width": s.codec_context.width,
+            "height": s.codec_context.height,
+            "frames": n,
+            "fps": float(s.average_rate) if s.average_rate else float(FPS),
+            "duration_s": float(container.duration / av.time_base) if container.duration else n / FPS,
+        }

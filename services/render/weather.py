@@ -55,16 +55,48 @@ def _sun(x: float, y: float, z: float) -> np.ndarray:
 
 
 LOOKS: dict[str, Look] = {
-    "sunny": Look(background=np.array([0.62, 0.78, 0.95]), gain=np.array([1.05, 1.02, 0.95]), fog=0.0,
-                  fog_colour=np.array([0.8, 0.85, 0.9]), shadow=0.55, sun=_sun(0.45, -1.0, -0.35)),
-    "night": Look(background=np.array([0.03, 0.04, 0.10]), gain=np.array([0.38, 0.42, 0.62]), fog=0.0,
-                  fog_colour=np.array([0.05, 0.05, 0.1]), shadow=0.35, sun=_sun(-0.2, -1.0, 0.25)),
-    "rainy": Look(background=np.array([0.42, 0.45, 0.50]), gain=np.array([0.72, 0.75, 0.82]), fog=0.04,
-                  fog_colour=np.array([0.55, 0.58, 0.62]), shadow=0.2, sun=_sun(0.1, -1.0, -0.1), rain=1.0),
-    "foggy": Look(background=np.array([0.78, 0.80, 0.82]), gain=np.array([0.92, 0.93, 0.95]), fog=0.28,
-                  fog_colour=np.array([0.80, 0.82, 0.84]), shadow=0.15, sun=_sun(0.1, -1.0, -0.1)),
-    "snowy": Look(background=np.array([0.86, 0.89, 0.94]), gain=np.array([0.92, 0.96, 1.05]), fog=0.03,
-                  fog_colour=np.array([0.9, 0.92, 0.96]), shadow=0.3, sun=_sun(0.2, -1.0, -0.2), snow=1.0),
+    "sunny": Look(
+        background=np.array([0.62, 0.78, 0.95]),
+        gain=np.array([1.05, 1.02, 0.95]),
+        fog=0.0,
+        fog_colour=np.array([0.8, 0.85, 0.9]),
+        shadow=0.55,
+        sun=_sun(0.45, -1.0, -0.35),
+    ),
+    "night": Look(
+        background=np.array([0.03, 0.04, 0.10]),
+        gain=np.array([0.38, 0.42, 0.62]),
+        fog=0.0,
+        fog_colour=np.array([0.05, 0.05, 0.1]),
+        shadow=0.35,
+        sun=_sun(-0.2, -1.0, 0.25),
+    ),
+    "rainy": Look(
+        background=np.array([0.42, 0.45, 0.50]),
+        gain=np.array([0.72, 0.75, 0.82]),
+        fog=0.04,
+        fog_colour=np.array([0.55, 0.58, 0.62]),
+        shadow=0.2,
+        sun=_sun(0.1, -1.0, -0.1),
+        rain=1.0,
+    ),
+    "foggy": Look(
+        background=np.array([0.78, 0.80, 0.82]),
+        gain=np.array([0.92, 0.93, 0.95]),
+        fog=0.28,
+        fog_colour=np.array([0.80, 0.82, 0.84]),
+        shadow=0.15,
+        sun=_sun(0.1, -1.0, -0.1),
+    ),
+    "snowy": Look(
+        background=np.array([0.86, 0.89, 0.94]),
+        gain=np.array([0.92, 0.96, 1.05]),
+        fog=0.03,
+        fog_colour=np.array([0.9, 0.92, 0.96]),
+        shadow=0.3,
+        sun=_sun(0.2, -1.0, -0.2),
+        snow=1.0,
+    ),
 }
 
 
@@ -73,9 +105,16 @@ def _mix(a: Look, b: Look, s: float) -> Look:
         return x + (y - x) * s
 
     sun = lerp(a.sun, b.sun)
-    return Look(background=lerp(a.background, b.background), gain=lerp(a.gain, b.gain), fog=lerp(a.fog, b.fog),
-                fog_colour=lerp(a.fog_colour, b.fog_colour), shadow=lerp(a.shadow, b.shadow),
-                sun=sun / np.linalg.norm(sun), rain=lerp(a.rain, b.rain), snow=lerp(a.snow, b.snow))
+    return Look(
+        background=lerp(a.background, b.background),
+        gain=lerp(a.gain, b.gain),
+        fog=lerp(a.fog, b.fog),
+        fog_colour=lerp(a.fog_colour, b.fog_colour),
+        shadow=lerp(a.shadow, b.shadow),
+        sun=sun / np.linalg.norm(sun),
+        rain=lerp(a.rain, b.rain),
+        snow=lerp(a.snow, b.snow),
+    )
 
 
 def look_at(frame: int, keys: list[WeatherKey]) -> Look:

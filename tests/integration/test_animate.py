@@ -23,9 +23,23 @@ def outputs(tmp_path_factory):
     story.write_text(STORY)
     out = tmp_path_factory.mktemp("out")
     proc = subprocess.run(
-        [sys.executable, "-m", "wana.cli", "animate", str(story), "-o", str(out), "--width", "160",
-         "--height", "120", "--no-progress"],
-        capture_output=True, text=True, timeout=900,
+        [
+            sys.executable,
+            "-m",
+            "wana.cli",
+            "animate",
+            str(story),
+            "-o",
+            str(out),
+            "--width",
+            "160",
+            "--height",
+            "120",
+            "--no-progress",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=900,
     )
     assert proc.returncode == 0, proc.stderr[-3000:]
     return out
@@ -59,9 +73,24 @@ def test_the_same_story_gives_the_same_animation(outputs, tmp_path):
     story = tmp_path / "story.txt"
     story.write_text(STORY)
     proc = subprocess.run(
-        [sys.executable, "-m", "wana.cli", "animate", str(story), "-o", str(tmp_path / "again"), "--width", "160",
-         "--height", "120", "--no-progress", "--in-process"],
-        capture_output=True, text=True, timeout=900,
+        [
+            sys.executable,
+            "-m",
+            "wana.cli",
+            "animate",
+            str(story),
+            "-o",
+            str(tmp_path / "again"),
+            "--width",
+            "160",
+            "--height",
+            "120",
+            "--no-progress",
+            "--in-process",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=900,
     )
     assert proc.returncode == 0, proc.stderr[-3000:]
     assert (tmp_path / "again" / "Eve.bvh").read_bytes() == (outputs / "Eve.bvh").read_bytes()

@@ -65,8 +65,12 @@ def test_editing_one_action_reruns_its_parse_and_that_action_of_that_character_o
 def test_an_action_whose_end_state_changes_reruns_the_actions_after_it(session):
     replace(session, "Tom walks to the window", "Tom walks to the desk")
     result = session.compute()
-    assert result.ran == [f"parse:{sid_of(session, 'Tom walks to the desk')}", "resolve", "segment:Tom:0",
-                          "segment:Tom:1"]
+    assert result.ran == [
+        f"parse:{sid_of(session, 'Tom walks to the desk')}",
+        "resolve",
+        "segment:Tom:0",
+        "segment:Tom:1",
+    ]
 
 
 def test_an_action_whose_end_state_is_unchanged_stops_early(session):

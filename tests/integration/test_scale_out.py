@@ -26,8 +26,9 @@ def free_port() -> int:
 
 def spawn(*args: str) -> subprocess.Popen[bytes]:
     env = dict(os.environ, WANA_BUS_HEARTBEAT_S="0.2")
-    return subprocess.Popen([sys.executable, "-m", "wana.cli", *args], env=env,
-                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    return subprocess.Popen(
+        [sys.executable, "-m", "wana.cli", *args], env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE
+    )
 
 
 def test_the_cli_broker_and_two_workers_answer_parse_requests_over_tcp():
@@ -45,8 +46,16 @@ def test_the_cli_broker_and_two_workers_answer_parse_requests_over_tcp():
                 reply = decoder.decode(client.request("nlp", msgspec.msgpack.encode(request), deadline_s=120))
                 assert reply.status == "ok"
                 assert reply.graph.text == text
-            kinds = [decoder.decode(client.request("nlp", msgspec.msgpack.encode(
-                ParseRequest(header=Header(), sentence_id="x", text=t)), deadline_s=120)).graph.kind for t in texts]
+            kinds = [
+                decoder.decode(
+                    client.request(
+                        "nlp",
+                        msgspec.msgpack.encode(ParseRequest(header=Header(), sentence_id="x", text=t)),
+                        deadline_s=120,
+                    )
+                ).graph.kind
+                for t in texts
+            ]
             assert kinds == ["action", "scene", "command"]
         finally:
             client.close()

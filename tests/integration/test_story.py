@@ -20,7 +20,9 @@ def orchestrator(tmp_path_factory):
 
 
 def test_walking_to_another_character_ends_near_them(orchestrator):
-    result = orchestrator.create("A sofa is near a window$.\nEve walks to the window.\nTom walks to Eve.\n").compute()
+    result = orchestrator.create(
+        "A sofa is near a window$.\nEve walks to the window.\nTom walks to Eve.\n"
+    ).compute()
     eve = from_wire(result.motions["Eve"].root_position)[-1]
     tom = from_wire(result.motions["Tom"].root_position)[-1]
     assert np.hypot(*(eve - tom)[[0, 2]]) < 1.2
@@ -31,7 +33,9 @@ def test_a_later_sentence_starts_no_earlier_than_the_one_before(orchestrator):
     eve = [s for s in result.motions["Eve"].segments if s.action != "hold"]
     tom = [s for s in result.motions["Tom"].segments if s.action != "hold"]
     assert tom[0].start_frame >= eve[0].start_frame
-    assert len(from_wire(result.motions["Eve"].root_position)) == len(from_wire(result.motions["Tom"].root_position))
+    assert len(from_wire(result.motions["Eve"].root_position)) == len(
+        from_wire(result.motions["Tom"].root_position)
+    )
 
 
 def test_a_story_without_scene_sentences_gets_an_empty_room(orchestrator):
@@ -41,7 +45,9 @@ def test_a_story_without_scene_sentences_gets_an_empty_room(orchestrator):
     assert [s.action for s in result.motions["Eve"].segments if s.action != "hold"][-1] == "wave"
 
 
-@pytest.mark.parametrize("text", ["", "   \n\n", "$$$ ... ???", "\x00\x01\x02 binary", "Der Hund läuft schnell."])
+@pytest.mark.parametrize(
+    "text", ["", "   \n\n", "$$$ ... ???", "\x00\x01\x02 binary", "Der Hund läuft schnell."]
+)
 def test_odd_documents_give_diagnostics_not_crashes(orchestrator, text):
     result = orchestrator.create(text).compute()
     assert result.version == 0

@@ -18,9 +18,12 @@ import hashlib
 import itertools
 from dataclasses import dataclass, field
 from functools import lru_cache
+from typing import cast
 
 import numpy as np
 import trimesh
+from numpy.typing import ArrayLike
+from trimesh.visual import ColorVisuals
 
 from proto.scene import PlacedObject
 from wana.assets import vocabulary
@@ -209,7 +212,7 @@ def _params(category: str, spec, a: dict[str, str], seed: int) -> Params:  # noq
     )
 
 
-def _frozen(x: np.ndarray) -> np.ndarray:
+def _frozen(x: ArrayLike) -> np.ndarray:
     x = np.asarray(x, dtype=np.float64)
     x.setflags(write=False)
     return x
@@ -271,7 +274,8 @@ def mesh_digest(obj: AssetObject) -> str:
     """Content hash of an object's geometry and colours (distinct variants have distinct digests)."""
     h = hashlib.sha1()
     h.update(np.round(np.asarray(obj.mesh.vertices), 5).tobytes())
-    h.update(np.asarray(obj.mesh.visual.face_colors).tobytes())
+    visual = cast(ColorVisuals, obj.mesh.visual)  # catalogue meshes carry per-face colours
+    h.update(np.asarray(visual.face_colors).tobytes())
     return h.hexdigest()
 
 

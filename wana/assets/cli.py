@@ -13,6 +13,10 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING, cast
+
+if TYPE_CHECKING:
+    import trimesh
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -100,16 +104,19 @@ def _list(args: argparse.Namespace) -> int:
             print(f"{r:14s} {', '.join(syn[:4])}")
     elif args.what == "characters":
         for n in character_names():
-            c = make_character(n)
-            print(f"{n:6s} {c.height:.2f} m  {len(c.vertices)} vertices  {len(c.blendshapes)} blendshapes")
+            character = make_character(n)
+            print(
+                f"{n:6s} {character.height:.2f} m  {len(character.vertices)} vertices  "
+                f"{len(character.blendshapes)} blendshapes"
+            )
     else:
         from wana.assets.scenedb import load_scenedb
 
         recs = [r for r in load_scenedb() if not args.room or r.room_type == args.room]
-        for r in recs:
+        for rec in recs:
             print(
-                f"{r.id:18s} {r.scene.room.width:.1f}x{r.scene.room.depth:.1f} m  {len(r.objects):2d} objects  "
-                f"{len(r.relations):2d} relations"
+                f"{rec.id:18s} {rec.scene.room.width:.1f}x{rec.scene.room.depth:.1f} m  "
+                f"{len(rec.objects):2d} objects  {len(rec.relations):2d} relations"
             )
         print(f"{len(recs)} scenes")
     return 0
@@ -120,6 +127,7 @@ def _show(args: argparse.Namespace) -> int:
     if kind == "object":
         from wana.assets import catalog, vocabulary
 
+        assert isinstance(thing, str)
         obj = catalog.make_object(thing, _attrs(args.attr), args.seed)
         info = vocabulary.CATEGORIES[thing]
         print(f"category   {thing}  (hypernyms: {' > '.join(vocabulary.hypernyms(thing))})")
@@ -141,12 +149,16 @@ def _show(args: argparse.Namespace) -> int:
     elif kind == "character":
         from wana.assets.characters import make_character
 
+        assert isinstance(thing, str)
         c = make_character(thing)
         print(
             f"character  {c.name}  height {c.height:.2f} m  vertices {len(c.vertices)}  faces {len(c.faces)}"
         )
         print(f"blendshapes {', '.join(c.blendshapes)}")
     else:
+        from wana.assets.scenedb import SceneRecord
+
+        assert isinstance(thing, SceneRecord)
         rec = thing
         r = rec.scene.room
         print(f"scene {rec.id}  room {rec.room_type} {r.width}x{r.depth}x{r.height} m  seed {rec.seed}")
@@ -164,9 +176,11 @@ def _export(args: argparse.Namespace) -> int:
 
     kind, thing = _resolve(args.name)
     out = Path(args.output)
+    mesh: trimesh.Trimesh
     if kind == "object":
         from wana.assets import catalog
 
+        assert isinstance(thing, str)
         obj = catalog.make_object(thing, _attrs(args.attr), args.seed)
         gltf.export_object_glb(obj, out)
         mesh = obj.mesh
@@ -175,13 +189,18 @@ def _export(args: argparse.Namespace) -> int:
 
         from wana.assets.characters import make_character
 
+        assert isinstance(thing, str)
         c = make_character(thing)
         gltf.export_character_glb(c, out)
         mesh = trimesh.Trimesh(c.vertices, c.faces, process=False)
         mesh.visual = trimesh.visual.ColorVisuals(mesh, face_colors=c.colours[c.faces[:, 0]])
     else:
+        from wana.assets.scenedb import SceneRecord
+
+        assert isinstance(thing, SceneRecord)
         gltf.export_scene_glb(thing.scene, out, with_room=not args.no_room)
-        mesh = gltf.scene_trimesh(thing.scene, with_room=False).to_geometry()
+        # a scene of triangle meshes concatenates to one Trimesh
+        mesh = cast("trimesh.Trimesh", gltf.scene_trimesh(thing.scene, with_room=False).to_geometry())
     print(f"wrote {out}")
     if args.png:
         Path(args.png).parent.mkdir(parents=True, exist_ok=True)

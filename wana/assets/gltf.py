@@ -21,7 +21,7 @@ from wana.skeleton import JOINT_NAMES, N_JOINTS, PARENTS
 
 _GLB_MAGIC = 0x46546C67
 _JSON, _BIN = 0x4E4F534A, 0x004E4942
-_COMPONENT = {
+_COMPONENT: dict[np.dtype, int] = {
     np.dtype(np.float32): 5126,
     np.dtype(np.uint32): 5125,
     np.dtype(np.uint16): 5123,

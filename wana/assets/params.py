@@ -184,7 +184,9 @@ class Builder(PartList):
         extra: dict[str, tuple[float, float, float]] | None = None,
     ) -> None:
         """Interaction ``name``: ``joint`` goes to ``pos``; ``extra`` holds other joints of the same act."""
-        self.contacts[name] = ContactSpec(joint, tuple(float(v) for v in pos), dict(extra or {}))
+        self.contacts[name] = ContactSpec(
+            joint, (float(pos[0]), float(pos[1]), float(pos[2])), dict(extra or {})
+        )
 
     def two_hands(
         self, name: str, y: float, z: float, spread: float, x: float = 0.0, finger: bool = True

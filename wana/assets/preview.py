@@ -7,10 +7,12 @@ drawn back to front. Good enough to eyeball shapes and colours of hundreds of ob
 from __future__ import annotations
 
 from pathlib import Path
+from typing import cast
 
 import numpy as np
 import trimesh
 from PIL import Image, ImageDraw
+from trimesh.visual import ColorVisuals
 
 _LIGHT = np.array([0.4, 0.8, 0.6]) / np.linalg.norm([0.4, 0.8, 0.6])
 
@@ -56,7 +58,8 @@ def render_mesh(
     visible = normals[:, 2] > 0  # camera looks down -Z in camera space; keep faces turned to it
     light = rot @ _LIGHT
     shade = 0.45 + 0.55 * np.clip(normals @ light, 0.0, 1.0)
-    colours = np.asarray(mesh.visual.face_colors)[:, :3].astype(float)
+    visual = cast(ColorVisuals, mesh.visual)  # the caller passes a face-coloured mesh (see Args)
+    colours = np.asarray(visual.face_colors)[:, :3].astype(float)
     lit = np.clip(colours * shade[:, None], 0, 255).astype(np.uint8)
     depth = tri[:, :, 2].mean(axis=1)
     draw = ImageDraw.Draw(img)

@@ -143,15 +143,15 @@ def _candidates(st: _State, rule: Rule, obj: catalog.AssetObject, anchor: Placed
                     rels.append(("next_to", anchor.id))
                 yield _local_to_world(anchor, local), anchor.yaw, "", rels
             elif op == "around":
-                side = int(rng.integers(4))
-                if side < 2:
-                    z = (ad / 2 + rule.gap[0] + od / 2) * (1 if side == 0 else -1)
+                quadrant = int(rng.integers(4))
+                if quadrant < 2:
+                    z = (ad / 2 + rule.gap[0] + od / 2) * (1 if quadrant == 0 else -1)
                     x = float(rng.uniform(-0.35, 0.35)) * max(aw - ow, 0.0)
-                    local, yaw_local = np.array([x, 0.0, z]), (np.pi if side == 0 else 0.0)
+                    local, yaw_local = np.array([x, 0.0, z]), (np.pi if quadrant == 0 else 0.0)
                 else:
-                    x = (aw / 2 + rule.gap[0] + od / 2) * (1 if side == 2 else -1)
+                    x = (aw / 2 + rule.gap[0] + od / 2) * (1 if quadrant == 2 else -1)
                     z = float(rng.uniform(-0.3, 0.3)) * max(ad - ow, 0.0)
-                    local, yaw_local = np.array([x, 0.0, z]), (-np.pi / 2 if side == 2 else np.pi / 2)
+                    local, yaw_local = np.array([x, 0.0, z]), (-np.pi / 2 if quadrant == 2 else np.pi / 2)
                 yield _local_to_world(anchor, local), anchor.yaw + yaw_local, "", [("around", anchor.id)]
             elif op == "under":
                 x = float(rng.uniform(-0.3, 0.3)) * max(aw - ow, 0.0)

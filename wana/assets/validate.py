@@ -79,16 +79,18 @@ def scene_problems(scene: Scene, relations: list[RelationNode] | tuple[RelationN
         elif abs(b[0, 1]) > 1e-6:
             problems.append(f"{o.id} floats above the floor")
     objs = scene.objects
-    for i, a in enumerate(objs):
-        for b in objs[i + 1 :]:
-            if a.support == b.id or b.support == a.id:
+    for i, first in enumerate(objs):
+        for second in objs[i + 1 :]:
+            if first.support == second.id or second.support == first.id:
                 continue
-            if aabbs_overlap(bounds[a.id], bounds[b.id]) and boxes_overlap(boxes[a.id], boxes[b.id]):
-                problems.append(f"{a.id} interpenetrates {b.id}")
+            if aabbs_overlap(bounds[first.id], bounds[second.id]) and boxes_overlap(
+                boxes[first.id], boxes[second.id]
+            ):
+                problems.append(f"{first.id} interpenetrates {second.id}")
     for rel in relations:
-        s, a = by_id.get(rel.subject), by_id.get(rel.object)
-        if s is None or a is None:
+        subject, anchor = by_id.get(rel.subject), by_id.get(rel.object)
+        if subject is None or anchor is None:
             problems.append(f"relation {rel.subject} {rel.relation} {rel.object} names a missing object")
-        elif not relation_holds(rel, s, a):
+        elif not relation_holds(rel, subject, anchor):
             problems.append(f"relation {rel.subject} {rel.relation} {rel.object} does not hold")
     return problems

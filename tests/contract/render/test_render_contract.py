@@ -22,9 +22,18 @@ MOTION = walk_motion("Eve", (-1.5, 1.0), (1.0, -0.5), 18)
 
 @pytest.mark.contract
 def test_render_request_gets_png_frames(render):
-    req = RenderRequest(header=Header(doc_id="doc"), scene=demo_scene(), motions=[MOTION], start_frame=0,
-                        end_frame=2, width=80, height=60)
-    reply = check_contract(CONTRACT, req, render.request("render", msgspec.msgpack.encode(req), deadline_s=120))
+    req = RenderRequest(
+        header=Header(doc_id="doc"),
+        scene=demo_scene(),
+        motions=[MOTION],
+        start_frame=0,
+        end_frame=2,
+        width=80,
+        height=60,
+    )
+    reply = check_contract(
+        CONTRACT, req, render.request("render", msgspec.msgpack.encode(req), deadline_s=120)
+    )
     assert reply.status == "ok" and len(reply.frames) == 2 and reply.frames[0][:4] == b"\x89PNG"
     assert (reply.start_frame, reply.end_frame, reply.n_frames) == (0, 2, 18)
 
@@ -34,8 +43,16 @@ def test_mp4_chunks_from_two_workers_join_into_the_whole_video(render):
     chunks = []
     jobs = []
     for a, b in chunk_ranges(18, 2):
-        req = RenderRequest(header=Header(), scene=demo_scene(), motions=[MOTION], start_frame=a, end_frame=b,
-                            width=80, height=60, encoding="mp4")
+        req = RenderRequest(
+            header=Header(),
+            scene=demo_scene(),
+            motions=[MOTION],
+            start_frame=a,
+            end_frame=b,
+            width=80,
+            height=60,
+            encoding="mp4",
+        )
         jobs.append((req, render.client.submit("render", msgspec.msgpack.encode(req), deadline_s=120)))
     for req, job in jobs:
         reply = check_contract(CONTRACT, req, render.client.result(job, timeout=120))
@@ -49,8 +66,9 @@ def test_mp4_chunks_from_two_workers_join_into_the_whole_video(render):
 @pytest.mark.contract
 def test_errors_are_contract_errors(render):
     req = RenderRequest(header=Header(), scene=demo_scene(), width=5, height=5)
-    reply = check_contract(CONTRACT, req, render.request("render", msgspec.msgpack.encode(req)), expect="error",
-                           code="E010")
+    reply = check_contract(
+        CONTRACT, req, render.request("render", msgspec.msgpack.encode(req)), expect="error", code="E010"
+    )
     assert "pixels" in reply.message
     exp = ExportRequest(header=Header(), format="glb", scene=demo_scene(), motions=[MOTION])
     glb = check_contract(CONTRACT, exp, render.request("render", msgspec.msgpack.encode(exp), deadline_s=120))

@@ -11,7 +11,9 @@ SUBCOMMANDS = ["animate", "serve", "parse", "assets", "motion", "broker", "worke
 
 
 def run(*args: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([sys.executable, "-m", "wana.cli", *args], capture_output=True, text=True, timeout=120)
+    return subprocess.run(
+        [sys.executable, "-m", "wana.cli", *args], capture_output=True, text=True, timeout=120
+    )
 
 
 def test_help_lists_every_subcommand():

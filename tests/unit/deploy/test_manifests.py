@@ -33,5 +33,8 @@ def test_every_worker_type_is_a_scaled_deployment_whose_args_the_cli_accepts():
 def test_the_broker_is_a_statefulset_behind_a_service_on_the_bus_port():
     docs = {d["kind"]: d for d in yaml.safe_load_all((DEPLOY / "k8s" / "broker.yaml").read_text())}
     assert docs["StatefulSet"]["spec"]["template"]["spec"]["containers"][0]["args"] == [
-        "broker", "--bind", "tcp://0.0.0.0:5555"]
+        "broker",
+        "--bind",
+        "tcp://0.0.0.0:5555",
+    ]
     assert docs["Service"]["spec"]["ports"][0]["port"] == 5555

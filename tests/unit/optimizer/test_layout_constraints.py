@@ -9,10 +9,13 @@ ROOM = Room(room_type="office", width=4.0, depth=4.0, height=2.7)
 
 
 def model() -> LayoutModel:
-    scene = Scene(room=ROOM, objects=[
-        PlacedObject(id="desk", category="desk", position=(1.2, 0.0, 0.0)),
-        PlacedObject(id="chair", category="chair", position=(-0.5, 0.0, 0.0)),
-    ])
+    scene = Scene(
+        room=ROOM,
+        objects=[
+            PlacedObject(id="desk", category="desk", position=(1.2, 0.0, 0.0)),
+            PlacedObject(id="chair", category="chair", position=(-0.5, 0.0, 0.0)),
+        ],
+    )
     return LayoutModel(scene, ["desk", "chair"])
 
 

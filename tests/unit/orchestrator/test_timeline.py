@@ -34,8 +34,12 @@ def piece(frames: int, x: float, action: str) -> Motion:
     root[:, 0] = x
     rot = np.zeros((frames, N_JOINTS, 4), np.float32)
     rot[..., 3] = 1
-    return Motion(character="Eve", root_position=to_wire(root), rotations=to_wire(rot),
-                  segments=[Segment(index=0, action=action, start_frame=0, end_frame=frames, sentence_id="s")])
+    return Motion(
+        character="Eve",
+        root_position=to_wire(root),
+        rotations=to_wire(rot),
+        segments=[Segment(index=0, action=action, start_frame=0, end_frame=frames, sentence_id="s")],
+    )
 
 
 def test_assembly_holds_the_pose_through_gaps_and_shifts_segments():

@@ -34,7 +34,11 @@ def test_every_request_and_reply_carries_a_header_first():
     for info in pkgutil.iter_modules([str(REPO / "proto")]):
         module = importlib.import_module(f"proto.{info.name}")
         for name, obj in vars(module).items():
-            if isinstance(obj, type) and issubclass(obj, msgspec.Struct) and name.endswith(("Request", "Reply")):
+            if (
+                isinstance(obj, type)
+                and issubclass(obj, msgspec.Struct)
+                and name.endswith(("Request", "Reply"))
+            ):
                 fields = obj.__struct_fields__
                 assert fields and fields[0] == "header", f"{info.name}.{name} must start with header"
                 if name.endswith("Reply"):

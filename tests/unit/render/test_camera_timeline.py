@@ -22,7 +22,9 @@ from services.render.weather import LOOKS, WeatherKey, look_at
 
 
 def test_projection_puts_the_target_at_the_image_centre_and_up_is_up():
-    pose = CameraPose(eye=np.array([1.0, 2.0, 5.0]), target=np.array([0.0, 1.0, 0.0]), up=np.array([0.0, 1.0, 0.0]))
+    pose = CameraPose(
+        eye=np.array([1.0, 2.0, 5.0]), target=np.array([0.0, 1.0, 0.0]), up=np.array([0.0, 1.0, 0.0])
+    )
     uv, z = project(np.array([[0.0, 1.0, 0.0], [0.0, 2.0, 0.0]]), pose, 640, 480)
     np.testing.assert_allclose(uv[0], [319.5, 239.5], atol=1e-6)
     assert z[0] > 0 and uv[1, 1] < uv[0, 1]  # a higher point is higher in the picture (smaller row)
@@ -54,7 +56,9 @@ def test_left_camera_looks_at_the_characters_left_side(eve):
 def test_camera_changes_ease_in_without_jumps(eve):
     room = demo_scene().room
     keys = [CameraKey(frame=20, mode="top", character="Eve")]
-    eyes = np.array([camera_at(f, keys, {"Eve": eve}, room).eye for f in range(10, 20 + TRANSITION_FRAMES + 5)])
+    eyes = np.array(
+        [camera_at(f, keys, {"Eve": eve}, room).eye for f in range(10, 20 + TRANSITION_FRAMES + 5)]
+    )
     steps = np.linalg.norm(np.diff(eyes, axis=0), axis=1)
     total = np.linalg.norm(eyes[-1] - eyes[0])
     assert total > 2.0 and steps.max() < total / 8  # spread over many frames, no cut
@@ -74,18 +78,36 @@ def test_commands_take_effect_when_the_next_sentence_with_motion_starts():
     import msgspec
 
     from proto.motion_data import Segment
-    tom = msgspec.structs.replace(tom_raw, segments=[Segment(index=0, action="walk", start_frame=60, end_frame=90,
-                                                              sentence_id="s3")])
-    sentences = [("s1", "Eve walks."), ("s2", "camera left. night"), ("s3", "Tom walks in."), ("s4", "camera top")]
-    cmds = [("s2", Command(kind="camera", value="left")), ("s2", Command(kind="weather", value="night")),
-            ("s4", Command(kind="camera", value="top")), ("s2", Command(kind="speed", value="faster"))]
+
+    tom = msgspec.structs.replace(
+        tom_raw, segments=[Segment(index=0, action="walk", start_frame=60, end_frame=90, sentence_id="s3")]
+    )
+    sentences = [
+        ("s1", "Eve walks."),
+        ("s2", "camera left. night"),
+        ("s3", "Tom walks in."),
+        ("s4", "camera top"),
+    ]
+    cmds = [
+        ("s2", Command(kind="camera", value="left")),
+        ("s2", Command(kind="weather", value="night")),
+        ("s4", Command(kind="camera", value="top")),
+        ("s2", Command(kind="speed", value="faster")),
+    ]
     timed = place_commands(cmds, sentences, [eve, tom])
     assert [(t.frame, t.command.value, t.command.target) for t in timed] == [
-        (60, "left", "Eve"), (60, "night", ""), (90, "top", "Tom")]
+        (60, "left", "Eve"),
+        (60, "night", ""),
+        (90, "top", "Tom"),
+    ]
     assert [k.mode for k in camera_keys(timed)] == ["left", "top"]
     assert [k.weather for k in weather_keys(timed)] == ["night"]
     caps = make_captions(sentences, [eve, tom])
-    assert caption_at(caps, 10) == "Eve walks." and caption_at(caps, 70) == "Tom walks in." and caption_at(caps, 95) == ""
+    assert (
+        caption_at(caps, 10) == "Eve walks."
+        and caption_at(caps, 70) == "Tom walks in."
+        and caption_at(caps, 95) == ""
+    )
 
 
 def test_unknown_camera_word_is_a_clear_error():

@@ -29,7 +29,10 @@ VALIDATOR = REPO / "tools" / "node" / "validate_gltf.mjs"
 
 @pytest.fixture(scope="module")
 def glb(tmp_path_factory) -> Path:
-    motions = [walk_motion("Eve", (-2.0, 1.0), (1.0, -1.0), 40), walk_motion("Quentin", (1.0, 1.5), (0.0, 0.0), 25)]
+    motions = [
+        walk_motion("Eve", (-2.0, 1.0), (1.0, -1.0), 40),
+        walk_motion("Quentin", (1.0, 1.5), (0.0, 0.0), 25),
+    ]
     path = tmp_path_factory.mktemp("glb") / "scene.glb"
     path.write_bytes(scene_glb(demo_scene(), motions))
     return path
@@ -46,7 +49,11 @@ def test_glb_has_zero_errors_and_warnings_under_the_khronos_validator(glb):
     issues = report["issues"]
     assert issues["numErrors"] == 0, issues["messages"][:10]
     assert issues["numWarnings"] == 0, issues["messages"][:10]
-    assert report["info"]["hasSkins"] and report["info"]["hasMorphTargets"] and report["info"]["animationCount"] == 1
+    assert (
+        report["info"]["hasSkins"]
+        and report["info"]["hasMorphTargets"]
+        and report["info"]["animationCount"] == 1
+    )
 
 
 def _accessor(doc: dict, blob: bytes, i: int) -> np.ndarray:
@@ -55,7 +62,9 @@ def _accessor(doc: dict, blob: bytes, i: int) -> np.ndarray:
     dtype = {5126: np.float32, 5121: np.uint8, 5123: np.uint16, 5125: np.uint32}[acc["componentType"]]
     width = {"SCALAR": 1, "VEC3": 3, "VEC4": 4, "MAT4": 16}[acc["type"]]
     start = view["byteOffset"] + acc.get("byteOffset", 0)
-    return np.frombuffer(blob, dtype=dtype, count=acc["count"] * width, offset=start).reshape(acc["count"], width)
+    return np.frombuffer(blob, dtype=dtype, count=acc["count"] * width, offset=start).reshape(
+        acc["count"], width
+    )
 
 
 def test_glb_skinning_reproduces_the_rendered_pose(glb):
@@ -137,10 +146,17 @@ def test_write_outputs_writes_video_glb_one_bvh_per_character_and_report(tmp_pat
 
     eve = walk_motion("Eve", (-1.5, 1.0), (0.5, 0.0), 20, sentence_id="s1")
     tom = walk_motion("Tom", (1.0, 1.5), (0.0, 1.5), 20, sentence_id="s1")
-    paths = write_outputs(tmp_path, demo_scene(), {"Eve": eve, "Tom": tom},
-                          [("s2", Command(kind="camera", value="close"))],
-                          [("s1", "Eve and Tom walk."), ("s2", "camera close")], {"diagnostics": {"s1": []}},
-                          width=160, height=120, progress=False)
+    paths = write_outputs(
+        tmp_path,
+        demo_scene(),
+        {"Eve": eve, "Tom": tom},
+        [("s2", Command(kind="camera", value="close"))],
+        [("s1", "Eve and Tom walk."), ("s2", "camera close")],
+        {"diagnostics": {"s1": []}},
+        width=160,
+        height=120,
+        progress=False,
+    )
     assert sorted(paths) == ["Eve.bvh", "Tom.bvh", "animation.mp4", "report.json", "scene.glb"]
     info = probe(paths["animation.mp4"])
     assert info["frames"] == 20 and info["width"] == 160 and info["codec"] == "h264"

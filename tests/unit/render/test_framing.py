@@ -20,7 +20,9 @@ FRAME = 40
 
 
 def test_a_segment_through_a_box_hits_it_and_one_beside_or_short_of_it_does_not():
-    starts = np.array([[-1.0, 0.5, 0.5], [-1.0, 1.5, 0.5], [-1.0, 0.5, 0.5], [0.5, 0.5, -1.0], [0.5, 2.0, 0.5]])
+    starts = np.array(
+        [[-1.0, 0.5, 0.5], [-1.0, 1.5, 0.5], [-1.0, 0.5, 0.5], [0.5, 0.5, -1.0], [0.5, 2.0, 0.5]]
+    )
     ends = np.array([[2.0, 0.5, 0.5], [2.0, 1.5, 0.5], [-0.1, 0.5, 0.5], [0.5, 0.5, 2.0], [0.5, 0.5, 0.5]])
     hit = segments_hit_boxes(starts, ends, UNIT_BOX)[:, 0]
     assert hit.tolist() == [True, False, False, True, True]
@@ -46,9 +48,12 @@ def setting():
     hips, _, _ = track.at(FRAME)
     between = hips + (commanded.eye - hips) * 0.45
     line = commanded.eye - hips
-    yaw = float(np.arctan2(line[0], line[2]))  # the wardrobe's front towards the camera: broad across the line
-    wardrobe = PlacedObject(id="wardrobe", category="wardrobe", position=(float(between[0]), 0.0, float(between[2])),
-                            yaw=yaw)
+    yaw = float(
+        np.arctan2(line[0], line[2])
+    )  # the wardrobe's front towards the camera: broad across the line
+    wardrobe = PlacedObject(
+        id="wardrobe", category="wardrobe", position=(float(between[0]), 0.0, float(between[2])), yaw=yaw
+    )
     blocked_scene = msgspec.structs.replace(scene, objects=[*scene.objects, wardrobe])
     return scene, blocked_scene, motion, track, keys, commanded
 
@@ -85,7 +90,9 @@ def test_moving_around_an_occluder_is_smooth_and_the_same_in_any_chunk(setting):
     assert np.linalg.norm(after_cut_in, axis=1).max() < 0.15  # metres per frame: no cut
     fresh = Occluders.from_scene(blocked_scene)  # another worker, its own memo, frames out of order
     for f in (63, 17, 40):
-        np.testing.assert_array_equal(camera_at(f, keys, {"Eve": track}, blocked_scene.room, fresh).eye, eyes[f])
+        np.testing.assert_array_equal(
+            camera_at(f, keys, {"Eve": track}, blocked_scene.room, fresh).eye, eyes[f]
+        )
 
 
 def test_the_overview_turns_away_from_a_wall_of_cabinets_in_front_of_the_characters(setting):
@@ -94,8 +101,12 @@ def test_the_overview_turns_away_from_a_wall_of_cabinets_in_front_of_the_charact
     hips, _, head = track.at(0)
     # Wardrobes side by side across the line from the overview camera to Eve's start.
     mid = hips + (base.eye - hips) * 0.4
-    wall = [PlacedObject(id=f"w{k}", category="wardrobe", position=(float(mid[0]) + 1.2 * k, 0.0, float(mid[2])),
-                         yaw=0.0) for k in (-1, 0, 1)]
+    wall = [
+        PlacedObject(
+            id=f"w{k}", category="wardrobe", position=(float(mid[0]) + 1.2 * k, 0.0, float(mid[2])), yaw=0.0
+        )
+        for k in (-1, 0, 1)
+    ]
     crowded = msgspec.structs.replace(scene, objects=[*scene.objects, *wall])
     occ = Occluders.from_scene(crowded)
     assert occ.blocked_share(base.eye, sight_points(hips, head)) > 0.0

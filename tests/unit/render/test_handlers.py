@@ -19,14 +19,23 @@ handle = make_frame_handler(CONTRACT)
 
 
 def _call(request):  # noqa: ANN001, ANN202
-    return msgspec.msgpack.decode(handle(msgspec.msgpack.encode(request)), type=RenderReply | ExportReply | ErrorReply)
+    return msgspec.msgpack.decode(
+        handle(msgspec.msgpack.encode(request)), type=RenderReply | ExportReply | ErrorReply
+    )
 
 
 @pytest.mark.slow
 def test_png_and_raw_frames_of_a_range_decode_to_the_same_picture():
     motion = walk_motion("Eve", (-1.0, 1.0), (1.0, 0.0), 12)
-    base = dict(header=Header(doc_id="d"), scene=demo_scene(), motions=[motion], start_frame=3, end_frame=5,
-                width=96, height=64)
+    base = dict(
+        header=Header(doc_id="d"),
+        scene=demo_scene(),
+        motions=[motion],
+        start_frame=3,
+        end_frame=5,
+        width=96,
+        height=64,
+    )
     png = _call(RenderRequest(**base, encoding="png"))
     raw = _call(RenderRequest(**base, encoding="raw"))
     assert isinstance(png, RenderReply) and png.n_frames == 12 and len(png.frames) == 2
@@ -49,8 +58,17 @@ def test_bad_requests_get_e010_errors_not_crashes():
 
 @pytest.mark.slow
 def test_out_of_range_frames_are_refused():
-    reply = _call(RenderRequest(header=Header(), scene=demo_scene(), motions=[walk_motion("Eve", (0, 0), (1, 0), 8)],
-                                start_frame=4, end_frame=20, width=32, height=32))
+    reply = _call(
+        RenderRequest(
+            header=Header(),
+            scene=demo_scene(),
+            motions=[walk_motion("Eve", (0, 0), (1, 0), 8)],
+            start_frame=4,
+            end_frame=20,
+            width=32,
+            height=32,
+        )
+    )
     assert isinstance(reply, ErrorReply) and reply.code == "E010" and "outside" in reply.message
 
 
@@ -58,5 +76,7 @@ def test_glb_and_bvh_exports():
     m = walk_motion("Tom", (0, 0), (1, 0), 10)
     glb = _call(ExportRequest(header=Header(), format="glb", scene=demo_scene(), motions=[m]))
     assert glb.filename == "scene.glb" and glb.data[:4] == b"glTF"
-    bvh = _call(ExportRequest(header=Header(), format="bvh", scene=demo_scene(), motions=[m], character="Tom"))
+    bvh = _call(
+        ExportRequest(header=Header(), format="bvh", scene=demo_scene(), motions=[m], character="Tom")
+    )
     assert bvh.filename == "Tom.bvh" and bvh.data.startswith(b"HIERARCHY")

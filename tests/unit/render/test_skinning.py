@@ -30,7 +30,9 @@ def test_rest_pose_at_the_rest_hips_gives_the_rest_mesh():
 def test_a_walk_puts_the_hips_joint_where_the_motion_says():
     m = walk_motion("Eve", (-1.0, 0.5), (1.0, -0.5), 40)
     rig = Rig.from_motion(m)
-    np.testing.assert_allclose(rig.joint_positions[:, 0], hips_path("Eve", (-1.0, 0.5), (1.0, -0.5), 40), atol=1e-5)
+    np.testing.assert_allclose(
+        rig.joint_positions[:, 0], hips_path("Eve", (-1.0, 0.5), (1.0, -0.5), 40), atol=1e-5
+    )
     track = rig.track()
     d = np.array([2.0, 0.0, -1.0]) / np.linalg.norm([2.0, 0.0, -1.0])
     assert np.all(track.facing @ d > 0.99)  # the walk faces its direction of travel

@@ -14,7 +14,7 @@ def _frames(n: int, h: int = 96, w: int = 128) -> list[np.ndarray]:
     out = []
     for i in range(n):
         f = np.full((h, w, 3), 40, np.uint8)
-        f[20:60, 4 * i: 4 * i + 24] = (250, 80, 40)  # a box moving right
+        f[20:60, 4 * i : 4 * i + 24] = (250, 80, 40)  # a box moving right
         out.append(f)
     return out
 

@@ -60,8 +60,12 @@ def test_context_storage_stands_with_its_back_against_a_wall(office):
     w, d = scene.room.width, scene.room.depth
     for p in storage:
         box = _xz_box(p)
-        gaps = {"back": box[0, 1] + d / 2, "front": d / 2 - box[1, 1], "left": box[0, 0] + w / 2,
-                "right": w / 2 - box[1, 0]}
+        gaps = {
+            "back": box[0, 1] + d / 2,
+            "front": d / 2 - box[1, 1],
+            "left": box[0, 0] + w / 2,
+            "right": w / 2 - box[1, 0],
+        }
         wall = min(gaps, key=gaps.get)
         assert gaps[wall] < 0.1, f"{p.id} stands {gaps[wall]:.2f} m from the nearest wall"
         # Its front (+Z in the object frame) points into the room, away from that wall.
@@ -75,8 +79,13 @@ def test_context_floor_furniture_keeps_clear_of_stand_points_and_the_entrance(of
     text = [p for p in scene.objects if p.from_text]
     stands = stand_points(text)
     assert len(stands) == len(text)
-    floor_context = [p for p in scene.objects if not p.from_text and not p.support
-                     and footprint(p.category, dict(p.attributes), p.seed).mount == "floor"]
+    floor_context = [
+        p
+        for p in scene.objects
+        if not p.from_text
+        and not p.support
+        and footprint(p.category, dict(p.attributes), p.seed).mount == "floor"
+    ]
     assert floor_context
     door = entrance(scene.room.depth)
     for p in floor_context:
@@ -107,8 +116,12 @@ def test_keep_clear_zones_block_a_box_on_a_walkway_and_not_one_beside_it(office)
     mid = (stand + door) / 2.0
     on_path = np.array([[mid[0] - 0.1, 0.0, mid[1] - 0.1], [mid[0] + 0.1, 1.0, mid[1] + 0.1]])
     assert zones.blocks(on_path)
-    corner = np.array([[scene.room.width / 2 - 0.3, 0.0, -scene.room.depth / 2],
-                       [scene.room.width / 2, 1.0, -scene.room.depth / 2 + 0.3]])
+    corner = np.array(
+        [
+            [scene.room.width / 2 - 0.3, 0.0, -scene.room.depth / 2],
+            [scene.room.width / 2, 1.0, -scene.room.depth / 2 + 0.3],
+        ]
+    )
     if np.linalg.norm(stand - corner[0, [0, 2]]) > 1.0:
         assert not zones.blocks(corner)
 
@@ -122,8 +135,14 @@ def test_which_furniture_goes_against_a_wall():
 
 
 def test_a_named_bookshelf_without_relations_stands_against_a_wall():
-    scene, report = compose_scene([ObjectNode(id="shelf", category="bookshelf", word="bookshelf"),
-                                   ObjectNode(id="sofa", category="sofa", word="sofa")], [], seed=4)
+    scene, report = compose_scene(
+        [
+            ObjectNode(id="shelf", category="bookshelf", word="bookshelf"),
+            ObjectNode(id="sofa", category="sofa", word="sofa"),
+        ],
+        [],
+        seed=4,
+    )
     placed = {p.id: p for p in scene.objects}
     box = world_collision_boxes(placed["shelf"])
     aabb = np.stack([box[:, 0].min(axis=0), box[:, 1].max(axis=0)])

@@ -115,9 +115,9 @@ def import_front3d(
                 PlacedObject(
                     id=oid,
                     category=name,
-                    position=tuple(float(v) for v in pos),
+                    position=(float(pos[0]), float(pos[1]), float(pos[2])),
                     yaw=_yaw_from_quat(child.get("rot", [0, 0, 0, 1])),
-                    scale=tuple(float(v) for v in scale),
+                    scale=(float(scale[0]), float(scale[1]), float(scale[2])),
                     from_text=False,
                 )
             )
