@@ -112,7 +112,13 @@ def make_backend(settings: Settings, stack: contextlib.ExitStack) -> Any:
             s: "not enabled in this gateway (--services)" for s in SERVICES if s not in settings.services
         }
     backend: Any = None
-    if settings.backend in ("auto", "embedded"):
+    if settings.broker and settings.backend in ("auto", "remote"):
+        from services.orchestrator.backend import RemoteBusBackend
+
+        remote = RemoteBusBackend(settings.broker)
+        stack.callback(remote.close)
+        backend = remote
+    elif settings.backend in ("auto", "embedded"):
         try:
             from services.orchestrator.embedded import Embedded
 
@@ -212,10 +218,17 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument(
         "--backend",
-        choices=("auto", "inprocess", "embedded"),
+        choices=("auto", "inprocess", "embedded", "remote"),
         default=None,
-        help="how the orchestrator reaches the services: the embedded bus or direct handler calls "
-        "(WANA_BACKEND; default auto = embedded when the bus is available)",
+        help="how the orchestrator reaches the services: the embedded bus, direct handler calls, or the "
+        "workers of a remote broker (WANA_BACKEND; default auto = remote with --broker, else embedded)",
+    )
+    p.add_argument(
+        "--broker",
+        default=None,
+        metavar="URL",
+        help="use the workers of the broker at URL, e.g. tcp://HOST:5555 (WANA_BROKER); scale out with "
+        "`wana broker` and `wana worker SERVICE --connect URL`",
     )
     p.add_argument(
         "--services",
@@ -241,6 +254,7 @@ def main(argv: list[str] | None = None) -> int:
             db=args.db,
             token=args.token,
             backend=args.backend,
+            broker=args.broker,
             seed=args.seed,
             services=parse_services(args.services) if args.services is not None else None,
             allowed_origins=tuple(o.rstrip("/") for o in args.allow_origin) if args.allow_origin else None,

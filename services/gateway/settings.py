@@ -58,7 +58,7 @@ class Settings:
     token: str = ""  # WANA_TOKEN: required on every API call when set; must be set off loopback
     allowed_origins: tuple[str, ...] = ()  # WANA_ALLOWED_ORIGINS (comma separated), besides same-origin
     editor_dist: Path = REPO / "editor" / "dist"  # WANA_EDITOR_DIST: the built web client
-    backend: str = "auto"  # WANA_BACKEND: auto | inprocess | embedded
+    backend: str = "auto"  # WANA_BACKEND: auto | inprocess | embedded | remote (needs WANA_BROKER)
     seed: int = 0  # WANA_SEED: seed of every session's pipeline
     services: tuple[str, ...] | None = (
         None  # WANA_SERVICES: services the pipeline may use (comma list); None = all
@@ -67,6 +67,7 @@ class Settings:
     max_changes: int = 256  # WANA_MAX_CHANGES: text changes in one edit message
     compute_threads: int = 2  # WANA_COMPUTE_THREADS: documents computed at the same time
     mesh_cache: int = 256  # WANA_MESH_CACHE: GLB variants kept in memory
+    broker: str = ""  # WANA_BROKER: a broker URL (tcp://HOST:5555) whose workers do the work; implies remote
 
     @classmethod
     def from_env(cls, **overrides: object) -> Settings:
@@ -83,6 +84,7 @@ class Settings:
             allowed_origins=origins,
             editor_dist=Path(env["WANA_EDITOR_DIST"]) if env.get("WANA_EDITOR_DIST") else cls.editor_dist,
             backend=env.get("WANA_BACKEND", cls.backend),
+            broker=env.get("WANA_BROKER", ""),
             seed=_env_int("WANA_SEED", cls.seed),
             services=parse_services(env["WANA_SERVICES"]) if "WANA_SERVICES" in env else None,
             max_message_bytes=_env_int("WANA_MAX_MESSAGE_BYTES", cls.max_message_bytes),
@@ -108,8 +110,10 @@ class Settings:
                 f"binding to {self.host} exposes the editor to the network; set a token with --token or "
                 "WANA_TOKEN (clients then pass it as 'Authorization: Bearer TOKEN' or ?token=TOKEN)"
             )
-        if self.backend not in ("auto", "inprocess", "embedded"):
-            raise ValueError(f"backend must be auto, inprocess or embedded, not {self.backend!r}")
+        if self.backend not in ("auto", "inprocess", "embedded", "remote"):
+            raise ValueError(f"backend must be auto, inprocess, embedded or remote, not {self.backend!r}")
+        if self.backend == "remote" and not self.broker:
+            raise ValueError("the remote backend needs a broker URL (--broker or WANA_BROKER)")
         if self.max_message_bytes < 1024:
             raise ValueError("max_message_bytes must be at least 1024")
         if not 0 <= self.port <= 65535:

@@ -100,3 +100,36 @@ class BusBackend:
         except BusError as exc:
             raise StageFailed(service, getattr(exc, "code", "E000"), str(exc)) from exc
         return _check(service, decoder.decode(payload))
+
+
+class RemoteBusBackend:
+    """Reaches the services through a broker at a URL (scale-out), with one bus Client per thread."""
+
+    def __init__(self, url: str, *, deadline_s: float = 120.0) -> None:
+        import threading
+
+        self.url = url
+        self.deadline_s = deadline_s
+        self._local = threading.local()
+        self._clients: list[Any] = []
+        self._lock = threading.Lock()
+
+    def _backend(self) -> BusBackend:
+        backend = getattr(self._local, "backend", None)
+        if backend is None:
+            from wana.bus.client import Client
+
+            client = Client(self.url)
+            with self._lock:
+                self._clients.append(client)
+            backend = self._local.backend = BusBackend(client, deadline_s=self.deadline_s)
+        return backend
+
+    def call(self, service: str, request: Any, reply_type: type) -> Any:
+        return self._backend().call(service, request, reply_type)
+
+    def close(self) -> None:
+        with self._lock:
+            for client in self._clients:
+                client.close()
+            self._clients.clear()

@@ -69,3 +69,36 @@ def test_the_cli_broker_and_two_workers_answer_parse_requests_over_tcp():
                 p.kill()
     for p in procs:
         assert p.returncode in (0, -15), p.stderr.read().decode() if p.stderr else ""
+
+
+def test_the_orchestrator_reaches_remote_workers_from_several_threads():
+    from concurrent.futures import ThreadPoolExecutor
+
+    from services.orchestrator.backend import RemoteBusBackend
+    from services.orchestrator.session import Orchestrator
+
+    url = f"tcp://127.0.0.1:{free_port()}"
+    procs = [spawn("broker", "--bind", url)]
+    try:
+        time.sleep(0.5)
+        procs += [spawn("worker", service, "--connect", url) for service in ("nlp", "retrieval", "motion")]
+        backend = RemoteBusBackend(url)
+        orchestrator = Orchestrator(":memory:", backend)
+        try:
+            stories = ["A chair is near a desk$. Eve walks to the chair.", "Tom waves. Tom sits."]
+            sessions = [orchestrator.create(text) for text in stories]
+            with ThreadPoolExecutor(2) as pool:
+                results = list(pool.map(lambda s: s.compute(stages=("parse", "scene", "motion")), sessions))
+            assert [sorted(r.motions) for r in results] == [["Eve"], ["Tom"]]
+            assert all(not r.unavailable for r in results)
+        finally:
+            backend.close()
+            orchestrator.close()
+    finally:
+        for p in procs:
+            p.terminate()
+        for p in procs:
+            try:
+                p.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                p.kill()

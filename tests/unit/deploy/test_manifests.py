@@ -38,3 +38,13 @@ def test_the_broker_is_a_statefulset_behind_a_service_on_the_bus_port():
         "tcp://0.0.0.0:5555",
     ]
     assert docs["Service"]["spec"]["ports"][0]["port"] == 5555
+
+
+def test_the_compose_gateway_uses_the_broker_through_options_wana_serve_accepts():
+    from services.gateway.app import build_parser as serve_parser
+
+    compose = yaml.safe_load((DEPLOY / "compose.yaml").read_text())["services"]
+    command = compose["gateway"]["command"]
+    assert command[0] == "serve"
+    args = serve_parser().parse_args(command[1:])
+    assert args.broker == "tcp://broker:5555" and args.host == "0.0.0.0"
