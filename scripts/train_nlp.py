@@ -4,8 +4,10 @@ Steps (each skips work that is already done unless --force):
   1. corpus   regenerate corpus/domain/domain-{train,test}.conllu from its templates (seeded)
   2. convert  `spacy convert` the EWT and domain CoNLL-U files into build/nlp/corpus/*.spacy
   3. train    `spacy train services/nlp/train_config.cfg` on EWT-train + 3 x domain-train, dev = EWT-dev
-              (CPU, one thread, nice 10; seed and step budget in the config)
-  4. finetune continue from model-best: lower learning rate, parameter averaging, 1000 steps
+              (CPU, one thread, nice 10; seed, step budget and parameter averaging in the config)
+  4. finetune optional (FINETUNE_STEPS > 0): continue from model-best at a lower learning rate;
+              off for the shipped recipe (averaging is on from the start), so this step only
+              removes a stale build/nlp/finetuned
   5. package  add wana's lookup lemmatizer (tables built from the treebanks' lemmas), disable the
               senter (the parser sets sentence boundaries), write models/nlp/en_wana (<= 30 MB)
   6. evaluate POS / UAS / LAS on EWT-test and the domain test split -> models/nlp/en_wana/scores.json
@@ -37,7 +39,7 @@ CONFIG = REPO / "services" / "nlp" / "train_config.cfg"
 DOMAIN = REPO / "corpus" / "domain"
 MODEL_OUT = REPO / "models" / "nlp" / "en_wana"
 DOMAIN_UPSAMPLE = 3
-FINETUNE_STEPS = 1000
+FINETUNE_STEPS = 0  # 0 = no fine-tuning pass (the shipped recipe)
 FINETUNE_LEARN_RATE = 0.0003
 STEPS = ("corpus", "convert", "train", "finetune", "package", "evaluate")
 
@@ -86,10 +88,15 @@ def step_train(force: bool) -> None:
 
 
 def step_finetune(force: bool) -> None:
-    """Continue from model-best with a lower learning rate and parameter averaging (cheap, +~1 UAS)."""
+    """Optionally continue from model-best with a lower learning rate and parameter averaging."""
     from spacy.util import load_config
 
     out = BUILD / "finetuned"
+    if FINETUNE_STEPS <= 0:
+        if out.exists():  # package must not pick up a model from an older recipe
+            shutil.rmtree(out)
+        print("FINETUNE_STEPS = 0: no fine-tuning pass")
+        return
     if (out / "model-best").exists() and not force:
         print(f"{out / 'model-best'} exists; --force to redo")
         return
