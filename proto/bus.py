@@ -12,7 +12,7 @@ import msgspec
 
 from proto.common import Header, Status
 
-PROTOCOL_VERSION = 1
+PROTOCOL_VERSION = 2  # 2: BATCH messages
 
 # Every bus message is one envelope frame (a msgpack array whose first element is the command name)
 # followed, for REQUEST, JOB, REPLY, ERROR and STATS-from-the-broker, by one body frame. The broker's
@@ -66,6 +66,17 @@ class ErrorFrame(msgspec.Struct, frozen=True, array_like=True, tag="ERROR"):
     job_id: str  # "" when the request was too malformed to name its job
 
 
+class BatchFrame(msgspec.Struct, frozen=True, array_like=True, tag="BATCH"):
+    """Several jobs in one message: followed by ``count`` (envelope, body) frame pairs.
+
+    Each pair is a REQUEST (client -> broker), JOB (broker -> worker), REPLY (worker -> broker ->
+    client) or ERROR (broker -> client) exactly as it would travel alone. A backlog of short jobs
+    then costs one message, not one per job (see PROTOCOL.md, section 2).
+    """
+
+    count: int  # (envelope, body) pairs that follow, 1..MAX_BATCH
+
+
 class HeartbeatFrame(msgspec.Struct, frozen=True, array_like=True, tag="HEARTBEAT"):
     """worker <-> broker, every heartbeat interval. No body frame."""
 
@@ -97,6 +108,7 @@ Envelope = Union[  # noqa: UP007 - a runtime union for msgspec decoders
     JobFrame,
     ReplyFrame,
     ErrorFrame,
+    BatchFrame,
     HeartbeatFrame,
     DisconnectFrame,
     PingFrame,
@@ -106,6 +118,8 @@ Envelope = Union[  # noqa: UP007 - a runtime union for msgspec decoders
 
 # Envelopes followed by exactly one body frame (STATS only in the broker -> client direction).
 WITH_BODY = (RequestFrame, JobFrame, ReplyFrame, ErrorFrame)
+
+MAX_BATCH = 64  # pairs one BATCH message may carry
 
 
 class ServiceStats(msgspec.Struct, frozen=True, kw_only=True):

@@ -11,6 +11,7 @@ frame with the payload; the broker's ROUTER socket adds the peer's routing id in
     worker -> broker   ["READY", service, protocol, pid, host, max_frame, capacity]
     both ways          ["HEARTBEAT"]   ["DISCONNECT"]
     client -> broker   ["PING", seq] -> ["PONG", broker_instance, seq];   ["STATS"] -> ["STATS"] + BrokerStats
+    any job direction  ["BATCH", n] + n (envelope, body) pairs of REQUEST, JOB, REPLY or ERROR
 
 Payloads are whatever the service speaks (msgpack-encoded msgspec structs); the bus never decodes them.
 
@@ -18,12 +19,13 @@ Python API:
 
     Broker(bind, *, heartbeat_s=1.0, liveness=3, queue_limit=256, max_frame=32 MiB, max_attempts=3,
            context=None).run(stop) / .start_thread() / .close() / .stats()
-    Worker(service, handler, connect, *, heartbeat_s=1.0, liveness=3, max_frame=32 MiB, capacity=4,
+    Worker(service, handler, connect, *, heartbeat_s=1.0, liveness=3, max_frame=32 MiB, capacity=16,
            context=None).run(stop)
     serve(service, handler, connect)                  blocking; SIGTERM/SIGINT end it cleanly
     Client(connect, *, heartbeat_s=1.0, liveness=3, context=None)      one per thread
         .request(service, payload, *, idempotency_key=None, deadline_s=30.0, doc_id="", revision=0) -> bytes
         .submit(same arguments) -> job_id
+        .submit_many(service, payloads, *, deadline_s=30.0, doc_id="", revision=0) -> [job_id]   one BATCH
         .wait(job_ids, timeout=None, *, return_when="all"|"any") -> {job_id: bytes | BusError}
         .collect(timeout=0.0) -> {job_id: bytes | BusError}           whatever finished (as completed)
         .result(job_id, timeout=None) -> bytes ; .cancel(job_ids) ; .stats() -> BrokerStats ; .close()

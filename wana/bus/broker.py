@@ -5,7 +5,11 @@ Rules (proto/PROTOCOL.md is the authoritative description):
 - Workers send READY with their service name; idle workers are kept per service in least-recently-used
   order, and a job goes to the worker that has waited longest. A worker announcing ``capacity`` > 1
   may be handed further jobs, but only when no worker of its service is idle and only while its jobs
-  are short (its last one took, and its current one has run, less than 50 ms).
+  are short (its last one took, and its current one has run, less than 50 ms, and those it holds
+  would take less than 50 ms at that pace).
+- JOB, REPLY and ERROR messages go to an outbox per peer while a backlog is handled and are sent
+  before the loop waits again (or after ``_FLUSH_EVERY`` messages): several for one peer travel as
+  one BATCH. A BATCH that arrives is handled pair by pair, as if each had come alone.
 - Heartbeats both ways every ``heartbeat_s``; a worker silent for ``liveness`` intervals is dead. Its
   jobs are re-queued at the front of their service queue with the attempt count raised; a job dispatched
   ``max_attempts`` times whose worker died each time gets an E007 error reply.
@@ -38,6 +42,8 @@ import msgspec
 import zmq
 
 from proto.bus import (
+    MAX_BATCH,
+    BatchFrame,
     BrokerStats,
     DisconnectFrame,
     ErrorFrame,
@@ -64,6 +70,7 @@ _PREFETCH_MAX_JOB_S = 0.05  # prefetch only while a worker's jobs take less than
 _HEARTBEAT = wire.encoder.encode(HeartbeatFrame())
 _DISCONNECT = wire.encoder.encode(DisconnectFrame())
 _STATS = wire.encoder.encode(StatsFrame())
+_FLUSH_EVERY = 8  # messages handled in a backlog before the outbox is sent (bounds the added latency)
 
 
 class Broker:
@@ -138,6 +145,10 @@ class Broker:
         self.errors: collections.Counter[str] = collections.Counter()
         self._worker_ttl = self.heartbeat_s * self.liveness
         self._now = time.monotonic()  # read once per message by the loop (run)
+        # Outbox: JOB, REPLY and ERROR pairs per peer, sent by _flush (one BATCH per peer when several
+        # pile up while a backlog is handled); the job id of each pair, for when the peer is gone.
+        self._out: dict[bytes, list] = {}
+        self._out_jobs: dict[bytes, list[str]] = {}
 
     # ----------------------------------------------------------------------------------- lifetime
 
@@ -153,9 +164,11 @@ class Broker:
         next_heartbeat = now + self.heartbeat_s
         next_tick = now
         draining, backlog_s = False, wire.BACKLOG_S
+        handled = 0
         while True:
             if now >= next_tick:
                 if stopped():
+                    self._flush()
                     return
                 if now >= next_heartbeat:
                     self._heartbeat(now)
@@ -165,6 +178,9 @@ class Broker:
             # Drain with plain receives while a backlog lasts, else poll first (see wire.py).
             frames = recv(sock) if draining else None
             if frames is None:
+                if self._out:
+                    self._flush()
+                handled = 0
                 before = monotonic()
                 readable = poll(sock, next_tick - before)
                 now = self._now = monotonic()  # the one clock reading each message's handling uses
@@ -177,6 +193,10 @@ class Broker:
             else:
                 now = self._now = monotonic()
             on_message(frames)
+            handled += 1
+            if handled >= _FLUSH_EVERY and self._out:
+                self._flush()
+                handled = 0
 
     def start_thread(self) -> threading.Thread:
         """Run the broker in a daemon thread; ``close()`` stops it."""
@@ -193,6 +213,7 @@ class Broker:
         self._stop.set()
         if self._thread is not None and self._thread is not threading.current_thread():
             self._thread.join(timeout=5.0)
+
         self._closed = True
         self._socket.close(0)
 
@@ -221,6 +242,9 @@ class Broker:
                 return
             self._on_request(sender, msg, frames[2])
             return
+        if kind is BatchFrame:
+            self._on_batch(sender, msg.count, frames)
+            return
         worker = self._workers.get(sender)
         if worker is not None:
             worker.expiry = self._now + self._worker_ttl
@@ -228,7 +252,7 @@ class Broker:
             if len(frames) != 3:
                 log.warning("dropped a REPLY with %d body frames from %r", len(frames) - 2, sender)
                 return
-            self._on_reply(sender, worker, msg.job_id, frames)
+            self._on_reply(sender, worker, msg.job_id, frames, 1)
         elif kind is HeartbeatFrame:
             if worker is None:
                 self._send(sender, _DISCONNECT)
@@ -245,6 +269,30 @@ class Broker:
             log.warning(
                 "dropped a %s envelope from %r: not a command the broker answers", kind.__name__, sender
             )
+
+    def _on_batch(self, sender: bytes, count: int, frames: list) -> None:
+        """A BATCH of REQUESTs (from a client) or REPLYs (from a worker): each handled as if alone."""
+        if not 1 <= count <= MAX_BATCH or len(frames) != 2 + 2 * count:
+            why = f"BATCH of {count} needs {2 * count} frames after it (at most {2 * MAX_BATCH}), got {len(frames) - 2}"
+            self._client_error(sender, "", "E001", why)
+            return
+        worker = self._workers.get(sender)
+        if worker is not None:
+            worker.expiry = self._now + self._worker_ttl
+        decode = wire.envelope_decoder.decode
+        for i in range(2, len(frames), 2):
+            try:
+                msg = decode(frames[i])
+            except (msgspec.DecodeError, msgspec.ValidationError) as exc:
+                self._client_error(sender, "", "E001", f"undecodable envelope in a BATCH: {exc}")
+                continue
+            kind = type(msg)
+            if kind is RequestFrame:
+                self._on_request(sender, msg, frames[i + 1])
+            elif kind is ReplyFrame:
+                self._on_reply(sender, worker, msg.job_id, frames[i : i + 2], 0)
+            else:
+                log.warning("dropped a %s in a BATCH from %r: only REQUEST and REPLY", kind.__name__, sender)
 
     def _on_request(self, client: bytes, request: RequestFrame, payload: zmq.Frame) -> None:
         job_id = request.job_id
@@ -303,8 +351,9 @@ class Broker:
         self._dispatch(svc)
 
     def _on_reply(
-        self, sender: bytes, worker: WorkerEntry | None, job_id: str, frames: list[zmq.Frame]
+        self, sender: bytes, worker: WorkerEntry | None, job_id: str, frames: list, at: int
     ) -> None:
+        """A worker's reply; ``frames[at]`` is its envelope, ``frames[at + 1]`` the body."""
         job = self._jobs.pop(job_id, None)
         if job is None:
             self.duplicate_replies += 1
@@ -315,16 +364,13 @@ class Broker:
             done[job_id] = None
             if len(done) > _DONE_MEMORY:
                 del done[next(iter(done))]
-            body = frames[2]
+            body = frames[at + 1]
             if len(body) > self.max_frame:
                 why = f"reply of {len(body)} bytes exceeds the {self.max_frame}-byte cap"
                 self._client_error(job.client, job_id, "E002", why, job.request.doc_id, job.request.revision)
             else:
                 self.completed += 1
-                try:  # the envelope is forwarded as it came
-                    wire.send(self._socket, (job.client, frames[1], body))
-                except zmq.ZMQError:  # the client is gone: keep the reply in case it asks again
-                    self._keep_undelivered(job.client, job_id, frames[1], body)
+                self._post(job.client, job_id, frames[at], body)  # the envelope is forwarded as it came
         if worker is None:
             self._send(sender, _DISCONNECT)  # e.g. a worker of the broker before a restart
             return
@@ -343,10 +389,11 @@ class Broker:
     def _next_worker(self, svc: Service) -> WorkerEntry | None:
         """The idle worker that waited longest, else (prefetch) the least loaded one with a free slot.
 
-        A worker is prefetched to only while its jobs are short: its last job took less than
-        ``_PREFETCH_MAX_JOB_S`` and the one it runs now started less than that long ago. Short jobs
-        then travel in batches (throughput), while no job is parked behind a long one; a worker
-        that has not finished a job yet gets none.
+        A worker is prefetched to only while its jobs are short: the jobs it holds would take less
+        than ``_PREFETCH_MAX_JOB_S`` at the pace of its last one, and the one it runs now started
+        less than that long ago. Short jobs then travel in batches (throughput), while no job is
+        parked behind long ones for more than about that; a worker that has not finished a job
+        yet gets none.
         """
         while svc.idle:
             worker = self._workers.get(svc.idle.popleft())
@@ -362,7 +409,7 @@ class Broker:
             held = len(worker.jobs)
             if (
                 held < worker.capacity
-                and worker.job_s < _PREFETCH_MAX_JOB_S
+                and max(held, 1) * worker.job_s < _PREFETCH_MAX_JOB_S
                 and worker.started >= fresh
                 and (best is None or held < len(best.jobs))
             ):
@@ -370,7 +417,7 @@ class Broker:
         return best
 
     def _dispatch(self, svc: Service) -> None:
-        sock, send, encode = self._socket, wire.send, wire.encoder.encode
+        post, encode = self._post, wire.encoder.encode
         queue, idle, workers, jobs = svc.queue, svc.idle, self._workers, self._jobs
         while queue:
             if idle:  # the idle worker that waited longest (inlined _next_worker: this is hot)
@@ -393,17 +440,17 @@ class Broker:
             r = job.request
             left_ms = max(1, int((job.deadline - self._now) * 1000))
             envelope = encode(JobFrame(r.job_id, r.key, job.attempt, left_ms, r.doc_id, r.revision))
-            try:
-                send(sock, (worker.identity, envelope, job.payload))
-            except zmq.ZMQError:  # EHOSTUNREACH (ROUTER_MANDATORY): the worker is gone
-                job.attempt -= 1  # the job never reached it: not an attempt
-                self._remove_worker(worker, "it is unreachable", undelivered=job.job_id)
+            post(worker.identity, r.job_id, envelope, job.payload)
 
-    def _remove_worker(self, worker: WorkerEntry, why: str, *, undelivered: str = "") -> None:
+    def _remove_worker(self, worker: WorkerEntry, why: str, *, undelivered: Iterable[str] = ()) -> None:
         """Forget a worker; re-queue its jobs, or fail those whose last allowed attempt it was.
 
-        ``undelivered``: a job that never reached the worker; it is re-queued without counting.
+        ``undelivered``: jobs that never reached the worker (their JOB failed to send); they, and
+        the jobs still in the outbox for it, are re-queued without counting as an attempt.
         """
+        unsent = set(undelivered)
+        self._out.pop(worker.identity, None)
+        unsent.update(self._out_jobs.pop(worker.identity, ()))
         self._workers.pop(worker.identity, None)
         svc = self._services.get(worker.service)
         if svc is not None:
@@ -422,8 +469,10 @@ class Broker:
             if job is None or job.worker != worker.identity:
                 continue  # already answered or expired
             job.worker = None
-            delivered = job_id != undelivered
-            if delivered and job.attempt >= self.max_attempts:
+            delivered = job_id not in unsent
+            if not delivered:
+                job.attempt -= 1  # the job never reached it: not an attempt
+            elif job.attempt >= self.max_attempts:
                 del self._jobs[job_id]
                 self._remember_done(job_id)
                 message = f"the worker died during each of {job.attempt} attempts (last: {why})"
@@ -475,9 +524,43 @@ class Broker:
             log.debug("could not send to %r: %s", identity, exc)
             return False
 
+    def _post(self, peer: bytes, job_id: str, envelope: object, body: object) -> None:
+        """Queue a JOB, REPLY or ERROR for ``peer``; ``_flush`` sends it (the loop flushes before it waits)."""
+        out = self._out.get(peer)
+        if out is None:
+            self._out[peer] = [envelope, body]
+            self._out_jobs[peer] = [job_id]
+            return
+        out.append(envelope)
+        out.append(body)
+        jobs = self._out_jobs[peer]
+        jobs.append(job_id)
+        if len(jobs) >= MAX_BATCH:
+            self._send_out(peer, self._out.pop(peer), self._out_jobs.pop(peer))
+
+    def _flush(self) -> None:
+        """Send every peer's queued pairs: one message each, a BATCH where there are several."""
+        while self._out:  # a peer found gone re-queues its jobs, which may go out to another one
+            out, jobs = self._out, self._out_jobs
+            self._out, self._out_jobs = {}, {}
+            for peer, pairs in out.items():
+                self._send_out(peer, pairs, jobs[peer])
+
+    def _send_out(self, peer: bytes, pairs: list, job_ids: list[str]) -> None:
+        try:
+            wire.send_pairs(self._socket, (peer,), pairs)
+            return
+        except zmq.ZMQError as exc:  # EHOSTUNREACH (ROUTER_MANDATORY): the peer is gone
+            log.debug("could not send to %r: %s", peer, exc)
+        worker = self._workers.get(peer)
+        if worker is not None:  # JOBs: re-queue them, they never reached it
+            self._remove_worker(worker, "it is unreachable", undelivered=job_ids)
+            return
+        for i, job_id in enumerate(job_ids):  # a client: keep its replies in case it asks again
+            self._keep_undelivered(peer, job_id, pairs[2 * i], pairs[2 * i + 1])
+
     def _send_to_client(self, client: bytes, job_id: str, envelope: object, body: object) -> None:
-        if not self._send(client, envelope, body):
-            self._keep_undelivered(client, job_id, envelope, body)
+        self._post(client, job_id, envelope, body)
 
     def _keep_undelivered(self, client: bytes, job_id: str, envelope: object, body: object) -> None:
         self._undelivered[job_id] = (client, (envelope, body))

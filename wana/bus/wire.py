@@ -29,7 +29,7 @@ from typing import Any
 import msgspec
 import zmq
 
-from proto.bus import Envelope, ErrorFrame, JobFrame, ReplyFrame, StatsFrame
+from proto.bus import MAX_BATCH, BatchFrame, Envelope, ErrorFrame, JobFrame, ReplyFrame, StatsFrame
 
 _send: Any
 _recv: Any
@@ -51,7 +51,7 @@ SNDMORE = int(zmq.SNDMORE)
 _MORE_NOBLOCK = NOBLOCK | SNDMORE
 _POLLIN = int(zmq.POLLIN)
 _RCVMORE = int(zmq.RCVMORE)
-_MAX_PARTS = 16  # no bus message has more; the rest of a longer one is read and dropped
+_MAX_PARTS = 2 + 2 * MAX_BATCH  # no bus message has more; the rest of a longer one is read and dropped
 BACKLOG_S = 20e-6  # a poll answering faster than this found a message already waiting
 
 encoder = msgspec.msgpack.Encoder()
@@ -60,6 +60,8 @@ envelope_decoder: Any = msgspec.msgpack.Decoder(Envelope)
 
 # Envelopes the broker sends with one body frame (STATS only in that direction).
 _FROM_BROKER_WITH_BODY = frozenset((JobFrame, ReplyFrame, ErrorFrame, StatsFrame))
+# The BATCH envelope for each count, encoded once.
+BATCH_HEADS = [encoder.encode(BatchFrame(n)) for n in range(MAX_BATCH + 1)]
 
 
 class Undecodable:
@@ -83,6 +85,25 @@ def send(sock: zmq.Socket, frames: Sequence[object]) -> None:
         for frame in frames[:-1]:
             _send(sock, frame, _MORE_NOBLOCK)
         _send(sock, frames[-1], NOBLOCK)
+
+
+def send_pairs(sock: zmq.Socket, head: tuple[object, ...], pairs: Sequence[object]) -> None:
+    """Send ``pairs`` (envelope, body, envelope, body, ...: a flat sequence) as one message.
+
+    ``head`` is what goes first (the routing id on the broker's ROUTER socket, else empty). One
+    pair travels as a plain message; more travel as a BATCH (callers keep to ``MAX_BATCH`` pairs).
+    """
+    n = len(pairs) // 2
+    if n == 1:
+        send(sock, (*head, pairs[0], pairs[1]))
+        return
+    for frame in head:
+        _send(sock, frame, _MORE_NOBLOCK)
+    _send(sock, BATCH_HEADS[n], _MORE_NOBLOCK)
+    last = len(pairs) - 1
+    for i in range(last):
+        _send(sock, pairs[i], _MORE_NOBLOCK)
+    _send(sock, pairs[last], NOBLOCK)
 
 
 def poll(sock: zmq.Socket, timeout_s: float) -> bool:
@@ -125,7 +146,8 @@ def recv_from_broker(sock: zmq.Socket) -> tuple[Any, bytes | None] | None:
 
     The envelope decides whether a body frame follows (the broker frames its messages right). An
     envelope that does not decode comes back as ``(Undecodable, None)`` with the rest of its
-    message read and dropped. None when nothing is waiting.
+    message read and dropped. None when nothing is waiting. A BATCH comes back as
+    ``(BatchFrame, [(envelope, body), ...])``.
     """
     try:
         head = _recv(sock, NOBLOCK, True)
@@ -136,12 +158,33 @@ def recv_from_broker(sock: zmq.Socket) -> tuple[Any, bytes | None] | None:
     except (msgspec.DecodeError, msgspec.ValidationError) as exc:
         _drop_rest(sock)
         return Undecodable(str(exc)), None
+    if type(msg) is BatchFrame:
+        return _recv_batch(sock, msg)
     if type(msg) in _FROM_BROKER_WITH_BODY:
         try:
             return msg, _recv(sock, NOBLOCK, True)
         except zmq.Again:  # a body-less message where a body belongs: not from a wana broker
             return Undecodable(f"{type(msg).__name__} without its body frame"), None
     return msg, None
+
+
+def _recv_batch(sock: zmq.Socket, batch: BatchFrame) -> tuple[Any, Any]:
+    """The ``(envelope, body)`` pairs after a BATCH envelope (see ``recv_from_broker``)."""
+    pairs = []
+    decode = envelope_decoder.decode
+    try:
+        for _ in range(batch.count):
+            msg = decode(_recv(sock, NOBLOCK, True))
+            pairs.append((msg, _recv(sock, NOBLOCK, True)))
+    except (msgspec.DecodeError, msgspec.ValidationError) as exc:
+        _drop_rest(sock)
+        return Undecodable(f"in a BATCH: {exc}"), None
+    except zmq.Again:
+        return Undecodable(f"a BATCH of {batch.count} ended after {len(pairs)} pairs"), None
+    if _get(sock, _RCVMORE):
+        _drop_rest(sock)
+        return Undecodable(f"a BATCH of {batch.count} has more frames"), None
+    return batch, pairs
 
 
 def _drop_rest(sock: zmq.Socket) -> None:

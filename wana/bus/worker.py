@@ -21,7 +21,7 @@ from typing import cast
 
 import zmq
 
-from proto.bus import DisconnectFrame, HeartbeatFrame, JobFrame, ReadyFrame
+from proto.bus import BatchFrame, DisconnectFrame, HeartbeatFrame, JobFrame, ReadyFrame
 from proto.common import ErrorReply, Header
 from wana.bus import wire
 
@@ -33,7 +33,11 @@ _TICK_S = 0.05  # longest sleep of the loop: bounds stop latency
 _HEARTBEAT = wire.encoder.encode(HeartbeatFrame())
 _DISCONNECT = wire.encoder.encode(DisconnectFrame())
 _REPLY_HEAD = b"\x92" + wire.encoder.encode("REPLY")  # ["REPLY", job_id]: a 2-array, then the tag
-DEFAULT_CAPACITY = 4  # jobs the broker may hand a worker at once (see Worker)
+DEFAULT_CAPACITY = 16  # jobs the broker may hand a worker at once (see Worker)
+# Replies to a BATCH of jobs go back as one BATCH while the jobs are this quick; a reply never waits
+# for a slower job (see Worker._on_jobs).
+_HOLD_JOB_S = 0.001
+_HOLD_MAX_S = 0.002
 
 
 def reply_envelope(job_id: str) -> bytes:
@@ -53,12 +57,13 @@ class Worker:
         liveness: broker heartbeats that may be missed before the worker reconnects.
         max_frame: largest request payload handled and reply payload sent (E002 otherwise).
         reconnect_max_s: ceiling of the exponential reconnect back-off (which starts at heartbeat_s).
-        capacity: jobs the broker may hand this worker at once (default ``DEFAULT_CAPACITY``, 4).
+        capacity: jobs the broker may hand this worker at once (default ``DEFAULT_CAPACITY``, 16).
             1 is classic Majordomo; more lets the next jobs travel while the current one runs, so
             short jobs arrive in batches and the broker round trip between them disappears (the
             bus's throughput target needs it). The broker still gives a job to an idle worker
             first, and prefetches only while this worker's jobs are short (its last one took, and
-            its current one has run, under 50 ms), so no job is parked behind a long one.
+            its current one has run, under 50 ms, and the jobs it holds would take under 50 ms at
+            that pace), so no job is parked behind long ones.
         context: ZeroMQ context; pass the broker's to use ``inproc://``.
 
     ``run`` blocks; it may be called from any one thread. ``stop`` (an Event) ends it after the
@@ -216,6 +221,9 @@ class Worker:
         if kind is JobFrame:
             self._backoff = self.heartbeat_s  # the broker knows us: the next outage starts over
             self._on_job(msg, cast(bytes, body))  # a JOB always carries its body (wire.py)
+        elif kind is BatchFrame:
+            self._backoff = self.heartbeat_s
+            self._on_jobs(cast(list, body))
         elif kind is HeartbeatFrame:
             self._backoff = self.heartbeat_s
         elif kind is DisconnectFrame:
@@ -229,6 +237,52 @@ class Worker:
             log.warning("%s worker: dropped a %s envelope", self.service, kind.__name__)
 
     def _on_job(self, job: JobFrame, payload: bytes) -> None:
+        reply = self._run(job, payload)
+        if self._socket is not None:
+            self._send(reply_envelope(job.job_id), reply)
+            self.jobs_done += 1
+
+    def _on_jobs(self, pairs: list[tuple[object, bytes]]) -> None:
+        """Run a BATCH of jobs in order; their replies go back together while the jobs are quick.
+
+        A reply is held for the next job only while the job just run took under ``_HOLD_JOB_S``
+        and the oldest held reply is younger than ``_HOLD_MAX_S``: a backlog of tiny jobs costs one
+        message back, and no reply waits behind a slower job.
+        """
+        out: list[bytes] = []
+        held_since = 0.0
+        last = len(pairs) - 1
+        monotonic = time.monotonic
+        for i, (job, payload) in enumerate(pairs):
+            if type(job) is not JobFrame:
+                log.warning("%s worker: dropped a %s in a BATCH", self.service, type(job).__name__)
+                continue
+            started = monotonic()
+            reply = self._run(job, payload)
+            if self._socket is None:
+                return
+            out.append(reply_envelope(job.job_id))
+            out.append(reply)
+            now = monotonic()
+            if len(out) == 2:
+                held_since = now
+            if i == last or now - started >= _HOLD_JOB_S or now - held_since >= _HOLD_MAX_S:
+                self._send_pairs(out)
+                out = []
+        if out:
+            self._send_pairs(out)
+
+    def _send_pairs(self, pairs: list[bytes]) -> None:
+        assert self._socket is not None
+        try:
+            wire.send_pairs(self._socket, (), pairs)
+        except zmq.Again:  # no broker connected: its liveness check will notice
+            log.debug("%s worker: could not send, no broker connected", self.service)
+        self._last_sent = time.monotonic()
+        self.jobs_done += len(pairs) // 2
+
+    def _run(self, job: JobFrame, payload: bytes) -> bytes:
+        """The reply payload for one job: the handler's, or an ErrorReply (size, deadline, failure)."""
         if len(payload) > self.max_frame:
             reply = self._error(
                 job, "E002", f"request of {len(payload)} bytes exceeds the {self.max_frame}-byte cap"
@@ -252,9 +306,7 @@ class Worker:
                 reply = self._error(
                     job, "E002", f"reply of {len(reply)} bytes exceeds the {self.max_frame}-byte cap"
                 )
-        if self._socket is not None:
-            self._send(reply_envelope(job.job_id), reply)
-            self.jobs_done += 1
+        return reply
 
     @staticmethod
     def _error(job: JobFrame, code: str, message: str) -> bytes:

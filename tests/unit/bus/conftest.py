@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import collections
 import shutil
 import signal
 import subprocess
@@ -16,7 +17,7 @@ import msgspec
 import pytest
 import zmq
 
-from proto.bus import Envelope
+from proto.bus import BatchFrame, Envelope
 from wana.bus.broker import Broker
 from wana.bus.client import Client
 from wana.bus.worker import Worker
@@ -105,6 +106,7 @@ class RawPeer:
         self.socket.setsockopt(zmq.LINGER, 0)
         self.socket.connect(url)
         self._decoder = msgspec.msgpack.Decoder(Envelope)
+        self._unbatched: collections.deque[tuple[object, list[bytes]]] = collections.deque()
 
     def send(self, envelope: object, *body: bytes) -> None:
         self.socket.send_multipart([msgspec.msgpack.encode(envelope), *body])
@@ -112,12 +114,22 @@ class RawPeer:
     def send_raw(self, *frames: bytes) -> None:
         self.socket.send_multipart(list(frames))
 
-    def recv(self, timeout: float = 5.0) -> tuple[object, list[bytes]] | None:
-        """Next message as (decoded envelope, body frames), or None after ``timeout`` seconds."""
+    def recv(self, timeout: float = 5.0, *, unbatch: bool = True) -> tuple[object, list[bytes]] | None:
+        """Next message as (decoded envelope, body frames), or None after ``timeout`` seconds.
+
+        A BATCH is split into its messages (returned one per call) unless ``unbatch`` is False.
+        """
+        if self._unbatched:
+            return self._unbatched.popleft()
         if not self.socket.poll(int(timeout * 1000)):
             return None
         frames = self.socket.recv_multipart()
-        return self._decoder.decode(frames[0]), frames[1:]
+        envelope = self._decoder.decode(frames[0])
+        if not (unbatch and isinstance(envelope, BatchFrame)):
+            return envelope, frames[1:]
+        for i in range(1, len(frames), 2):
+            self._unbatched.append((self._decoder.decode(frames[i]), frames[i + 1 : i + 2]))
+        return self._unbatched.popleft()
 
     def recv_all(self, seconds: float) -> list[tuple[object, list[bytes]]]:
         """Every message that arrives within ``seconds``."""
