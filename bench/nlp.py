@@ -30,7 +30,9 @@ def sentences() -> list[str]:
 
     out: list[str] = []
     for split in ("dev", "test"):
-        for line in (REPO / "eval" / "data" / "nlp" / f"{split}.txt").read_text(encoding="utf-8").splitlines():
+        for line in (
+            (REPO / "eval" / "data" / "nlp" / f"{split}.txt").read_text(encoding="utf-8").splitlines()
+        ):
             if line.startswith("T "):
                 text = line[2:].replace("\\n", "\n")
                 out += [text[s:e] for s, e, _ in split_sentences(text)]

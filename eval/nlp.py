@@ -113,8 +113,11 @@ def predicted(graphs: list[SentenceGraph]) -> dict[str, Counter]:
         out["objects"][(cat, counts[oid])] += 1
         for k, v in attributes[oid].items():
             out["attributes"][(cat, k, v)] += 1
-    relations = {(categories.get(r.subject, r.subject), r.relation, categories.get(r.object, r.object))
-                 for g in graphs for r in g.relations}
+    relations = {
+        (categories.get(r.subject, r.subject), r.relation, categories.get(r.object, r.object))
+        for g in graphs
+        for r in g.relations
+    }
     out["relations"].update(relations)
     for g in graphs:
         for c in g.characters:
@@ -124,7 +127,9 @@ def predicted(graphs: list[SentenceGraph]) -> dict[str, Counter]:
                 if a.manner:
                     out["action_args"][(c.name, a.action, "manner", a.manner)] += 1
                 if a.instrument:
-                    out["action_args"][(c.name, a.action, "instrument", categories.get(a.instrument, a.instrument))] += 1
+                    out["action_args"][
+                        (c.name, a.action, "instrument", categories.get(a.instrument, a.instrument))
+                    ] += 1
                 if a.duration_s:
                     out["action_args"][(c.name, a.action, "duration_s", _num(str(a.duration_s)))] += 1
         for cmd in g.commands:
@@ -145,7 +150,9 @@ def prf(gold: Counter, pred: Counter) -> tuple[float, float, float]:
     return p, r, f
 
 
-def evaluate_ssg(items: list[Item], verbose: bool = False) -> tuple[dict[str, tuple[float, float, float, int, int]], int]:
+def evaluate_ssg(
+    items: list[Item], verbose: bool = False
+) -> tuple[dict[str, tuple[float, float, float, int, int]], int]:
     from services.nlp.parse import parse_document
     from services.nlp.segment import split_sentences
 
@@ -186,9 +193,13 @@ def evaluate_parser(quick: bool) -> dict[str, float] | None:
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--split", choices=("test", "dev", "all"), default="test", help="gold split (default test)")
+    ap.add_argument(
+        "--split", choices=("test", "dev", "all"), default="test", help="gold split (default test)"
+    )
     ap.add_argument("--quick", action="store_true", help="first 300 EWT test sentences only (< 30 s)")
-    ap.add_argument("--json", type=Path, help="write objects_f1, relations_f1, actions_f1, uas, las, pos here")
+    ap.add_argument(
+        "--json", type=Path, help="write objects_f1, relations_f1, actions_f1, uas, las, pos here"
+    )
     ap.add_argument("--verbose", action="store_true", help="print each item's misses and extras")
     args = ap.parse_args(argv)
     splits = ("dev", "test") if args.split == "all" else (args.split,)
@@ -205,15 +216,24 @@ def main(argv: list[str] | None = None) -> int:
     if parser is None:
         print(f"parser: {EWT_TEST} absent, POS/UAS/LAS not measured")
     else:
-        print(f"parser on EWT test{' (first 300 sentences)' if args.quick else ''}: "
-              f"{int(parser['sentences'])} sentences")
+        print(
+            f"parser on EWT test{' (first 300 sentences)' if args.quick else ''}: "
+            f"{int(parser['sentences'])} sentences"
+        )
         print(f"{'pos':<6} {'uas':>6} {'las':>6} {'tag':>6} {'lemma':>6}")
-        print(f"{parser['pos']:<6.3f} {parser['uas']:6.3f} {parser['las']:6.3f} {parser['tag']:6.3f} "
-              f"{parser['lemma']:6.3f}")
+        print(
+            f"{parser['pos']:<6.3f} {parser['uas']:6.3f} {parser['las']:6.3f} {parser['tag']:6.3f} "
+            f"{parser['lemma']:6.3f}"
+        )
     if args.json:
-        out = {"objects_f1": table["objects"][2], "relations_f1": table["relations"][2],
-               "actions_f1": table["actions"][2], "uas": parser["uas"] if parser else None,
-               "las": parser["las"] if parser else None, "pos": parser["pos"] if parser else None}
+        out = {
+            "objects_f1": table["objects"][2],
+            "relations_f1": table["relations"][2],
+            "actions_f1": table["actions"][2],
+            "uas": parser["uas"] if parser else None,
+            "las": parser["las"] if parser else None,
+            "pos": parser["pos"] if parser else None,
+        }
         args.json.parent.mkdir(parents=True, exist_ok=True)
         args.json.write_text(json.dumps(out, indent=2) + "\n")
     return 0

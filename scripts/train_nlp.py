@@ -83,8 +83,24 @@ def step_train(force: bool) -> None:
     if (out / "model-best").exists() and not force:
         print(f"{out / 'model-best'} exists; --force to retrain")
         return
-    _run(["nice", "-n", "10", sys.executable, "-m", "spacy", "train", str(CONFIG), "-o", str(out),
-          "--paths.train", str(TRAIN_DIR), "--paths.dev", str(CORPUS / "en_ewt-ud-dev.spacy")])
+    _run(
+        [
+            "nice",
+            "-n",
+            "10",
+            sys.executable,
+            "-m",
+            "spacy",
+            "train",
+            str(CONFIG),
+            "-o",
+            str(out),
+            "--paths.train",
+            str(TRAIN_DIR),
+            "--paths.dev",
+            str(CORPUS / "en_ewt-ud-dev.spacy"),
+        ]
+    )
 
 
 def step_finetune(force: bool) -> None:
@@ -111,8 +127,24 @@ def step_finetune(force: bool) -> None:
     cfg["training"]["batcher"]["size"] = 1000
     path = BUILD / "finetune.cfg"
     cfg.to_disk(path)
-    _run(["nice", "-n", "10", sys.executable, "-m", "spacy", "train", str(path), "-o", str(out),
-          "--paths.train", str(TRAIN_DIR), "--paths.dev", str(CORPUS / "en_ewt-ud-dev.spacy")])
+    _run(
+        [
+            "nice",
+            "-n",
+            "10",
+            sys.executable,
+            "-m",
+            "spacy",
+            "train",
+            str(path),
+            "-o",
+            str(out),
+            "--paths.train",
+            str(TRAIN_DIR),
+            "--paths.dev",
+            str(CORPUS / "en_ewt-ud-dev.spacy"),
+        ]
+    )
 
 
 def step_package(force: bool) -> None:
@@ -137,7 +169,9 @@ def step_evaluate(force: bool) -> None:
     }
     print(f"{'split':<12} {'pos':>6} {'tag':>6} {'lemma':>6} {'uas':>6} {'las':>6}")
     for split, s in scores.items():
-        print(f"{split:<12} {s['pos']:6.3f} {s['tag']:6.3f} {s['lemma']:6.3f} {s['uas']:6.3f} {s['las']:6.3f}")
+        print(
+            f"{split:<12} {s['pos']:6.3f} {s['tag']:6.3f} {s['lemma']:6.3f} {s['uas']:6.3f} {s['las']:6.3f}"
+        )
     (MODEL_OUT / "scores.json").write_text(json.dumps(scores, indent=2) + "\n")
 
 

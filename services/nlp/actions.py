@@ -24,7 +24,9 @@ from services.nlp.scene import SUBJECT_DEPS, _mention
 
 CLAUSE_DEPS = frozenset({"ROOT", "conj", "advcl", "xcomp", "ccomp", "parataxis"})
 TIME_UNITS = frozenset(UNIT_SECONDS)
-LINKING_VERBS = frozenset({"look", "feel", "seem", "become", "get", "appear", "grow", "turn", "remain", "stay"})
+LINKING_VERBS = frozenset(
+    {"look", "feel", "seem", "become", "get", "appear", "grow", "turn", "remain", "stay"}
+)
 
 
 @dataclass
@@ -96,14 +98,21 @@ def _manner_and_direction(verb: Token) -> tuple[str, str]:
     manner, direction = "", ""
     for c in verb.children:
         lower = c.lower_
-        if c.dep_ in ("advmod", "compound:prt", "obl:unmarked", "obl", "xcomp", "obj") and lower in lexicon.DIRECTION_ADVERBS:
+        if (
+            c.dep_ in ("advmod", "compound:prt", "obl:unmarked", "obl", "xcomp", "obj")
+            and lower in lexicon.DIRECTION_ADVERBS
+        ):
             if not any(g.dep_ == "case" for g in c.children) or lower in ("left", "right"):
                 direction = direction or lexicon.DIRECTION_ADVERBS[lower]
             continue
-        if c.dep_ in ("advmod", "obl", "obl:unmarked", "xcomp", "obj") and lower not in lexicon.MANNER_STOP and not any(
-                g.dep_ == "case" for g in c.children):
+        if (
+            c.dep_ in ("advmod", "obl", "obl:unmarked", "xcomp", "obj")
+            and lower not in lexicon.MANNER_STOP
+            and not any(g.dep_ == "case" for g in c.children)
+        ):
             if (lower.endswith("ly") and len(lower) > 4 and lower not in ("only", "family", "early")) or (
-                    c.pos_ in ("ADV", "ADJ") and lower in ("fast", "hard", "slow", "quick", "loud", "well")):
+                c.pos_ in ("ADV", "ADJ") and lower in ("fast", "hard", "slow", "quick", "loud", "well")
+            ):
                 manner = manner or lower
     return manner, direction
 
@@ -118,16 +127,19 @@ def _clause_verbs(sent: SpacySpan) -> list[Token]:
         if tok.dep_ == "xcomp" and tok.head.lemma_.lower() not in lexicon.ASPECT_VERBS:
             continue
         if tok.lemma_.lower() in lexicon.ASPECT_VERBS and any(
-                c.dep_ == "xcomp" and c.pos_ == "VERB" for c in tok.children):
+            c.dep_ == "xcomp" and c.pos_ == "VERB" for c in tok.children
+        ):
             continue  # "starts to dance": the action is "dance"
-        if tok.lemma_.lower() in LINKING_VERBS and any(c.dep_ == "xcomp" and c.pos_ == "ADJ" for c in tok.children):
+        if tok.lemma_.lower() in LINKING_VERBS and any(
+            c.dep_ == "xcomp" and c.pos_ == "ADJ" for c in tok.children
+        ):
             continue  # "looks angry": an emotion, handled by _social
         verbs.append(tok)
     return verbs
 
 
 def _glued_subject(tok: Token) -> Token | None:
-    """"Emma texts/NOUN on her phone": a name the parser made a compound of a verb it read as a noun."""
+    """ "Emma texts/NOUN on her phone": a name the parser made a compound of a verb it read as a noun."""
     if tok.pos_ not in ("NOUN", "PROPN") or not tok.lower_.endswith("s") or tok.dep_ != "ROOT":
         return None
     names = [c for c in tok.children if c.dep_ == "compound" and c.i < tok.i and c.pos_ == "PROPN"]
@@ -192,7 +204,9 @@ def _argument(tok: Token, prep: str, builder: GraphBuilder, report_unknown: bool
         return arg
     arg.word = tok.lemma_.lower()
     if report_unknown and is_unknown_object_word(tok):
-        builder.diagnose("W101", f"'{tok.text}' is not in the object catalog", tok.idx, tok.idx + len(tok.text))
+        builder.diagnose(
+            "W101", f"'{tok.text}' is not in the object catalog", tok.idx, tok.idx + len(tok.text)
+        )
     return arg
 
 
@@ -226,8 +240,11 @@ def _action(verb: Token, builder: GraphBuilder) -> ActionNode:
             if seconds is not None:
                 duration = seconds
                 continue
-            if c.lower_ in lexicon.DIRECTION_ADVERBS or c.pos_ in ("ADV", "ADP", "PART", "SCONJ", "ADJ") or (
-                    c.lower_.endswith("ly") and not any(g.dep_ == "case" for g in c.children)):
+            if (
+                c.lower_ in lexicon.DIRECTION_ADVERBS
+                or c.pos_ in ("ADV", "ADP", "PART", "SCONJ", "ADJ")
+                or (c.lower_.endswith("ly") and not any(g.dep_ == "case" for g in c.children))
+            ):
                 continue  # "walks in", "looks outside", "dances happily": no object
             cases = [g for g in c.children if g.dep_ == "case"]
             prep = " ".join(g.lower_ for g in cases)
@@ -272,8 +289,11 @@ def _action(verb: Token, builder: GraphBuilder) -> ActionNode:
         person = bool(primary.character)
     if instrument and primary is not None and (primary.object_id or primary.word) != instrument:
         inst_arg = next(a for a in obliques if (a.object_id or a.word) == instrument)
-        action = lexicon.action_for(lemma, particle, obj_words, prep, direction, person) or lexicon.action_for(
-            lemma, particle, _object_words(inst_arg, builder), inst_arg.prep.split()[-1], direction, False)
+        action = lexicon.action_for(
+            lemma, particle, obj_words, prep, direction, person
+        ) or lexicon.action_for(
+            lemma, particle, _object_words(inst_arg, builder), inst_arg.prep.split()[-1], direction, False
+        )
     else:
         action = lexicon.action_for(lemma, particle, obj_words, prep, direction, person)
     first = verb.i
@@ -283,11 +303,19 @@ def _action(verb: Token, builder: GraphBuilder) -> ActionNode:
     span_end = end_tok.idx + len(end_tok.text)
     if not action:
         shown = verb.text + (f" {particle}" if particle else "")
-        builder.diagnose("W102", f"'{shown}' is not an action in the motion library", verb.idx,
-                         verb.idx + len(verb.text))
-    return ActionNode(verb=lemma + (f" {particle}" if particle else ""), action=action, manner=manner,
-                      target=target, instrument=instrument, destination=destination, duration_s=duration,
-                      span=builder.span(doc[first].idx, span_end))
+        builder.diagnose(
+            "W102", f"'{shown}' is not an action in the motion library", verb.idx, verb.idx + len(verb.text)
+        )
+    return ActionNode(
+        verb=lemma + (f" {particle}" if particle else ""),
+        action=action,
+        manner=manner,
+        target=target,
+        instrument=instrument,
+        destination=destination,
+        duration_s=duration,
+        span=builder.span(doc[first].idx, span_end),
+    )
 
 
 def _social(sent: SpacySpan, builder: GraphBuilder) -> bool:
@@ -295,7 +323,8 @@ def _social(sent: SpacySpan, builder: GraphBuilder) -> bool:
     found = False
     for tok in sent:
         is_pred = any(c.dep_ == "cop" for c in tok.children) or (
-            tok.dep_ == "xcomp" and tok.head.lemma_.lower() in LINKING_VERBS and tok.pos_ == "ADJ")
+            tok.dep_ == "xcomp" and tok.head.lemma_.lower() in LINKING_VERBS and tok.pos_ == "ADJ"
+        )
         if not is_pred:
             continue
         subj_holder = tok if any(c.dep_ in SUBJECT_DEPS for c in tok.children) else tok.head
@@ -342,8 +371,13 @@ def extract_actions(sent: SpacySpan, builder: GraphBuilder) -> int:
             target = action.target
             target_is_person = bool(target) and (target[0].isupper() or target.lower() in lexicon.PRONOUNS)
             if verb_lemma(verb) in lexicon.SOCIAL_VERBS and target_is_person:
-                builder.add_social("emotion", [cm.name or cm.mention.lower(), target], verb_lemma(verb),
-                                   action.span.start - builder.offset, action.span.end - builder.offset)
+                builder.add_social(
+                    "emotion",
+                    [cm.name or cm.mention.lower(), target],
+                    verb_lemma(verb),
+                    action.span.start - builder.offset,
+                    action.span.end - builder.offset,
+                )
         count += 1
     if count == 0 and not social:
         verbless = not any(t.pos_ in ("VERB", "AUX") for t in sent)

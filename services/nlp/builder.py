@@ -77,8 +77,15 @@ class GraphBuilder:
             target = same[0]
         if target is None:
             oid = mention.category if not same else f"{mention.category}#{len(same) + 1}"
-            target = _Obj(oid, mention.category, mention.word, dict(mention.attributes), mention.count,
-                          mention.start, mention.end)
+            target = _Obj(
+                oid,
+                mention.category,
+                mention.word,
+                dict(mention.attributes),
+                mention.count,
+                mention.start,
+                mention.end,
+            )
             self.objects.append(target)
         else:
             for k, v in mention.attributes.items():
@@ -98,8 +105,9 @@ class GraphBuilder:
         if key in self._relation_keys:
             return
         self._relation_keys.add(key)
-        self.relations.append(RelationNode(subject=subject, relation=relation, object=anchor,
-                                           span=self.span(start, end)))
+        self.relations.append(
+            RelationNode(subject=subject, relation=relation, object=anchor, span=self.span(start, end))
+        )
 
     # --- characters -----------------------------------------------------------------------------------
 
@@ -127,10 +135,29 @@ class GraphBuilder:
             self.diagnostics.append(diagnostic(code, detail, self.offset + start, self.offset + end))
 
     def build(self, sentence_id: str, kind: SentenceKind) -> SentenceGraph:
-        objects = [ObjectNode(id=o.id, category=o.category, word=o.word, attributes=dict(sorted(o.attributes.items())),
-                              count=o.count, span=self.span(o.start, o.end)) for o in self.objects]
-        characters = [CharacterNode(name=c.name, actions=list(c.actions), mention=c.mention) for c in self.characters]
-        return SentenceGraph(sentence_id=sentence_id, text=self.text, kind=kind, objects=objects,
-                             relations=list(self.relations), characters=characters, social=list(self.social),
-                             commands=list(self.commands), diagnostics=list(self.diagnostics),
-                             room_type=self.room_type)
+        objects = [
+            ObjectNode(
+                id=o.id,
+                category=o.category,
+                word=o.word,
+                attributes=dict(sorted(o.attributes.items())),
+                count=o.count,
+                span=self.span(o.start, o.end),
+            )
+            for o in self.objects
+        ]
+        characters = [
+            CharacterNode(name=c.name, actions=list(c.actions), mention=c.mention) for c in self.characters
+        ]
+        return SentenceGraph(
+            sentence_id=sentence_id,
+            text=self.text,
+            kind=kind,
+            objects=objects,
+            relations=list(self.relations),
+            characters=characters,
+            social=list(self.social),
+            commands=list(self.commands),
+            diagnostics=list(self.diagnostics),
+            room_type=self.room_type,
+        )

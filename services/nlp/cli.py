@@ -12,7 +12,9 @@ def _entries(text: str) -> list[dict]:
     from services.nlp.parse import parse_document_with_spans
 
     pieces, graphs = parse_document_with_spans(text)
-    return [{"start": s, "end": e, **msgspec.to_builtins(g)} for (s, e, _), g in zip(pieces, graphs, strict=True)]
+    return [
+        {"start": s, "end": e, **msgspec.to_builtins(g)} for (s, e, _), g in zip(pieces, graphs, strict=True)
+    ]
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -20,13 +22,15 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(
         prog="wana parse",
         description="Parse a wana story into semantic scene graphs: one JSON entry per sentence with its "
-                    "objects, relations, characters and actions, commands and diagnostics (character spans "
-                    "in the input text). Sentences ending in '$' describe the scene.",
+        "objects, relations, characters and actions, commands and diagnostics (character spans "
+        "in the input text). Sentences ending in '$' describe the scene.",
         epilog="example: wana parse 'A laptop is on the desk$. Eve sits on the chair.'",
     )
     ap.add_argument("text", help="the text to parse, or '-' to read it from standard input")
     ap.add_argument("--compact", action="store_true", help="one line of JSON instead of indented output")
-    ap.add_argument("--strict", action="store_true", help="exit with status 1 when any diagnostic is an error")
+    ap.add_argument(
+        "--strict", action="store_true", help="exit with status 1 when any diagnostic is an error"
+    )
     args = ap.parse_args(argv)
     if args.text == "-":
         raw = sys.stdin.buffer.read()

@@ -1,11 +1,11 @@
 """Command lines: camera, weather/light, wait, faster/slower.
 
-    >>> parse_command("camera left").value
-    'left'
-    >>> parse_command("Wait 2 seconds.").seconds
-    2.0
-    >>> parse_command("Tom waits") is None
-    True
+>>> parse_command("camera left").value
+'left'
+>>> parse_command("Wait 2 seconds.").seconds
+2.0
+>>> parse_command("Tom waits") is None
+True
 """
 
 from __future__ import annotations
@@ -15,29 +15,107 @@ import re
 from proto.common import Span
 from proto.ssg import Command
 
-NUMBER_WORDS = {"a": 1.0, "an": 1.0, "one": 1.0, "two": 2.0, "three": 3.0, "four": 4.0, "five": 5.0, "six": 6.0,
-                "seven": 7.0, "eight": 8.0, "nine": 9.0, "ten": 10.0, "eleven": 11.0, "twelve": 12.0,
-                "fifteen": 15.0, "twenty": 20.0, "thirty": 30.0, "sixty": 60.0, "half": 0.5, "half a": 0.5,
-                "a few": 3.0, "few": 3.0, "several": 3.0, "a couple of": 2.0, "couple of": 2.0}
-UNIT_SECONDS = {"s": 1.0, "sec": 1.0, "secs": 1.0, "second": 1.0, "seconds": 1.0, "min": 60.0, "mins": 60.0,
-                "minute": 60.0, "minutes": 60.0, "ms": 0.001, "hour": 3600.0, "hours": 3600.0}
+NUMBER_WORDS = {
+    "a": 1.0,
+    "an": 1.0,
+    "one": 1.0,
+    "two": 2.0,
+    "three": 3.0,
+    "four": 4.0,
+    "five": 5.0,
+    "six": 6.0,
+    "seven": 7.0,
+    "eight": 8.0,
+    "nine": 9.0,
+    "ten": 10.0,
+    "eleven": 11.0,
+    "twelve": 12.0,
+    "fifteen": 15.0,
+    "twenty": 20.0,
+    "thirty": 30.0,
+    "sixty": 60.0,
+    "half": 0.5,
+    "half a": 0.5,
+    "a few": 3.0,
+    "few": 3.0,
+    "several": 3.0,
+    "a couple of": 2.0,
+    "couple of": 2.0,
+}
+UNIT_SECONDS = {
+    "s": 1.0,
+    "sec": 1.0,
+    "secs": 1.0,
+    "second": 1.0,
+    "seconds": 1.0,
+    "min": 60.0,
+    "mins": 60.0,
+    "minute": 60.0,
+    "minutes": 60.0,
+    "ms": 0.001,
+    "hour": 3600.0,
+    "hours": 3600.0,
+}
 
-CAMERA_VALUES = {"front": "front", "back": "back", "behind": "back", "rear": "back", "left": "left",
-                 "right": "right", "top": "top", "above": "top", "overhead": "top", "bird": "top", "up": "top",
-                 "follow": "follow", "follows": "follow", "following": "follow", "track": "follow",
-                 "close": "close", "closeup": "close", "close-up": "close", "zoom": "close", "near": "close"}
-WEATHER_VALUES = {"sunny": "sunny", "sun": "sunny", "day": "sunny", "daylight": "sunny", "bright": "sunny",
-                  "night": "night", "nighttime": "night", "dark": "night", "evening": "night",
-                  "rainy": "rainy", "rain": "rainy", "raining": "rainy", "rains": "rainy",
-                  "foggy": "foggy", "fog": "foggy", "misty": "foggy", "mist": "foggy",
-                  "snowy": "snowy", "snow": "snowy", "snowing": "snowy", "snows": "snowy"}
-SPEED_VALUES = {"faster": "faster", "speed up": "faster", "quicker": "faster",
-                "slower": "slower", "slow down": "slower"}
+CAMERA_VALUES = {
+    "front": "front",
+    "back": "back",
+    "behind": "back",
+    "rear": "back",
+    "left": "left",
+    "right": "right",
+    "top": "top",
+    "above": "top",
+    "overhead": "top",
+    "bird": "top",
+    "up": "top",
+    "follow": "follow",
+    "follows": "follow",
+    "following": "follow",
+    "track": "follow",
+    "close": "close",
+    "closeup": "close",
+    "close-up": "close",
+    "zoom": "close",
+    "near": "close",
+}
+WEATHER_VALUES = {
+    "sunny": "sunny",
+    "sun": "sunny",
+    "day": "sunny",
+    "daylight": "sunny",
+    "bright": "sunny",
+    "night": "night",
+    "nighttime": "night",
+    "dark": "night",
+    "evening": "night",
+    "rainy": "rainy",
+    "rain": "rainy",
+    "raining": "rainy",
+    "rains": "rainy",
+    "foggy": "foggy",
+    "fog": "foggy",
+    "misty": "foggy",
+    "mist": "foggy",
+    "snowy": "snowy",
+    "snow": "snowy",
+    "snowing": "snowy",
+    "snows": "snowy",
+}
+SPEED_VALUES = {
+    "faster": "faster",
+    "speed up": "faster",
+    "quicker": "faster",
+    "slower": "slower",
+    "slow down": "slower",
+}
 
 _NUM = r"(\d+(?:\.\d+)?|half a|a couple of|couple of|a few|[a-z]+)"
 _WAIT = re.compile(rf"^(?:wait|pause)(?:\s+for)?(?:\s+{_NUM}(?:\s*([a-z]+))?)?$")
-_CAMERA = re.compile(r"^camera\s*:?\s+(?:view\s+)?(?:from\s+(?:the\s+)?)?([a-z-]+)(?:\s+(?:on\s+|to\s+)?([A-Za-z][\w'-]*))?$",
-                     re.IGNORECASE)
+_CAMERA = re.compile(
+    r"^camera\s*:?\s+(?:view\s+)?(?:from\s+(?:the\s+)?)?([a-z-]+)(?:\s+(?:on\s+|to\s+)?([A-Za-z][\w'-]*))?$",
+    re.IGNORECASE,
+)
 _WEATHER = re.compile(r"^(?:(?:weather|light|lighting|time)\s*:?\s+|it\s+is\s+|it's\s+)?([a-z]+)$")
 
 

@@ -32,8 +32,10 @@ def _check_sentence(text: str, offset: int) -> None:
     if offset < 0:
         raise InvalidInput(f"offset must be >= 0, got {offset}")
     if len(text) > MAX_SENTENCE_CHARS:
-        raise InvalidInput(f"sentence of {len(text)} characters; split documents with services.nlp.segment first "
-                           f"(limit {MAX_SENTENCE_CHARS})")
+        raise InvalidInput(
+            f"sentence of {len(text)} characters; split documents with services.nlp.segment first "
+            f"(limit {MAX_SENTENCE_CHARS})"
+        )
 
 
 def handle_parse(req: ParseRequest) -> ParseReply:
@@ -57,7 +59,9 @@ def handle_resolve(req: ResolveRequest) -> ResolveReply:
     """Resolve names and pronouns across the graphs of a document."""
     if req.offsets and len(req.offsets) != len(req.graphs):
         raise InvalidInput(f"{len(req.offsets)} offsets for {len(req.graphs)} graphs")
-    return ResolveReply(header=_reply_header(req.header), graphs=resolve(list(req.graphs), list(req.offsets) or None))
+    return ResolveReply(
+        header=_reply_header(req.header), graphs=resolve(list(req.graphs), list(req.offsets) or None)
+    )
 
 
 def handle_parse_document(req: ParseDocumentRequest) -> ParseDocumentReply:
@@ -65,8 +69,12 @@ def handle_parse_document(req: ParseDocumentRequest) -> ParseDocumentReply:
     if len(req.text) > MAX_DOCUMENT_CHARS:
         raise InvalidInput(f"document of {len(req.text)} characters (limit {MAX_DOCUMENT_CHARS})")
     pieces, graphs = parse_document_with_spans(req.text)
-    return ParseDocumentReply(header=_reply_header(req.header), sentences=[SentenceSpan(s, e, k) for s, e, k in pieces],
-                              graphs=graphs, model_version=MODEL_VERSION)
+    return ParseDocumentReply(
+        header=_reply_header(req.header),
+        sentences=[SentenceSpan(s, e, k) for s, e, k in pieces],
+        graphs=graphs,
+        model_version=MODEL_VERSION,
+    )
 
 
 CONTRACT: Contract = {

@@ -44,8 +44,10 @@ def build_lemma_tables(conllu_paths: Iterable[Path]) -> LemmaTables:
     def best(c: Counter[str]) -> str:
         return sorted(c.items(), key=lambda kv: (-kv[1], kv[0]))[0][0]
 
-    return {"by_pos": {k: best(v) for k, v in sorted(by_pos.items())},
-            "by_form": {k: best(v) for k, v in sorted(by_form.items())}}
+    return {
+        "by_pos": {k: best(v) for k, v in sorted(by_pos.items())},
+        "by_form": {k: best(v) for k, v in sorted(by_form.items())},
+    }
 
 
 def _noun_rule(w: str) -> str:
@@ -70,7 +72,12 @@ def _verb_rule(w: str) -> str:
             stem = w[: -len(suffix)]
             if len(stem) > 2 and stem[-1] == stem[-2] and stem[-1] not in "lsz":
                 return stem[:-1]  # "stopped" -> "stop"
-            if stem[-1] not in _VOWELS and stem[-2] in _VOWELS and stem[-3] not in _VOWELS and stem[-1] not in "wxy":
+            if (
+                stem[-1] not in _VOWELS
+                and stem[-2] in _VOWELS
+                and stem[-3] not in _VOWELS
+                and stem[-1] not in "wxy"
+            ):
                 return stem + "e"  # "smiled" -> "smile"; a heuristic, the tables cover common verbs
             return stem
     return w
@@ -114,8 +121,9 @@ class LookupLemmatizer:
     def to_disk(self, path: str | Path, exclude: Iterable[str] = ()) -> None:
         path = Path(path)
         path.mkdir(parents=True, exist_ok=True)
-        (path / "tables.json").write_text(json.dumps(self.tables, ensure_ascii=False, separators=(",", ":")),
-                                          encoding="utf-8")
+        (path / "tables.json").write_text(
+            json.dumps(self.tables, ensure_ascii=False, separators=(",", ":")), encoding="utf-8"
+        )
 
     def from_disk(self, path: str | Path, exclude: Iterable[str] = ()) -> LookupLemmatizer:
         self.tables = json.loads((Path(path) / "tables.json").read_text(encoding="utf-8"))

@@ -19,14 +19,37 @@ PERSON_NOUNS = frozenset(
     "worker carpenter boxer singer dancer musician pianist guitarist drummer artist painter player waiter "
     "waitress officer policeman driver friend mother father mom dad brother sister son daughter grandma "
     "grandpa wife husband boss manager colleague customer visitor guest stranger athlete coach people men "
-    "women children kids girls boys someone somebody everyone everybody".split())
+    "women children kids girls boys someone somebody everyone everybody".split()
+)
 NON_OBJECT_NOUNS = frozenset(
     "room floor wall ceiling corner middle center centre side left right front back top bottom end time "
     "second seconds minute minutes moment hour hours day night way place area space home house building "
-    "street garden yard outside inside ground music song".split())
-COUNT_WORDS = {"one": 1, "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8,
-               "nine": 9, "ten": 10, "eleven": 11, "twelve": 12, "a couple of": 2, "couple": 2, "pair": 2,
-               "both": 2, "several": 3, "some": 3, "many": 3, "few": 3, "multiple": 3, "lots": 3}
+    "street garden yard outside inside ground music song".split()
+)
+COUNT_WORDS = {
+    "one": 1,
+    "two": 2,
+    "three": 3,
+    "four": 4,
+    "five": 5,
+    "six": 6,
+    "seven": 7,
+    "eight": 8,
+    "nine": 9,
+    "ten": 10,
+    "eleven": 11,
+    "twelve": 12,
+    "a couple of": 2,
+    "couple": 2,
+    "pair": 2,
+    "both": 2,
+    "several": 3,
+    "some": 3,
+    "many": 3,
+    "few": 3,
+    "multiple": 3,
+    "lots": 3,
+}
 PLURAL_DEFAULT_COUNT = 3  # "there are books on the shelf": an unnamed number of several
 
 
@@ -71,100 +94,293 @@ def hypernyms(category: str) -> list[str]:
 
 # One-word prepositions -> SSG relation.
 RELATION_PREPS = {
-    "on": "on", "upon": "on", "onto": "on", "atop": "on", "over": "above", "above": "above",
-    "near": "near", "by": "near", "at": "near", "close": "near", "beside": "next_to", "besides": "next_to",
-    "alongside": "next_to", "against": "next_to", "behind": "behind", "under": "under", "underneath": "under",
-    "beneath": "under", "below": "under", "in": "in", "inside": "in", "within": "in", "into": "in",
-    "around": "around", "surrounding": "around", "opposite": "facing", "facing": "facing", "toward": "facing",
+    "on": "on",
+    "upon": "on",
+    "onto": "on",
+    "atop": "on",
+    "over": "above",
+    "above": "above",
+    "near": "near",
+    "by": "near",
+    "at": "near",
+    "close": "near",
+    "beside": "next_to",
+    "besides": "next_to",
+    "alongside": "next_to",
+    "against": "next_to",
+    "behind": "behind",
+    "under": "under",
+    "underneath": "under",
+    "beneath": "under",
+    "below": "under",
+    "in": "in",
+    "inside": "in",
+    "within": "in",
+    "into": "in",
+    "around": "around",
+    "surrounding": "around",
+    "opposite": "facing",
+    "facing": "facing",
+    "toward": "facing",
     "towards": "facing",
 }
 # Relational nouns in "in front of", "on top of", "to the left of", "at the back of" -> relation.
-RELATION_NOUNS = {"front": "in_front_of", "top": "on", "left": "left_of", "right": "right_of",
-                  "back": "behind", "rear": "behind", "side": "next_to", "middle": "in", "center": "in",
-                  "centre": "in", "bottom": "under", "corner": "in", "underside": "under"}
-RELATION_VERBS = {"face": "facing", "surround": "around", "overlook": "facing", "cover": "on", "hang": "on",
-                  "border": "next_to", "flank": "next_to", "support": "under", "hold": "under"}
+RELATION_NOUNS = {
+    "front": "in_front_of",
+    "top": "on",
+    "left": "left_of",
+    "right": "right_of",
+    "back": "behind",
+    "rear": "behind",
+    "side": "next_to",
+    "middle": "in",
+    "center": "in",
+    "centre": "in",
+    "bottom": "under",
+    "corner": "in",
+    "underside": "under",
+}
+RELATION_VERBS = {
+    "face": "facing",
+    "surround": "around",
+    "overlook": "facing",
+    "cover": "on",
+    "hang": "on",
+    "border": "next_to",
+    "flank": "next_to",
+    "support": "under",
+    "hold": "under",
+}
 
 # --- characters and actions ---------------------------------------------------------------------------
 
-PRONOUNS = {"he": "he", "him": "he", "she": "she", "her": "she", "they": "they", "them": "they",
-            "i": "i", "me": "i", "you": "you", "we": "they", "us": "they"}
+PRONOUNS = {
+    "he": "he",
+    "him": "he",
+    "she": "she",
+    "her": "she",
+    "they": "they",
+    "them": "they",
+    "i": "i",
+    "me": "i",
+    "you": "you",
+    "we": "they",
+    "us": "they",
+}
 OBJECT_PRONOUNS = frozenset({"it", "this", "that", "them"})
 FEMALE_NAMES = frozenset(
     "eve mary alice anna lucy kate emma lily sara sarah nina julia jane emily olivia sophia mia amy laura "
-    "linda susan lisa maria anne ann helen grace chloe zoe ella ava rose ruth clara lena".split())
+    "linda susan lisa maria anne ann helen grace chloe zoe ella ava rose ruth clara lena".split()
+)
 MALE_NAMES = frozenset(
     "tom john bob peter sam david jack mike ben paul james michael mark luke adam alex max leo tim chris dan "
-    "daniel joe george harry henry nick oscar ryan steve will bill fred frank ken carl eric jim".split())
+    "daniel joe george harry henry nick oscar ryan steve will bill fred frank ken carl eric jim".split()
+)
 FEMALE_NOUNS = frozenset("woman girl lady mother mom sister daughter grandma wife waitress".split())
 MALE_NOUNS = frozenset("man boy guy gentleman father dad brother son grandpa husband policeman".split())
 
 MANNER_STOP = frozenset(
     "then now first finally again also still just later soon already next there here away back home in out "
     "up down around off over together too even only not never always once twice very so really thereby "
-    "afterwards meanwhile instead almost".split())
-DIRECTION_ADVERBS = {"left": "left", "right": "right", "around": "around", "back": "back", "backward": "backward",
-                     "backwards": "backward", "forward": "forward", "forwards": "forward", "up": "up", "down": "down"}
-LOCOMOTION_ACTIONS = frozenset({"walk", "run", "jog", "walk_slowly", "walk_backward", "march", "limp", "tiptoe",
-                                "skip", "crawl", "step_forward", "step_back", "stumble", "sidestep_left",
-                                "sidestep_right"})
-DESTINATION_PREPS = frozenset({"to", "toward", "towards", "into", "through", "across", "along", "onto", "past",
-                               "up", "down", "over", "in"})
+    "afterwards meanwhile instead almost".split()
+)
+DIRECTION_ADVERBS = {
+    "left": "left",
+    "right": "right",
+    "around": "around",
+    "back": "back",
+    "backward": "backward",
+    "backwards": "backward",
+    "forward": "forward",
+    "forwards": "forward",
+    "up": "up",
+    "down": "down",
+}
+LOCOMOTION_ACTIONS = frozenset(
+    {
+        "walk",
+        "run",
+        "jog",
+        "walk_slowly",
+        "walk_backward",
+        "march",
+        "limp",
+        "tiptoe",
+        "skip",
+        "crawl",
+        "step_forward",
+        "step_back",
+        "stumble",
+        "sidestep_left",
+        "sidestep_right",
+    }
+)
+DESTINATION_PREPS = frozenset(
+    {
+        "to",
+        "toward",
+        "towards",
+        "into",
+        "through",
+        "across",
+        "along",
+        "onto",
+        "past",
+        "up",
+        "down",
+        "over",
+        "in",
+    }
+)
 INSTRUMENT_PREPS = frozenset({"with", "using", "via"})
-ASPECT_VERBS = frozenset({"start", "begin", "continue", "keep", "try", "go", "stop", "finish", "want", "decide",
-                          "like", "love", "seem", "need", "attempt", "come"})
+ASPECT_VERBS = frozenset(
+    {
+        "start",
+        "begin",
+        "continue",
+        "keep",
+        "try",
+        "go",
+        "stop",
+        "finish",
+        "want",
+        "decide",
+        "like",
+        "love",
+        "seem",
+        "need",
+        "attempt",
+        "come",
+    }
+)
 # Verbs whose meaning is social between two characters: action + SocialNode(kind="emotion").
 SOCIAL_VERBS = frozenset(
     "apologize apologise thank hug kiss greet comfort console insult praise blame scold forgive congratulate "
     "argue quarrel shout yell scream smile laugh threaten criticize criticise fight punch push hit slap "
-    "tease mock ignore admire love hate help invite welcome apologize cheer beg thank".split())
+    "tease mock ignore admire love hate help invite welcome apologize cheer beg thank".split()
+)
 EMOTION_WORDS = frozenset(
     "angry happy sad nervous excited tired scared afraid calm surprised bored anxious annoyed upset proud "
     "jealous confused disappointed furious glad worried lonely relaxed shy embarrassed ashamed hopeful "
-    "frightened cheerful grumpy sleepy curious disgusted amused delighted miserable depressed content".split())
+    "frightened cheerful grumpy sleepy curious disgusted amused delighted miserable depressed content".split()
+)
 SOCIAL_RELATION_WORDS = frozenset(
     "friend friends colleague colleagues enemy enemies sibling siblings stranger strangers partner partners "
     "neighbor neighbors neighbour neighbours rival rivals couple lovers lover boss teacher student sister "
     "brother mother father wife husband son daughter coach manager assistant employee employer classmate "
     "classmates teammate teammates roommate roommates cousin cousins parent parents child children "
-    "boyfriend girlfriend fiance fiancee family relatives acquaintances acquaintance".split())
+    "boyfriend girlfriend fiance fiancee family relatives acquaintances acquaintance".split()
+)
 
 # Verb lemma (+ object word) -> action name, for phrasings the motion library's synonyms do not carry.
 ACTION_OVERRIDES: dict[tuple[str, str], str] = {
-    ("chat", "phone"): "call_with_phone", ("talk", "phone"): "call_with_phone",
-    ("speak", "phone"): "call_with_phone", ("answer", "phone"): "pick_up_phone_answer",
-    ("use", "phone"): "text_on_phone", ("check", "phone"): "text_on_phone", ("look", "phone"): "text_on_phone",
-    ("use", "laptop"): "type", ("use", "computer"): "type", ("work", "laptop"): "type",
-    ("work", "computer"): "type", ("use", "keyboard"): "type", ("use", "tablet"): "use_tablet",
-    ("use", "mouse"): "use_mouse", ("watch", "television"): "watch_tv", ("sing", "microphone"): "sing_with_microphone",
-    ("hit", "boxing_bag"): "punch_bag", ("punch", "boxing_bag"): "punch_bag", ("kick", "boxing_bag"): "kick",
-    ("box", "boxing_bag"): "punch_bag", ("lift", "dumbbell"): "lift_weights", ("lift", "barbell"): "lift_weights",
-    ("lift", "kettlebell"): "lift_weights", ("open", "refrigerator"): "open_fridge", ("open", "door"): "open_door",
-    ("close", "door"): "close_door", ("open", "drawer"): "open_drawer", ("write", "blackboard"): "write_on_blackboard",
-    ("write", "whiteboard"): "write_on_blackboard", ("draw", "whiteboard"): "write_on_blackboard",
-    ("read", "newspaper"): "read_newspaper", ("clean", "window"): "wipe_window", ("wipe", "window"): "wipe_window",
-    ("clean", "table"): "wipe_table", ("clean", "floor"): "mop", ("water", "plant"): "water_plants",
-    ("listen", "headphones"): "listen_with_headphones", ("listen", "music"): "listen_with_headphones",
-    ("take", "photo_frame"): "take_photo", ("take", "picture"): "take_photo", ("take", "photo"): "take_photo",
-    ("play", "drum_kit"): "play_drums", ("play", "flute"): "play_flute", ("play", "grand_piano"): "play_piano",
-    ("play", "synthesizer"): "play_piano", ("play", "electric_guitar"): "play_guitar",
-    ("play", "bass_guitar"): "play_guitar", ("play", "violin"): "play_violin", ("play", "cello"): "play_violin",
-    ("play", "ball"): "kick", ("throw", "ball"): "throw", ("shoot", "ball"): "shoot_basket",
-    ("push", "person"): "push_person", ("shake", "hands"): "shake_hands", ("hold", "hands"): "hold_hands",
-    ("ride", "exercise_bike"): "jog", ("run", "treadmill"): "jog", ("use", "treadmill"): "jog",
-    ("press", "button"): "push_button", ("press", "switch"): "press_switch", ("turn", "lamp"): "press_switch",
-    ("sit", "floor"): "sit_on_floor", ("sit", "ground"): "sit_on_floor", ("lie", "bed"): "lie_down",
-    ("lie", "sofa"): "lie_down", ("wash", "hands"): "wash_hands",
-    ("brush", "teeth"): "brush_teeth", ("comb", "hair"): "comb_hair", ("kiss", "cheek"): "kiss_cheek",
+    ("chat", "phone"): "call_with_phone",
+    ("talk", "phone"): "call_with_phone",
+    ("speak", "phone"): "call_with_phone",
+    ("answer", "phone"): "pick_up_phone_answer",
+    ("use", "phone"): "text_on_phone",
+    ("check", "phone"): "text_on_phone",
+    ("look", "phone"): "text_on_phone",
+    ("use", "laptop"): "type",
+    ("use", "computer"): "type",
+    ("work", "laptop"): "type",
+    ("work", "computer"): "type",
+    ("use", "keyboard"): "type",
+    ("use", "tablet"): "use_tablet",
+    ("use", "mouse"): "use_mouse",
+    ("watch", "television"): "watch_tv",
+    ("sing", "microphone"): "sing_with_microphone",
+    ("hit", "boxing_bag"): "punch_bag",
+    ("punch", "boxing_bag"): "punch_bag",
+    ("kick", "boxing_bag"): "kick",
+    ("box", "boxing_bag"): "punch_bag",
+    ("lift", "dumbbell"): "lift_weights",
+    ("lift", "barbell"): "lift_weights",
+    ("lift", "kettlebell"): "lift_weights",
+    ("open", "refrigerator"): "open_fridge",
+    ("open", "door"): "open_door",
+    ("close", "door"): "close_door",
+    ("open", "drawer"): "open_drawer",
+    ("write", "blackboard"): "write_on_blackboard",
+    ("write", "whiteboard"): "write_on_blackboard",
+    ("draw", "whiteboard"): "write_on_blackboard",
+    ("read", "newspaper"): "read_newspaper",
+    ("clean", "window"): "wipe_window",
+    ("wipe", "window"): "wipe_window",
+    ("clean", "table"): "wipe_table",
+    ("clean", "floor"): "mop",
+    ("water", "plant"): "water_plants",
+    ("listen", "headphones"): "listen_with_headphones",
+    ("listen", "music"): "listen_with_headphones",
+    ("take", "photo_frame"): "take_photo",
+    ("take", "picture"): "take_photo",
+    ("take", "photo"): "take_photo",
+    ("play", "drum_kit"): "play_drums",
+    ("play", "flute"): "play_flute",
+    ("play", "grand_piano"): "play_piano",
+    ("play", "synthesizer"): "play_piano",
+    ("play", "electric_guitar"): "play_guitar",
+    ("play", "bass_guitar"): "play_guitar",
+    ("play", "violin"): "play_violin",
+    ("play", "cello"): "play_violin",
+    ("play", "ball"): "kick",
+    ("throw", "ball"): "throw",
+    ("shoot", "ball"): "shoot_basket",
+    ("push", "person"): "push_person",
+    ("shake", "hands"): "shake_hands",
+    ("hold", "hands"): "hold_hands",
+    ("ride", "exercise_bike"): "jog",
+    ("run", "treadmill"): "jog",
+    ("use", "treadmill"): "jog",
+    ("press", "button"): "push_button",
+    ("press", "switch"): "press_switch",
+    ("turn", "lamp"): "press_switch",
+    ("sit", "floor"): "sit_on_floor",
+    ("sit", "ground"): "sit_on_floor",
+    ("lie", "bed"): "lie_down",
+    ("lie", "sofa"): "lie_down",
+    ("wash", "hands"): "wash_hands",
+    ("brush", "teeth"): "brush_teeth",
+    ("comb", "hair"): "comb_hair",
+    ("kiss", "cheek"): "kiss_cheek",
 }
 # Verb lemma alone -> action name where the library's synonym table points elsewhere.
 VERB_OVERRIDES: dict[str, str] = {
-    "stand": "stand", "sleep": "sleep", "be": "", "lie": "lie_down", "kiss": "kiss_cheek", "smile": "laugh",
-    "hold": "carry", "go": "walk", "head": "walk", "approach": "walk", "return": "walk", "leave": "walk",
-    "wander": "walk", "step": "step_forward", "hurry": "run", "rush": "run", "sprint": "run",
-    "type": "type", "sit": "sit", "greet": "wave", "turn": "turn_around", "chat": "talk", "speak": "talk",
-    "relax": "sit", "rest": "sit", "work": "type", "study": "read", "play": "", "use": "", "do": "",
-    "have": "", "get": "", "make": "", "take": "pick_up", "watch": "look_at",
+    "stand": "stand",
+    "sleep": "sleep",
+    "be": "",
+    "lie": "lie_down",
+    "kiss": "kiss_cheek",
+    "smile": "laugh",
+    "hold": "carry",
+    "go": "walk",
+    "head": "walk",
+    "approach": "walk",
+    "return": "walk",
+    "leave": "walk",
+    "wander": "walk",
+    "step": "step_forward",
+    "hurry": "run",
+    "rush": "run",
+    "sprint": "run",
+    "type": "type",
+    "sit": "sit",
+    "greet": "wave",
+    "turn": "turn_around",
+    "chat": "talk",
+    "speak": "talk",
+    "relax": "sit",
+    "rest": "sit",
+    "work": "type",
+    "study": "read",
+    "play": "",
+    "use": "",
+    "do": "",
+    "have": "",
+    "get": "",
+    "make": "",
+    "take": "pick_up",
+    "watch": "look_at",
 }
 
 
@@ -187,8 +403,15 @@ def _tokens(text: str) -> list[str]:
 
 
 @functools.lru_cache(maxsize=65536)
-def action_for(verb: str, particle: str = "", obj_words: tuple[str, ...] = (), prep: str = "",
-               direction: str = "", person_object: bool = False, _retry: bool = True) -> str:
+def action_for(
+    verb: str,
+    particle: str = "",
+    obj_words: tuple[str, ...] = (),
+    prep: str = "",
+    direction: str = "",
+    person_object: bool = False,
+    _retry: bool = True,
+) -> str:
     """Action-library name for a verb and what surrounds it, or "" when none fits.
 
     Args:
@@ -216,10 +439,17 @@ def action_for(verb: str, particle: str = "", obj_words: tuple[str, ...] = (), p
         specific += [known(f"{verb}_{particle}"), synonyms.get(f"{verb} {particle}")]
     for o in objs:
         specific.append(ACTION_OVERRIDES.get((verb, o)))
-        specific += [known(f"{verb}_{o}"), known(f"{verb}_{o}s"), known(f"{verb}_{prep}_{o}") if prep else None]
+        specific += [
+            known(f"{verb}_{o}"),
+            known(f"{verb}_{o}s"),
+            known(f"{verb}_{prep}_{o}") if prep else None,
+        ]
         phrase_obj = o.replace("_", " ")
-        specific += [synonyms.get(f"{verb} the {phrase_obj}"), synonyms.get(f"{verb} {phrase_obj}"),
-                     synonyms.get(f"{verb} {prep} the {phrase_obj}") if prep else None]
+        specific += [
+            synonyms.get(f"{verb} the {phrase_obj}"),
+            synonyms.get(f"{verb} {phrase_obj}"),
+            synonyms.get(f"{verb} {prep} the {phrase_obj}") if prep else None,
+        ]
     if prep:
         specific += [known(f"{verb}_{prep}"), synonyms.get(f"{verb} {prep}")]
     for c in specific:

@@ -17,12 +17,42 @@ from services.nlp.compounds import split_glued
 from wana.assets import vocabulary
 
 MODIFIER_DEPS = frozenset({"compound", "amod", "nmod:npmod", "flat", "nummod", "det", "nmod:poss", "advmod"})
-QUANTITY_HEADS = {"couple": 2, "pair": 2, "lot": 3, "lots": 3, "number": 3, "set": 3, "group": 3, "bunch": 3,
-                  "stack": 3, "pile": 3, "row": 3, "few": 3}
-DEFINITE_DETS = frozenset({"the", "this", "that", "these", "those", "its", "his", "her", "their", "my", "your"})
+QUANTITY_HEADS = {
+    "couple": 2,
+    "pair": 2,
+    "lot": 3,
+    "lots": 3,
+    "number": 3,
+    "set": 3,
+    "group": 3,
+    "bunch": 3,
+    "stack": 3,
+    "pile": 3,
+    "row": 3,
+    "few": 3,
+}
+DEFINITE_DETS = frozenset(
+    {"the", "this", "that", "these", "those", "its", "his", "her", "their", "my", "your"}
+)
 NUMBER_RE = re.compile(r"^\d+$")
-PLURALE_TANTUM = frozenset({"headphones", "earphones", "drums", "gloves", "scissors", "pliers", "glasses", "jeans",
-                            "trousers", "binoculars", "dumbbells", "blinds", "curtains", "drapes"})
+PLURALE_TANTUM = frozenset(
+    {
+        "headphones",
+        "earphones",
+        "drums",
+        "gloves",
+        "scissors",
+        "pliers",
+        "glasses",
+        "jeans",
+        "trousers",
+        "binoculars",
+        "dumbbells",
+        "blinds",
+        "curtains",
+        "drapes",
+    }
+)
 
 
 @dataclass
@@ -88,7 +118,8 @@ def _left_modifiers(head: Token) -> list[Token]:
     mods: list[Token] = []
     for child in reversed(list(head.lefts)):
         if child.dep_ in ("compound", "amod", "flat", "nmod:npmod") or (
-                child.dep_ == "nummod" and not child.like_num and child.pos_ != "NUM"):
+            child.dep_ == "nummod" and not child.like_num and child.pos_ != "NUM"
+        ):
             mods.insert(0, child)
             # "dark blue chair": the adverb/adjective modifying the adjective
             mods[0:0] = [g for g in child.lefts if g.dep_ in ("advmod", "amod", "compound")]
@@ -150,7 +181,10 @@ def object_mention(head: Token) -> ObjectMention | None:
         return None  # "Mike" is a person here, not a microphone
     if head.lower_ in lexicon.PERSON_NOUNS or head.lemma_.lower() in lexicon.PERSON_NOUNS:
         return None
-    if head.pos_ not in ("NOUN", "PROPN", "X", "ADJ", "VERB", "NUM") or head.lower_ in lexicon.OBJECT_PRONOUNS:
+    if (
+        head.pos_ not in ("NOUN", "PROPN", "X", "ADJ", "VERB", "NUM")
+        or head.lower_ in lexicon.OBJECT_PRONOUNS
+    ):
         return None
     if head.lower_ in lexicon.NON_OBJECT_NOUNS or head.lemma_.lower() in lexicon.NON_OBJECT_NOUNS:
         return None
@@ -197,8 +231,16 @@ def object_mention(head: Token) -> ObjectMention | None:
     start_tok = min([head.i] + [c.i for c in head.lefts if c.dep_ in MODIFIER_DEPS or c in mods])
     doc = head.doc
     count = _count(head)
-    return ObjectMention(head=head, category=category, word=word.lower(), attributes=attributes, count=count,
-                         start=doc[start_tok].idx, end=head.idx + len(head.text), definite=definite)
+    return ObjectMention(
+        head=head,
+        category=category,
+        word=word.lower(),
+        attributes=attributes,
+        count=count,
+        start=doc[start_tok].idx,
+        end=head.idx + len(head.text),
+        definite=definite,
+    )
 
 
 def quantity_target(head: Token) -> tuple[Token, int] | None:
@@ -216,7 +258,11 @@ def is_unknown_object_word(head: Token) -> bool:
     if head.pos_ not in ("NOUN", "X") or head.lower_ in lexicon.OBJECT_PRONOUNS:
         return False
     lemma = head.lemma_.lower()
-    if lemma in lexicon.PERSON_NOUNS or lemma in lexicon.NON_OBJECT_NOUNS or head.lower_ in lexicon.NON_OBJECT_NOUNS:
+    if (
+        lemma in lexicon.PERSON_NOUNS
+        or lemma in lexicon.NON_OBJECT_NOUNS
+        or head.lower_ in lexicon.NON_OBJECT_NOUNS
+    ):
         return False
     if lemma in lexicon.RELATION_NOUNS or lemma in lexicon.SOCIAL_RELATION_WORDS or lemma in QUANTITY_HEADS:
         return False
@@ -235,9 +281,13 @@ def character_mention(tok: Token) -> CharacterMention | None:
         return CharacterMention(head=tok, name="", mention=tok.text, pronoun=pron)
     if tok.lemma_.lower() in lexicon.PERSON_NOUNS or lower in lexicon.PERSON_NOUNS:
         start = min([tok.i] + [c.i for c in tok.lefts if c.dep_ in ("det", "amod", "compound")])
-        return CharacterMention(head=tok, name=tok.lemma_.lower(), mention=tok.doc[start:tok.i + 1].text)
+        return CharacterMention(head=tok, name=tok.lemma_.lower(), mention=tok.doc[start : tok.i + 1].text)
     known_name = tok.text[:1].isupper() and (lower in lexicon.FEMALE_NAMES or lower in lexicon.MALE_NAMES)
-    if known_name or tok.pos_ == "PROPN" or (tok.text[:1].isupper() and tok.i > 0 and tok.pos_ in ("NOUN", "X", "ADJ")):
+    if (
+        known_name
+        or tok.pos_ == "PROPN"
+        or (tok.text[:1].isupper() and tok.i > 0 and tok.pos_ in ("NOUN", "X", "ADJ"))
+    ):
         if not known_name and (exact_category([lower]) is not None or lexicon.room_of(lower)):
             return None
         parts = [c for c in tok.lefts if c.dep_ in ("compound", "flat") and c.pos_ == "PROPN"] + [tok]

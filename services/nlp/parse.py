@@ -33,8 +33,11 @@ _WORD = re.compile(r"[^\W\d_]+", re.UNICODE)
 
 
 def _binary_garbage(text: str) -> bool:
-    bad = sum(1 for ch in text if (unicodedata.category(ch) in ("Cc", "Cs", "Co", "Cn") and ch not in "\t\n\r")
-              or ch == "\ufffd")
+    bad = sum(
+        1
+        for ch in text
+        if (unicodedata.category(ch) in ("Cc", "Cs", "Co", "Cn") and ch not in "\t\n\r") or ch == "\ufffd"
+    )
     return bad > 0 and bad >= max(1, len(text) // 50)
 
 
@@ -67,13 +70,15 @@ def _parser_text(text: str) -> str:
     i = len(chars) - 1
     while i >= 0 and (chars[i] in ".!?$ " or chars[i] in "\"')"):
         if chars[i] == "$":
-            after = "".join(chars[i + 1:]).strip()
+            after = "".join(chars[i + 1 :]).strip()
             chars[i] = " " if after and after[0] in ".!?" else "."
         i -= 1
     return "".join(chars)
 
 
-def _graph(sentence_id: str, text: str, kind: str, diagnostics: list[Diagnostic], **kw: object) -> SentenceGraph:
+def _graph(
+    sentence_id: str, text: str, kind: str, diagnostics: list[Diagnostic], **kw: object
+) -> SentenceGraph:
     return SentenceGraph(sentence_id=sentence_id, text=text, kind=kind, diagnostics=diagnostics, **kw)  # type: ignore[arg-type]
 
 
@@ -154,8 +159,10 @@ def parse_sentences(items: list[tuple[str, str, int, str]]) -> list[SentenceGrap
                 graph = _failed(key[0], exc)
             base[key] = graph
             _cache_put(key, graph)
-    return [msgspec.structs.replace(shift_spans(base[key], offset), sentence_id=sid)
-            for key, (_, sid, offset, _) in zip(keys, items, strict=True)]
+    return [
+        msgspec.structs.replace(shift_spans(base[key], offset), sentence_id=sid)
+        for key, (_, sid, offset, _) in zip(keys, items, strict=True)
+    ]
 
 
 def _failed(text: str, exc: Exception) -> SentenceGraph:
@@ -175,12 +182,17 @@ def _prepare(text: str, kind_hint: str) -> SentenceGraph | tuple[str, str, list[
     if command is not None:
         return _graph("", text, "command", [], commands=[command])
     if kind == "command" or looks_like_command(stripped):
-        return _graph("", text, "command", [diagnostic("W104", f"'{stripped[:60]}'", lead, lead + len(stripped))])
+        return _graph(
+            "", text, "command", [diagnostic("W104", f"'{stripped[:60]}'", lead, lead + len(stripped))]
+        )
     diagnostics: list[Diagnostic] = []
     body = text
     if len(body) > MAX_SENTENCE_CHARS:
-        diagnostics.append(diagnostic("W108", f"{len(text)} characters, parsed {MAX_SENTENCE_CHARS}",
-                                      MAX_SENTENCE_CHARS, len(text)))
+        diagnostics.append(
+            diagnostic(
+                "W108", f"{len(text)} characters, parsed {MAX_SENTENCE_CHARS}", MAX_SENTENCE_CHARS, len(text)
+            )
+        )
         body = body[:MAX_SENTENCE_CHARS]
     if _not_english(body):
         diagnostics.append(diagnostic("W106", f"'{stripped[:40]}'", lead, lead + len(stripped)))
@@ -223,7 +235,9 @@ def shift_spans(graph: SentenceGraph, delta: int) -> SentenceGraph:
         graph,
         objects=[rep(o) for o in graph.objects],
         relations=[rep(r) for r in graph.relations],
-        characters=[msgspec.structs.replace(c, actions=[rep(a) for a in c.actions]) for c in graph.characters],
+        characters=[
+            msgspec.structs.replace(c, actions=[rep(a) for a in c.actions]) for c in graph.characters
+        ],
         social=[rep(s) for s in graph.social],
         commands=[rep(c) for c in graph.commands],
         diagnostics=[rep(d) for d in graph.diagnostics],

@@ -48,11 +48,19 @@ def package_model(trained_dir: Path, out_dir: Path, tables: _lemmatizer.LemmaTab
     lem.tables = tables  # type: ignore[attr-defined]
     if "senter" in nlp.pipe_names:
         nlp.disable_pipe("senter")
-    nlp.meta.update(name="wana", version=MODEL_VERSION,
-                    description="wana English pipeline: UD English-EWT v2.16 + wana domain treebank",
-                    license="CC BY-SA 4.0 (trained on UD English-EWT)",
-                    sources=[{"name": "UD English-EWT", "url": "https://github.com/UniversalDependencies/UD_English-EWT",
-                              "license": "CC BY-SA 4.0"}])
+    nlp.meta.update(
+        name="wana",
+        version=MODEL_VERSION,
+        description="wana English pipeline: UD English-EWT v2.16 + wana domain treebank",
+        license="CC BY-SA 4.0 (trained on UD English-EWT)",
+        sources=[
+            {
+                "name": "UD English-EWT",
+                "url": "https://github.com/UniversalDependencies/UD_English-EWT",
+                "license": "CC BY-SA 4.0",
+            }
+        ],
+    )
     for key in ("train", "dev"):  # no paths of the machine that trained it
         nlp.config["paths"][key] = None
     if out_dir.exists():
@@ -88,7 +96,16 @@ def evaluate_treebank(conllu: Path, nlp: Language | None = None, limit: int = 0)
     scores.update(Scorer.score_token_attr(examples, "pos"))
     scores.update(Scorer.score_token_attr(examples, "tag"))
     scores.update(Scorer.score_token_attr(examples, "lemma"))
-    scores.update(Scorer.score_deps(examples, "dep", getter=lambda t, a: getattr(t, a + "_").lower(),
-                                    ignore_labels=("p", "punct")))
-    return {"pos": float(scores["pos_acc"]), "tag": float(scores["tag_acc"]), "lemma": float(scores["lemma_acc"]),
-            "uas": float(scores["dep_uas"]), "las": float(scores["dep_las"]), "sentences": float(len(examples))}
+    scores.update(
+        Scorer.score_deps(
+            examples, "dep", getter=lambda t, a: getattr(t, a + "_").lower(), ignore_labels=("p", "punct")
+        )
+    )
+    return {
+        "pos": float(scores["pos_acc"]),
+        "tag": float(scores["tag_acc"]),
+        "lemma": float(scores["lemma_acc"]),
+        "uas": float(scores["dep_uas"]),
+        "las": float(scores["dep_las"]),
+        "sentences": float(len(examples)),
+    }

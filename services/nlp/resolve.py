@@ -25,8 +25,16 @@ from proto.ssg import ActionNode, CharacterNode, Diagnostic, SentenceGraph, Soci
 from services.nlp import lexicon
 from services.nlp.errors import diagnostic
 
-PRONOUN_WORDS = {"he": "he", "him": "he", "his": "he", "she": "she", "her": "she", "they": "they",
-                 "them": "they", "their": "they"}
+PRONOUN_WORDS = {
+    "he": "he",
+    "him": "he",
+    "his": "he",
+    "she": "she",
+    "her": "she",
+    "they": "they",
+    "them": "they",
+    "their": "they",
+}
 
 
 class _State:
@@ -135,16 +143,27 @@ def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> li
                 pron = _pronoun_of(char.mention)
                 names = state.pronoun(pron) if pron else []
                 if not names:
-                    diagnostics.append(diagnostic("W105", f"'{char.mention}'",
-                                                  *_astuple(_span_of(graph, char.mention, offset, first_span))))
+                    diagnostics.append(
+                        diagnostic(
+                            "W105",
+                            f"'{char.mention}'",
+                            *_astuple(_span_of(graph, char.mention, offset, first_span)),
+                        )
+                    )
                     unresolved.append(char)
                     continue
                 names = [state.mention(n) for n in names]
             else:
                 names = [state.last_actor] if state.last_actor else []
                 if not names:
-                    diagnostics.append(diagnostic("W109", "say who does it, e.g. 'Eve walks to the door'",
-                                                  first_span.start, first_span.end))
+                    diagnostics.append(
+                        diagnostic(
+                            "W109",
+                            "say who does it, e.g. 'Eve walks to the door'",
+                            first_span.start,
+                            first_span.end,
+                        )
+                    )
                     unresolved.append(char)
                     continue
             for name in names:
@@ -165,8 +184,11 @@ def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> li
             subjects: list[str] = []
             for s in node.subjects:
                 pron = _pronoun_of(s)
-                resolved = state.pronoun(pron, exclude=subjects[0] if subjects and pron != "they" else "") \
-                    if pron else [state.mention(s) if s.lower() not in state.spelling else state.spelling[s.lower()]]
+                resolved = (
+                    state.pronoun(pron, exclude=subjects[0] if subjects and pron != "they" else "")
+                    if pron
+                    else [state.mention(s) if s.lower() not in state.spelling else state.spelling[s.lower()]]
+                )
                 if not resolved:
                     diagnostics.append(diagnostic("W105", f"'{s}'", node.span.start, node.span.end))
                 for r in resolved:
@@ -177,8 +199,11 @@ def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> li
                     sentence_names.append(r)
             social.append(msgspec.structs.replace(node, subjects=subjects))
         named = [a.span for acts in merged.values() for a in acts if a.action]
-        diagnostics = [d for d in diagnostics if not (d.code == "W102" and any(
-            s.start <= d.span.start and d.span.end <= s.end for s in named))]
+        diagnostics = [
+            d
+            for d in diagnostics
+            if not (d.code == "W102" and any(s.start <= d.span.start and d.span.end <= s.end for s in named))
+        ]
         characters = [CharacterNode(name=n, actions=merged[n], mention=mentions[n]) for n in merged]
         characters += [c for c in unresolved]
         for c in characters:
@@ -192,7 +217,9 @@ def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> li
             state.last_object = targets[-1]  # "it" in the next sentence: what was last acted upon
         elif graph.objects:
             state.last_object = graph.objects[-1].id
-        out.append(msgspec.structs.replace(graph, characters=characters, social=social, diagnostics=diagnostics))
+        out.append(
+            msgspec.structs.replace(graph, characters=characters, social=social, diagnostics=diagnostics)
+        )
     return out
 
 

@@ -25,24 +25,72 @@ from services.nlp.mentions import (
 )
 
 MULTIWORD_RELATIONS = {
-    "next to": "next_to", "close to": "near", "near to": "near", "close by": "near", "across from": "facing",
-    "opposite to": "facing", "opposite of": "facing", "in front of": "in_front_of", "on top of": "on",
-    "in back of": "behind", "left of": "left_of", "right of": "right_of", "on to": "on", "up against": "next_to",
-    "adjacent to": "next_to", "beside of": "next_to", "underneath of": "under", "inside of": "in",
+    "next to": "next_to",
+    "close to": "near",
+    "near to": "near",
+    "close by": "near",
+    "across from": "facing",
+    "opposite to": "facing",
+    "opposite of": "facing",
+    "in front of": "in_front_of",
+    "on top of": "on",
+    "in back of": "behind",
+    "left of": "left_of",
+    "right of": "right_of",
+    "on to": "on",
+    "up against": "next_to",
+    "adjacent to": "next_to",
+    "beside of": "next_to",
+    "underneath of": "under",
+    "inside of": "in",
 }
-PLACEMENT_VERBS = frozenset({"put", "place", "add", "set", "position", "hang", "lay", "move", "stand", "lean",
-                             "mount", "install", "keep", "store", "stack", "arrange"})
-ADJ_RELATION_HEADS = {"next": "next_to", "close": "near", "near": "near", "adjacent": "next_to", "opposite": "facing"}
+PLACEMENT_VERBS = frozenset(
+    {
+        "put",
+        "place",
+        "add",
+        "set",
+        "position",
+        "hang",
+        "lay",
+        "move",
+        "stand",
+        "lean",
+        "mount",
+        "install",
+        "keep",
+        "store",
+        "stack",
+        "arrange",
+    }
+)
+ADJ_RELATION_HEADS = {
+    "next": "next_to",
+    "close": "near",
+    "near": "near",
+    "adjacent": "next_to",
+    "opposite": "facing",
+}
 SUBJECT_DEPS = ("nsubj", "nsubj:pass")
 # Placement verbs in the present tense the tagger can take for a plural noun ("a whiteboard hangs").
-SCENE_VERB_FORMS = {"hangs": "hang", "stands": "stand", "lies": "lie", "sits": "sit", "rests": "rest",
-                    "leans": "lean", "faces": "face"}
+SCENE_VERB_FORMS = {
+    "hangs": "hang",
+    "stands": "stand",
+    "lies": "lie",
+    "sits": "sit",
+    "rests": "rest",
+    "leans": "lean",
+    "faces": "face",
+}
 
 
 def _misread_verb(tok: Token) -> bool:
     """A placement verb tagged as a noun, its subject glued on as a compound ("whiteboard hangs")."""
-    return tok.pos_ in ("NOUN", "PROPN") and tok.lower_ in SCENE_VERB_FORMS and any(
-        c.dep_ in ("compound", "amod") and c.i < tok.i and c.pos_ != "DET" for c in tok.children)
+    return (
+        tok.pos_ in ("NOUN", "PROPN")
+        and tok.lower_ in SCENE_VERB_FORMS
+        and any(c.dep_ in ("compound", "amod") and c.i < tok.i and c.pos_ != "DET" for c in tok.children)
+    )
 
 
 def _verb_lemma(tok: Token) -> str:
@@ -81,7 +129,11 @@ def relation_at(tok: Token) -> tuple[str, list[Token], Token, int] | None:
                 return rel, _with_conj(child), tok, start
         # "of the bed" attached beside "right" instead of under it
         for sib in tok.head.children:
-            if sib.i > tok.i and sib.dep_ in ("nmod", "obl") and any(c.lower_ == "of" for c in _case_words(sib)):
+            if (
+                sib.i > tok.i
+                and sib.dep_ in ("nmod", "obl")
+                and any(c.lower_ == "of" for c in _case_words(sib))
+            ):
                 return rel, _with_conj(sib), tok, start
         return None
     # "next to the desk" (two case words) and other multiword prepositions
@@ -121,8 +173,11 @@ def _subjects_of(attach: Token) -> list[Token]:
             return _subjects_of(head)  # "on the floor near the bed": what is on the floor is near the bed
         q = quantity_target(head)
         return _with_conj(q[0] if q else head)
-    if dep == "ROOT" or any(c.dep_ == "cop" for c in attach.children) or (
-            dep == "conj" and not any(c.dep_ in SUBJECT_DEPS for c in attach.children)):
+    if (
+        dep == "ROOT"
+        or any(c.dep_ == "cop" for c in attach.children)
+        or (dep == "conj" and not any(c.dep_ in SUBJECT_DEPS for c in attach.children))
+    ):
         pred = attach
         while True:
             subj = [c for c in pred.children if c.dep_ in SUBJECT_DEPS]
@@ -142,7 +197,10 @@ def _subjects_of(attach: Token) -> list[Token]:
                 if subj:
                     return _expand_subject(subj[0])
             obj = [c for c in verb.children if c.dep_ == "obj"]
-            if obj and (verb.lemma_.lower() in PLACEMENT_VERBS or not any(c.dep_ in SUBJECT_DEPS for c in verb.children)):
+            if obj and (
+                verb.lemma_.lower() in PLACEMENT_VERBS
+                or not any(c.dep_ in SUBJECT_DEPS for c in verb.children)
+            ):
                 return _expand_subject(obj[0])
             subj = [c for c in verb.children if c.dep_ in SUBJECT_DEPS]
             if subj:
@@ -175,7 +233,9 @@ def _mention(tok: Token, builder: GraphBuilder, report_unknown: bool) -> str | N
     m = object_mention(tok)
     if m is None:
         if report_unknown and is_unknown_object_word(tok):
-            builder.diagnose("W101", f"'{tok.text}' is not in the object catalog", tok.idx, tok.idx + len(tok.text))
+            builder.diagnose(
+                "W101", f"'{tok.text}' is not in the object catalog", tok.idx, tok.idx + len(tok.text)
+            )
         return None
     return builder.object_id(m)
 
@@ -193,13 +253,27 @@ def extract_scene(sent: SpacySpan, builder: GraphBuilder) -> None:
     """Add the objects, attributes, relations and room type a scene sentence states."""
     # Objects, in text order, so that ids follow the order of first mention.
     for tok in sent:
-        if tok.pos_ in ("NOUN", "PROPN", "X", "ADJ", "NUM") or tok.dep_ in ("nsubj", "obj", "obl", "nmod", "ROOT"):
-            glued_subject = tok.dep_ in ("compound", "amod") and _misread_verb(tok.head) and object_mention(tok)
-            if tok.dep_ in ("compound", "amod", "flat", "det") and tok.head.pos_ in ("NOUN", "PROPN") and not (
-                    glued_subject):
+        if tok.pos_ in ("NOUN", "PROPN", "X", "ADJ", "NUM") or tok.dep_ in (
+            "nsubj",
+            "obj",
+            "obl",
+            "nmod",
+            "ROOT",
+        ):
+            glued_subject = (
+                tok.dep_ in ("compound", "amod") and _misread_verb(tok.head) and object_mention(tok)
+            )
+            if (
+                tok.dep_ in ("compound", "amod", "flat", "det")
+                and tok.head.pos_ in ("NOUN", "PROPN")
+                and not (glued_subject)
+            ):
                 continue
-            if tok.pos_ in ("ADJ", "NUM") and tok.dep_ not in ("nsubj", "obj", "obl", "nmod", "ROOT", "conj") and not (
-                    glued_subject):
+            if (
+                tok.pos_ in ("ADJ", "NUM")
+                and tok.dep_ not in ("nsubj", "obj", "obl", "nmod", "ROOT", "conj")
+                and not (glued_subject)
+            ):
                 continue
             room = _room(tok)
             if room:
@@ -207,7 +281,17 @@ def extract_scene(sent: SpacySpan, builder: GraphBuilder) -> None:
                 continue
             if character_mention(tok) is not None and tok.pos_ in ("PROPN", "PRON"):
                 continue
-            if tok.dep_ in ("nsubj", "nsubj:pass", "obj", "obl", "nmod", "ROOT", "conj", "appos", "nmod:npmod"):
+            if tok.dep_ in (
+                "nsubj",
+                "nsubj:pass",
+                "obj",
+                "obl",
+                "nmod",
+                "ROOT",
+                "conj",
+                "appos",
+                "nmod:npmod",
+            ):
                 _mention(tok, builder, report_unknown=tok.pos_ in ("NOUN", "X") and not _misread_verb(tok))
             else:
                 _mention(tok, builder, report_unknown=False)
@@ -216,7 +300,7 @@ def extract_scene(sent: SpacySpan, builder: GraphBuilder) -> None:
         if tok.pos_ == "ADJ" and any(c.dep_ == "cop" for c in tok.children):
             subjects = [c for c in tok.children if c.dep_ in SUBJECT_DEPS]
             adjs = [tok] + [c for c in tok.children if c.dep_ == "conj" and c.pos_ == "ADJ"]
-            for s in (subjects[:1] and _expand_subject(subjects[0])):
+            for s in subjects[:1] and _expand_subject(subjects[0]):
                 oid = builder._by_token.get(s.i)
                 for a in adjs:
                     hit = lexicon.attribute_of(a.lower_)
@@ -265,7 +349,9 @@ def extract_scene(sent: SpacySpan, builder: GraphBuilder) -> None:
             for s in subjects:
                 sid = _mention(s, builder, report_unknown=False)
                 if sid is not None:
-                    builder.add_relation(sid, rel, anchor_id, min(tok.idx, s.idx), anchor.idx + len(anchor.text))
+                    builder.add_relation(
+                        sid, rel, anchor_id, min(tok.idx, s.idx), anchor.idx + len(anchor.text)
+                    )
 
 
 def is_scene_like(sent: SpacySpan) -> bool:

@@ -31,7 +31,7 @@ def _sentence_ends(line: str) -> list[int]:
                 i += 1
                 continue
             if ch == ".":
-                m = re.search(r"([A-Za-z.]+)$", line[max(0, i - 12):i])
+                m = re.search(r"([A-Za-z.]+)$", line[max(0, i - 12) : i])
                 if m and m.group(1).lower().rstrip(".") in _ABBREV and i + 1 < n and line[i + 1] == " ":
                     i += 1
                     continue
@@ -49,7 +49,7 @@ def _sentence_ends(line: str) -> list[int]:
 
 
 def kind_hint(sentence: str) -> str:
-    """"scene", "command" or "action" for one sentence's text."""
+    """ "scene", "command" or "action" for one sentence's text."""
     stripped = sentence.rstrip()
     if "$" in stripped[-3:]:
         return "scene"

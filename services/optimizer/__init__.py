@@ -20,5 +20,6 @@ Modules: routes (grid, A*, smoothing), geometry (catalog boxes as oriented boxes
 spheres), costs (eq. 1, eq. 2, batched layouts), collisions (voxel-grid collider), contacts (contact
 pairs), scoring (K proposals as one batch), shifted (the annealing's fast path: K proposals of the
 anchored surrogate as shifts of one motion, all objects in one broad phase), annealing (Algorithm 2),
-resynthesis, clearing (obstacles pushed off a blocked walk, for re-planning), verify, handlers, worker.
+resynthesis, clearing (obstacles pushed off a blocked walk, for re-planning), reaching (a missed
+contact's object moved toward its joint), verify, handlers, worker.
 """

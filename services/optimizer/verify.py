@@ -7,8 +7,11 @@ and scored exactly. A candidate qualifies when its walk hits no more boxes than 
 either its cost C is lower or its walk hits fewer boxes without losing contact (C_T within 5 cm or
 the input's); among those, a walk with fewer hit boxes wins, then the lower C. When none of them
 walks collision-free and the input's walk hits boxes, layouts with those obstacles pushed off the walk
-(services.optimizer.clearing) are re-synthesised too, the route re-planned by A* in each. Without a
-qualifying candidate the input comes back.
+(services.optimizer.clearing) are re-synthesised too, the route re-planned by A* in each. When the
+input misses a contact (C_T above 5 cm), layouts with the missed contact's object moved toward its
+joint (services.optimizer.reaching) are re-synthesised first, and the search's layouts are verified
+even when its own exact report (on the surrogate's motion) saw no gain. Without a qualifying
+candidate the input comes back.
 """
 
 from __future__ import annotations
@@ -23,6 +26,7 @@ from proto.ssg import CharacterNode
 from services.optimizer.annealing import OptimisationResult, optimise_interaction
 from services.optimizer.clearing import clearing_layouts
 from services.optimizer.costs import SceneGeometry
+from services.optimizer.reaching import reaching_layouts
 from services.optimizer.resynthesis import MotionFn, anchored_motion_fn, motion_service_fn
 from services.optimizer.scoring import InteractionScorer
 
@@ -60,6 +64,7 @@ def optimise_and_verify(
     geometry: SceneGeometry | None = None,
     candidates: int = 4,
     clearing: int = 6,
+    reaching: int = 6,
 ) -> VerifiedResult:
     """Optimise one interaction with the anchored surrogate and verify the result.
 
@@ -77,6 +82,9 @@ def optimise_and_verify(
         clearing: when none of those gives a collision-free walk and the input's walk hits boxes, at
             most this many layouts with the obstacles pushed off the walk (services.optimizer.clearing)
             are re-synthesised too.
+        reaching: when the input misses a contact (C_T above 5 cm), at most this many layouts with the
+            missed contact's object moved toward its joint (services.optimizer.reaching) are
+            re-synthesised first, smallest move first.
 
     Returns:
         The verified result.
@@ -100,13 +108,16 @@ def optimise_and_verify(
     if verifier is None:
         return VerifiedResult(search, search.scene, search.motion, search.after, "anchored")
     base = search.before
-    if search.scene == scene and base.locomotion_collided_boxes == 0:
+    # The search's best layouts are verified even when its exact report kept the input: that report
+    # scores the surrogate's motion, which does not re-solve the arm IK nor re-plan the approach, so
+    # a layout that brings a contact within reach looks no better there than the input.
+    history = search.candidates  # best first
+    if not history and base.locomotion_collided_boxes == 0 and base.contact_cost <= CONTACT_OK_M:
         return VerifiedResult(search, scene, motion, search.before, "input")
     reporter = InteractionScorer(
         scene, interaction, lambda_d=st.lambda_d, lambda_t=st.lambda_t, frame_stride=1, geometry=geom
     )
     chosen: tuple[tuple[int, float], Scene, Motion, CostReport] | None = None
-    history = search.candidates if search.scene != scene else []  # best first
     picks = (
         sorted({round(i * (len(history) - 1) / max(candidates - 1, 1)) for i in range(candidates)})
         if history
@@ -118,8 +129,20 @@ def optimise_and_verify(
     def unsolved() -> bool:
         return bool(base.locomotion_collided_boxes) and (chosen is None or chosen[0][0] > 0)
 
-    def queue() -> Iterator[tuple[Scene, bool]]:
-        yield from ((history[i], False) for i in picks)
+    def solved() -> bool:  # a verified layout whose walk is collision-free and whose contacts hold
+        return chosen is not None and chosen[0][0] == 0 and chosen[3].contact_cost <= CONTACT_OK_M
+
+    def queue() -> Iterator[tuple[Scene, str]]:
+        if base.contact_cost > CONTACT_OK_M:
+            # A contact is missed: the moves that bring its object toward the joint, all of them
+            # (the first that holds may hold barely), smallest first.
+            yield from (
+                (c, "reach")
+                for c in reaching_layouts(
+                    scene, interaction, motion, base, geom, sigma=st.sigma, tolerance=CONTACT_OK_M
+                )[:reaching]
+            )
+        yield from ((history[i], "search") for i in picks)
         if not unsolved():
             return
         # The walk still runs into something: move those obstacles off it and let the motion service
@@ -127,19 +150,21 @@ def optimise_and_verify(
         # the new route of the most promising first-round layout runs into.
         walk_hits = reporter.score_scenes([scene], [motion]).locomotion_box_hit[0]
         yield from (
-            (c, True) for c in clearing_layouts(scene, interaction, motion, walk_hits, geom)[:clearing]
+            (c, "clearing") for c in clearing_layouts(scene, interaction, motion, walk_hits, geom)[:clearing]
         )
         if not unsolved() or not tried:
             return
         _, first, first_motion = min(tried, key=lambda t: t[0])
         walk_hits = reporter.score_scenes([first], [first_motion]).locomotion_box_hit[0]
         again = clearing_layouts(first, interaction, first_motion, walk_hits, geom)
-        yield from ((c, False) for c in again[: max(1, clearing // 2)])
+        yield from ((c, "clearing again") for c in again[: max(1, clearing // 2)])
 
-    for cand, clearing_round in queue():
+    for cand, kind in queue():
+        if kind != "reach" and solved():
+            break  # take it
         real = verifier(cand)
         rep = reporter.score_scenes([cand], [real]).report(0, reporter.pairs)
-        if clearing_round and rep.locomotion_collided_boxes:
+        if kind == "clearing" and rep.locomotion_collided_boxes:
             tried.append((rep.locomotion_collided_boxes, cand, real))
         fewer_walk_hits = (
             rep.locomotion_collided_boxes < base.locomotion_collided_boxes
@@ -150,8 +175,6 @@ def optimise_and_verify(
             key = (rep.locomotion_collided_boxes, rep.cost)
             if chosen is None or key < chosen[0]:
                 chosen = (key, cand, real, rep)
-        if chosen is not None and chosen[0][0] == 0:
-            break  # a verified layout whose walk is collision-free: take it
     if chosen is None:
         return VerifiedResult(search, scene, motion, base, "input")
     return VerifiedResult(search, chosen[1], chosen[2], chosen[3], "motion_service")

@@ -34,8 +34,10 @@ def test_parse_request_gets_a_scene_graph_with_document_spans(nlp):
 
 @pytest.mark.contract
 def test_batch_then_resolve_names_the_pronoun(nlp):
-    sentences = [SentenceInput(sentence_id="a", text="Tom walks to the chair.", offset=0),
-                 SentenceInput(sentence_id="b", text="He sits on it.", offset=24)]
+    sentences = [
+        SentenceInput(sentence_id="a", text="Tom walks to the chair.", offset=0),
+        SentenceInput(sentence_id="b", text="He sits on it.", offset=24),
+    ]
     _, batch = call(nlp, ParseBatchRequest(header=Header(), sentences=sentences))
     assert [g.sentence_id for g in batch.graphs] == ["a", "b"]
     assert batch.graphs[1].characters[0].name == ""  # unresolved until the document-level pass
@@ -49,7 +51,7 @@ def test_parse_document_returns_one_graph_per_sentence(nlp):
     text = "There is a desk near a window$.\ncamera left\nEve walks to the desk."
     _, reply = call(nlp, ParseDocumentRequest(header=Header(), text=text))
     assert [g.kind for g in reply.graphs] == ["scene", "command", "action"]
-    assert [text[s.start:s.end] for s in reply.sentences][1] == "camera left"
+    assert [text[s.start : s.end] for s in reply.sentences][1] == "camera left"
     assert reply.graphs[1].commands[0].value == "left"
 
 

@@ -7,23 +7,45 @@ import pytest
 from services.nlp.commands import parse_command
 
 
-@pytest.mark.parametrize("line,kind,value", [
-    ("camera front", "camera", "front"), ("camera back", "camera", "back"), ("Camera left.", "camera", "left"),
-    ("camera right", "camera", "right"), ("camera top", "camera", "top"), ("camera follow", "camera", "follow"),
-    ("camera close", "camera", "close"), ("camera behind", "camera", "back"),
-    ("sunny", "weather", "sunny"), ("night", "weather", "night"), ("rainy", "weather", "rainy"),
-    ("foggy", "weather", "foggy"), ("snowy", "weather", "snowy"), ("It is raining.", "weather", "rainy"),
-    ("faster", "speed", "faster"), ("slower.", "speed", "slower"), ("slow down", "speed", "slower"),
-])
+@pytest.mark.parametrize(
+    "line,kind,value",
+    [
+        ("camera front", "camera", "front"),
+        ("camera back", "camera", "back"),
+        ("Camera left.", "camera", "left"),
+        ("camera right", "camera", "right"),
+        ("camera top", "camera", "top"),
+        ("camera follow", "camera", "follow"),
+        ("camera close", "camera", "close"),
+        ("camera behind", "camera", "back"),
+        ("sunny", "weather", "sunny"),
+        ("night", "weather", "night"),
+        ("rainy", "weather", "rainy"),
+        ("foggy", "weather", "foggy"),
+        ("snowy", "weather", "snowy"),
+        ("It is raining.", "weather", "rainy"),
+        ("faster", "speed", "faster"),
+        ("slower.", "speed", "slower"),
+        ("slow down", "speed", "slower"),
+    ],
+)
 def test_command_lines_parse_to_kind_and_value(line, kind, value):
     cmd = parse_command(line)
     assert cmd is not None and (cmd.kind, cmd.value) == (kind, value)
 
 
-@pytest.mark.parametrize("line,seconds", [
-    ("wait 2 seconds", 2.0), ("Wait for 3 seconds.", 3.0), ("wait 1.5 s", 1.5), ("wait two seconds", 2.0),
-    ("wait 1 minute", 60.0), ("wait", 1.0), ("pause half a second", 0.5),
-])
+@pytest.mark.parametrize(
+    "line,seconds",
+    [
+        ("wait 2 seconds", 2.0),
+        ("Wait for 3 seconds.", 3.0),
+        ("wait 1.5 s", 1.5),
+        ("wait two seconds", 2.0),
+        ("wait 1 minute", 60.0),
+        ("wait", 1.0),
+        ("pause half a second", 0.5),
+    ],
+)
 def test_wait_commands_carry_seconds(line, seconds):
     cmd = parse_command(line)
     assert cmd is not None and cmd.kind == "wait" and cmd.seconds == pytest.approx(seconds)
@@ -34,7 +56,15 @@ def test_camera_follow_names_its_target_and_span_is_in_document_coordinates():
     assert cmd.target == "Tom" and (cmd.span.start, cmd.span.end) == (100, 117)
 
 
-@pytest.mark.parametrize("line", ["Tom waits for his friend.", "Eve walks to the door.", "camera sideways",
-                                  "wait forever", "A desk is near the window$."])
+@pytest.mark.parametrize(
+    "line",
+    [
+        "Tom waits for his friend.",
+        "Eve walks to the door.",
+        "camera sideways",
+        "wait forever",
+        "A desk is near the window$.",
+    ],
+)
 def test_sentences_that_are_not_commands_give_none(line):
     assert parse_command(line) is None

@@ -24,8 +24,16 @@ def test_parse_handler_echoes_the_header_and_shifts_spans():
 
 
 def test_batch_and_resolve_handlers_keep_order_and_resolve():
-    batch = call_in_process(CONTRACT, ParseBatchRequest(header=Header(), sentences=[
-        SentenceInput(sentence_id="a", text="Tom walks in."), SentenceInput(sentence_id="b", text="He waves.", offset=14)]))
+    batch = call_in_process(
+        CONTRACT,
+        ParseBatchRequest(
+            header=Header(),
+            sentences=[
+                SentenceInput(sentence_id="a", text="Tom walks in."),
+                SentenceInput(sentence_id="b", text="He waves.", offset=14),
+            ],
+        ),
+    )
     assert [g.sentence_id for g in batch.graphs] == ["a", "b"]
     resolved = call_in_process(CONTRACT, ResolveRequest(header=Header(), graphs=batch.graphs))
     assert resolved.graphs[1].characters[0].name == "Tom"

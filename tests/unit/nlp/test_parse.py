@@ -77,14 +77,25 @@ def test_document_resolves_pronouns_across_sentences():
 def test_command_lines_are_commands():
     (g,) = parse_document("camera follow Tom")
     assert g.kind == "command" and (g.commands[0].kind, g.commands[0].value, g.commands[0].target) == (
-        "camera", "follow", "Tom")
+        "camera",
+        "follow",
+        "Tom",
+    )
 
 
-@pytest.mark.parametrize("text,code", [
-    ("Eve juggles the balls.", "W102"), ("A unicorn is on the desk$.", "W101"), ("Eve.", "W103"),
-    ("camera sideways", "W104"), ("Der Mann geht schnell zum Tisch und setzt sich.", "W106"),
-    ("\x00\x01\x02\x03garbage\xff", "E110"), ("", "I111"), ("He sits.", "W105"),
-])
+@pytest.mark.parametrize(
+    "text,code",
+    [
+        ("Eve juggles the balls.", "W102"),
+        ("A unicorn is on the desk$.", "W101"),
+        ("Eve.", "W103"),
+        ("camera sideways", "W104"),
+        ("Der Mann geht schnell zum Tisch und setzt sich.", "W106"),
+        ("\x00\x01\x02\x03garbage\xff", "E110"),
+        ("", "I111"),
+        ("He sits.", "W105"),
+    ],
+)
 def test_bad_input_gives_a_diagnostic_with_a_span_not_an_exception(text, code):
     gs = parse_document(text)
     diags = [d for g in gs for d in g.diagnostics]
@@ -97,7 +108,7 @@ def test_unknown_word_span_points_at_the_word_in_the_document():
     text = "Tom sits. Eve eats an apple."
     g = parse_document(text)[1]
     (d,) = [d for d in g.diagnostics if d.code == "W101"]
-    assert text[d.span.start:d.span.end] == "apple"
+    assert text[d.span.start : d.span.end] == "apple"
 
 
 def test_the_rest_of_the_document_still_parses_around_garbage():

@@ -19,8 +19,19 @@ def test_pipeline_loads_once_with_its_trained_components():
 
 def test_tagging_lemmas_and_tree_of_a_domain_sentence():
     doc = get_nlp()("Eve sits on the chairs and types on the laptop.")
-    assert [t.pos_ for t in doc] == ["PROPN", "VERB", "ADP", "DET", "NOUN", "CCONJ", "VERB", "ADP", "DET", "NOUN",
-                                     "PUNCT"]
+    assert [t.pos_ for t in doc] == [
+        "PROPN",
+        "VERB",
+        "ADP",
+        "DET",
+        "NOUN",
+        "CCONJ",
+        "VERB",
+        "ADP",
+        "DET",
+        "NOUN",
+        "PUNCT",
+    ]
     assert [t.lemma_ for t in doc][:7] == ["Eve", "sit", "on", "the", "chair", "and", "type"]
     assert doc[0].head == doc[1] and doc[0].dep_ == "nsubj"
     assert doc[6].head == doc[1] and doc[6].dep_ == "conj"
@@ -28,9 +39,11 @@ def test_tagging_lemmas_and_tree_of_a_domain_sentence():
 
 def test_lookup_tables_prefer_the_frequent_lemma_and_rules_cover_unknown_words(tmp_path):
     conllu = tmp_path / "t.conllu"
-    conllu.write_text("1\tsaw\tsee\tVERB\tVBD\t_\t0\troot\t_\t_\n"
-                      "1\tsaw\tsee\tVERB\tVBD\t_\t0\troot\t_\t_\n"
-                      "1\tsaw\tsaw\tNOUN\tNN\t_\t0\troot\t_\t_\n")
+    conllu.write_text(
+        "1\tsaw\tsee\tVERB\tVBD\t_\t0\troot\t_\t_\n"
+        "1\tsaw\tsee\tVERB\tVBD\t_\t0\troot\t_\t_\n"
+        "1\tsaw\tsaw\tNOUN\tNN\t_\t0\troot\t_\t_\n"
+    )
     tables = build_lemma_tables([conllu])
     lem = LookupLemmatizer(tables=tables)
     assert lem.lemma("Saw", "VERB") == "see" and lem.lemma("saw", "NOUN") == "saw"

@@ -10,10 +10,12 @@ def texts(doc: str) -> list[tuple[str, str]]:
 
 
 def test_design_example_splits_into_its_sentences_with_kinds():
-    doc = ("In the office there is a desk near a window$. A laptop is on the desk$.\n"
-           "Eve walks to the chair. Eve sits on the chair and types on the laptop.\n"
-           "camera left\n"
-           "Tom walks in. Tom waves at Eve. They are colleagues.")
+    doc = (
+        "In the office there is a desk near a window$. A laptop is on the desk$.\n"
+        "Eve walks to the chair. Eve sits on the chair and types on the laptop.\n"
+        "camera left\n"
+        "Tom walks in. Tom waves at Eve. They are colleagues."
+    )
     assert texts(doc) == [
         ("In the office there is a desk near a window$.", "scene"),
         ("A laptop is on the desk$.", "scene"),
@@ -32,7 +34,9 @@ def test_dollar_ends_a_sentence_even_without_a_following_period():
 
 def test_decimal_points_and_abbreviations_do_not_end_a_sentence():
     assert texts("Mr. Smith waits 1.5 seconds! Then he sits.") == [
-        ("Mr. Smith waits 1.5 seconds!", "action"), ("Then he sits.", "action")]
+        ("Mr. Smith waits 1.5 seconds!", "action"),
+        ("Then he sits.", "action"),
+    ]
 
 
 def test_spans_index_the_document_and_skip_blank_lines():
