@@ -36,7 +36,12 @@ SCRIPTS = [
     [("walk", "", "chair"), ("sit", "chair", ""), ("type", "desk", ""), ("stand", "", "")],
     [("walk", "", "desk"), ("wave", "", ""), ("sit", "chair", ""), ("write", "desk", "")],
     [("run", "", "bed"), ("lie_down", "bed", ""), ("sleep", "bed", ""), ("stand", "", "")],
-    [("push_button", "elevator_button", ""), ("turn_left", "", ""), ("walk", "", "chair"), ("sit", "chair", "")],
+    [
+        ("push_button", "elevator_button", ""),
+        ("turn_left", "", ""),
+        ("walk", "", "chair"),
+        ("sit", "chair", ""),
+    ],
     [("walk", "", "desk"), ("clap", "", ""), ("think", "", ""), ("bow", "", ""), ("wipe_table", "desk", "")],
 ]
 
@@ -46,12 +51,25 @@ def make_scene(rng: np.random.Generator) -> Scene:
     c, s = np.cos(yaw), np.sin(yaw)
     desk = np.array([rng.uniform(-1, 1), 0.0, rng.uniform(-1, 1)])
     chair = desk + np.array([s, 0.0, c]) * 0.75
-    return Scene(room=Room(room_type="office", width=8, depth=8, height=3), objects=[
-        PlacedObject(id="desk", category="desk", position=tuple(desk), yaw=yaw),
-        PlacedObject(id="chair", category="office_chair", position=tuple(chair), yaw=yaw + np.pi),
-        PlacedObject(id="bed", category="bed", position=(rng.uniform(-3, -2), 0.0, rng.uniform(2, 3)), yaw=float(rng.uniform(-1, 1))),
-        PlacedObject(id="elevator_button", category="elevator_button", position=(3.0, 1.1, rng.uniform(-1, 1)), yaw=-np.pi / 2),
-    ])
+    return Scene(
+        room=Room(room_type="office", width=8, depth=8, height=3),
+        objects=[
+            PlacedObject(id="desk", category="desk", position=tuple(desk), yaw=yaw),
+            PlacedObject(id="chair", category="office_chair", position=tuple(chair), yaw=yaw + np.pi),
+            PlacedObject(
+                id="bed",
+                category="bed",
+                position=(rng.uniform(-3, -2), 0.0, rng.uniform(2, 3)),
+                yaw=float(rng.uniform(-1, 1)),
+            ),
+            PlacedObject(
+                id="elevator_button",
+                category="elevator_button",
+                position=(3.0, 1.1, rng.uniform(-1, 1)),
+                yaw=-np.pi / 2,
+            ),
+        ],
+    )
 
 
 def foot_slide(pos: np.ndarray, contacts: np.ndarray) -> list[float]:
@@ -81,7 +99,7 @@ def jerk(pos: np.ndarray) -> float:
     """Mean joint jerk magnitude, m/s^3."""
     if len(pos) < 4:
         return 0.0
-    return float(np.linalg.norm(np.diff(pos, n=3, axis=0) * 30 ** 3, axis=-1).mean())
+    return float(np.linalg.norm(np.diff(pos, n=3, axis=0) * 30**3, axis=-1).mean())
 
 
 def run_scenario(character: CharacterNode, scene: Scene, start) -> dict:
@@ -102,7 +120,9 @@ def run_scenario(character: CharacterNode, scene: Scene, start) -> dict:
             paths.append(path_error(p.root, wps))
         for joint, (frames, target) in p.contact_frames.items():
             if len(frames):
-                contact.extend((np.linalg.norm(pos[f0 + frames, JOINT_INDEX[joint]] - target, axis=1) * 100).tolist())
+                contact.extend(
+                    (np.linalg.norm(pos[f0 + frames, JOINT_INDEX[joint]] - target, axis=1) * 100).tolist()
+                )
         f0 += n
     return {"slides": slides, "paths": paths, "contact": contact, "jerk": jerk(pos), "frames": len(root)}
 
@@ -113,8 +133,12 @@ def scenarios(n: int, seed: int):
         scene = make_scene(rng)
         start = (float(rng.uniform(-3, 3)), float(rng.uniform(-3, -2)), float(rng.uniform(-np.pi, np.pi)))
         if i % 3 == 2:  # free locomotion along random waypoints
-            acts = [ActionNode(verb="walk", action=rng.choice(["walk", "run", "walk_slowly", "jog"]), destination=d)
-                    for d in rng.choice(["desk", "bed", "chair", "elevator_button"], 3)]
+            acts = [
+                ActionNode(
+                    verb="walk", action=rng.choice(["walk", "run", "walk_slowly", "jog"]), destination=d
+                )
+                for d in rng.choice(["desk", "bed", "chair", "elevator_button"], 3)
+            ]
         else:
             script = SCRIPTS[i % len(SCRIPTS)]
             acts = [ActionNode(verb=a, action=a, target=t, destination=d) for a, t, d in script]
@@ -144,14 +168,23 @@ def cmu_heldout(quick: bool) -> list[dict]:
 
         locked = lock_feet(loco.rotations, loco.root_position, loco.contacts)
         pos_locked, _ = global_transforms(locked, loco.root_position)
-        out.append({"clip": rel, "speed_m_s": speed, "path_error_cm": path_error(loco.root_position, wps),
-                    "foot_slide_raw_cm": float(np.mean(foot_slide(pos, loco.contacts) or [0])),
-                    "foot_slide_cm": float(np.mean(foot_slide(pos_locked, loco.contacts) or [0])), "source": loco.source})
+        out.append(
+            {
+                "clip": rel,
+                "speed_m_s": speed,
+                "path_error_cm": path_error(loco.root_position, wps),
+                "foot_slide_raw_cm": float(np.mean(foot_slide(pos, loco.contacts) or [0])),
+                "foot_slide_cm": float(np.mean(foot_slide(pos_locked, loco.contacts) or [0])),
+                "source": loco.source,
+            }
+        )
     return out
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     parser.add_argument("--quick", action="store_true", help="10 scenarios and one CMU clip (< 30 s)")
     parser.add_argument("--json", type=Path, default=None, help="write the metrics here")
     parser.add_argument("--seed", type=int, default=7)
@@ -179,7 +212,9 @@ def main(argv: list[str] | None = None) -> int:
         "cmu_clips": len(cmu),
         "cmu_path_error_cm": round(float(np.mean([c["path_error_cm"] for c in cmu])), 4) if cmu else None,
         "cmu_foot_slide_cm": round(float(np.mean([c["foot_slide_cm"] for c in cmu])), 4) if cmu else None,
-        "cmu_foot_slide_raw_cm": round(float(np.mean([c["foot_slide_raw_cm"] for c in cmu])), 4) if cmu else None,
+        "cmu_foot_slide_raw_cm": round(float(np.mean([c["foot_slide_raw_cm"] for c in cmu])), 4)
+        if cmu
+        else None,
         "seed": args.seed,
         "seconds": round(time.time() - t0, 2),
     }

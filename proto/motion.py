@@ -23,6 +23,7 @@ class SegmentEndState(msgspec.Struct, frozen=True, kw_only=True):
     yaw: float = 0.0  # radians about +Y, 0 faces +Z
     posture: str = "stand"  # stand | sit | lie | sit_floor
     phase: float = 0.0  # gait phase in [0, 1)
+    hips_dy: float = 0.0  # metres the hips sit above the posture's rest height (a seat's height); 0 standing
 
 
 class SynthesizeRequest(msgspec.Struct, frozen=True, kw_only=True, tag="synthesize_request"):
@@ -31,11 +32,19 @@ class SynthesizeRequest(msgspec.Struct, frozen=True, kw_only=True, tag="synthesi
     header: Header
     character: CharacterNode
     scene: Scene
-    start: tuple[float, float, float] = (0.0, 0.0, 0.0)  # x, z metres and yaw radians where the character starts
+    start: tuple[float, float, float] = (
+        0.0,
+        0.0,
+        0.0,
+    )  # x, z metres and yaw radians where the character starts
     from_segment: int = 0  # recompute from this segment on (earlier ones are skipped)
     start_state: SegmentEndState | None = None  # end state of segment from_segment-1 (None: from `start`)
-    routes: list[list[tuple[float, float]]] = []  # optional precomputed waypoints, one list per locomotion segment
-    others: dict[str, tuple[float, float]] = {}  # other characters' x, z (metres, world) when the first action starts
+    routes: list[
+        list[tuple[float, float]]
+    ] = []  # optional precomputed waypoints, one list per locomotion segment
+    others: dict[
+        str, tuple[float, float]
+    ] = {}  # other characters' x, z (metres, world) when the first action starts
 
 
 class SynthesizeReply(msgspec.Struct, frozen=True, kw_only=True, tag="synthesize_reply"):
@@ -71,5 +80,13 @@ class LibraryReply(msgspec.Struct, frozen=True, kw_only=True, tag="library_reply
 
 
 MotionRequest = SynthesizeRequest | LibraryRequest
-__all__ = ["ActionInfo", "LibraryReply", "LibraryRequest", "Literal", "MotionRequest", "SegmentEndState",
-           "SynthesizeReply", "SynthesizeRequest"]
+__all__ = [
+    "ActionInfo",
+    "LibraryReply",
+    "LibraryRequest",
+    "Literal",
+    "MotionRequest",
+    "SegmentEndState",
+    "SynthesizeReply",
+    "SynthesizeRequest",
+]

@@ -42,11 +42,24 @@ class Spec:
 def hold(pose: Pose, dur: float = 2.0, ramp: float = 0.4, root=(0.0, 0.0, 0.0)) -> list[tuple]:
     """Neutral -> pose (ramp s) -> hold -> neutral at dur."""
     n = neutral()
-    return [(0.0, n, "linear"), (ramp, pose, "in_out", root), (dur - ramp, pose, "linear", root), (dur, n, "in_out")]
+    return [
+        (0.0, n, "linear"),
+        (ramp, pose, "in_out", root),
+        (dur - ramp, pose, "linear", root),
+        (dur, n, "in_out"),
+    ]
 
 
-def cycle(a: Pose, b: Pose, period: float = 0.6, reps: int = 3, ramp: float = 0.4,
-          root_a=(0.0, 0.0, 0.0), root_b=None, settle: bool = True) -> list[tuple]:
+def cycle(
+    a: Pose,
+    b: Pose,
+    period: float = 0.6,
+    reps: int = 3,
+    ramp: float = 0.4,
+    root_a=(0.0, 0.0, 0.0),
+    root_b=None,
+    settle: bool = True,
+) -> list[tuple]:
     """Neutral -> a, then a/b alternations (reps times), then back to neutral."""
     n = neutral()
     root_b = root_a if root_b is None else root_b
@@ -128,14 +141,20 @@ def all_specs() -> list[Spec]:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m services.motion.author_actions",
-                                     description="Write the authored action clips as JSON keyframe files.")
-    parser.add_argument("--out", type=Path, default=ACTIONS_DIR, help="output folder (default assets/actions)")
+    parser = argparse.ArgumentParser(
+        prog="python -m services.motion.author_actions",
+        description="Write the authored action clips as JSON keyframe files.",
+    )
+    parser.add_argument(
+        "--out", type=Path, default=ACTIONS_DIR, help="output folder (default assets/actions)"
+    )
     args = parser.parse_args(argv)
     args.out.mkdir(parents=True, exist_ok=True)
     specs = all_specs()
     for spec in specs:
-        (args.out / f"{spec.name}.json").write_text(json.dumps(spec_to_dict(spec), separators=(",", ":")) + "\n")
+        (args.out / f"{spec.name}.json").write_text(
+            json.dumps(spec_to_dict(spec), separators=(",", ":")) + "\n"
+        )
     print(f"wrote {len(specs)} clips to {args.out}")
     return 0
 

@@ -43,7 +43,9 @@ def fade_from(pose: np.ndarray, motion: np.ndarray, frames: int) -> np.ndarray:
     n = min(frames, len(motion))  # the weight is 1 from frame `frames` on
     w = crossfade_weights(len(motion), frames, 0)[:n]
     out = np.array(motion, dtype=np.float64, copy=True)
-    out[:n] = quat.slerp(np.broadcast_to(pose, (n, *motion.shape[1:])), motion[:n], np.repeat(w[:, None], N_JOINTS, 1))
+    out[:n] = quat.slerp(
+        np.broadcast_to(pose, (n, *motion.shape[1:])), motion[:n], np.repeat(w[:, None], N_JOINTS, 1)
+    )
     return out
 
 

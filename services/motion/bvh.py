@@ -186,11 +186,20 @@ def parse_bvh(text: str) -> BvhClip:
     if motion.shape[0] != frames:
         raise BvhError(f"Frames: says {frames} but {motion.shape[0]} motion lines follow")
     if frames and motion.shape[1] != n_channels:
-        raise BvhError(f"motion lines have {motion.shape[1]} values, the hierarchy declares {n_channels} channels")
+        raise BvhError(
+            f"motion lines have {motion.shape[1]} values, the hierarchy declares {n_channels} channels"
+        )
     if not names:
         raise BvhError("no joints in HIERARCHY")
-    return BvhClip(joint_names=names, parents=np.array(parents, dtype=np.int64), offsets=np.array(offsets),
-                   channels=channels, end_sites=end_sites, frame_time=frame_time, motion=motion.reshape(frames, n_channels))
+    return BvhClip(
+        joint_names=names,
+        parents=np.array(parents, dtype=np.int64),
+        offsets=np.array(offsets),
+        channels=channels,
+        end_sites=end_sites,
+        frame_time=frame_time,
+        motion=motion.reshape(frames, n_channels),
+    )
 
 
 def read_bvh(path: str | Path) -> BvhClip:
@@ -219,7 +228,14 @@ def format_bvh(clip: BvhClip) -> str:
             emit(c, depth + 1)
         if not children[j]:
             e = clip.end_sites.get(j, np.zeros(3))
-            out.extend([f"{pad}  End Site", f"{pad}  {{", f"{pad}    OFFSET {e[0]:.6f} {e[1]:.6f} {e[2]:.6f}", f"{pad}  }}"])
+            out.extend(
+                [
+                    f"{pad}  End Site",
+                    f"{pad}  {{",
+                    f"{pad}    OFFSET {e[0]:.6f} {e[1]:.6f} {e[2]:.6f}",
+                    f"{pad}  }}",
+                ]
+            )
         out.append(f"{pad}}}")
 
     for r in [j for j, p in enumerate(clip.parents) if p < 0]:
@@ -240,8 +256,13 @@ def write_clip(path: str | Path, clip: BvhClip) -> None:
         path.write_text(text)
 
 
-def canonical_clip(root_position: np.ndarray, rotations: np.ndarray, fps: float = 30.0,
-                   offsets: np.ndarray | None = None, scale: float = 1.0) -> BvhClip:
+def canonical_clip(
+    root_position: np.ndarray,
+    rotations: np.ndarray,
+    fps: float = 30.0,
+    offsets: np.ndarray | None = None,
+    scale: float = 1.0,
+) -> BvhClip:
     """A BvhClip of the canonical skeleton (channel order Zrotation Yrotation Xrotation, root absolute)."""
     rotations = np.asarray(rotations, dtype=np.float64)
     root_position = np.asarray(root_position, dtype=np.float64)
@@ -260,12 +281,25 @@ def canonical_clip(root_position: np.ndarray, rotations: np.ndarray, fps: float 
     channels = [["Xposition", "Yposition", "Zposition", "Zrotation", "Yrotation", "Xrotation"]]
     channels += [["Zrotation", "Yrotation", "Xrotation"] for _ in range(N_JOINTS - 1)]
     ends = {j: np.array([0.0, 0.05, 0.0]) * scale for j in range(N_JOINTS) if j not in set(PARENTS.tolist())}
-    return BvhClip(joint_names=list(JOINT_NAMES), parents=PARENTS.copy(), offsets=offs, channels=channels,
-                   end_sites=ends, frame_time=1.0 / fps, motion=motion)
+    return BvhClip(
+        joint_names=list(JOINT_NAMES),
+        parents=PARENTS.copy(),
+        offsets=offs,
+        channels=channels,
+        end_sites=ends,
+        frame_time=1.0 / fps,
+        motion=motion,
+    )
 
 
-def write_bvh(path: str | Path, root_position: np.ndarray, rotations: np.ndarray, fps: float = 30.0,
-              offsets: np.ndarray | None = None, scale: float = 1.0) -> None:
+def write_bvh(
+    path: str | Path,
+    root_position: np.ndarray,
+    rotations: np.ndarray,
+    fps: float = 30.0,
+    offsets: np.ndarray | None = None,
+    scale: float = 1.0,
+) -> None:
     """Write canonical-skeleton motion as BVH.
 
     Args:

@@ -1,7 +1,7 @@
 """`wana motion ...`: add BVH clips to the action library (no retraining) and list it.
 
-    wana motion import FILE.bvh --tags greet,happy [--name NAME] [--synonyms "say hi,hail"] [--looping]
-    wana motion list [--tag TAG]
+wana motion import FILE.bvh --tags greet,happy [--name NAME] [--synonyms "say hi,hail"] [--looping]
+wana motion list [--tag TAG]
 """
 
 from __future__ import annotations
@@ -20,8 +20,15 @@ from services.motion.library import EULER_ORDER, IMPORTED_DIR, clip_from_dict, l
 from wana.skeleton import JOINT_NAMES
 
 
-def clip_dict_from_bvh(path: Path, name: str, tags: list[str], synonyms: list[str], looping: bool = False,
-                       joint_map: str | None = None, key_step: int = 2) -> dict:
+def clip_dict_from_bvh(
+    path: Path,
+    name: str,
+    tags: list[str],
+    synonyms: list[str],
+    looping: bool = False,
+    joint_map: str | None = None,
+    key_step: int = 2,
+) -> dict:
     """Read, retarget and convert a BVH file into the library's keyframe JSON (a key every key_step frames)."""
     from services.motion.bvh import canonical_motion, read_bvh
     from services.motion.retarget import KNOWN_MAPS, retarget_clip
@@ -49,12 +56,27 @@ def clip_dict_from_bvh(path: Path, name: str, tags: list[str], synonyms: list[st
     keys = []
     for f in tqdm(frames, desc=f"import {path.name}", disable=len(frames) < 200):
         e = quat.to_euler(EULER_ORDER, local[f])
-        keys.append({"t": round(f / 30.0, 4), "ease": "linear",
-                     "pose": {n: [round(float(v), 3) for v in e[j]] for j, n in enumerate(JOINT_NAMES)},
-                     "root": [round(float(v), 4) for v in offs[f]]})
-    return {"name": name, "tags": tags, "synonyms": synonyms, "duration_s": round((len(rot) - 1) / 30.0, 4),
-            "looping": looping, "body_parts": ["full_body"], "contact_joints": [], "interaction": None,
-            "euler": EULER_ORDER, "source": "imported", "keys": keys}
+        keys.append(
+            {
+                "t": round(f / 30.0, 4),
+                "ease": "linear",
+                "pose": {n: [round(float(v), 3) for v in e[j]] for j, n in enumerate(JOINT_NAMES)},
+                "root": [round(float(v), 4) for v in offs[f]],
+            }
+        )
+    return {
+        "name": name,
+        "tags": tags,
+        "synonyms": synonyms,
+        "duration_s": round((len(rot) - 1) / 30.0, 4),
+        "looping": looping,
+        "body_parts": ["full_body"],
+        "contact_joints": [],
+        "interaction": None,
+        "euler": EULER_ORDER,
+        "source": "imported",
+        "keys": keys,
+    }
 
 
 def _split(s: str) -> list[str]:
@@ -70,8 +92,15 @@ def main(argv: list[str] | None = None) -> int:
     imp.add_argument("--name", default="", help="action name (default: the file name)")
     imp.add_argument("--synonyms", default="", help="comma-separated phrases the NLP may map to it")
     imp.add_argument("--looping", action="store_true", help="the clip loops")
-    imp.add_argument("--map", choices=["cc_base", "cmu", "mixamo"], default=None, help="source joint names (default: guessed)")
-    imp.add_argument("--out", type=Path, default=IMPORTED_DIR, help=f"folder for the clip (default {IMPORTED_DIR})")
+    imp.add_argument(
+        "--map",
+        choices=["cc_base", "cmu", "mixamo"],
+        default=None,
+        help="source joint names (default: guessed)",
+    )
+    imp.add_argument(
+        "--out", type=Path, default=IMPORTED_DIR, help=f"folder for the clip (default {IMPORTED_DIR})"
+    )
     imp.add_argument("--force", action="store_true", help="replace an existing clip of that name")
     lst = sub.add_parser("list", help="print the library")
     lst.add_argument("--tag", default="")
@@ -90,7 +119,9 @@ def main(argv: list[str] | None = None) -> int:
         print(f"error: an action named {name!r} exists; pass --name or --force", file=sys.stderr)
         return 2
     try:
-        d = clip_dict_from_bvh(args.file, name, _split(args.tags), _split(args.synonyms), args.looping, args.map)
+        d = clip_dict_from_bvh(
+            args.file, name, _split(args.tags), _split(args.synonyms), args.looping, args.map
+        )
         clip_from_dict(d)  # validate before writing
     except ValueError as exc:
         print(f"error: {exc}", file=sys.stderr)

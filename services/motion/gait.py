@@ -32,7 +32,9 @@ def duty_factor(speed: np.ndarray) -> np.ndarray:
     return np.clip(0.62 - 0.08 * np.maximum(np.abs(speed) - 1.0, 0.0), 0.35, 0.62)
 
 
-def two_bone_ik(root: np.ndarray, target: np.ndarray, pole: np.ndarray, l1: float, l2: float) -> tuple[np.ndarray, np.ndarray]:
+def two_bone_ik(
+    root: np.ndarray, target: np.ndarray, pole: np.ndarray, l1: float, l2: float
+) -> tuple[np.ndarray, np.ndarray]:
     """World positions of the middle joint and the reached end for a two-bone chain.
 
     Args:
@@ -47,15 +49,22 @@ def two_bone_ik(root: np.ndarray, target: np.ndarray, pole: np.ndarray, l1: floa
     dist_c = np.clip(dist, abs(l1 - l2) + 1e-4, l1 + l2 - 1e-4)
     dirn = d / np.maximum(dist, 1e-9)
     end = root + dirn * dist_c
-    a = (l1 ** 2 - l2 ** 2 + dist_c ** 2) / (2 * dist_c)
-    h = np.sqrt(np.maximum(l1 ** 2 - a ** 2, 0.0))
+    a = (l1**2 - l2**2 + dist_c**2) / (2 * dist_c)
+    h = np.sqrt(np.maximum(l1**2 - a**2, 0.0))
     side = pole - np.sum(pole * dirn, axis=-1, keepdims=True) * dirn
     side = side / np.maximum(np.linalg.norm(side, axis=-1, keepdims=True), 1e-9)
     return root + dirn * a + side * h, end
 
 
-def footsteps(pos: np.ndarray, heading: np.ndarray, phase: np.ndarray, offset: float, side: float,
-              duty: np.ndarray, lift: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def footsteps(
+    pos: np.ndarray,
+    heading: np.ndarray,
+    phase: np.ndarray,
+    offset: float,
+    side: float,
+    duty: np.ndarray,
+    lift: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray]:
     """World ankle positions (T, 3) and contact flags (T,) of one foot.
 
     Args:
@@ -96,8 +105,9 @@ def footsteps(pos: np.ndarray, heading: np.ndarray, phase: np.ndarray, offset: f
     return out, stance
 
 
-def synthesize_gait(pos: np.ndarray, heading: np.ndarray, speed: np.ndarray, phase0: float = 0.0,
-                    lean_deg: float = 4.0) -> dict[str, np.ndarray]:
+def synthesize_gait(
+    pos: np.ndarray, heading: np.ndarray, speed: np.ndarray, phase0: float = 0.0, lean_deg: float = 4.0
+) -> dict[str, np.ndarray]:
     """Full-body gait for a root trajectory.
 
     Args:
@@ -129,9 +139,11 @@ def synthesize_gait(pos: np.ndarray, heading: np.ndarray, speed: np.ndarray, pha
     reach = (UPPER_LEN + LOWER_LEN) * 0.985
     height = np.full(t, REST_OFFSETS[0, 1])
     for k, f in enumerate(feet):
-        hip_off = quat.rotate(hips_rot, np.broadcast_to(REST_OFFSETS[J["LeftUpLeg" if k == 0 else "RightUpLeg"]], (t, 3)))
+        hip_off = quat.rotate(
+            hips_rot, np.broadcast_to(REST_OFFSETS[J["LeftUpLeg" if k == 0 else "RightUpLeg"]], (t, 3))
+        )
         horiz = np.linalg.norm((root[:, [0, 2]] + hip_off[:, [0, 2]]) - f[:, [0, 2]], axis=-1)
-        need = f[:, 1] - hip_off[:, 1] + np.sqrt(np.maximum(reach ** 2 - horiz ** 2, 0.05))
+        need = f[:, 1] - hip_off[:, 1] + np.sqrt(np.maximum(reach**2 - horiz**2, 0.05))
         height = np.minimum(height, need)
     kernel = np.ones(5) / 5
     height = np.convolve(np.pad(height, 2, mode="edge"), kernel, mode="valid")
@@ -168,11 +180,17 @@ def synthesize_gait(pos: np.ndarray, heading: np.ndarray, speed: np.ndarray, pha
         rot[:, J[f"{name}Arm"]] = quat.mul(q, base[J[f"{name}Arm"]])
         bend = quat.from_axis_angle(np.array([0.0, sgn * -1.0, 0.0]), np.radians(np.minimum(10 * spd, 60)))
         rot[:, J[f"{name}ForeArm"]] = quat.mul(base[J[f"{name}ForeArm"]], bend)
-    return {"root_position": root, "rotations": rot, "phase": np.mod(phase, 1.0),
-            "contacts": np.stack(contacts, -1).astype(np.uint8)}
+    return {
+        "root_position": root,
+        "rotations": rot,
+        "phase": np.mod(phase, 1.0),
+        "contacts": np.stack(contacts, -1).astype(np.uint8),
+    }
 
 
-def random_trajectory(rng: np.random.Generator, seconds: float = 20.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def random_trajectory(
+    rng: np.random.Generator, seconds: float = 20.0
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """A random locomotion script: segments of idle/walk/run/turn/side-step with smooth speed changes.
 
     Returns:
@@ -185,16 +203,24 @@ def random_trajectory(rng: np.random.Generator, seconds: float = 20.0) -> tuple[
     i = 0
     while i < t:
         n = int(rng.uniform(1.0, 4.0) * FPS)
-        kind = rng.choice(["idle", "walk", "walk", "run", "turn", "side", "slow"], p=[0.1, 0.3, 0.1, 0.15, 0.15, 0.1, 0.1])
-        sp = {"idle": 0.0, "walk": rng.uniform(1.0, 1.7), "run": rng.uniform(2.5, 4.0), "turn": rng.uniform(0.6, 1.6),
-              "side": 0.0, "slow": rng.uniform(0.4, 0.9)}[kind]
-        target_speed[i:i + n] = sp
+        kind = rng.choice(
+            ["idle", "walk", "walk", "run", "turn", "side", "slow"], p=[0.1, 0.3, 0.1, 0.15, 0.15, 0.1, 0.1]
+        )
+        sp = {
+            "idle": 0.0,
+            "walk": rng.uniform(1.0, 1.7),
+            "run": rng.uniform(2.5, 4.0),
+            "turn": rng.uniform(0.6, 1.6),
+            "side": 0.0,
+            "slow": rng.uniform(0.4, 0.9),
+        }[kind]
+        target_speed[i : i + n] = sp
         if kind == "turn":
-            target_turn[i:i + n] = rng.uniform(-1.6, 1.6)
+            target_turn[i : i + n] = rng.uniform(-1.6, 1.6)
         else:
-            target_turn[i:i + n] = rng.normal(0, 0.15)
+            target_turn[i : i + n] = rng.normal(0, 0.15)
         if kind == "side":
-            target_side[i:i + n] = rng.choice([-1.0, 1.0]) * rng.uniform(0.5, 1.0)
+            target_side[i : i + n] = rng.choice([-1.0, 1.0]) * rng.uniform(0.5, 1.0)
         i += n
     # First-order smoothing gives realistic accelerations for starts and stops.
     speed = np.zeros(t)
@@ -205,6 +231,9 @@ def random_trajectory(rng: np.random.Generator, seconds: float = 20.0) -> tuple[
         turn[k] = turn[k - 1] + (target_turn[k] - turn[k - 1]) * 0.1
         side[k] = side[k - 1] + (target_side[k] - side[k - 1]) * 0.08
     heading = np.cumsum(turn) / FPS + rng.uniform(-np.pi, np.pi)
-    vel = np.stack([np.sin(heading) * speed + np.cos(heading) * side, np.cos(heading) * speed - np.sin(heading) * side], -1)
+    vel = np.stack(
+        [np.sin(heading) * speed + np.cos(heading) * side, np.cos(heading) * speed - np.sin(heading) * side],
+        -1,
+    )
     pos = np.cumsum(vel, axis=0) / FPS
     return pos, heading, np.hypot(speed, side)

@@ -13,10 +13,12 @@ from proto.motion import (
     SynthesizeReply,
     SynthesizeRequest,
 )
+from proto.scene import Scene
 from services.motion.library import load_library
 from services.motion.planning import plan_actions
+from services.motion.routing import scene_route
 from services.motion.synthesis import SegmentState, assemble, synthesise_segment
-from wana.bus.service import InvalidInput
+from wana.bus.service import Contract, InvalidInput
 
 
 def _reply_header(h: Header) -> Header:
@@ -31,28 +33,59 @@ def handle_synthesize(req: SynthesizeRequest) -> SynthesizeReply:
         if not all(np.isfinite(xz)):
             raise InvalidInput(f"others[{name!r}] must be finite (x, z)")
     routes = list(req.routes)
+    route_diags: list[str] = []
 
-    def route_fn(scene, a, b):  # noqa: ANN001 - precomputed routes first, else a straight line
+    def route_fn(
+        scene: Scene, a: tuple[float, float], b: tuple[float, float], ignore: frozenset[str] = frozenset()
+    ) -> np.ndarray:
+        """Precomputed routes first, else A* around the furniture (a straight line where there is none)."""
         if routes:
             r = np.asarray(routes.pop(0), float).reshape(-1, 2)
-            if len(r) >= 2:
+            if len(r) >= 2 and np.isfinite(r).all():
                 return r
-        return np.array([a, b], float)
+        wps, why = scene_route(scene, a, b, ignore)
+        if why:
+            route_diags.append(why)
+        return wps
 
     posture = req.start_state.posture if req.start_state is not None else "stand"
-    plan = plan_actions(req.character, req.scene, req.start, route_fn, posture=posture,
-                        others={k: (float(v[0]), float(v[1])) for k, v in req.others.items()})
+    plan = plan_actions(
+        req.character,
+        req.scene,
+        req.start,
+        route_fn,
+        posture=posture,
+        others={k: (float(v[0]), float(v[1])) for k, v in req.others.items()},
+    )
     if req.from_segment < 0 or req.from_segment > len(plan.segments):
         raise InvalidInput(f"from_segment {req.from_segment} outside 0..{len(plan.segments)}")
-    state = plan.start_state() if req.start_state is None else SegmentState(
-        req.start_state.x, req.start_state.z, req.start_state.yaw, req.start_state.posture, req.start_state.phase).rounded()
+    st = req.start_state
+    state = (
+        plan.start_state()
+        if st is None
+        else SegmentState(st.x, st.z, st.yaw, st.posture, st.phase, st.hips_dy).rounded()
+    )
     pieces, ends = [], []
     for k in range(req.from_segment, len(plan.segments)):
         piece, state = synthesise_segment(plan, k, state)
         pieces.append(piece)
-        ends.append(SegmentEndState(x=state.x, z=state.z, yaw=state.yaw, posture=state.posture, phase=state.phase))
+        ends.append(
+            SegmentEndState(
+                x=state.x,
+                z=state.z,
+                yaw=state.yaw,
+                posture=state.posture,
+                phase=state.phase,
+                hips_dy=state.hips_dy,
+            )
+        )
     motion = assemble(req.character.name, pieces, state)
-    return SynthesizeReply(header=_reply_header(req.header), motion=motion, end_states=ends, diagnostics=list(plan.diagnostics))
+    return SynthesizeReply(
+        header=_reply_header(req.header),
+        motion=motion,
+        end_states=ends,
+        diagnostics=list(plan.diagnostics) + route_diags,
+    )
 
 
 def handle_library(req: LibraryRequest) -> LibraryReply:
@@ -61,10 +94,19 @@ def handle_library(req: LibraryRequest) -> LibraryReply:
     for name, c in sorted(load_library().items()):
         if req.tag and req.tag not in c.tags:
             continue
-        out.append(ActionInfo(name=name, tags=list(c.tags), synonyms=list(c.synonyms), duration_s=c.duration_s,
-                              looping=c.looping, body_parts=list(c.body_parts), contact_joints=list(c.contact_joints),
-                              interaction=c.interaction.object if c.interaction else ""))
+        out.append(
+            ActionInfo(
+                name=name,
+                tags=list(c.tags),
+                synonyms=list(c.synonyms),
+                duration_s=c.duration_s,
+                looping=c.looping,
+                body_parts=list(c.body_parts),
+                contact_joints=list(c.contact_joints),
+                interaction=c.interaction.object if c.interaction else "",
+            )
+        )
     return LibraryReply(header=_reply_header(req.header), actions=out)
 
 
-CONTRACT = {SynthesizeRequest: handle_synthesize, LibraryRequest: handle_library}
+CONTRACT: Contract = {SynthesizeRequest: handle_synthesize, LibraryRequest: handle_library}

@@ -23,7 +23,9 @@ CHAINS = {  # end joint -> (upper, middle, end)
 }
 
 
-def global_transforms(rotations: np.ndarray, root: np.ndarray, offsets: np.ndarray = REST_OFFSETS) -> tuple[np.ndarray, np.ndarray]:
+def global_transforms(
+    rotations: np.ndarray, root: np.ndarray, offsets: np.ndarray = REST_OFFSETS
+) -> tuple[np.ndarray, np.ndarray]:
     """Vectorised FK: positions (T, J, 3) and global rotations (T, J, 4)."""
     t = rotations.shape[0]
     gpos = np.empty((t, N_JOINTS, 3))
@@ -68,8 +70,14 @@ def _norm(v: np.ndarray) -> np.ndarray:
     return np.sqrt(np.einsum("...i,...i->...", v, v))
 
 
-def two_bone_ik(rotations: np.ndarray, root: np.ndarray, end: str, target: np.ndarray, weight: np.ndarray | float = 1.0,
-                pole: np.ndarray | None = None) -> np.ndarray:
+def two_bone_ik(
+    rotations: np.ndarray,
+    root: np.ndarray,
+    end: str,
+    target: np.ndarray,
+    weight: np.ndarray | float = 1.0,
+    pole: np.ndarray | None = None,
+) -> np.ndarray:
     """Bring a joint to target positions: two analytic passes, then a slerp by weight.
 
     Only frames with a non-zero weight are solved, and only the chain's joints are evaluated
@@ -93,7 +101,7 @@ def two_bone_ik(rotations: np.ndarray, root: np.ndarray, end: str, target: np.nd
     if len(idx) == 0:
         return out
     ua, mb, ec = (JOINT_INDEX[n] for n in CHAINS[end])
-    tail = path_to(ec)[path_to(ec).index(mb) + 1:]
+    tail = path_to(ec)[path_to(ec).index(mb) + 1 :]
     sub = rotations[idx]
     gp_pos, gp_rot = joint_globals(sub, np.asarray(root)[idx], int(PARENTS[ua]))
     tgt = np.broadcast_to(np.asarray(target, dtype=np.float64), (t, 3))[idx]
@@ -108,8 +116,16 @@ def two_bone_ik(rotations: np.ndarray, root: np.ndarray, end: str, target: np.nd
     return out
 
 
-def _two_bone_pass(r_ua: np.ndarray, r_mb: np.ndarray, r_tail: list[np.ndarray], gp_pos: np.ndarray, gp_rot: np.ndarray,
-                   chain: tuple[int, int, list[int]], target: np.ndarray, pole: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
+def _two_bone_pass(
+    r_ua: np.ndarray,
+    r_mb: np.ndarray,
+    r_tail: list[np.ndarray],
+    gp_pos: np.ndarray,
+    gp_rot: np.ndarray,
+    chain: tuple[int, int, list[int]],
+    target: np.ndarray,
+    pole: np.ndarray | None,
+) -> tuple[np.ndarray, np.ndarray]:
     """One analytic pass (after D. Holden): new local rotations (n, 4) of the upper and middle joints.
 
     Args:
@@ -135,8 +151,8 @@ def _two_bone_pass(r_ua: np.ndarray, r_mb: np.ndarray, r_tail: list[np.ndarray],
     ac_ab_0 = _angle(c - a, b - a)
     ba_bc_0 = _angle(a - b, c - b)
     ac_at_0 = _angle(c - a, target - a)
-    ac_ab_1 = np.arccos(np.clip((lcb ** 2 - lab ** 2 - lat ** 2) / (-2 * lab * lat), -1, 1))
-    ba_bc_1 = np.arccos(np.clip((lat ** 2 - lab ** 2 - lcb ** 2) / (-2 * lab * lcb), -1, 1))
+    ac_ab_1 = np.arccos(np.clip((lcb**2 - lab**2 - lat**2) / (-2 * lab * lat), -1, 1))
+    ba_bc_1 = np.arccos(np.clip((lat**2 - lab**2 - lcb**2) / (-2 * lab * lcb), -1, 1))
     axis0 = quat.cross(c - a, b - a)
     bad = _norm(axis0) < 1e-6
     if np.any(bad):
@@ -160,11 +176,18 @@ def chain_reach(end: str) -> float:
     """Longest distance (metres) from the chain's upper joint to its end joint, limb straight."""
     ua, mb, ec = (JOINT_INDEX[n] for n in CHAINS[end])
     path = path_to(ec)
-    return float(sum(np.linalg.norm(REST_OFFSETS[j]) for j in path[path.index(ua) + 1:]))
+    return float(sum(np.linalg.norm(REST_OFFSETS[j]) for j in path[path.index(ua) + 1 :]))
 
 
-def bend_spine_to_reach(rotations: np.ndarray, root: np.ndarray, end: str, target: np.ndarray, weight: np.ndarray,
-                        max_pitch: float = np.radians(80.0), slack: float = 0.97) -> np.ndarray:
+def bend_spine_to_reach(
+    rotations: np.ndarray,
+    root: np.ndarray,
+    end: str,
+    target: np.ndarray,
+    weight: np.ndarray,
+    max_pitch: float = np.radians(80.0),
+    slack: float = 0.97,
+) -> np.ndarray:
     """Lean the spine forward just enough that a hand target comes within the arm's reach.
 
     Two-bone IK alone cannot reach a point lower or farther than the arm (wiping a table, pressing a
@@ -182,35 +205,63 @@ def bend_spine_to_reach(rotations: np.ndarray, root: np.ndarray, end: str, targe
     """
     t = rotations.shape[0]
     w = np.broadcast_to(np.asarray(weight, dtype=np.float64), (t,))
+    needed = lean_needed(rotations, root, end, target, w, max_pitch, slack)
+    return lean_spine(rotations, max_pitch if needed is None else needed, w)
+
+
+def lean_spine(rotations: np.ndarray, pitch: float, weight: np.ndarray) -> np.ndarray:
+    """Pitch the spine forward by ``pitch`` radians (spread over Spine, Spine1, Spine2) scaled by weight (T,)."""
+    if pitch <= 0.0:
+        return rotations
+    spine = [JOINT_INDEX[n] for n in SPINE]
+    out = rotations.copy()
+    bend = quat.from_axis_angle(
+        np.array([1.0, 0.0, 0.0]), pitch * np.asarray(weight, dtype=np.float64) / len(spine)
+    )
+    for j in spine:
+        out[:, j] = quat.mul(out[:, j], bend)
+    return out
+
+
+def lean_needed(
+    rotations: np.ndarray,
+    root: np.ndarray,
+    end: str,
+    target: np.ndarray,
+    weight: np.ndarray,
+    max_pitch: float = np.radians(80.0),
+    slack: float = 0.97,
+) -> float | None:
+    """The smallest spine pitch (radians, of 15 candidates up to max_pitch) that brings the shoulder
+    within slack * reach of the target over the frames where weight is 1; 0 with no such frame;
+    None when even max_pitch is not enough.
+
+    Args: as bend_spine_to_reach.
+    """
+    t = rotations.shape[0]
+    w = np.broadcast_to(np.asarray(weight, dtype=np.float64), (t,))
     full = np.nonzero(w >= 0.999)[0]
     if len(full) == 0:
-        return rotations
+        return 0.0
     ua, mb, ec = (JOINT_INDEX[n] for n in CHAINS[end])
     tgt = np.broadcast_to(np.asarray(target, dtype=np.float64), (t, 3))[full]
     sub = rotations[full]
+    hips = np.asarray(root)[full]
     # Reach as posed: the wrist's bend shortens the lower "bone" (forearm + hand) below its straight length.
-    mid, _ = joint_globals(sub, np.asarray(root)[full], mb)
-    tip, _ = joint_globals(sub, np.asarray(root)[full], ec)
+    mid, _ = joint_globals(sub, hips, mb)
+    tip, _ = joint_globals(sub, hips, ec)
     reach = (float(np.linalg.norm(REST_OFFSETS[mb])) + float(np.min(_norm(tip - mid)))) * slack
     spine = [JOINT_INDEX[n] for n in SPINE]
     x_axis = np.array([1.0, 0.0, 0.0])
-    chosen = max_pitch
     for pitch in np.linspace(0.0, max_pitch, 15):
         trial = sub.copy()
         bend = quat.from_axis_angle(x_axis, pitch / len(spine))
         for j in spine:
             trial[:, j] = quat.mul(trial[:, j], bend)
-        shoulder, _ = joint_globals(trial, np.asarray(root)[full], ua)
+        shoulder, _ = joint_globals(trial, hips, ua)
         if np.max(_norm(tgt - shoulder)) <= reach:
-            chosen = pitch
-            break
-    if chosen <= 0.0:
-        return rotations
-    out = rotations.copy()
-    bend = quat.from_axis_angle(x_axis, chosen * w / len(spine))  # (T, 4)
-    for j in spine:
-        out[:, j] = quat.mul(out[:, j], bend)
-    return out
+            return float(pitch)
+    return None
 
 
 def contact_runs(contact: np.ndarray) -> list[tuple[int, int]]:
@@ -220,8 +271,13 @@ def contact_runs(contact: np.ndarray) -> list[tuple[int, int]]:
     return list(zip(np.where(d == 1)[0].tolist(), np.where(d == -1)[0].tolist(), strict=True))
 
 
-def lock_feet(rotations: np.ndarray, root: np.ndarray, contacts: np.ndarray, blend: int = 3,
-              floor_y: float | None = None) -> np.ndarray:
+def lock_feet(
+    rotations: np.ndarray,
+    root: np.ndarray,
+    contacts: np.ndarray,
+    blend: int = 3,
+    floor_y: float | None = None,
+) -> np.ndarray:
     """Pin planted feet; returns new (T, J, 4) rotations (root unchanged).
 
     Args:

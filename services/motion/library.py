@@ -70,7 +70,9 @@ class ActionClip:
     def drives_lower_body(self) -> bool:
         return any(p in ("full_body", "lower_body", "legs") for p in self.body_parts)
 
-    def sample(self, fps: int = FPS, duration_s: float | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def sample(
+        self, fps: int = FPS, duration_s: float | None = None
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Evaluate the clip at fps.
 
         Args:
@@ -80,7 +82,9 @@ class ActionClip:
         Returns:
             rotations (T, J, 4), root offsets (T, 3) in the character frame, root yaw (T,) radians.
         """
-        rot, root, yaw = _sample_cached(self, fps, round(self.duration_s if duration_s is None else duration_s, 4))
+        rot, root, yaw = _sample_cached(
+            self, fps, round(self.duration_s if duration_s is None else duration_s, 4)
+        )
         return rot.copy(), root.copy(), yaw.copy()
 
 
@@ -122,7 +126,9 @@ def _key_arrays(clip: ActionClip) -> tuple[np.ndarray, np.ndarray, np.ndarray, n
 _SAMPLED: dict[tuple[str, int, float], tuple[ActionClip, tuple[np.ndarray, np.ndarray, np.ndarray]]] = {}
 
 
-def _sample_cached(clip: ActionClip, fps: int, duration_s: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _sample_cached(
+    clip: ActionClip, fps: int, duration_s: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Sampled clips are reused across segments and requests (clips are immutable; callers get copies).
 
     Keyed by name, fps and duration; an entry counts only for the very clip object it was made
@@ -149,7 +155,11 @@ def _sample(clip: ActionClip, fps: int, duration_s: float) -> tuple[np.ndarray, 
     else:
         cycles = np.zeros(n)
         local = np.minimum(t, times[-1])
-    idx = np.clip(np.searchsorted(times, local, side="right"), 1, len(times) - 1) if len(times) > 1 else np.zeros(n, int)
+    idx = (
+        np.clip(np.searchsorted(times, local, side="right"), 1, len(times) - 1)
+        if len(times) > 1
+        else np.zeros(n, int)
+    )
     if len(times) == 1:
         return np.repeat(rots[:1], n, 0), np.repeat(roots[:1], n, 0), np.repeat(yaws[:1], n)
     t0, t1 = times[idx - 1], times[idx]
@@ -182,9 +192,15 @@ def clip_from_dict(d: dict, source: str = "authored") -> ActionClip:
             ease = k.get("ease", "in_out")
             if ease not in EASINGS:
                 raise ValueError(f"clip {name!r}: unknown easing {ease!r}")
-            keys.append(Keyframe(t=float(k["t"]), ease=ease, rotations=rotations,
-                                 root=tuple(float(x) for x in k.get("root", (0, 0, 0))),  # type: ignore[arg-type]
-                                 root_yaw=float(k.get("root_yaw", 0.0))))
+            keys.append(
+                Keyframe(
+                    t=float(k["t"]),
+                    ease=ease,
+                    rotations=rotations,
+                    root=tuple(float(x) for x in k.get("root", (0, 0, 0))),  # type: ignore[arg-type]
+                    root_yaw=float(k.get("root_yaw", 0.0)),
+                )
+            )
         if not keys:
             raise ValueError(f"clip {name!r} has no keys")
         times = [k.t for k in keys]
@@ -193,16 +209,25 @@ def clip_from_dict(d: dict, source: str = "authored") -> ActionClip:
         inter = d.get("interaction")
         interaction = None
         if inter:
-            interaction = Interaction(object=str(inter["object"]), contacts=tuple(inter.get("contacts", ())),
-                                      window=tuple(inter.get("window", (0.0, float(d["duration_s"])))))  # type: ignore[arg-type]
+            interaction = Interaction(
+                object=str(inter["object"]),
+                contacts=tuple(inter.get("contacts", ())),
+                window=tuple(inter.get("window", (0.0, float(d["duration_s"])))),
+            )  # type: ignore[arg-type]
         parts = tuple(d.get("body_parts", ("upper_body",)))
         for p in parts:
             if p not in BODY_PARTS:
                 raise ValueError(f"clip {name!r}: unknown body part {p!r}")
         return ActionClip(
-            name=name, tags=tuple(d.get("tags", ())), synonyms=tuple(d.get("synonyms", ())),
-            duration_s=float(d["duration_s"]), looping=bool(d.get("looping", False)), body_parts=parts,
-            contact_joints=tuple(d.get("contact_joints", ())), interaction=interaction, keyframes=tuple(keys),
+            name=name,
+            tags=tuple(d.get("tags", ())),
+            synonyms=tuple(d.get("synonyms", ())),
+            duration_s=float(d["duration_s"]),
+            looping=bool(d.get("looping", False)),
+            body_parts=parts,
+            contact_joints=tuple(d.get("contact_joints", ())),
+            interaction=interaction,
+            keyframes=tuple(keys),
             source=d.get("source", source),
         )
     except KeyError as exc:
@@ -226,7 +251,9 @@ def _load(dirs: tuple[Path, ...]) -> dict[str, ActionClip]:
         for path in sorted(directory.glob("*.json")):
             if path.name.startswith("_"):
                 continue
-            clip = clip_from_dict(json.loads(path.read_text()), source="imported" if directory != ACTIONS_DIR else "authored")
+            clip = clip_from_dict(
+                json.loads(path.read_text()), source="imported" if directory != ACTIONS_DIR else "authored"
+            )
             clips[clip.name] = clip
     return clips
 
@@ -268,5 +295,15 @@ def get_clip(name: str) -> ActionClip:
     raise KeyError(f"unknown action {name!r}")
 
 
-__all__ = ["ActionClip", "Interaction", "Keyframe", "JOINT_NAMES", "action_names", "get_clip", "load_library",
-           "reload_library", "synonym_index", "neutral_rotations"]
+__all__ = [
+    "ActionClip",
+    "Interaction",
+    "Keyframe",
+    "JOINT_NAMES",
+    "action_names",
+    "get_clip",
+    "load_library",
+    "reload_library",
+    "synonym_index",
+    "neutral_rotations",
+]

@@ -2,9 +2,11 @@
 
 The controller turns waypoints and a speed into a root trajectory at 30 fps (accelerating from rest,
 rate-limited turning, decelerating to stop at the goal, then turning in place to face a target);
-the network, given that trajectory, produces the poses autoregressively, ROLLOUT_STEPS frames per
-onnxruntime call. Without the ONNX model or onnxruntime it falls back to the procedural gait, so
-synthesis always works.
+the network, given that trajectory, produces the poses autoregressively. The rollout runs the
+phase tables of models/locomotion/pfnn_fast.onnx in numpy (services.motion.pfnn_tables: the same
+arithmetic as onnxruntime on that graph, without its per-frame weight copies, ~2x faster);
+WANA_PFNN_RUNTIME=onnxruntime runs the graph in onnxruntime instead. Without the ONNX model it
+falls back to the procedural gait, so synthesis always works.
 
 The root follows the planned path exactly: the network's root-velocity output (dx, dz, dyaw) is
 trained but not used at run time, so path following stays exact; the network supplies the poses,
@@ -15,8 +17,10 @@ from __future__ import annotations
 
 import functools
 import math
+import os
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Protocol
 
 import numpy as np
 
@@ -48,8 +52,13 @@ def _wrap(a: np.ndarray | float) -> np.ndarray:
     return (np.asarray(a) + np.pi) % (2 * np.pi) - np.pi
 
 
-def plan_root(waypoints: np.ndarray, speed: float, start_heading: float, face_yaw: float | None = None,
-              settle_frames: int = 8) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def plan_root(
+    waypoints: np.ndarray,
+    speed: float,
+    start_heading: float,
+    face_yaw: float | None = None,
+    settle_frames: int = 8,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Root trajectory along a polyline.
 
     Args:
@@ -76,12 +85,26 @@ def plan_root(waypoints: np.ndarray, speed: float, start_heading: float, face_ya
     s_list, v_list = [0.0], [0.0]
     if length > 0.02:
         s, v = 0.0, 0.0
-        accel, dt = ACCEL / FPS, 1.0 / FPS
-        while s < length - 1e-4:
-            v = min(v + accel, speed, max(math.sqrt(2 * ACCEL * max(length - s, 0.0)), 0.25))
-            s = min(s + v * dt, length)
-            s_list.append(s)
-            v_list.append(v)
+        accel, dt, two_a = ACCEL / FPS, 1.0 / FPS, 2 * ACCEL
+        sqrt, end = math.sqrt, length - 1e-4
+        s_append, v_append = s_list.append, v_list.append
+        while (
+            s < end
+        ):  # v = min(v + accel, speed, max(braking speed, 0.25)); inline compares beat min()/max()
+            left = length - s
+            brake = sqrt(two_a * left) if left > 0.0 else 0.0
+            if brake < 0.25:
+                brake = 0.25
+            v += accel
+            if v > speed:
+                v = speed
+            if v > brake:
+                v = brake
+            s += v * dt
+            if s > length:
+                s = length
+            s_append(s)
+            v_append(v)
     s_arr = np.array(s_list)
     pos = np.stack([np.interp(s_arr, cum, wp[:, 0]), np.interp(s_arr, cum, wp[:, 1])], -1)
     heading = np.empty(len(pos))
@@ -94,11 +117,12 @@ def plan_root(waypoints: np.ndarray, speed: float, start_heading: float, face_ya
         want = np.arctan2(d[:, 0], d[:, 1]).tolist()
         limit = TURN_RATE / FPS
         two_pi = 2 * math.pi
-        out = []
+        out: list[float] = []
+        append, pi = out.append, math.pi
         for w in want:
-            step = (w - h + math.pi) % two_pi - math.pi
-            h += min(max(step, -limit), limit)
-            out.append(h)
+            step = (w - h + pi) % two_pi - pi
+            h += limit if step > limit else -limit if step < -limit else step
+            append(h)
         heading[:] = out
     else:
         heading[:] = h
@@ -146,20 +170,46 @@ class PfnnRuntime:
         ctrl = np.empty((n_chunks * k, control.shape[1]), np.float32)
         ctrl[:t] = control
         ctrl[t:] = control[-1]
-        ctrl = ctrl.reshape(n_chunks, 1, k, -1)
+        chunks = ctrl.reshape(n_chunks, 1, k, -1)
         pose = np.ascontiguousarray(pose0.reshape(1, N_POSE), dtype=np.float32)
         phase = np.array([[phase0]], np.float32)
         out = np.empty((n_chunks, k, N_OUT), np.float32)
         run = self.session.run
         for c in range(n_chunks):
-            y, pose, phase = run(None, {"control": ctrl[c], "pose": pose, "phase": phase})
+            y, pose, phase = run(None, {"control": chunks[c], "pose": pose, "phase": phase})
             out[c] = y[0]
         return out.reshape(-1, N_OUT)[:t]
 
 
+class RolloutRuntime(Protocol):
+    kind: str
+
+    def run(self, control: np.ndarray, pose0: np.ndarray, phase0: float) -> np.ndarray: ...
+
+
 @functools.lru_cache(maxsize=1)
-def runtime() -> PfnnRuntime | None:
-    """The shared runtime, or None when the model or onnxruntime is missing."""
+def runtime() -> RolloutRuntime | None:
+    """The shared rollout runtime, or None when no model can be loaded.
+
+    The numpy executor of pfnn_fast.onnx's phase tables by default; onnxruntime when
+    WANA_PFNN_RUNTIME=onnxruntime or when the fast graph is missing (the traced rollout).
+    """
+    if (
+        os.environ.get("WANA_PFNN_RUNTIME", "numpy") != "onnxruntime"
+        and (MODEL_DIR / "pfnn_fast.onnx").is_file()
+    ):
+        try:
+            from services.motion.pfnn_tables import PhaseTableRuntime
+
+            return PhaseTableRuntime(MODEL_DIR / "pfnn_fast.onnx")
+        except Exception:  # noqa: BLE001 - a graph without tables: let onnxruntime run it
+            pass
+    return onnxruntime_runtime()
+
+
+@functools.lru_cache(maxsize=1)
+def onnxruntime_runtime() -> PfnnRuntime | None:
+    """The rollout graph in onnxruntime, or None when the model or onnxruntime is missing."""
     try:
         if not any((MODEL_DIR / f).is_file() for f in ("pfnn_fast.onnx", "pfnn_rollout.onnx")):
             return None
@@ -174,11 +224,21 @@ def standing_pose_features() -> np.ndarray:
     from services.motion.locomotion_features import pose_features
 
     g = synthesize_gait(np.zeros((2, 2)), np.zeros(2), np.zeros(2))
-    return pose_features(g["root_position"], g["rotations"], np.zeros((2, 2)), np.zeros(2))[1] * np.r_[np.ones(N_POSE // 2), np.zeros(N_POSE // 2)]
+    return (
+        pose_features(g["root_position"], g["rotations"], np.zeros((2, 2)), np.zeros(2))[1]
+        * np.r_[np.ones(N_POSE // 2), np.zeros(N_POSE // 2)]
+    )
 
 
-def locomote(waypoints: np.ndarray, speed: float = 1.4, start_heading: float = 0.0, face_yaw: float | None = None,
-             phase0: float = 0.0, occupied=None, use_network: bool = True) -> Locomotion:
+def locomote(
+    waypoints: np.ndarray,
+    speed: float = 1.4,
+    start_heading: float = 0.0,
+    face_yaw: float | None = None,
+    phase0: float = 0.0,
+    occupied=None,
+    use_network: bool = True,
+) -> Locomotion:
     """Walk (or run) along waypoints and stop at the last one, facing face_yaw when given.
 
     Args:
@@ -194,8 +254,12 @@ def locomote(waypoints: np.ndarray, speed: float = 1.4, start_heading: float = 0
     rt = runtime() if use_network else None
     if rt is None:
         g = synthesize_gait(pos, heading, spd, phase0=phase0)
-        return Locomotion(g["root_position"], g["rotations"], g["contacts"], heading, g["phase"], "procedural")
-    control = np.concatenate([trajectory_features(pos, heading), sensor_features(pos, heading, occupied)], axis=1)
+        return Locomotion(
+            g["root_position"], g["rotations"], g["contacts"], heading, g["phase"], "procedural"
+        )
+    control = np.concatenate(
+        [trajectory_features(pos, heading), sensor_features(pos, heading, occupied)], axis=1
+    )
     y = rt.run(control, standing_pose_features(), phase0)
     t = len(pos)
     rot = quat.normalize(y[:, SLICE_ROT].reshape(t, N_JOINTS, 4).astype(np.float64))

@@ -44,7 +44,9 @@ def sensor_features(pos: np.ndarray, heading: np.ndarray, occupied=None) -> np.n
     return occupied(pts.reshape(-1, 2)).reshape(t, N_SENSOR).astype(np.float64)
 
 
-def pose_features(root_position: np.ndarray, rotations: np.ndarray, ground: np.ndarray, heading: np.ndarray) -> np.ndarray:
+def pose_features(
+    root_position: np.ndarray, rotations: np.ndarray, ground: np.ndarray, heading: np.ndarray
+) -> np.ndarray:
     """(T, J*6) joint positions in the root frame and their per-frame velocities (first frame: zero)."""
     pos, _ = forward_kinematics(rotations, root_position)
     local = to_local(pos, ground, heading).reshape(len(pos), -1)
@@ -72,8 +74,14 @@ def root_deltas(pos: np.ndarray, heading: np.ndarray) -> np.ndarray:
     return d
 
 
-def build_xy(root_position: np.ndarray, rotations: np.ndarray, heading: np.ndarray, phase: np.ndarray,
-             contacts: np.ndarray, occupied=None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def build_xy(
+    root_position: np.ndarray,
+    rotations: np.ndarray,
+    heading: np.ndarray,
+    phase: np.ndarray,
+    contacts: np.ndarray,
+    occupied=None,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Training pairs of one sequence: X (T-1, N_IN), phase (T-1, 1) of the previous frame, Y (T-1, N_OUT)."""
     ground = root_position[:, [0, 2]]
     traj = trajectory_features(ground, heading)
@@ -82,6 +90,8 @@ def build_xy(root_position: np.ndarray, rotations: np.ndarray, heading: np.ndarr
     rot = rotation_features(rotations, heading)
     dphase = np.mod(np.diff(phase), 1.0)
     x = np.concatenate([traj[1:], sensor[1:], pose[:-1]], axis=1)
-    y = np.concatenate([pose[1:], rot[1:], root_deltas(ground, heading)[1:], dphase[:, None], contacts[1:]], axis=1)
+    y = np.concatenate(
+        [pose[1:], rot[1:], root_deltas(ground, heading)[1:], dphase[:, None], contacts[1:]], axis=1
+    )
     assert y.shape[1] == N_JOINTS * 10 + 6
     return x.astype(np.float32), phase[:-1, None].astype(np.float32), y.astype(np.float32)

@@ -38,7 +38,12 @@ def catmull_rom_coefficients(phase: torch.Tensor) -> torch.Tensor:
     k1 = torch.floor(scaled)
     mu = scaled - k1
     mu2, mu3 = mu * mu, mu * mu * mu
-    w = [-0.5 * mu + mu2 - 0.5 * mu3, 1.0 - 2.5 * mu2 + 1.5 * mu3, 0.5 * mu + 2.0 * mu2 - 1.5 * mu3, -0.5 * mu2 + 0.5 * mu3]
+    w = [
+        -0.5 * mu + mu2 - 0.5 * mu3,
+        1.0 - 2.5 * mu2 + 1.5 * mu3,
+        0.5 * mu + 2.0 * mu2 - 1.5 * mu3,
+        -0.5 * mu2 + 0.5 * mu3,
+    ]
     sets = torch.arange(4, dtype=phase.dtype, device=phase.device).reshape(1, 4)
     coeff = torch.zeros(phase.shape[0], 4, dtype=phase.dtype, device=phase.device)
     for i in range(4):
@@ -84,8 +89,9 @@ class PFNN(nn.Module):
         return self.l2(self.drop(h), c)
 
     def forward(self, x: torch.Tensor, phase: torch.Tensor) -> torch.Tensor:
-        yn = self.forward_normalized((x - self.x_mean) / self.x_std, phase)
-        return yn * self.y_std + self.y_mean
+        x_mean, x_std, y_mean, y_std = (self.get_buffer(n) for n in ("x_mean", "x_std", "y_mean", "y_std"))
+        yn = self.forward_normalized((x - x_mean) / x_std, phase)
+        return yn * y_std + y_mean
 
 
 class Rollout(nn.Module):

@@ -26,10 +26,9 @@ FAST_STEPS = 60  # frames per onnxruntime call (2 s at 30 fps)
 PHASE_BINS = 24  # precomputed phase locations: 24 keeps the table (7 MB float32) cache-friendly; mean pose deviation from the exact blend ~0.7 cm
 N_CONTROL = N_TRAJ + N_SENSOR
 # Catmull-Rom basis: w_i(mu) = [1, mu, mu^2, mu^3] @ BASIS[:, i], i = 0..3 for sets k-1, k, k+1, k+2.
-BASIS = np.array([[0.0, 1.0, 0.0, 0.0],
-                  [-0.5, 0.0, 0.5, 0.0],
-                  [1.0, -2.5, 2.0, -0.5],
-                  [-0.5, 1.5, -1.5, 0.5]])
+BASIS = np.array(
+    [[0.0, 1.0, 0.0, 0.0], [-0.5, 0.0, 0.5, 0.0], [1.0, -2.5, 2.0, -0.5], [-0.5, 1.5, -1.5, 0.5]]
+)
 
 
 def phase_basis() -> np.ndarray:
@@ -125,8 +124,8 @@ def build_rollout(state: dict[str, np.ndarray], steps: int = FAST_STEPS, bins: i
         nodes.append(helper.make_node(op, inputs, [output], **attrs))
         return output
 
-    for i, w in enumerate(phase_tables(state, bins)):
-        node("Cast", [const(f"W{i}_half", w.astype(np.float16))], f"W{i}", to=TensorProto.FLOAT)
+    for i, table in enumerate(phase_tables(state, bins)):
+        node("Cast", [const(f"W{i}_half", table.astype(np.float16))], f"W{i}", to=TensorProto.FLOAT)
     const("bins", np.array(float(bins), np.float32))
     const("one", np.array(1.0, np.float32))
     const("scalar", np.zeros(0, np.int64))
@@ -145,12 +144,16 @@ def build_rollout(state: dict[str, np.ndarray], steps: int = FAST_STEPS, bins: i
     const("axis2", np.array([2], np.int64))
     split_sizes = const("split_sizes", np.ones(steps, np.int64))
 
-    control = node("Pad", ["control", "pads", "one"], "control_1", mode="constant")  # (1, steps, 61): bias input
+    control = node(
+        "Pad", ["control", "pads", "one"], "control_1", mode="constant"
+    )  # (1, steps, 61): bias input
     ctrl_steps = [f"ctrl_{k}" for k in range(steps)]  # (1, 1, 61) each
     nodes.append(helper.make_node("Split", [control, split_sizes], ctrl_steps, axis=1))
     pose = node("Reshape", ["pose", "shape_pose3"], "pose_in")  # (1, 1, N_POSE)
     frac = node("Sub", ["phase", node("Floor", ["phase"], "phase_in_floor")], "phase_in_frac")
-    phase = node("Mul", [node("Mod", [frac, "one"], "phase_in", fmod=1), "bins"], "phase_bins")  # in [0, bins)
+    phase = node(
+        "Mul", [node("Mod", [frac, "one"], "phase_in", fmod=1), "bins"], "phase_bins"
+    )  # in [0, bins)
     ys = []
     for k in range(steps):
         p = f"s{k}_"
@@ -162,23 +165,40 @@ def build_rollout(state: dict[str, np.ndarray], steps: int = FAST_STEPS, bins: i
             h = z if i == 2 else node("Elu", [z], p + f"h{i}", alpha=1.0)
         ys.append(h)
         pose = node("Slice", [h, "pose_start", "pose_end", "axis2"], p + "pose")
-        dphase = node("Clip", [node("Slice", [h, "dphase_start", "dphase_end", "axis2"], p + "dph_raw"), "dphase_lo",
-                               "dphase_hi"], p + "dph")
-        phase = node("Mod", [node("Add", [phase, node("Reshape", [dphase, "shape_11"], p + "dph11")], p + "ph_sum"),
-                             "bins"], p + "phase", fmod=1)
+        dphase = node(
+            "Clip",
+            [
+                node("Slice", [h, "dphase_start", "dphase_end", "axis2"], p + "dph_raw"),
+                "dphase_lo",
+                "dphase_hi",
+            ],
+            p + "dph",
+        )
+        phase = node(
+            "Mod",
+            [node("Add", [phase, node("Reshape", [dphase, "shape_11"], p + "dph11")], p + "ph_sum"), "bins"],
+            p + "phase",
+            fmod=1,
+        )
     y_ext = node("Concat", ys, "y_ext", axis=1)  # (1, steps, N_OUT + 1)
     nodes.append(helper.make_node("Slice", [y_ext, "y_start", "y_end", "axis2"], ["y"]))
     nodes.append(helper.make_node("Reshape", [pose, "shape_pose"], ["last_pose"]))
     nodes.append(helper.make_node("Div", [phase, "bins"], ["last_phase"]))
     graph = helper.make_graph(
-        nodes, "pfnn_rollout_fast",
-        [helper.make_tensor_value_info("control", TensorProto.FLOAT, [1, steps, N_CONTROL]),
-         helper.make_tensor_value_info("pose", TensorProto.FLOAT, [1, N_POSE]),
-         helper.make_tensor_value_info("phase", TensorProto.FLOAT, [1, 1])],
-        [helper.make_tensor_value_info("y", TensorProto.FLOAT, [1, steps, N_OUT]),
-         helper.make_tensor_value_info("last_pose", TensorProto.FLOAT, [1, N_POSE]),
-         helper.make_tensor_value_info("last_phase", TensorProto.FLOAT, [1, 1])],
-        inits)
+        nodes,
+        "pfnn_rollout_fast",
+        [
+            helper.make_tensor_value_info("control", TensorProto.FLOAT, [1, steps, N_CONTROL]),
+            helper.make_tensor_value_info("pose", TensorProto.FLOAT, [1, N_POSE]),
+            helper.make_tensor_value_info("phase", TensorProto.FLOAT, [1, 1]),
+        ],
+        [
+            helper.make_tensor_value_info("y", TensorProto.FLOAT, [1, steps, N_OUT]),
+            helper.make_tensor_value_info("last_pose", TensorProto.FLOAT, [1, N_POSE]),
+            helper.make_tensor_value_info("last_phase", TensorProto.FLOAT, [1, 1]),
+        ],
+        inits,
+    )
     model = helper.make_model(graph, opset_imports=[helper.make_opsetid("", 17)], producer_name="wana")
     model.ir_version = 8
     onnx.checker.check_model(model)
@@ -196,16 +216,23 @@ def state_from_checkpoint(path: Path) -> dict[str, np.ndarray]:
 def main(argv: list[str] | None = None) -> int:
     from services.motion.train_locomotion import MODEL_DIR
 
-    parser = argparse.ArgumentParser(prog="python -m services.motion.pfnn_onnx", description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--model-dir", type=Path, default=MODEL_DIR, help="folder with pfnn.pt (output goes there too)")
+    parser = argparse.ArgumentParser(
+        prog="python -m services.motion.pfnn_onnx",
+        description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    parser.add_argument(
+        "--model-dir", type=Path, default=MODEL_DIR, help="folder with pfnn.pt (output goes there too)"
+    )
     parser.add_argument("--steps", type=int, default=FAST_STEPS, help="frames unrolled per onnxruntime call")
     args = parser.parse_args(argv)
     import onnx
 
     model = build_rollout(state_from_checkpoint(args.model_dir / "pfnn.pt"), args.steps)
     onnx.save(model, args.model_dir / "pfnn_fast.onnx")
-    print(f"wrote {args.model_dir / 'pfnn_fast.onnx'} ({args.steps} steps per call, {len(model.graph.node)} nodes)")
+    print(
+        f"wrote {args.model_dir / 'pfnn_fast.onnx'} ({args.steps} steps per call, {len(model.graph.node)} nodes)"
+    )
     return 0
 
 

@@ -1,8 +1,11 @@
 """Plan a character's actions (from the SSG) into locomotion and action segments.
 
 Target objects' stand points and contact points come from the asset catalog
-(wana.assets.catalog); routes from route_fn(scene, start_xz, goal_xz) -> (N, 2) waypoints
-(default: a straight line; the optimizer provides A*).
+(wana.assets.catalog); routes from route_fn(scene, start_xz, goal_xz[, ignore]) -> (N, 2)
+waypoints. The default is the optimizer's A* around the furniture (services.motion.routing, on
+cached occupancy grids), ignoring the object walked to and what rests on it so that a goal inside
+its clearance is reachable; where no route exists the character walks the straight line and the
+plan carries a diagnostic.
 
 Actions aimed at another character use where that character is (``others``: name -> x, z when the
 first planned action starts; held there for the rest of the plan): "walks to Eve" stops
@@ -12,6 +15,7 @@ every action aimed at her ("waves at Eve") turns to face her.
 
 from __future__ import annotations
 
+import inspect
 from collections.abc import Callable
 
 import numpy as np
@@ -21,25 +25,103 @@ from proto.ssg import ActionNode, CharacterNode
 from services.motion.library import ActionClip, get_clip, load_library
 from services.motion.synthesis import MotionPlan, PlannedSegment
 
-RouteFn = Callable[[Scene, tuple[float, float], tuple[float, float]], np.ndarray]
-SPEEDS = {"walk": 1.3, "walk_slowly": 0.8, "run": 3.2, "jog": 2.2, "tiptoe": 0.7, "march": 1.2, "limp": 0.7,
-          "walk_backward": 0.8, "sidestep_left": 0.8, "sidestep_right": 0.8}
+RouteFn = Callable[..., np.ndarray]  # (scene, start_xz, goal_xz[, ignore: frozenset[str]]) -> (N, 2)
+SPEEDS = {
+    "walk": 1.3,
+    "walk_slowly": 0.8,
+    "run": 3.2,
+    "jog": 2.2,
+    "tiptoe": 0.7,
+    "march": 1.2,
+    "limp": 0.7,
+    "walk_backward": 0.8,
+    "sidestep_left": 0.8,
+    "sidestep_right": 0.8,
+}
 MANNER_SPEED = {"slowly": 0.6, "slow": 0.6, "quickly": 1.5, "fast": 1.5, "hurriedly": 1.6, "leisurely": 0.7}
-# Catalog contact-point names preferred for each interaction kind, best first.
-PREFERRED_POINTS = {"seat": ("sit", "sit_0"), "bed": ("lie", "sit"), "keyboard": ("work", "write", "touch"),
-                    "instrument": ("work", "touch"), "surface": ("touch", "write", "work", "eat", "cook"),
-                    "button": ("touch",), "door": ("touch",), "container": ("touch", "pick_up"), "tool": ("work", "touch"),
-                    "bag": ("touch",), "floor_item": ("pick_up", "touch")}
+# Catalog contact-point names (wana.assets.catalog make_object(cat).contact_points) preferred for each
+# interaction kind, best first; CLIP_POINTS comes before them for the clips that mean one point.
+PREFERRED_POINTS = {
+    "seat": ("sit", "sit_0"),
+    "bed": ("lie", "sit"),
+    "keyboard": ("type", "click", "use", "work", "write", "touch"),
+    "instrument": ("play", "work", "touch"),
+    "surface": ("write", "work", "eat", "cook", "wash", "touch"),
+    "button": ("switch", "use", "touch"),
+    "door": ("open", "touch"),
+    "container": ("open", "take", "touch", "pick_up"),
+    "tool": ("work", "saw", "hammer", "drill", "screw", "cut", "touch"),
+    "bag": ("punch", "touch"),
+    "floor_item": ("pick_up", "lift", "carry", "touch"),
+}
+CLIP_POINTS = {
+    "type": ("type",),
+    "use_mouse": ("click", "use", "type"),
+    "play_piano": ("play",),
+    "play_drums": ("play",),
+    "punch_bag": ("punch",),
+    "write": ("write",),
+    "write_on_blackboard": ("write",),
+    "draw": ("write", "paint"),
+    "paint": ("paint", "write"),
+    "eat": ("eat",),
+    "cook": ("cook",),
+    "chop": ("cook", "cut", "work"),
+    "wash_dishes": ("wash",),
+    "wash_hands": ("wash",),
+    "iron": ("work", "write"),
+    "fold_clothes": ("work", "write"),
+    "wipe_table": ("touch",),
+    "wipe_window": ("touch",),
+    "lean_on_wall": ("touch",),
+    "push": ("touch",),
+    "pull": ("open", "touch"),
+    "knock": ("touch",),
+    "open_door": ("open",),
+    "close_door": ("open",),
+    "open_fridge": ("open",),
+    "open_drawer": ("open",),
+    "press_switch": ("switch", "use"),
+    "push_button": ("use", "switch"),
+    "saw": ("saw",),
+    "hammer": ("hammer", "work"),
+    "drill": ("drill", "work"),
+    "screw": ("screw", "work"),
+    "sweep": ("sweep",),
+    "pick_up": ("pick_up", "lift"),
+    "put_down": ("pick_up",),
+    "lie_down": ("lie",),
+    "sleep": ("lie",),
+}
 SEAT_BACK = 0.22  # metres the hips travel backwards while sitting down (sit clip)
 REACH = 0.42  # metres from the contact points to where the character stands
 PERSON_DISTANCE = 0.8  # metres between two characters after one walks up to the other
 CLOSE_DISTANCE = {"hug": 0.45, "shake_hands": 0.75, "high_five": 0.75}  # metres, per touching action
+SEATING = ("sit", "lie_down", "sleep")  # clips that leave the character on a seat or a bed
 TURN_TOLERANCE = 0.3  # radians off the wanted facing before the character turns in place
 
 
 def straight_route(scene: Scene, start: tuple[float, float], goal: tuple[float, float]) -> np.ndarray:
-    """Default route: the straight line."""
+    """The straight line (for callers that want no route planning)."""
     return np.array([start, goal], dtype=np.float64)
+
+
+def resting_on(scene: Scene, obj_id: str) -> frozenset[str]:
+    """The object and everything resting on it, directly or on something that rests on it."""
+    out = {obj_id}
+    grew = True
+    while grew:
+        more = {o.id for o in scene.objects if o.support in out} - out
+        out |= more
+        grew = bool(more)
+    return frozenset(out)
+
+
+def _takes_ignore(fn: Callable) -> bool:
+    try:
+        return "ignore" in inspect.signature(fn).parameters
+    except (TypeError, ValueError):
+        return False
 
 
 def _object_geometry(placed: PlacedObject):
@@ -67,19 +149,29 @@ def _fallback_geometry(placed: PlacedObject):
     return stand, {}
 
 
-def contact_targets(clip: ActionClip, points: dict[str, list[tuple[str, np.ndarray]]]) -> dict[str, tuple[float, float, float]]:
+def contact_targets(
+    clip: ActionClip, points: dict[str, list[tuple[str, np.ndarray]]]
+) -> dict[str, tuple[float, float, float]]:
     """joint -> world target for the clip's contact joints, from the object's contact points."""
     if not clip.interaction or not points:
         return {}
-    names = [n for n in PREFERRED_POINTS.get(clip.interaction.object, ()) if n in points] + sorted(points)
-    wanted = set(clip.interaction.contacts)
+    preferred = CLIP_POINTS.get(clip.name, ()) + PREFERRED_POINTS.get(clip.interaction.object, ())
+    names = list(dict.fromkeys([n for n in preferred if n in points] + sorted(points)))
+    wanted = {
+        _limb(j) for j in clip.interaction.contacts
+    }  # a hand point serves a middle-finger contact and back
     for name in names:
         pairs = points[name]
         joints = {j for j, _ in pairs}
-        sides = {j.replace("Middle1", "") for j in joints} | joints
-        if wanted & sides or (clip.interaction.object in ("seat", "bed") and "Hips" in joints):
-            return {j: tuple(float(v) for v in p) for j, p in pairs}  # type: ignore[misc]
+        if wanted & {_limb(j) for j in joints} or (
+            clip.interaction.object in ("seat", "bed") and "Hips" in joints
+        ):
+            return {j: (float(p[0]), float(p[1]), float(p[2])) for j, p in pairs}
     return {}
+
+
+def _limb(joint: str) -> str:
+    return joint.replace("Middle1", "")
 
 
 def _find_object(scene: Scene, ref: str) -> PlacedObject | None:
@@ -94,8 +186,9 @@ def _find_object(scene: Scene, ref: str) -> PlacedObject | None:
     return None
 
 
-def _other_character(node: ActionNode, clip: ActionClip | None, others: dict[str, tuple[float, float]],
-                     scene: Scene, me: str) -> str:
+def _other_character(
+    node: ActionNode, clip: ActionClip | None, others: dict[str, tuple[float, float]], scene: Scene, me: str
+) -> str:
     """The name of the character an action is aimed at ("" when none).
 
     The target or destination names a character of ``others``; a touching action (hug, shake hands,
@@ -126,16 +219,22 @@ def _short_of(pos: np.ndarray, other: np.ndarray, distance: float) -> np.ndarray
     return other - d / n * distance
 
 
-def plan_actions(character: CharacterNode, scene: Scene, start: tuple[float, float, float],
-                 route_fn: RouteFn | None = None, posture: str = "stand",
-                 others: dict[str, tuple[float, float]] | None = None) -> MotionPlan:
+def plan_actions(
+    character: CharacterNode,
+    scene: Scene,
+    start: tuple[float, float, float],
+    route_fn: RouteFn | None = None,
+    posture: str = "stand",
+    others: dict[str, tuple[float, float]] | None = None,
+) -> MotionPlan:
     """Turn a character's ordered actions into a MotionPlan.
 
     Args:
         character: the SSG character with its ordered ActionNodes.
         scene: the composed scene (objects placed in the world).
         start: (x, z, yaw) where the character starts.
-        route_fn: route planner; defaults to a straight line.
+        route_fn: route planner (scene, start_xz, goal_xz[, ignore]) -> (N, 2); defaults to A* around
+            the furniture (services.motion.routing.scene_route), a straight line where there is none.
         posture: the posture the character starts in ("stand", "sit", ...), when planning resumes mid-story.
         others: other characters' (x, z) metres, world, when the first action starts; actions aimed at
             one of them face it, and walking / touching actions go up to it.
@@ -144,7 +243,6 @@ def plan_actions(character: CharacterNode, scene: Scene, start: tuple[float, flo
         the plan; unknown actions become a 1 s wait and a diagnostic.
     """
     others = dict(others or {})
-    route = route_fn or straight_route
     lib = load_library()
     segs: list[PlannedSegment] = []
     diags: list[str] = []
@@ -154,13 +252,39 @@ def plan_actions(character: CharacterNode, scene: Scene, start: tuple[float, flo
     def add(**kw) -> None:
         segs.append(PlannedSegment(index=len(segs), **kw))
 
-    def walk_to(goal: np.ndarray, speed: float, face: float | None, action: str, ai: int, target: str = "") -> None:
+    def route(a: tuple[float, float], b: tuple[float, float], ignore: frozenset[str]) -> np.ndarray:
+        if route_fn is not None:
+            return route_fn(scene, a, b, ignore=ignore) if custom_ignores else route_fn(scene, a, b)
+        from services.motion.routing import scene_route
+
+        wps, why = scene_route(scene, a, b, ignore)
+        if why:
+            diags.append(why)
+        return wps
+
+    custom_ignores = route_fn is not None and _takes_ignore(route_fn)
+
+    def walk_to(
+        goal: np.ndarray, speed: float, face: float | None, action: str, ai: int, target: str = ""
+    ) -> None:
         nonlocal pos, yaw
         if np.linalg.norm(goal - pos) < 0.05 and face is None:
             return
-        wps = np.asarray(route(scene, (float(pos[0]), float(pos[1])), (float(goal[0]), float(goal[1]))), float).reshape(-1, 2)
-        add(kind="locomotion", action=action, waypoints=tuple(map(tuple, np.round(wps, 4))), speed=speed, face_yaw=face,
-            target_id=target, action_index=ai)
+        a, b = (float(pos[0]), float(pos[1])), (float(goal[0]), float(goal[1]))
+        if np.linalg.norm(goal - pos) < 1e-6:  # turning in place
+            wps = np.array([a, b])
+        else:
+            ignore = resting_on(scene, target) if target and target not in others else frozenset()
+            wps = np.asarray(route(a, b, ignore), float).reshape(-1, 2)
+        add(
+            kind="locomotion",
+            action=action,
+            waypoints=tuple(map(tuple, np.round(wps, 4))),
+            speed=speed,
+            face_yaw=face,
+            target_id=target,
+            action_index=ai,
+        )
         if len(wps) > 1:
             d = wps[-1] - wps[-2]
             yaw = float(np.arctan2(d[0], d[1])) if np.linalg.norm(d) > 1e-6 else yaw
@@ -168,8 +292,8 @@ def plan_actions(character: CharacterNode, scene: Scene, start: tuple[float, flo
         if face is not None:
             yaw = face
 
+    node: ActionNode
     for ai, node in enumerate(character.actions):
-        node: ActionNode
         name = node.action
         if not name or name not in lib:
             try:
@@ -185,7 +309,8 @@ def plan_actions(character: CharacterNode, scene: Scene, start: tuple[float, flo
             there = np.asarray(others[person], dtype=float)
             touching = clip.interaction is not None and clip.interaction.object == "person"
             seated = (segs and any(s.action in ("sit", "lie_down") for s in segs[-2:])) or (
-                not segs and posture in ("sit", "lie"))
+                not segs and posture in ("sit", "lie")
+            )
             if "locomotion" in clip.tags or name in CLOSE_DISTANCE or touching:
                 near = CLOSE_DISTANCE.get(name, PERSON_DISTANCE)
                 goal = _short_of(pos, there, near)
@@ -201,13 +326,23 @@ def plan_actions(character: CharacterNode, scene: Scene, start: tuple[float, flo
                 face = _yaw_to(pos, there, yaw)
                 if abs(np.arctan2(np.sin(face - yaw), np.cos(face - yaw))) > TURN_TOLERANCE:
                     walk_to(pos.copy(), 1.0, face, "turn", ai, person)
-            add(kind="action", action=name, duration_s=float(node.duration_s), target_id=person, action_index=ai)
+            add(
+                kind="action",
+                action=name,
+                duration_s=float(node.duration_s),
+                target_id=person,
+                action_index=ai,
+            )
             continue
         if "locomotion" in clip.tags:
             obj = _find_object(scene, node.destination or node.target)
             if obj is not None:
                 geo = _object_geometry(obj) or _fallback_geometry(obj)
                 goal = geo[0]
+                # Stop beside the object, not inside it or other furniture (a chair tucked under a desk).
+                from services.motion.routing import free_spot
+
+                goal = np.asarray(free_spot(scene, (float(goal[0]), float(goal[1]))), float)
             else:
                 fwd = np.array([np.sin(yaw), np.cos(yaw)])
                 goal = pos + fwd * (2.0 if node.destination or not node.target else 1.5)
@@ -227,30 +362,61 @@ def plan_actions(character: CharacterNode, scene: Scene, start: tuple[float, flo
                 face = float(obj.yaw)
                 seat = np.array([targets["Hips"][0], targets["Hips"][2]])
                 approach = seat + np.array([np.sin(face), np.cos(face)]) * SEAT_BACK
-                walk_to(approach, 1.2, face, "walk", ai, obj.id)
+                on_it = (
+                    segs
+                    and segs[-1].kind == "action"
+                    and segs[-1].target_id == obj.id
+                    and segs[-1].action in SEATING
+                ) or (not segs and posture in ("sit", "lie"))
+                if not on_it:  # already sitting / lying there ("lies down on the bed and sleeps"): stay
+                    walk_to(approach, 1.2, face, "walk", ai, obj.id)
+                    # Sitting brings the hips onto the seat wherever the walk stopped; getting up ends here.
+                    pos = approach.copy()
+                    yaw = face
             elif clip.interaction.object not in ("seat", "bed"):
                 centre = np.array([obj.position[0], obj.position[2]])
-                if targets:  # stand within arm's reach of the contact points (catalog stand points can be far)
+                if (
+                    targets
+                ):  # stand within arm's reach of the contact points (catalog stand points can be far)
                     centre = np.mean([[p[0], p[2]] for p in targets.values()], axis=0)
                     away = stand - centre
                     if np.linalg.norm(away) > 1e-6:
                         stand = centre + away / np.linalg.norm(away) * min(np.linalg.norm(away), REACH)
+                    from services.motion.routing import free_spot
+
+                    # Other furniture there (a chair in front of the desk): the free spot nearest the contacts.
+                    stand_xz = (float(stand[0]), float(stand[1]))
+                    if free_spot(scene, stand_xz) != stand_xz:
+                        stand = np.asarray(free_spot(scene, (float(centre[0]), float(centre[1]))), float)
                 d = centre - stand
                 face = float(np.arctan2(d[0], d[1])) if np.linalg.norm(d) > 1e-6 else yaw
                 already_there = np.linalg.norm(stand - pos) < 0.35
                 seated = (segs and any(s.action in ("sit", "lie_down") for s in segs[-2:])) or (
-                    not segs and posture in ("sit", "lie"))
+                    not segs and posture in ("sit", "lie")
+                )
                 if not already_there and not seated:
                     walk_to(stand, 1.2, face, "walk", ai, obj.id)
                 elif not seated and abs(np.arctan2(np.sin(face - yaw), np.cos(face - yaw))) > 0.3:
-                    walk_to(pos.copy(), 1.0, face, "turn", ai, obj.id)  # close enough, but facing away: turn in place
+                    walk_to(
+                        pos.copy(), 1.0, face, "turn", ai, obj.id
+                    )  # close enough, but facing away: turn in place
         elif obj is not None and clip.interaction is None and name in ("look_at", "point", "wave", "talk"):
             d = np.array([obj.position[0], obj.position[2]]) - pos
             if np.linalg.norm(d) > 0.3:
                 face = float(np.arctan2(d[0], d[1]))
                 if abs(np.arctan2(np.sin(face - yaw), np.cos(face - yaw))) > 0.3:
                     walk_to(pos.copy(), 1.0, face, "turn", ai, obj.id)
-        add(kind="action", action=name, duration_s=float(node.duration_s), targets=tuple(sorted(targets.items())),
-            target_id=obj.id if obj else node.target, action_index=ai)
-    return MotionPlan(character=character.name, start=(float(x), float(z), float(start[2])), segments=tuple(segs),
-                      diagnostics=tuple(diags))
+        add(
+            kind="action",
+            action=name,
+            duration_s=float(node.duration_s),
+            targets=tuple(sorted(targets.items())),
+            target_id=obj.id if obj else node.target,
+            action_index=ai,
+        )
+    return MotionPlan(
+        character=character.name,
+        start=(float(x), float(z), float(start[2])),
+        segments=tuple(segs),
+        diagnostics=tuple(diags),
+    )

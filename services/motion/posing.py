@@ -62,8 +62,12 @@ def aim_chain(
     return q_upper, q_lower
 
 
-def arm(side: str, upper: tuple[float, float, float], fore: tuple[float, float, float],
-        hand: tuple[float, float, float] = (0.0, 0.0, 0.0)) -> Pose:
+def arm(
+    side: str,
+    upper: tuple[float, float, float],
+    fore: tuple[float, float, float],
+    hand: tuple[float, float, float] = (0.0, 0.0, 0.0),
+) -> Pose:
     """Arm pose; directions for the left arm; the right arm mirrors x (pass side "R" with left-style dirs).
 
     Args:
@@ -81,14 +85,18 @@ def arm(side: str, upper: tuple[float, float, float], fore: tuple[float, float, 
     return {f"{name}Arm": q_up, f"{name}ForeArm": q_fo, f"{name}Hand": quat.from_euler("XYZ", h)}
 
 
-def arms(upper: tuple[float, float, float], fore: tuple[float, float, float],
-         hand: tuple[float, float, float] = (0.0, 0.0, 0.0)) -> Pose:
+def arms(
+    upper: tuple[float, float, float],
+    fore: tuple[float, float, float],
+    hand: tuple[float, float, float] = (0.0, 0.0, 0.0),
+) -> Pose:
     """Both arms, mirrored."""
     return {**arm("L", upper, fore, hand), **arm("R", upper, fore, hand)}
 
 
-def leg(side: str, thigh: tuple[float, float, float], shin: tuple[float, float, float],
-        foot_pitch: float = 0.0) -> Pose:
+def leg(
+    side: str, thigh: tuple[float, float, float], shin: tuple[float, float, float], foot_pitch: float = 0.0
+) -> Pose:
     """Leg pose; x toward the character's outer side, y up, z forward; knee flexes toward -z."""
     s = 1.0 if side == "L" else -1.0
     name = "Left" if side == "L" else "Right"
@@ -96,11 +104,15 @@ def leg(side: str, thigh: tuple[float, float, float], shin: tuple[float, float, 
     sh = np.array([s * shin[0], shin[1], shin[2]])
     q_th, q_sh = aim_chain(np.array([0.0, -1.0, 0.0]), np.array([0.0, 0.0, -1.0]), th, sh)
     # Keep the foot level relative to the world when the shin tilts, plus an explicit pitch.
-    q_foot = quat.mul(quat.inv(quat.mul(q_th, q_sh)), quat.from_euler("XYZ", np.array([foot_pitch, 0.0, 0.0])))
+    q_foot = quat.mul(
+        quat.inv(quat.mul(q_th, q_sh)), quat.from_euler("XYZ", np.array([foot_pitch, 0.0, 0.0]))
+    )
     return {f"{name}UpLeg": q_th, f"{name}Leg": q_sh, f"{name}Foot": q_foot}
 
 
-def legs(thigh: tuple[float, float, float], shin: tuple[float, float, float], foot_pitch: float = 0.0) -> Pose:
+def legs(
+    thigh: tuple[float, float, float], shin: tuple[float, float, float], foot_pitch: float = 0.0
+) -> Pose:
     """Both legs, mirrored."""
     return {**leg("L", thigh, shin, foot_pitch), **leg("R", thigh, shin, foot_pitch)}
 
@@ -137,4 +149,7 @@ def merge(*poses: Pose) -> Pose:
 
 def leg_length() -> float:
     """Hip-to-ankle length of the reference skeleton, metres."""
-    return float(np.linalg.norm(REST_OFFSETS[JOINT_INDEX["LeftLeg"]]) + np.linalg.norm(REST_OFFSETS[JOINT_INDEX["LeftFoot"]]))
+    return float(
+        np.linalg.norm(REST_OFFSETS[JOINT_INDEX["LeftLeg"]])
+        + np.linalg.norm(REST_OFFSETS[JOINT_INDEX["LeftFoot"]])
+    )

@@ -110,7 +110,9 @@ def between(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     opp = (1.0 + d[..., 0]) < 1e-9
     if np.any(opp):
         ortho = np.cross(a, np.array([1.0, 0.0, 0.0]))
-        ortho = np.where(np.linalg.norm(ortho, axis=-1, keepdims=True) < 1e-6, np.cross(a, [0.0, 1.0, 0.0]), ortho)
+        ortho = np.where(
+            np.linalg.norm(ortho, axis=-1, keepdims=True) < 1e-6, np.cross(a, [0.0, 1.0, 0.0]), ortho
+        )
         q = np.where(opp[..., None], np.concatenate([ortho, np.zeros_like(d)], axis=-1), q)
     return normalize(q)
 
@@ -118,13 +120,21 @@ def between(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 def from_euler(order: str, degrees_xyz: np.ndarray) -> np.ndarray:
     """Quaternions from intrinsic Euler angles (upper-case order as in BVH, e.g. "ZYX"), degrees (..., 3)."""
     a = np.asarray(degrees_xyz, dtype=np.float64)
-    return Rotation.from_euler(order.upper(), a.reshape(-1, 3), degrees=True).as_quat().reshape(a.shape[:-1] + (4,))
+    return (
+        Rotation.from_euler(order.upper(), a.reshape(-1, 3), degrees=True)
+        .as_quat()
+        .reshape(a.shape[:-1] + (4,))
+    )
 
 
 def to_euler(order: str, q: np.ndarray) -> np.ndarray:
     """Intrinsic Euler angles in degrees (..., 3) in the given order (e.g. "ZYX")."""
     q = np.asarray(q, dtype=np.float64)
-    return Rotation.from_quat(q.reshape(-1, 4)).as_euler(order.upper(), degrees=True).reshape(q.shape[:-1] + (3,))
+    return (
+        Rotation.from_quat(q.reshape(-1, 4))
+        .as_euler(order.upper(), degrees=True)
+        .reshape(q.shape[:-1] + (3,))
+    )
 
 
 def yaw_of(q: np.ndarray) -> np.ndarray:

@@ -19,23 +19,57 @@ from wana.skeleton import JOINT_INDEX, N_JOINTS, PARENTS, REST_OFFSETS
 
 # canonical joint -> source joint, for rigs we know. Unmapped canonical joints follow their parent.
 CC_BASE_MAP: dict[str, str] = {
-    "Hips": "CC_Base_Hip", "Spine": "CC_Base_Waist", "Spine1": "CC_Base_Spine01", "Spine2": "CC_Base_Spine02",
-    "Neck": "CC_Base_NeckTwist01", "Head": "CC_Base_Head",
-    "LeftShoulder": "CC_Base_L_Clavicle", "LeftArm": "CC_Base_L_Upperarm", "LeftForeArm": "CC_Base_L_Forearm",
-    "LeftHand": "CC_Base_L_Hand", "LeftHandMiddle1": "CC_Base_L_Mid1",
-    "RightShoulder": "CC_Base_R_Clavicle", "RightArm": "CC_Base_R_Upperarm", "RightForeArm": "CC_Base_R_Forearm",
-    "RightHand": "CC_Base_R_Hand", "RightHandMiddle1": "CC_Base_R_Mid1",
-    "LeftUpLeg": "CC_Base_L_Thigh", "LeftLeg": "CC_Base_L_Calf", "LeftFoot": "CC_Base_L_Foot", "LeftToeBase": "CC_Base_L_ToeBase",
-    "RightUpLeg": "CC_Base_R_Thigh", "RightLeg": "CC_Base_R_Calf", "RightFoot": "CC_Base_R_Foot", "RightToeBase": "CC_Base_R_ToeBase",
+    "Hips": "CC_Base_Hip",
+    "Spine": "CC_Base_Waist",
+    "Spine1": "CC_Base_Spine01",
+    "Spine2": "CC_Base_Spine02",
+    "Neck": "CC_Base_NeckTwist01",
+    "Head": "CC_Base_Head",
+    "LeftShoulder": "CC_Base_L_Clavicle",
+    "LeftArm": "CC_Base_L_Upperarm",
+    "LeftForeArm": "CC_Base_L_Forearm",
+    "LeftHand": "CC_Base_L_Hand",
+    "LeftHandMiddle1": "CC_Base_L_Mid1",
+    "RightShoulder": "CC_Base_R_Clavicle",
+    "RightArm": "CC_Base_R_Upperarm",
+    "RightForeArm": "CC_Base_R_Forearm",
+    "RightHand": "CC_Base_R_Hand",
+    "RightHandMiddle1": "CC_Base_R_Mid1",
+    "LeftUpLeg": "CC_Base_L_Thigh",
+    "LeftLeg": "CC_Base_L_Calf",
+    "LeftFoot": "CC_Base_L_Foot",
+    "LeftToeBase": "CC_Base_L_ToeBase",
+    "RightUpLeg": "CC_Base_R_Thigh",
+    "RightLeg": "CC_Base_R_Calf",
+    "RightFoot": "CC_Base_R_Foot",
+    "RightToeBase": "CC_Base_R_ToeBase",
 }
 # CMU as converted by cgspeed (Hips/LHipJoint/LeftUpLeg... 31 joints).
 CMU_CGSPEED_MAP: dict[str, str] = {
-    "Hips": "Hips", "Spine": "LowerBack", "Spine1": "Spine", "Spine2": "Spine1", "Neck": "Neck", "Head": "Head",
-    "LeftShoulder": "LeftShoulder", "LeftArm": "LeftArm", "LeftForeArm": "LeftForeArm", "LeftHand": "LeftHand",
-    "LeftHandMiddle1": "LeftFingerBase", "RightShoulder": "RightShoulder", "RightArm": "RightArm",
-    "RightForeArm": "RightForeArm", "RightHand": "RightHand", "RightHandMiddle1": "RightFingerBase",
-    "LeftUpLeg": "LeftUpLeg", "LeftLeg": "LeftLeg", "LeftFoot": "LeftFoot", "LeftToeBase": "LeftToeBase",
-    "RightUpLeg": "RightUpLeg", "RightLeg": "RightLeg", "RightFoot": "RightFoot", "RightToeBase": "RightToeBase",
+    "Hips": "Hips",
+    "Spine": "LowerBack",
+    "Spine1": "Spine",
+    "Spine2": "Spine1",
+    "Neck": "Neck",
+    "Head": "Head",
+    "LeftShoulder": "LeftShoulder",
+    "LeftArm": "LeftArm",
+    "LeftForeArm": "LeftForeArm",
+    "LeftHand": "LeftHand",
+    "LeftHandMiddle1": "LeftFingerBase",
+    "RightShoulder": "RightShoulder",
+    "RightArm": "RightArm",
+    "RightForeArm": "RightForeArm",
+    "RightHand": "RightHand",
+    "RightHandMiddle1": "RightFingerBase",
+    "LeftUpLeg": "LeftUpLeg",
+    "LeftLeg": "LeftLeg",
+    "LeftFoot": "LeftFoot",
+    "LeftToeBase": "LeftToeBase",
+    "RightUpLeg": "RightUpLeg",
+    "RightLeg": "RightLeg",
+    "RightFoot": "RightFoot",
+    "RightToeBase": "RightToeBase",
 }
 IDENTITY_MAP: dict[str, str] = {n: n for n in JOINT_INDEX}
 KNOWN_MAPS = {"cc_base": CC_BASE_MAP, "cmu": CMU_CGSPEED_MAP, "mixamo": IDENTITY_MAP}
@@ -100,7 +134,9 @@ def retarget_positions(src: dict[str, np.ndarray]) -> tuple[np.ndarray, np.ndarr
     chain = [("Spine", "Spine1"), ("Spine1", "Spine2"), ("Spine2", "Neck"), ("Neck", "Head")]
     for k, (j, c) in enumerate(chain):
         w = min(1.0, (k + 1) / 3.0)
-        side = (1 - w) * left / np.linalg.norm(left, axis=-1, keepdims=True) + w * shoulders / np.linalg.norm(shoulders, axis=-1, keepdims=True)
+        side = (1 - w) * left / np.linalg.norm(left, axis=-1, keepdims=True) + w * shoulders / np.linalg.norm(
+            shoulders, axis=-1, keepdims=True
+        )
         set_global(j, _pelvis(side, src[c] - src[j]))
     follow_parent("Head")
     local[:, JOINT_INDEX["Head"]] = quat.identity((t,))
@@ -126,10 +162,17 @@ def retarget_positions(src: dict[str, np.ndarray]) -> tuple[np.ndarray, np.ndarr
         q_up = _mat_to_quat(m_goal @ m_rest.T)
         set_global(upper, quat.mul(glob[:, p], q_up))
         f_local = quat.rotate(quat.inv(q_up), f)
-        set_global(lower, quat.mul(glob[:, JOINT_INDEX[upper]], quat.between(np.broadcast_to(rest, f_local.shape), f_local)))
+        set_global(
+            lower,
+            quat.mul(
+                glob[:, JOINT_INDEX[upper]], quat.between(np.broadcast_to(rest, f_local.shape), f_local)
+            ),
+        )
         rest_end = REST_OFFSETS[JOINT_INDEX[tip]]
         d = quat.rotate(quat.inv(glob[:, JOINT_INDEX[lower]]), src[tip] - src[end])
-        set_global(end, quat.mul(glob[:, JOINT_INDEX[lower]], quat.between(np.broadcast_to(rest_end, d.shape), d)))
+        set_global(
+            end, quat.mul(glob[:, JOINT_INDEX[lower]], quat.between(np.broadcast_to(rest_end, d.shape), d))
+        )
         follow_parent(tip)
     return local, glob
 
@@ -143,7 +186,9 @@ def _pelvis(side: np.ndarray, up: np.ndarray) -> np.ndarray:
     return _mat_to_quat(np.stack([x, up, z], axis=-1))
 
 
-def resample(root: np.ndarray, rotations: np.ndarray, src_fps: float, fps: float) -> tuple[np.ndarray, np.ndarray]:
+def resample(
+    root: np.ndarray, rotations: np.ndarray, src_fps: float, fps: float
+) -> tuple[np.ndarray, np.ndarray]:
     """Resample (T, 3) root positions and (T, J, 4) rotations from src_fps to fps (slerp)."""
     t = root.shape[0]
     duration = (t - 1) / src_fps
@@ -157,8 +202,13 @@ def resample(root: np.ndarray, rotations: np.ndarray, src_fps: float, fps: float
     return r, q
 
 
-def retarget_clip(clip: BvhClip, joint_map: dict[str, str] | None = None, units_to_m: float | None = None,
-                  fps: float = 30.0, height: float = 1.75) -> tuple[np.ndarray, np.ndarray]:
+def retarget_clip(
+    clip: BvhClip,
+    joint_map: dict[str, str] | None = None,
+    units_to_m: float | None = None,
+    fps: float = 30.0,
+    height: float = 1.75,
+) -> tuple[np.ndarray, np.ndarray]:
     """Retarget a BVH clip onto the canonical skeleton.
 
     Args:
@@ -178,13 +228,17 @@ def retarget_clip(clip: BvhClip, joint_map: dict[str, str] | None = None, units_
     missing = sorted({v for v in joint_map.values() if v not in clip.joint_names})
     if missing or set(joint_map) != set(JOINT_INDEX):
         lacking = sorted(set(JOINT_INDEX) - set(joint_map))
-        raise ValueError(f"joint map does not fit this skeleton: source lacks {missing[:8]}, map lacks {lacking[:8]}")
+        raise ValueError(
+            f"joint map does not fit this skeleton: source lacks {missing[:8]}, map lacks {lacking[:8]}"
+        )
     gpos = clip.global_positions()
     if units_to_m is None:
         units_to_m = 0.01 if np.median(gpos[:, clip.index(joint_map["Hips"]), 1]) > 3.0 else 1.0
     gpos = gpos * units_to_m
     src = {k: gpos[:, clip.index(v)] for k, v in joint_map.items()}
-    rest_hip_height = float(np.median(src["Hips"][:, 1] - np.minimum(src["LeftFoot"][:, 1], src["RightFoot"][:, 1])))
+    rest_hip_height = float(
+        np.median(src["Hips"][:, 1] - np.minimum(src["LeftFoot"][:, 1], src["RightFoot"][:, 1]))
+    )
     canon_hip_height = float(REST_OFFSETS[0, 1] - 0.06) * height / 1.75  # hips above the ankles
     ratio = canon_hip_height / max(rest_hip_height, 1e-6)
     local, _ = retarget_positions(src)

@@ -18,7 +18,7 @@ import numpy as np
 from proto.motion_data import Motion, Segment
 from services.motion import quat
 from services.motion.blend import fade_from, layer, upper_body_mask
-from services.motion.ik import bend_spine_to_reach, joint_globals, lock_feet, two_bone_ik
+from services.motion.ik import joint_globals, lean_needed, lean_spine, lock_feet, two_bone_ik
 from services.motion.library import ActionClip, get_clip, neutral_rotations
 from services.motion.locomotion import locomote
 from wana.arrays import to_wire
@@ -26,8 +26,18 @@ from wana.skeleton import JOINT_INDEX, JOINT_NAMES, N_JOINTS, REST_OFFSETS
 
 FPS = 30
 FADE = 6  # frames of cross-fade at the start of each piece
-POSTURE_AFTER = {"sit": "sit", "lie_down": "lie", "sleep": "lie", "sit_on_floor": "sit_floor", "stand": "stand"}
+POSTURE_AFTER = {
+    "sit": "sit",
+    "lie_down": "lie",
+    "sleep": "lie",
+    "sit_on_floor": "sit_floor",
+    "stand": "stand",
+}
 POSTURE_CLIP = {"sit": "sit", "lie": "lie_down", "sit_floor": "sit_on_floor"}
+SEATED_MAX_LEAN = np.radians(40.0)  # radians of spine pitch a seated character leans toward a hand target
+SCOOT_MAX = 0.15  # metres the hips may slide forward on a seat to bring the hands to a far target
+FULL_REACH = 0.97  # share of the arm's reach a hand contact may use (nearly straight arm: pressing, wiping)
+COMFORT_REACH = 0.85  # the same for typing and playing: elbows bent ~110 degrees
 
 
 @dataclass(frozen=True)
@@ -39,10 +49,17 @@ class SegmentState:
     yaw: float = 0.0
     posture: str = "stand"
     phase: float = 0.0
+    hips_dy: float = 0.0  # metres the hips sit above (+) or below the posture's rest height (a seat's height)
 
     def rounded(self) -> SegmentState:
-        return SegmentState(round(self.x, 3), round(self.z, 3), round(float(np.arctan2(np.sin(self.yaw), np.cos(self.yaw))), 3),
-                            self.posture, round(self.phase, 3))
+        return SegmentState(
+            round(float(self.x), 3),
+            round(float(self.z), 3),
+            round(float(np.arctan2(np.sin(self.yaw), np.cos(self.yaw))), 3),
+            self.posture,
+            round(float(self.phase), 3),
+            round(float(self.hips_dy), 3),
+        )
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -88,7 +105,9 @@ class MotionPiece:
     rotations: np.ndarray
     contacts: np.ndarray
     segment: PlannedSegment
-    contact_frames: dict[str, tuple[np.ndarray, np.ndarray]] = field(default_factory=dict)  # joint -> (frames, target)
+    contact_frames: dict[str, tuple[np.ndarray, np.ndarray]] = field(
+        default_factory=dict
+    )  # joint -> (frames, target)
 
 
 @functools.lru_cache(maxsize=8)
@@ -101,15 +120,25 @@ def posture_pose(posture: str) -> tuple[np.ndarray, np.ndarray]:
     return neutral_rotations(), np.zeros(3)
 
 
-def _to_world(state: SegmentState, offsets: np.ndarray, yaw_track: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Character-frame root offsets (T, 3) -> world hips (T, 3); heading (T,)."""
+def _to_world(
+    state: SegmentState, offsets: np.ndarray, yaw_track: np.ndarray, hips_dy: np.ndarray | float | None = None
+) -> tuple[np.ndarray, np.ndarray]:
+    """Character-frame root offsets (T, 3) -> world hips (T, 3); heading (T,).
+
+    hips_dy: (T,) or scalar metres added to the hips height (default: the state's seat height when
+    not standing).
+    """
     heading = state.yaw + yaw_track
     q = quat.yaw(np.full(len(offsets), state.yaw))
     world = quat.rotate(q, offsets)
     world[:, 0] += state.x
     world[:, 2] += state.z
-    world[:, 1] += REST_OFFSETS[0, 1]
+    world[:, 1] += REST_OFFSETS[0, 1] + (_seat_dy(state) if hips_dy is None else hips_dy)
     return world, heading
+
+
+def _seat_dy(state: SegmentState) -> float:
+    return state.hips_dy if state.posture != "stand" else 0.0
 
 
 def _clip_contacts(rot: np.ndarray, root: np.ndarray) -> np.ndarray:
@@ -124,14 +153,20 @@ def _clip_contacts(rot: np.ndarray, root: np.ndarray) -> np.ndarray:
 
 def _action_piece(seg: PlannedSegment, state: SegmentState) -> tuple[MotionPiece, SegmentState]:
     clip: ActionClip = get_clip(seg.action)
-    dur = seg.duration_s if seg.duration_s > 0 else (max(clip.duration_s, 3.0) if clip.looping else clip.duration_s)
+    dur = (
+        seg.duration_s
+        if seg.duration_s > 0
+        else (max(clip.duration_s, 3.0) if clip.looping else clip.duration_s)
+    )
     rot, offs, yaw_track = clip.sample(FPS, dur)
     t = len(rot)
     posture = state.posture
+    new_posture = POSTURE_AFTER.get(clip.name, posture)
     if clip.drives_lower_body:
-        if posture != "stand" and seg.action not in ("stand",) and clip.name in POSTURE_AFTER:
-            pass
-        root, heading = _to_world(state, offs, yaw_track)
+        dy: np.ndarray | float = _seat_dy(state)
+        if dy and new_posture == "stand":  # getting up from a seat of another height: fade it out
+            dy = dy * (1.0 - _smooth(np.linspace(0.0, 1.0, t)))
+        root, heading = _to_world(state, offs, yaw_track, dy)
     else:
         base_rot, base_off = posture_pose(posture)
         base = np.repeat(base_rot[None], t, 0)
@@ -145,14 +180,15 @@ def _action_piece(seg: PlannedSegment, state: SegmentState) -> tuple[MotionPiece
     rot = fade_from(start_pose, rot, FADE if clip.name not in POSTURE_AFTER else 0)
     contact_frames: dict[str, tuple[np.ndarray, np.ndarray]] = {}
     targets = dict(seg.targets)
+    seat_shift = np.zeros(3)  # where the hips end up relative to the clip's own ending (metres, world)
     if "Hips" in targets and clip.interaction:  # move the root so the hips land on the seat / bed point
         w0, w1 = clip.interaction.window
         frames = np.arange(t)
-        ramp = np.clip((frames / FPS - (w0 - 0.6)) / 0.6, 0, 1)
-        ramp = ramp * ramp * (3 - 2 * ramp)
+        ramp = _smooth(np.clip((frames / FPS - (w0 - 0.6)) / 0.6, 0, 1))
         hit = min(int(w0 * FPS), t - 1)
         delta = np.asarray(targets["Hips"]) - root[hit]
         root = root + ramp[:, None] * delta
+        seat_shift = ramp[-1] * delta
         inside = frames[(frames >= int(w0 * FPS)) & (frames < max(int(w1 * FPS), int(w0 * FPS) + 1))]
         contact_frames["Hips"] = (inside, np.asarray(targets["Hips"]))
     stand_feet = not clip.drives_lower_body or seg.action in POSTURE_AFTER
@@ -165,24 +201,75 @@ def _action_piece(seg: PlannedSegment, state: SegmentState) -> tuple[MotionPiece
             w0, w1 = 0.0, dur
         tt = frames / FPS
         weight = np.clip(np.minimum((tt - (w0 - 0.4)) / 0.4, ((w1 + 0.4) - tt) / 0.4), 0, 1)
-        for joint, target in targets.items():
-            if joint == "Hips" or joint not in ("LeftHand", "RightHand", "LeftHandMiddle1", "RightHandMiddle1"):
-                continue
+        # Keys and instruments are worked with bent elbows: lean in until the hands are at a comfortable reach.
+        slack = COMFORT_REACH if clip.interaction.object in ("keyboard", "instrument") else FULL_REACH
+        hands = {
+            j: p
+            for j, p in targets.items()
+            if j in ("LeftHand", "RightHand", "LeftHandMiddle1", "RightHandMiddle1")
+        }
+        max_lean = np.radians(80.0)
+        if posture in ("sit", "sit_floor") and not clip.drives_lower_body and hands:
+            # Seated, the trunk leans at most SEATED_MAX_LEAN; past that the hips slide forward on the seat.
+            max_lean = SEATED_MAX_LEAN
+            root = _scoot_to_reach(rot, root, heading, hands, weight, slack)
+        if hands:  # one lean for both hands: the one the farther hand needs
+            needs = [
+                lean_needed(rot, root, j, np.asarray(p, dtype=np.float64), weight, max_lean, slack)
+                for j, p in hands.items()
+            ]
+            rot = lean_spine(
+                rot, max_lean if None in needs else max(n for n in needs if n is not None), weight
+            )
+        for joint, target in hands.items():
             tgt = np.broadcast_to(np.asarray(target, dtype=np.float64), (t, 3))
-            rot = bend_spine_to_reach(rot, root, joint, tgt, weight)
             rot = two_bone_ik(rot, root, joint, tgt, weight)
             inside = frames[weight >= 0.999]
             contact_frames[joint] = (inside, np.asarray(target))
     end_off = offs[-1] if clip.drives_lower_body else np.zeros(3)
     end_yaw = state.yaw + float(yaw_track[-1])
-    new_posture = POSTURE_AFTER.get(clip.name, posture)
+    hips_dy = 0.0 if new_posture == "stand" else state.hips_dy
     if clip.drives_lower_body and new_posture == "stand" and clip.name not in POSTURE_AFTER:
         # Travel built into the clip (a step, a jump forward) moves the character.
         moved = quat.rotate(quat.yaw(np.array(state.yaw)), np.array([end_off[0], 0.0, end_off[2]]))
         end = SegmentState(state.x + moved[0], state.z + moved[2], end_yaw, new_posture, state.phase)
+    elif "Hips" in targets and clip.interaction:
+        # Seated (lying) where the hips landed, wherever the approach walk stopped: the next pieces put the
+        # posture's hips there, at the seat's height; getting up ends SEAT_BACK in front of the seat.
+        end = SegmentState(
+            state.x + seat_shift[0],
+            state.z + seat_shift[2],
+            end_yaw,
+            new_posture,
+            state.phase,
+            state.hips_dy * (1.0 - ramp[-1]) + seat_shift[1],
+        )
     else:
-        end = SegmentState(state.x, state.z, end_yaw, new_posture, state.phase)
+        end = SegmentState(state.x, state.z, end_yaw, new_posture, state.phase, hips_dy)
     return MotionPiece(root, quat.normalize(rot), contacts, seg, contact_frames), end.rounded()
+
+
+def _scoot_to_reach(
+    rot: np.ndarray,
+    root: np.ndarray,
+    heading: np.ndarray,
+    hands: dict[str, tuple[float, float, float]],
+    weight: np.ndarray,
+    slack: float,
+) -> np.ndarray:
+    """Root (T, 3) slid forward (at most SCOOT_MAX, eased in by weight) just far enough that a lean of
+    SEATED_MAX_LEAN brings every hand target within slack * reach; the farthest slide when none is."""
+    fwd = np.stack([np.sin(heading), np.zeros(len(heading)), np.cos(heading)], -1)  # (T, 3)
+    moved = root
+    for scoot in np.linspace(0.0, SCOOT_MAX, 6):
+        moved = root + (weight * scoot)[:, None] * fwd
+        if all(
+            lean_needed(rot, moved, j, np.asarray(p, dtype=np.float64), weight, SEATED_MAX_LEAN, slack)
+            is not None
+            for j, p in hands.items()
+        ):
+            return moved
+    return moved
 
 
 def _locomotion_piece(seg: PlannedSegment, state: SegmentState) -> tuple[MotionPiece, SegmentState]:
@@ -191,19 +278,37 @@ def _locomotion_piece(seg: PlannedSegment, state: SegmentState) -> tuple[MotionP
         up, state = _action_piece(PlannedSegment(index=seg.index, kind="action", action="stand"), state)
         pieces.append(up)
     wps = np.asarray(seg.waypoints, dtype=np.float64).reshape(-1, 2) if seg.waypoints else np.zeros((0, 2))
-    wps = np.concatenate([[[state.x, state.z]], wps]) if len(wps) == 0 or np.linalg.norm(wps[0] - [state.x, state.z]) > 1e-3 else wps
+    wps = (
+        np.concatenate([[[state.x, state.z]], wps])
+        if len(wps) == 0 or np.linalg.norm(wps[0] - [state.x, state.z]) > 1e-3
+        else wps
+    )
     loco = locomote(wps, seg.speed, state.yaw, seg.face_yaw, state.phase)
     rot = fade_from(_standing_pose(state.yaw), loco.rotations, FADE)
     rot = lock_feet(rot, loco.root_position, loco.contacts)
     piece = MotionPiece(loco.root_position, rot, loco.contacts, seg)
     # The character comes to rest at the goal, so the next walk starts from a standing pose at phase 0: the end
     # state depends on where the walk ends, not on how it got there (edits to the manner stop early).
-    end = SegmentState(float(loco.root_position[-1, 0]), float(loco.root_position[-1, 2]), float(loco.heading[-1]), "stand",
-                       0.0).rounded()
+    end = SegmentState(
+        float(loco.root_position[-1, 0]),
+        float(loco.root_position[-1, 2]),
+        float(loco.heading[-1]),
+        "stand",
+        0.0,
+    ).rounded()
     if pieces:
-        piece = MotionPiece(np.concatenate([pieces[0].root, piece.root]), np.concatenate([pieces[0].rotations, piece.rotations]),
-                            np.concatenate([pieces[0].contacts, piece.contacts]), seg)
+        piece = MotionPiece(
+            np.concatenate([pieces[0].root, piece.root]),
+            np.concatenate([pieces[0].rotations, piece.rotations]),
+            np.concatenate([pieces[0].contacts, piece.contacts]),
+            seg,
+        )
     return piece, end
+
+
+def _smooth(u: np.ndarray) -> np.ndarray:
+    """Smoothstep of u in [0, 1]."""
+    return u * u * (3 - 2 * u)
 
 
 def _standing_pose(yaw: float) -> np.ndarray:
@@ -212,7 +317,9 @@ def _standing_pose(yaw: float) -> np.ndarray:
     return p
 
 
-def synthesise_segment(plan: MotionPlan, k: int, start_state: SegmentState) -> tuple[MotionPiece, SegmentState]:
+def synthesise_segment(
+    plan: MotionPlan, k: int, start_state: SegmentState
+) -> tuple[MotionPiece, SegmentState]:
     """Synthesise segment k of a plan from the end state of segment k-1 (or plan.start_state())."""
     seg = plan.segments[k]
     if seg.kind == "locomotion":
@@ -253,11 +360,26 @@ def assemble(character: str, pieces: list[MotionPiece], start: SegmentState | No
         segments, f = [], 0
         for p in pieces:
             n = len(p.root)
-            segments.append(Segment(index=p.segment.index, action=p.segment.action, start_frame=f, end_frame=f + n,
-                                    sentence_id=p.segment.sentence_id, action_index=p.segment.action_index))
+            segments.append(
+                Segment(
+                    index=p.segment.index,
+                    action=p.segment.action,
+                    start_frame=f,
+                    end_frame=f + n,
+                    sentence_id=p.segment.sentence_id,
+                    action_index=p.segment.action_index,
+                )
+            )
             f += n
-    return Motion(character=character, fps=FPS, joint_names=list(JOINT_NAMES), root_position=to_wire(root.astype(np.float32)),
-                  rotations=to_wire(rot.astype(np.float32)), foot_contact=to_wire(contacts.astype(np.uint8)), segments=segments)
+    return Motion(
+        character=character,
+        fps=FPS,
+        joint_names=list(JOINT_NAMES),
+        root_position=to_wire(root.astype(np.float32)),
+        rotations=to_wire(rot.astype(np.float32)),
+        foot_contact=to_wire(contacts.astype(np.uint8)),
+        segments=segments,
+    )
 
 
 assert N_JOINTS == len(JOINT_NAMES)

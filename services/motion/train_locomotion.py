@@ -36,7 +36,9 @@ def _obstacles(rng: np.random.Generator, pos: np.ndarray):
     centres = pos[rng.integers(0, len(pos), 6)] + rng.normal(0, 1.2, (6, 2))
     radii = rng.uniform(0.2, 0.6, 6)
     # keep obstacles off the path itself
-    keep = np.array([np.min(np.linalg.norm(pos - c, axis=1)) > r + 0.3 for c, r in zip(centres, radii, strict=True)])
+    keep = np.array(
+        [np.min(np.linalg.norm(pos - c, axis=1)) > r + 0.3 for c, r in zip(centres, radii, strict=True)]
+    )
     centres, radii = centres[keep], radii[keep]
 
     def occupied(pts: np.ndarray) -> np.ndarray:
@@ -89,7 +91,11 @@ def cmu_corpus(shared: Path = SHARED):
     if not labels.is_file():
         return
     with labels.open() as fh:
-        rows = [r for r in csv.DictReader(fh) if r["category"] == "locomotion" and r["skeleton_variant"].startswith("A")]
+        rows = [
+            r
+            for r in csv.DictReader(fh)
+            if r["category"] == "locomotion" and r["skeleton_variant"].startswith("A")
+        ]
     for r in held_in(rows):
         root, rot = retarget_clip(read_bvh(shared / "cmu_mocap_iclone" / r["file"]))
         fwd = quat.rotate(rot[:, 0], np.broadcast_to([0.0, 0.0, 1.0], (len(rot), 3)))
@@ -118,12 +124,16 @@ def build_dataset(n_sequences: int, seconds: float, use_cmu: bool = True):
     n_cmu = 0
     for seq in procedural_corpus(n_sequences, seconds):
         x, p, y = build_xy(*seq)
-        xs.append(x), ps.append(p), ys.append(y)
+        xs.append(x)
+        ps.append(p)
+        ys.append(y)
     if use_cmu:
         for seq in cmu_corpus():
             x, p, y = build_xy(*seq)
             for _ in range(3):  # upweight the captured clips
-                xs.append(x), ps.append(p), ys.append(y)
+                xs.append(x)
+                ps.append(p)
+                ys.append(y)
             n_cmu += len(x)
     return np.concatenate(xs), np.concatenate(ps), np.concatenate(ys), n_cmu
 
@@ -159,9 +169,11 @@ def train(args: argparse.Namespace) -> dict:
     for _epoch in range(args.epochs):
         perm = torch.randperm(n, generator=gen)
         for b in range(steps_per_epoch):
-            idx = perm[b * args.batch:(b + 1) * args.batch]
+            idx = perm[b * args.batch : (b + 1) * args.batch]
             xb = xn[idx]
-            xb = xb + 0.05 * torch.randn(xb.shape, generator=gen)  # robustness to its own autoregressive drift
+            xb = xb + 0.05 * torch.randn(
+                xb.shape, generator=gen
+            )  # robustness to its own autoregressive drift
             pred = net.forward_normalized(xb, pt[idx])
             loss = torch.mean((pred - yn[idx]) ** 2)
             opt.zero_grad()
@@ -180,9 +192,21 @@ def train(args: argparse.Namespace) -> dict:
     net.eval()
     with torch.no_grad():
         val = torch.mean((net.forward_normalized(xn[:4096], pt[:4096]) - yn[:4096]) ** 2).item()
-        rot_err = torch.mean((net(torch.from_numpy(x[:4096]), pt[:4096])[:, SLICE_ROT] - torch.from_numpy(y[:4096, SLICE_ROT])).abs()).item()
-    return {"net": net, "loss": loss_v, "fit_mse": val, "rot_mae": rot_err, "frames": int(len(x)), "cmu_frames": int(n_cmu),
-            "seconds": time.time() - t0}
+        rot_err = torch.mean(
+            (
+                net(torch.from_numpy(x[:4096]), pt[:4096])[:, SLICE_ROT]
+                - torch.from_numpy(y[:4096, SLICE_ROT])
+            ).abs()
+        ).item()
+    return {
+        "net": net,
+        "loss": loss_v,
+        "fit_mse": val,
+        "rot_mae": rot_err,
+        "frames": int(len(x)),
+        "cmu_frames": int(n_cmu),
+        "seconds": time.time() - t0,
+    }
 
 
 def export(net, out: Path) -> None:
@@ -196,16 +220,29 @@ def export(net, out: Path) -> None:
     net.eval()
     x = torch.zeros(1, N_IN)
     ph = torch.zeros(1, 1)
-    torch.onnx.export(net, (x, ph), out / "pfnn_step.onnx", input_names=["x", "phase"], output_names=["y"],
-                      dynamic_axes={"x": {0: "batch"}, "phase": {0: "batch"}, "y": {0: "batch"}}, opset_version=17,
-                      dynamo=False)
+    torch.onnx.export(
+        net,
+        (x, ph),
+        out / "pfnn_step.onnx",
+        input_names=["x", "phase"],
+        output_names=["y"],
+        dynamic_axes={"x": {0: "batch"}, "phase": {0: "batch"}, "y": {0: "batch"}},
+        opset_version=17,
+        dynamo=False,
+    )
     roll = Rollout(net, ROLLOUT_STEPS)
     ctrl = torch.zeros(1, ROLLOUT_STEPS, N_TRAJ + N_SENSOR)
     pose = torch.zeros(1, N_POSE)
-    torch.onnx.export(roll, (ctrl, pose, ph), out / "pfnn_rollout.onnx", input_names=["control", "pose", "phase"],
-                      output_names=["y", "last_pose", "last_phase"],
-                      dynamic_axes={"control": {0: "batch"}, "pose": {0: "batch"}, "phase": {0: "batch"}}, opset_version=17,
-                      dynamo=False)
+    torch.onnx.export(
+        roll,
+        (ctrl, pose, ph),
+        out / "pfnn_rollout.onnx",
+        input_names=["control", "pose", "phase"],
+        output_names=["y", "last_pose", "last_phase"],
+        dynamic_axes={"control": {0: "batch"}, "pose": {0: "batch"}, "phase": {0: "batch"}},
+        opset_version=17,
+        dynamo=False,
+    )
 
 
 def load_torch(model_dir: Path = MODEL_DIR):
@@ -221,8 +258,11 @@ def load_torch(model_dir: Path = MODEL_DIR):
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m services.motion.train_locomotion", description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = argparse.ArgumentParser(
+        prog="python -m services.motion.train_locomotion",
+        description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
     parser.add_argument("--sequences", type=int, default=80, help="procedural sequences (default 80)")
     parser.add_argument("--seconds", type=float, default=20.0, help="seconds per procedural sequence")
     parser.add_argument("--hidden", type=int, default=128, help="hidden units per layer")
@@ -236,8 +276,13 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     result = train(args)
     export(result.pop("net"), args.out)
-    meta = {k: v for k, v in result.items()} | {"hidden": args.hidden, "seed": SEED, "rollout_steps": ROLLOUT_STEPS,
-                                                 "sequences": args.sequences, "epochs": args.epochs}
+    meta = {k: v for k, v in result.items()} | {
+        "hidden": args.hidden,
+        "seed": SEED,
+        "rollout_steps": ROLLOUT_STEPS,
+        "sequences": args.sequences,
+        "epochs": args.epochs,
+    }
     (args.out / "meta.json").write_text(json.dumps(meta, indent=2) + "\n")
     print(json.dumps(meta, indent=2))
     # The runtime prefers the hand-built fast rollout graph: rebuild it from the new weights too.

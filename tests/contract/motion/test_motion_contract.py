@@ -27,8 +27,13 @@ def test_library_request_gets_the_library(motion):
 
 @pytest.mark.contract
 def test_synthesize_request_gets_a_motion(motion):
-    req = SynthesizeRequest(header=Header(doc_id="d", revision=3), scene=Scene(room=Room(room_type="office", width=5, depth=5, height=3)),
-                            character=CharacterNode(name="Tom", actions=[ActionNode(verb="walk", action="walk"), ActionNode(verb="bow", action="bow")]))
+    req = SynthesizeRequest(
+        header=Header(doc_id="d", revision=3),
+        scene=Scene(room=Room(room_type="office", width=5, depth=5, height=3)),
+        character=CharacterNode(
+            name="Tom", actions=[ActionNode(verb="walk", action="walk"), ActionNode(verb="bow", action="bow")]
+        ),
+    )
     raw = motion.request("motion", msgspec.msgpack.encode(req))
     reply = check_contract(CONTRACT, req, raw)
     assert reply.header.parent_id == req.header.msg_id and reply.header.revision == 3

@@ -30,7 +30,9 @@ def test_chain_fk_matches_the_reference_skeleton_fk():
         pos, _ = joint_globals(rot, root, JOINT_INDEX[joint])
         assert np.allclose(pos, _reference_fk_position(rot, root, joint), atol=1e-9)
     full, _ = global_transforms(rot, root)
-    assert np.allclose(full[:, JOINT_INDEX["LeftHand"]], _reference_fk_position(rot, root, "LeftHand"), atol=1e-9)
+    assert np.allclose(
+        full[:, JOINT_INDEX["LeftHand"]], _reference_fk_position(rot, root, "LeftHand"), atol=1e-9
+    )
 
 
 def test_ik_leaves_frames_with_zero_weight_untouched_and_solves_the_rest():
@@ -48,11 +50,15 @@ def test_ik_leaves_frames_with_zero_weight_untouched_and_solves_the_rest():
 def test_foot_locking_pins_a_sliding_planted_foot():
     t = 30
     rot = np.repeat(get_clip("idle").sample()[0][:1], t, 0)
-    root = np.stack([np.linspace(0, 0.1, t), np.full(t, 0.85), np.zeros(t)], -1)  # hips drift 10 cm, knees a little bent
+    root = np.stack(
+        [np.linspace(0, 0.1, t), np.full(t, 0.85), np.zeros(t)], -1
+    )  # hips drift 10 cm, knees a little bent
     contacts = np.ones((t, 2), np.uint8)
     locked = lock_feet(rot, root, contacts)
     foot = _reference_fk_position(locked, root, "LeftFoot")
-    assert np.linalg.norm(foot - foot[0], axis=1).max() < 0.01  # straight legs at rest: 2 analytic passes leave < 1 cm
+    assert (
+        np.linalg.norm(foot - foot[0], axis=1).max() < 0.01
+    )  # straight legs at rest: 2 analytic passes leave < 1 cm
     raw = _reference_fk_position(rot, root, "LeftFoot")
     assert np.linalg.norm(raw - raw[0], axis=1).max() > 0.09
 
@@ -79,8 +85,10 @@ def test_clip_samples_are_cached_but_handed_out_as_copies():
 
 
 def test_a_character_already_at_the_desk_turns_to_face_it_before_wiping():
-    scene = Scene(room=Room(room_type="office", width=6, depth=6, height=3),
-                  objects=[PlacedObject(id="desk", category="desk", position=(0.0, 0.0, 0.0), yaw=0.0)])
+    scene = Scene(
+        room=Room(room_type="office", width=6, depth=6, height=3),
+        objects=[PlacedObject(id="desk", category="desk", position=(0.0, 0.0, 0.0), yaw=0.0)],
+    )
     # Standing at the desk's front, but facing away from it (+Z).
     ch = CharacterNode(name="Eve", actions=[ActionNode(verb="wipe", action="wipe_table", target="desk")])
     plan = plan_actions(ch, scene, (0.0, 0.75, 0.0))
@@ -89,7 +97,9 @@ def test_a_character_already_at_the_desk_turns_to_face_it_before_wiping():
     assert abs(np.cos(plan.segments[0].face_yaw - np.pi)) > 0.99  # turns to face -Z, toward the desk
 
 
-@pytest.mark.skipif(not (MODEL_DIR / "pfnn_fast.onnx").is_file(), reason="no pfnn_fast.onnx (run services.motion.pfnn_onnx)")
+@pytest.mark.skipif(
+    not (MODEL_DIR / "pfnn_fast.onnx").is_file(), reason="no pfnn_fast.onnx (run services.motion.pfnn_onnx)"
+)
 def test_fast_rollout_matches_torch_at_the_bin_phases():
     ort = pytest.importorskip("onnxruntime")
     torch = pytest.importorskip("torch")
@@ -102,7 +112,9 @@ def test_fast_rollout_matches_torch_at_the_bin_phases():
     steps = sess.get_inputs()[0].shape[1]
     rng = np.random.default_rng(1)
     ctrl = (rng.normal(size=(1, steps, 60)) * 0.2).astype(np.float32)
-    pose = (net.x_mean.numpy()[60:] + 0.1 * rng.normal(size=N_POSE) * net.x_std.numpy()[60:]).astype(np.float32)[None]
+    pose = (net.x_mean.numpy()[60:] + 0.1 * rng.normal(size=N_POSE) * net.x_std.numpy()[60:]).astype(
+        np.float32
+    )[None]
     phase = np.array([[0.37]], np.float32)
     y, last_pose, last_phase = sess.run(None, {"control": ctrl, "pose": pose, "phase": phase})
     assert y.shape == (1, steps, N_OUT)
@@ -111,7 +123,9 @@ def test_fast_rollout_matches_torch_at_the_bin_phases():
     with torch.no_grad():
         for k in range(3):
             centre = (np.floor(ph * PHASE_BINS) + 0.5) / PHASE_BINS
-            ref = net(torch.cat([torch.from_numpy(ctrl[:, k]), p], 1), torch.tensor([[centre]], dtype=torch.float32))
+            ref = net(
+                torch.cat([torch.from_numpy(ctrl[:, k]), p], 1), torch.tensor([[centre]], dtype=torch.float32)
+            )
             assert np.abs(y[0, k] - ref[0].numpy()).max() < 2e-2 * max(1.0, float(ref.abs().max()))
             p = torch.from_numpy(y[:, k, SLICE_POSE])
             ph = (ph + float(np.clip(y[0, k, SLICE_DPHASE][0], 0, 0.5))) % 1.0
@@ -123,8 +137,27 @@ def test_quaternion_helpers_agree_with_scipy():
 
     rng = np.random.default_rng(2)
     a, b = quat.normalize(rng.normal(size=(50, 4))), quat.normalize(rng.normal(size=(50, 4)))
-    assert np.allclose(quat.canonical(quat.mul(a, b)), quat.canonical((Rotation.from_quat(a) * Rotation.from_quat(b)).as_quat()))
+    assert np.allclose(
+        quat.canonical(quat.mul(a, b)),
+        quat.canonical((Rotation.from_quat(a) * Rotation.from_quat(b)).as_quat()),
+    )
     v = rng.normal(size=(50, 3))
     assert np.allclose(quat.rotate(a, v), Rotation.from_quat(a).apply(v))
     assert np.allclose(quat.cross(v, v[::-1]), np.cross(v, v[::-1]))
     assert N_JOINTS == 24
+
+
+def test_numpy_phase_table_rollout_matches_onnxruntime_on_the_same_graph():
+    pytest.importorskip("onnxruntime")
+    if not (MODEL_DIR / "pfnn_fast.onnx").is_file():
+        pytest.skip("no pfnn_fast.onnx in models/locomotion (run services.motion.pfnn_onnx)")
+    from services.motion.locomotion import PfnnRuntime, plan_root, standing_pose_features
+    from services.motion.locomotion_features import sensor_features, trajectory_features
+    from services.motion.pfnn_tables import PhaseTableRuntime
+
+    pos, heading, _ = plan_root(np.array([[0.0, 0.0], [3.0, 1.0], [4.0, 4.0]]), 1.4, 0.0, face_yaw=1.0)
+    control = np.concatenate([trajectory_features(pos, heading), sensor_features(pos, heading)], axis=1)
+    ref = PfnnRuntime().run(control, standing_pose_features(), 0.3)
+    out = PhaseTableRuntime(MODEL_DIR / "pfnn_fast.onnx").run(control, standing_pose_features(), 0.3)
+    assert out.shape == ref.shape and np.all(np.isfinite(out))
+    assert np.abs(out - ref).max() < 1e-3 * max(1.0, float(np.abs(ref).max()))

@@ -7,9 +7,11 @@ import pytest
 
 from services.motion.library import action_names, clip_from_dict, get_clip, load_library, synonym_index
 
-REQUIRED = ("sit stand type play_piano call_with_phone drink sing_with_microphone listen_with_headphones "
-            "write_on_blackboard punch_bag saw hammer look_at think wave push_button read turn_left turn_right "
-            "wave_hands high_five shake_hands hug bow apologize criticize quarrel clap point").split()
+REQUIRED = (
+    "sit stand type play_piano call_with_phone drink sing_with_microphone listen_with_headphones "
+    "write_on_blackboard punch_bag saw hammer look_at think wave push_button read turn_left turn_right "
+    "wave_hands high_five shake_hands hug bow apologize criticize quarrel clap point"
+).split()
 
 
 def test_library_has_at_least_150_actions_including_the_papers_examples():
@@ -26,7 +28,11 @@ def test_every_clip_has_metadata_and_moves_the_body():
         assert np.allclose(np.linalg.norm(rot, axis=-1), 1.0, atol=1e-6), name
         # the body moves: some joint rotates by more than 2 degrees (idle breathing is subtle), or the root travels / turns
         d = np.abs(np.sum(rot[:, None] * rot[None, :1], axis=-1)).min()
-        moved = 2 * np.degrees(np.arccos(min(1.0, d))) > 2 or np.ptp(root, axis=0).max() > 0.02 or np.ptp(yaw) > 0.1
+        moved = (
+            2 * np.degrees(np.arccos(min(1.0, d))) > 2
+            or np.ptp(root, axis=0).max() > 0.02
+            or np.ptp(yaw) > 0.1
+        )
         assert moved, f"{name} does not move"
 
 

@@ -63,21 +63,31 @@ def test_walking_to_a_character_stops_short_of_her_facing_her():
     assert walked > 2.5  # the body moved, not only the end state
 
 
-@pytest.mark.parametrize("action,target,most", [("shake_hands", "Eve", 1.0), ("hug", "Eve", 0.7),
-                                                ("shake_hands", "hand", 1.0)])
+@pytest.mark.parametrize(
+    "action,target,most", [("shake_hands", "Eve", 1.0), ("hug", "Eve", 0.7), ("shake_hands", "hand", 1.0)]
+)
 def test_touching_actions_walk_up_to_the_character_first(action, target, most):
     reply = _synthesise(_tom(ActionNode(verb=action, action=action, target=target)), {"Eve": EVE})
     end = reply.end_states[-1]
     assert np.hypot(end.x - EVE[0], end.z - EVE[1]) < most
     assert _bearing_error(reply, EVE) < 0.2
-    kinds = [(s.action, s.target_id) for s in plan_actions(_tom(ActionNode(verb=action, action=action, target=target)),
-                                                           EMPTY, START, others={"Eve": EVE}).segments]
+    kinds = [
+        (s.action, s.target_id)
+        for s in plan_actions(
+            _tom(ActionNode(verb=action, action=action, target=target)), EMPTY, START, others={"Eve": EVE}
+        ).segments
+    ]
     assert kinds == [("walk", "Eve"), (action, "Eve")]
 
 
 def test_a_character_never_targets_itself_and_the_request_round_trips():
-    req = SynthesizeRequest(header=Header(), character=_tom(ActionNode(verb="wave", action="wave", target="Tom")),
-                            scene=EMPTY, start=START, others={"Tom": (3.0, 3.0), "Eve": EVE})
+    req = SynthesizeRequest(
+        header=Header(),
+        character=_tom(ActionNode(verb="wave", action="wave", target="Tom")),
+        scene=EMPTY,
+        start=START,
+        others={"Tom": (3.0, 3.0), "Eve": EVE},
+    )
     again = msgspec.msgpack.decode(msgspec.msgpack.encode(req), type=SynthesizeRequest)
     assert again.others == {"Tom": (3.0, 3.0), "Eve": EVE}
     plan = plan_actions(req.character, EMPTY, START, others=dict(req.others))
@@ -85,7 +95,12 @@ def test_a_character_never_targets_itself_and_the_request_round_trips():
 
 
 def test_a_non_finite_position_of_another_character_is_invalid_input():
-    req = SynthesizeRequest(header=Header(), character=_tom(ActionNode(verb="wave", action="wave", target="Eve")),
-                            scene=EMPTY, start=START, others={"Eve": (float("nan"), 0.0)})
+    req = SynthesizeRequest(
+        header=Header(),
+        character=_tom(ActionNode(verb="wave", action="wave", target="Eve")),
+        scene=EMPTY,
+        start=START,
+        others={"Eve": (float("nan"), 0.0)},
+    )
     with pytest.raises(InvalidInput, match="others"):
         call_in_process(CONTRACT, req)

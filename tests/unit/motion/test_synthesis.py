@@ -20,13 +20,22 @@ from wana.arrays import from_wire
 from wana.bus.service import call_in_process
 from wana.skeleton import JOINT_INDEX
 
-SCENE = Scene(room=Room(room_type="office", width=6, depth=6, height=3), objects=[
-    PlacedObject(id="desk", category="desk", position=(1.0, 0.0, 0.3), yaw=0.0),
-    PlacedObject(id="chair", category="office_chair", position=(1.0, 0.0, 1.05), yaw=np.pi)])
-EVE = CharacterNode(name="Eve", actions=[ActionNode(verb="walk", action="walk", destination="chair"),
-                                         ActionNode(verb="sit", action="sit", target="chair"),
-                                         ActionNode(verb="type", action="type", target="desk"),
-                                         ActionNode(verb="wave", action="wave")])
+SCENE = Scene(
+    room=Room(room_type="office", width=6, depth=6, height=3),
+    objects=[
+        PlacedObject(id="desk", category="desk", position=(1.0, 0.0, 0.3), yaw=0.0),
+        PlacedObject(id="chair", category="office_chair", position=(1.0, 0.0, 1.05), yaw=np.pi),
+    ],
+)
+EVE = CharacterNode(
+    name="Eve",
+    actions=[
+        ActionNode(verb="walk", action="walk", destination="chair"),
+        ActionNode(verb="sit", action="sit", target="chair"),
+        ActionNode(verb="type", action="type", target="desk"),
+        ActionNode(verb="wave", action="wave"),
+    ],
+)
 
 
 def test_two_bone_ik_reaches_a_reachable_target():
@@ -41,7 +50,9 @@ def test_two_bone_ik_reaches_a_reachable_target():
 def test_sitting_puts_the_hips_on_the_seat_and_typing_hands_on_the_desk():
     plan = plan_actions(EVE, SCENE, (-2.0, -2.0, 0.0))
     motion, pieces, states = synthesise(plan)
-    pos, _ = global_transforms(from_wire(motion.rotations).astype(float), from_wire(motion.root_position).astype(float))
+    pos, _ = global_transforms(
+        from_wire(motion.rotations).astype(float), from_wire(motion.root_position).astype(float)
+    )
     f0 = 0
     checked = 0
     for p in pieces:
@@ -65,7 +76,9 @@ def test_recompute_from_a_segment_gives_the_same_frames_and_end_states():
 
 
 def test_handler_returns_a_motion_and_reports_unknown_actions():
-    ch = CharacterNode(name="Tom", actions=[ActionNode(verb="wave", action="wave"), ActionNode(verb="zork", action="zork")])
+    ch = CharacterNode(
+        name="Tom", actions=[ActionNode(verb="wave", action="wave"), ActionNode(verb="zork", action="zork")]
+    )
     reply = call_in_process(CONTRACT, SynthesizeRequest(header=Header(), character=ch, scene=SCENE))
     assert reply.status == "ok" and any("zork" in d for d in reply.diagnostics)
     rot = from_wire(reply.motion.rotations)
@@ -85,7 +98,9 @@ def test_motion_import_cli_adds_a_clip_without_retraining(tmp_path, monkeypatch)
     write_bvh(tmp_path / "My Clap.bvh", off + [0, 0.95, 0], rot, scale=100.0)
     out = tmp_path / "lib"
     monkeypatch.setenv("WANA_ACTIONS_DIR", str(out))
-    assert cli.main(["import", str(tmp_path / "My Clap.bvh"), "--tags", "social,test", "--out", str(out)]) == 0
+    assert (
+        cli.main(["import", str(tmp_path / "My Clap.bvh"), "--tags", "social,test", "--out", str(out)]) == 0
+    )
     try:
         clip = reload_library()["my_clap"]
         assert clip.tags == ("social", "test") and abs(clip.duration_s - get_clip("clap").duration_s) < 0.05

@@ -1,0 +1,232 @@
+"""Walking routes for planning: the optimizer's A* (services.optimizer.routes) on cached occupancy grids.
+
+``scene_route`` answers exactly what ``services.optimizer.routes.plan_route`` answers (the same grid,
+the same A*, the same last step into the goal object's clearance), but rasterises each floor object
+only once: the grid of a scene is the OR of per-object masks, cached by the object's placement
+(category, variant, position, yaw, scale) and the room. An edit that moves one chair re-rasterises
+that chair only, and ignoring the target object (so that a goal inside its clearance is reachable)
+costs an OR over the other masks, not a new grid. Where no route exists the character walks the
+straight line and the caller gets a diagnostic.
+"""
+
+from __future__ import annotations
+
+import threading
+from collections import OrderedDict
+
+import msgspec
+import numpy as np
+
+from proto.scene import PlacedObject, Room, Scene
+
+RADIUS = 0.25  # metres: the walking body's clearance (plan_route's default)
+CELL = 0.05  # metres per grid cell (plan_route's default)
+STEP_IN = 1.0  # metres: longest last step into the goal object's clearance
+_CACHE_SIZE = 512
+_masks: OrderedDict[tuple, tuple[np.ndarray, object]] = OrderedDict()
+_lock = threading.Lock()
+
+
+def _plain(obj: object) -> object:
+    """numpy scalars and arrays in in-process structs -> plain Python values for the cache key."""
+    if isinstance(obj, np.generic | np.ndarray):
+        return obj.tolist()
+    raise NotImplementedError(f"cannot key {type(obj).__name__}")
+
+
+_encode = msgspec.msgpack.Encoder(order="deterministic", enc_hook=_plain).encode
+
+
+def _cached(key: tuple, build):  # noqa: ANN001, ANN202 - tiny LRU shared by the grid pieces
+    with _lock:
+        hit = _masks.get(key)
+        if hit is not None:
+            _masks.move_to_end(key)
+            return hit
+    value = build()
+    with _lock:
+        _masks[key] = value
+        while len(_masks) > _CACHE_SIZE:
+            _masks.popitem(last=False)
+    return value
+
+
+def _room_key(room: Room) -> tuple:
+    return (room.width, room.depth)
+
+
+def _walls(room: Room, radius: float, cell: float) -> tuple[np.ndarray, np.ndarray]:
+    from services.optimizer.routes import Footprints, occupancy_grid
+
+    def build():  # noqa: ANN202
+        grid = occupancy_grid(room, Footprints.from_aabbs(np.zeros((0, 2, 3))), radius=radius, cell=cell)
+        return grid.blocked, grid.origin
+
+    return _cached(("walls", _room_key(room), radius, cell), build)
+
+
+def wall_mask(room: Room, radius: float = RADIUS, cell: float = CELL) -> np.ndarray:
+    """(H, W) bool: cells within ``radius`` of a wall (the grid of the empty room)."""
+    return _walls(room, radius, cell)[0]
+
+
+def object_mask(room: Room, obj: PlacedObject, radius: float = RADIUS, cell: float = CELL):  # noqa: ANN201
+    """(blocked (H, W) bool of the object's footprints grown by ``radius``, its Footprints), cached by placement."""
+    from services.optimizer.geometry import scene_footprints
+    from services.optimizer.routes import Footprints, occupancy_grid
+
+    def build():  # noqa: ANN202
+        try:
+            fp = scene_footprints(Scene(room=room, objects=[obj]))
+        except (KeyError, ValueError):  # a category the catalog lacks: nothing known to walk around
+            fp = Footprints.from_aabbs(np.zeros((0, 2, 3)))
+        grid = occupancy_grid(room, fp, radius=radius, cell=cell)
+        return grid.blocked & ~wall_mask(room, radius, cell), fp
+
+    key = ("object", _room_key(room), _encode(msgspec.structs.replace(obj, id="", support="")), radius, cell)
+    return _cached(key, build)
+
+
+def scene_grid(
+    scene: Scene, ignore: frozenset[str] = frozenset(), radius: float = RADIUS, cell: float = CELL
+):  # noqa: ANN201
+    """The optimizer's OccupancyGrid of the scene minus the ignored objects (built from cached masks)."""
+    from services.optimizer.routes import OccupancyGrid
+
+    walls, origin = _walls(scene.room, radius, cell)
+    blocked = walls.copy()
+    for obj in scene.objects:
+        if obj.id not in ignore:
+            blocked |= object_mask(scene.room, obj, radius, cell)[0]
+    return OccupancyGrid(blocked=blocked, origin=origin, cell=cell)
+
+
+def plan_scene_route(
+    scene: Scene,
+    start_xz,
+    goal_xz,
+    *,
+    ignore: frozenset[str] = frozenset(),  # noqa: ANN001
+    radius: float = RADIUS,
+    cell: float = CELL,
+    step_in: float = STEP_IN,
+    into_hosts: bool = True,
+) -> np.ndarray:
+    """``services.optimizer.routes.plan_route`` on cached grids (same arguments, same answer).
+
+    With ``into_hosts=False`` the last step never enters an object the goal lies on (within HOST_M
+    of its footprint): the caller has already ignored the object it walks to, so such a host is
+    other furniture (a desk behind the chair's stand point) and the route ends at the free cell
+    nearest to the goal; a goal merely near other objects is still reached past half their clearance.
+
+    Args:
+        scene: room and placed objects.
+        start_xz: (2,) world x, z where the character stands, metres.
+        goal_xz: (2,) world x, z where it should arrive, metres.
+        ignore: ids of objects that do not block.
+        radius: character radius, metres.
+        cell: grid cell, metres.
+        step_in: longest last step into the goal object's clearance, metres.
+        into_hosts: whether the last step may enter the clearance of the object the goal lies on.
+
+    Returns:
+        (N, 2) waypoints from the start to the goal (or the free cell nearest to it).
+
+    Raises:
+        NoRouteError: when no route exists.
+    """
+    from services.optimizer.routes import (
+        HOST_M,
+        OccupancyGrid,
+        plan_route_on_grid,
+        point_rect_distance,
+        segment_is_free,
+    )
+
+    grid = scene_grid(scene, ignore, radius, cell)
+    start = np.asarray(start_xz, dtype=np.float64).reshape(2)
+    goal = np.asarray(goal_xz, dtype=np.float64).reshape(2)
+    if (
+        np.isfinite(start).all()
+        and np.isfinite(goal).all()
+        and grid.is_free_xz(np.stack([start, goal])).all()
+        and segment_is_free(grid, start, goal)
+    ):
+        return np.stack(
+            [start, goal]
+        )  # what A* + line-of-sight smoothing give for a free straight line, for less
+    route = plan_route_on_grid(grid, start_xz, goal_xz)
+    last = route[-1]
+    kept = [o for o in scene.objects if o.id not in ignore]
+    if step_in <= 0 or np.allclose(last, goal) or np.linalg.norm(goal - last) > step_in or not kept:
+        return route
+    dist = {}
+    for obj in kept:
+        fp = object_mask(scene.room, obj, radius, cell)[1]
+        if len(fp):  # type: ignore[arg-type]
+            dist[obj.id] = float(point_rect_distance(goal[None], fp).min())  # type: ignore[arg-type]
+    hosts = {i for i, d in dist.items() if d <= HOST_M}
+    if into_hosts != bool(hosts):
+        return route
+    near = {i for i, d in dist.items() if d <= radius} - hosts
+    blocked = wall_mask(scene.room, radius, cell).copy()
+    for obj in kept:
+        if obj.id in near:
+            blocked |= object_mask(scene.room, obj, radius / 2, cell)[0]
+        elif obj.id not in hosts:
+            blocked |= object_mask(scene.room, obj, radius, cell)[0]
+    if segment_is_free(OccupancyGrid(blocked=blocked, origin=grid.origin, cell=cell), last, goal):
+        route = np.vstack([route, goal[None]])
+    return route
+
+
+def free_spot(
+    scene: Scene,
+    xz: tuple[float, float],
+    *,
+    radius: float = RADIUS,
+    cell: float = CELL,
+    max_move: float = 1.0,
+) -> tuple[float, float]:
+    """``xz`` itself when a body of ``radius`` fits there, else the nearest spot where one does.
+
+    Only spots within ``max_move`` metres count; with none of them free, ``xz`` itself.
+    """
+    from scipy import ndimage
+
+    grid = scene_grid(scene, frozenset(), radius, cell)
+    if grid.is_free_xz(np.asarray(xz, dtype=np.float64)) or grid.blocked.all():
+        return xz
+    rc = grid.to_cell(np.asarray(xz, dtype=np.float64))
+    _, (ri, ci) = ndimage.distance_transform_edt(grid.blocked, return_indices=True)
+    spot = grid.to_world(np.array([ri[rc[0], rc[1]], ci[rc[0], rc[1]]]))
+    if np.linalg.norm(spot - np.asarray(xz)) > max_move:
+        return xz
+    return float(spot[0]), float(spot[1])
+
+
+def scene_route(
+    scene: Scene,
+    start_xz: tuple[float, float],
+    goal_xz: tuple[float, float],
+    ignore: frozenset[str] = frozenset(),
+) -> tuple[np.ndarray, str]:
+    """A collision-free route, or the straight line and a diagnostic when there is none.
+
+    The route never ends inside other furniture (``into_hosts=False``); ``ignore`` should hold the
+    object walked to and what rests on it.
+
+    Returns:
+        waypoints (N, 2) metres, world; "" or a diagnostic saying why the route is straight.
+    """
+    from services.optimizer.routes import NoRouteError
+
+    try:
+        return plan_scene_route(scene, start_xz, goal_xz, ignore=ignore, into_hosts=False), ""
+    except NoRouteError as exc:
+        line = np.array([start_xz, goal_xz], dtype=np.float64)
+        return line, f"no free walking route, walking straight: {exc}"
+    except ValueError as exc:  # non-finite points: plan_actions guards these, keep walking anyway
+        return np.array(
+            [start_xz, goal_xz], dtype=np.float64
+        ), f"route planning failed, walking straight: {exc}"
