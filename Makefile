@@ -43,6 +43,7 @@ models:  ## rebuild every committed model and generated asset (needs ../shared/d
 	OMP_NUM_THREADS=1 nice -n 10 $(PY) -m services.motion.train_locomotion
 	$(PY) -m services.motion.author_actions
 	$(PY) -m wana.assets.scenedb --per-room 10
+	$(PY) -m services.social.build_vad
 
 clean:
 	rm -rf $(OUT) .pytest_cache .ruff_cache .mypy_cache

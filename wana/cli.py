@@ -12,7 +12,7 @@ import logging
 import sys
 from collections.abc import Callable
 
-SERVICES = ("nlp", "retrieval", "motion", "optimizer", "render")
+SERVICES = ("nlp", "retrieval", "motion", "optimizer", "social", "render")
 
 DESCRIPTION = """\
 wana (Write-An-Animation) turns a text you write into a 3D animation.

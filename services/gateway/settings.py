@@ -32,7 +32,7 @@ def is_loopback(host: str) -> bool:
         return False
 
 
-SERVICES = ("nlp", "retrieval", "motion", "optimizer", "render")
+SERVICES = ("nlp", "retrieval", "motion", "optimizer", "social", "render")
 
 
 def parse_services(raw: str) -> tuple[str, ...]:

@@ -23,7 +23,7 @@ if TYPE_CHECKING:
 
 log = logging.getLogger(__name__)
 
-SERVICES = ("nlp", "retrieval", "motion", "optimizer", "render")
+SERVICES = ("nlp", "retrieval", "motion", "optimizer", "social", "render")
 
 
 class Embedded:

@@ -7,6 +7,8 @@ Query nodes (DESIGN §3), each keyed by the content hash of its inputs:
 - `draft:<name>:<k>`      actions, layout before optimising action k -> the motion the optimiser starts from
 - `optimise:<name>:<k>`   layout, draft motion, action k             -> layout (+ motion) around action k
 - `segment:<name>:<k>`    action k, the final layout, end state k-1  -> frames of action k + its end state
+- `social`                characters, actions and social nodes       -> faces, distances, response timing
+- `face:<name>`           the social plan, every character's timing  -> the character's face track
 A stage whose service is not in this build is reported in `unavailable`; nothing is faked.
 """
 
@@ -18,6 +20,7 @@ from functools import partial
 from typing import Any
 
 import msgspec
+import numpy as np
 
 from proto.common import Header, Span
 from proto.motion_data import Motion
@@ -27,6 +30,7 @@ from services.orchestrator.backend import Backend, StageFailed, StageUnavailable
 from services.orchestrator.document import Document
 from services.orchestrator.queries import QueryEngine, content_hash
 from services.orchestrator.timeline import Beat, assemble, schedule
+from wana.arrays import from_wire, to_wire
 
 STAGES = ("parse", "scene", "motion")
 
@@ -234,6 +238,70 @@ class Pipeline:
         for name, (node, _) in characters.items():
             firsts = [start_frames[(name, k)] for k in range(len(node.actions))] or [0]
             result.motions[name] = assemble(name, pieces[name], firsts, total=length)
+        try:
+            self._faces(result, resolved, engine, version)
+        except (StageUnavailable, StageFailed) as exc:
+            result.unavailable["social"] = str(exc)
+
+    def _faces(
+        self, result: PipelineResult, graphs: list[SentenceGraph], engine: QueryEngine, version: int
+    ) -> None:
+        """The social plan of the story, then each character's face track (Motion.expression)."""
+        SocialPlanRequest, SocialPlanReply, ExpressionTrackRequest, ExpressionTrackReply = _messages(
+            "social",
+            "social",
+            "SocialPlanRequest",
+            "SocialPlanReply",
+            "ExpressionTrackRequest",
+            "ExpressionTrackReply",
+        )
+        story = _social_part(graphs)
+        header = self._header(version)
+        plan = engine.query(
+            "social",
+            story,
+            lambda: (
+                self.backend.call(
+                    "social", SocialPlanRequest(header=header, graphs=graphs, seed=self.seed), SocialPlanReply
+                ).plan
+            ),
+        )
+        # A face depends on the character's part of the plan and on when its own actions and the actions
+        # it reacts to happen; holds and the story's length do not matter (the face holds after its last
+        # key), so the track is computed to a length of its own and held or cut to the motion's.
+        acting = {
+            name: [seg for seg in motion.segments if seg.action_index >= 0]
+            for name, motion in result.motions.items()
+        }
+        for entry in plan.characters:
+            motion = result.motions.get(entry.name)
+            if motion is None:
+                continue
+            anchors = sorted({k.anchor_character for k in entry.keys} - {entry.name})
+            others = {n: acting[n] for n in anchors if n in acting}
+            ends = [seg.end_frame for segs in (acting[entry.name], *others.values()) for seg in segs]
+            lag = max([k.at_s for k in entry.keys], default=0.0)
+            frames = max(ends, default=0) + int(lag * motion.fps) + 2
+            track = engine.query(
+                f"face:{entry.name}",
+                [plan.expression_names, entry, acting[entry.name], others, frames],
+                partial(
+                    self.backend.call,
+                    "social",
+                    ExpressionTrackRequest(
+                        header=header,
+                        plan=plan,
+                        character=entry.name,
+                        segments=acting[entry.name],
+                        frames=frames,
+                        fps=motion.fps,
+                        others=others,
+                    ),
+                    ExpressionTrackReply,
+                ),
+            )
+            face = _fit_frames(from_wire(track.expression), _frames(motion))
+            result.motions[entry.name] = msgspec.structs.replace(motion, expression=to_wire(face))
 
     def _segments(
         self,
@@ -422,6 +490,31 @@ def _scene_part(graphs: list[SentenceGraph]) -> dict[str, Any]:
         relations.extend(msgspec.structs.replace(r, span=Span(0, 0)) for r in g.relations)
         room_type = room_type or g.room_type
     return {"objects": objects, "relations": relations, "room_type": room_type}
+
+
+def _fit_frames(track: np.ndarray, frames: int) -> np.ndarray:
+    """(T, E) -> (frames, E): the last row held, or the end cut."""
+    if len(track) >= frames:
+        return track[:frames]
+    return np.concatenate([track, np.repeat(track[-1:], frames - len(track), axis=0)])
+
+
+def _social_part(graphs: list[SentenceGraph]) -> list[Any]:
+    """What the social model reads of the story (services/social/story.py): the action sentences'
+    characters, their actions and the characters those aim at, and the social nodes; no spans."""
+    names = {c.name for g in graphs for c in g.characters}
+    return [
+        [
+            g.sentence_id,
+            [
+                [c.name, [[a.verb, a.action, a.target if a.target in names else ""] for a in c.actions]]
+                for c in g.characters
+            ],
+            [[n.kind, n.subjects, n.label] for n in g.social],
+        ]
+        for g in graphs
+        if g.kind == "action" and (g.characters or g.social)
+    ]
 
 
 def _characters(

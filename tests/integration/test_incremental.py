@@ -58,7 +58,14 @@ def test_the_first_compute_runs_every_node(orchestrator):
 def test_editing_one_action_reruns_its_parse_and_that_action_of_that_character_only(session):
     replace(session, "Tom waves", "Tom claps")
     result = session.compute()
-    assert result.ran == [f"parse:{sid_of(session, 'Tom claps')}", "resolve", "segment:Tom:1"]
+    assert result.ran == [
+        f"parse:{sid_of(session, 'Tom claps')}",
+        "resolve",
+        "segment:Tom:1",
+        "social",  # a new verb: the story's emotions are sampled again, and so both faces
+        "face:Eve",
+        "face:Tom",
+    ]
     assert [seg.action for seg in result.motions["Tom"].segments][-1] == "clap"
 
 
@@ -70,13 +77,14 @@ def test_an_action_whose_end_state_changes_reruns_the_actions_after_it(session):
         "resolve",
         "segment:Tom:0",
         "segment:Tom:1",
+        "face:Tom",  # the same story for the social model (a walk to an object), new timing for his face
     ]
 
 
 def test_an_action_whose_end_state_is_unchanged_stops_early(session):
     replace(session, "Tom walks to the window", "Tom walks slowly to the window")
     result = session.compute()
-    assert result.ran == [f"parse:{sid_of(session, 'slowly')}", "resolve", "segment:Tom:0"]
+    assert result.ran == [f"parse:{sid_of(session, 'slowly')}", "resolve", "segment:Tom:0", "face:Tom"]
 
 
 def test_a_whitespace_only_edit_recomputes_nothing(session):
@@ -113,7 +121,7 @@ def test_changing_a_scene_object_recomposes_the_scene_and_the_motion_in_it(sessi
 def test_deleting_a_sentence_reruns_resolve_and_the_affected_character(session):
     replace(session, " Tom waves.", "")
     result = session.compute()
-    assert result.ran == ["resolve"]
+    assert result.ran == ["resolve", "social", "face:Eve", "face:Tom"]
     assert all(seg.action != "wave" for seg in result.motions["Tom"].segments)
 
 
@@ -132,13 +140,20 @@ def test_inserting_an_action_runs_only_its_parse_and_its_new_motion_node(session
     at = session.doc.text.index("camera left")
     session.edit(session.doc.version, [TextChange(start=at, end=at, text="Eve waves. ")])
     result = session.compute()
-    assert result.ran == [f"parse:{sid_of(session, 'Eve waves')}", "resolve", "segment:Eve:2"]
+    assert result.ran == [
+        f"parse:{sid_of(session, 'Eve waves')}",
+        "resolve",
+        "segment:Eve:2",
+        "social",
+        "face:Eve",
+        "face:Tom",
+    ]
 
 
 def test_reordering_two_sentences_reparses_nothing_and_reruns_that_characters_motion(session):
     replace(session, "Tom walks to the window. Tom waves.", "Tom waves. Tom walks to the window.")
     result = session.compute()
-    assert result.ran == ["resolve", "segment:Tom:0", "segment:Tom:1"]
+    assert result.ran == ["resolve", "segment:Tom:0", "segment:Tom:1", "social", "face:Eve", "face:Tom"]
     assert [s.action for s in result.motions["Tom"].segments if s.action != "hold"][0] == "wave"
 
 
