@@ -5,8 +5,9 @@ Usage:
 
 JSON keys: frames_per_s (locomotion controller + the PFNN rollout, one character, one thread),
 network_frames_per_s (the rollout alone, in the runtime the controller uses: network_runtime,
-"numpy" = services.motion.pfnn_tables on pfnn_fast.onnx's phase tables), onnxruntime_frames_per_s
-(the same graph in onnxruntime, for comparison), multi_action_ms (plan + synthesise a ~60 s motion
+"fast" = pfnn_fast.onnx in onnxruntime, the default; "numpy" = services.motion.pfnn_tables on that
+graph's phase tables, WANA_PFNN_RUNTIME=numpy), numpy_frames_per_s (the numpy rollout alone, for
+comparison), multi_action_ms (plan + synthesise a ~60 s motion
 of many actions), multi_action_frames, furnished_action_ms (median handle_synthesize of one action
 of a story in a furnished scene-database office, A* routes on warm grid caches, as the editor
 calls it), locomotion_source ("pfnn" or "procedural"), and the same timings by the wall clock
@@ -35,11 +36,12 @@ import numpy as np  # noqa: E402
 from proto.scene import Room, Scene  # noqa: E402
 from proto.ssg import ActionNode, CharacterNode  # noqa: E402
 from services.motion.locomotion import (  # noqa: E402
+    MODEL_DIR,
     locomote,
-    onnxruntime_runtime,
     runtime,
     standing_pose_features,
 )
+from services.motion.pfnn_tables import PhaseTableRuntime  # noqa: E402
 from services.motion.planning import plan_actions  # noqa: E402
 from services.motion.synthesis import synthesise  # noqa: E402
 
@@ -83,10 +85,13 @@ def bench_locomotion(seconds: float, repeats: int) -> dict:
             "network_frames_per_s_wall": len(ctrl) / wall,
             "network_runtime": rt.kind,
         }
-        ort = onnxruntime_runtime()
-        if ort is not None:
-            cpu, _ = _best(lambda: ort.run(ctrl, standing_pose_features(), 0.0), max(2, repeats // 3))
-            out["onnxruntime_frames_per_s"] = len(ctrl) / cpu
+        try:
+            tables = PhaseTableRuntime(MODEL_DIR / "pfnn_fast.onnx")
+        except Exception:  # noqa: BLE001 - no fast graph: nothing to compare
+            tables = None
+        if tables is not None:
+            cpu, _ = _best(lambda: tables.run(ctrl, standing_pose_features(), 0.0), max(2, repeats // 3))
+            out["numpy_frames_per_s"] = len(ctrl) / cpu
     return out
 
 

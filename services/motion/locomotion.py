@@ -2,11 +2,11 @@
 
 The controller turns waypoints and a speed into a root trajectory at 30 fps (accelerating from rest,
 rate-limited turning, decelerating to stop at the goal, then turning in place to face a target);
-the network, given that trajectory, produces the poses autoregressively. The rollout runs the
-phase tables of models/locomotion/pfnn_fast.onnx in numpy (services.motion.pfnn_tables: the same
-arithmetic as onnxruntime on that graph, without its per-frame weight copies, ~2x faster);
-WANA_PFNN_RUNTIME=onnxruntime runs the graph in onnxruntime instead. Without the ONNX model it
-falls back to the procedural gait, so synthesis always works.
+the network, given that trajectory, produces the poses autoregressively. The rollout runs
+models/locomotion/pfnn_fast.onnx in onnxruntime (one thread); WANA_PFNN_RUNTIME=numpy runs the
+same graph's phase tables in numpy instead (services.motion.pfnn_tables: the same arithmetic
+without onnxruntime's per-frame weight gathers, about 1.5x faster, equal to 1e-5). Without the
+ONNX model it falls back to the procedural gait, so synthesis always works.
 
 The root follows the planned path exactly: the network's root-velocity output (dx, dz, dyaw) is
 trained but not used at run time, so path following stays exact; the network supplies the poses,
@@ -191,11 +191,11 @@ class RolloutRuntime(Protocol):
 def runtime() -> RolloutRuntime | None:
     """The shared rollout runtime, or None when no model can be loaded.
 
-    The numpy executor of pfnn_fast.onnx's phase tables by default; onnxruntime when
-    WANA_PFNN_RUNTIME=onnxruntime or when the fast graph is missing (the traced rollout).
+    onnxruntime on pfnn_fast.onnx (or the traced rollout when the fast graph is missing) by
+    default; the numpy executor of pfnn_fast.onnx's phase tables when WANA_PFNN_RUNTIME=numpy.
     """
     if (
-        os.environ.get("WANA_PFNN_RUNTIME", "numpy") != "onnxruntime"
+        os.environ.get("WANA_PFNN_RUNTIME", "onnxruntime") == "numpy"
         and (MODEL_DIR / "pfnn_fast.onnx").is_file()
     ):
         try:
