@@ -233,39 +233,55 @@ class Pipeline:
             if sid == s.id
         ]
         waits = {sid: c.seconds for sid, c in result.commands if c.kind == "wait"}
-        start_frames = schedule(beats, waits, [s.id for s in sentences])
+        plan = self._social_plan(result, resolved, engine, version)
+        responses = {
+            (r.responder, r.response_index): ((r.actor, r.action_index), r.delay_s)
+            for r in (plan.responses if plan is not None else [])
+            if r.response_index >= 0
+        }
+        start_frames = schedule(beats, waits, [s.id for s in sentences], responses)
         length = max([start_frames[(b.character, b.k)] + b.frames for b in beats] or [1])
         for name, (node, _) in characters.items():
             firsts = [start_frames[(name, k)] for k in range(len(node.actions))] or [0]
             result.motions[name] = assemble(name, pieces[name], firsts, total=length)
+        if plan is not None:
+            try:
+                self._faces(result, plan, engine, version)
+            except (StageUnavailable, StageFailed) as exc:
+                result.unavailable["social"] = str(exc)
+
+    def _social_plan(
+        self, result: PipelineResult, graphs: list[SentenceGraph], engine: QueryEngine, version: int
+    ) -> Any:
+        """The story's social plan (faces, response timing, distances), or None when unavailable."""
         try:
-            self._faces(result, resolved, engine, version)
+            SocialPlanRequest, SocialPlanReply = _messages(
+                "social", "social", "SocialPlanRequest", "SocialPlanReply"
+            )
+            header = self._header(version)
+            return engine.query(
+                "social",
+                _social_part(graphs),
+                lambda: (
+                    self.backend.call(
+                        "social",
+                        SocialPlanRequest(header=header, graphs=graphs, seed=self.seed),
+                        SocialPlanReply,
+                    ).plan
+                ),
+            )
         except (StageUnavailable, StageFailed) as exc:
             result.unavailable["social"] = str(exc)
+            return None
 
-    def _faces(
-        self, result: PipelineResult, graphs: list[SentenceGraph], engine: QueryEngine, version: int
-    ) -> None:
-        """The social plan of the story, then each character's face track (Motion.expression)."""
-        SocialPlanRequest, SocialPlanReply, ExpressionTrackRequest, ExpressionTrackReply = _messages(
-            "social",
-            "social",
-            "SocialPlanRequest",
-            "SocialPlanReply",
-            "ExpressionTrackRequest",
-            "ExpressionTrackReply",
+    def _faces(self, result: PipelineResult, plan: Any, engine: QueryEngine, version: int) -> None:
+        """Each character's face track (Motion.expression) from the social plan."""
+        ExpressionTrackRequest, ExpressionTrackReply = _messages(
+            "social", "social", "ExpressionTrackRequest", "ExpressionTrackReply"
         )
-        story = _social_part(graphs)
         header = self._header(version)
-        plan = engine.query(
-            "social",
-            story,
-            lambda: (
-                self.backend.call(
-                    "social", SocialPlanRequest(header=header, graphs=graphs, seed=self.seed), SocialPlanReply
-                ).plan
-            ),
-        )
+        if not plan.characters:
+            return
         # A face depends on the character's part of the plan and on when its own actions and the actions
         # it reacts to happen; holds and the story's length do not matter (the face holds after its last
         # key), so the track is computed to a length of its own and held or cut to the motion's.

@@ -2,8 +2,10 @@
 
 Characters act at the same time, but the text is a story: an action sentence starts no earlier than the
 previous action sentence did (so "Eve sits. Tom walks in." has Tom enter once Eve begins to sit), the
-characters of one sentence start together, and a character's actions follow one another. `wait N seconds` holds every later sentence until all earlier
-actions are over, plus N seconds. Gaps are filled by holding the pose; nothing here re-synthesises motion.
+characters of one sentence start together, and a character's actions follow one another. A response (the
+social model's ResponseTiming: "Tom criticizes Mary. Mary apologizes.") starts once the action it answers
+is over plus the sampled delay. `wait N seconds` holds every later sentence until all earlier actions are
+over, plus N seconds. Gaps are filled by holding the pose; nothing here re-synthesises motion.
 """
 
 from __future__ import annotations
@@ -30,7 +32,10 @@ class Beat:
 
 
 def schedule(
-    beats: list[Beat], waits: dict[str, float] | None = None, order: list[str] | None = None
+    beats: list[Beat],
+    waits: dict[str, float] | None = None,
+    order: list[str] | None = None,
+    responses: dict[tuple[str, int], tuple[tuple[str, int], float]] | None = None,
 ) -> dict[tuple[str, int], int]:
     """Start frame of every (character, k).
 
@@ -38,11 +43,15 @@ def schedule(
         beats: the actions in document order.
         waits: sentence id of a `wait` command -> seconds.
         order: every sentence id in document order (needed to place the waits); defaults to the beats' order.
+        responses: (character, k) -> ((other, j), delay seconds): action k answers the other's action j
+            and starts no earlier than its end plus the delay (when that action comes earlier in the text).
 
     Returns:
         (character, k) -> start frame.
     """
     waits = waits or {}
+    responses = responses or {}
+    ends: dict[tuple[str, int], int] = {}
     order = order or list(dict.fromkeys(b.sentence_id for b in beats))
     by_sentence: dict[str, list[Beat]] = {}
     for b in beats:
@@ -61,9 +70,14 @@ def schedule(
         # Everyone in the sentence starts together, once each of them is free ("They shake hands").
         begin = max([floor] + [free.get(b.character, 0) for b in group])
         for b in group:
+            answered = responses.get((b.character, b.k))
+            if answered is not None and answered[0] in ends:
+                begin = max(begin, ends[answered[0]] + int(round(answered[1] * FPS)))
+        for b in group:
             start = max(free.get(b.character, 0), begin)
             starts[(b.character, b.k)] = start
             free[b.character] = start + b.frames
+            ends[(b.character, b.k)] = start + b.frames
             latest_end = max(latest_end, start + b.frames)
         floor = begin
     return starts

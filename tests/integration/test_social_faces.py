@@ -1,4 +1,4 @@
-"""The social model in the pipeline: relations and emotions in the text become the characters' faces."""
+"""The social model in the pipeline: faces from relations and emotions, responses timed after what they answer."""
 
 from __future__ import annotations
 
@@ -46,3 +46,15 @@ def test_the_same_story_gives_the_same_faces(orchestrator):
     b = orchestrator.create(text).compute()
     for name in ("Tom", "Eve"):
         assert np.array_equal(_face(a, name), _face(b, name))
+
+
+def test_a_response_waits_for_the_action_it_answers(orchestrator):
+    result = orchestrator.create("Tom shouts at Mary. Mary apologizes to Tom.").compute()
+    acting = {
+        name: [seg for seg in motion.segments if seg.action_index >= 0]
+        for name, motion in result.motions.items()
+    }
+    tom_end = max(seg.end_frame for seg in acting["Tom"])
+    mary_start = min(seg.start_frame for seg in acting["Mary"])
+    assert mary_start >= tom_end  # she answers once he has finished, after a sampled delay
+    assert mary_start - tom_end <= 3 * 30

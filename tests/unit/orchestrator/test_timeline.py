@@ -23,6 +23,21 @@ def test_characters_in_one_sentence_start_together():
     assert starts[("Eve", 1)] == starts[("Tom", 0)] == 50
 
 
+def test_a_response_starts_after_the_action_it_answers_plus_its_delay():
+    beats = [Beat("s1", "Tom", 0, 90), Beat("s2", "Mary", 0, 40), Beat("s3", "Eve", 0, 10)]
+    starts = schedule(beats, responses={("Mary", 0): (("Tom", 0), 0.5)})
+    assert starts[("Mary", 0)] == 90 + 15
+    assert starts[("Eve", 0)] == 105  # later sentences still follow the story order
+    # without the response, Mary would have started with Tom's sentence
+    assert schedule(beats)[("Mary", 0)] == 0
+
+
+def test_a_response_to_an_action_later_in_the_text_is_ignored():
+    beats = [Beat("s1", "Mary", 0, 40), Beat("s2", "Tom", 0, 90)]
+    starts = schedule(beats, responses={("Mary", 0): (("Tom", 0), 0.5)})
+    assert starts == {("Mary", 0): 0, ("Tom", 0): 0}
+
+
 def test_a_wait_holds_later_sentences_until_everything_earlier_is_over():
     beats = [Beat("s1", "Eve", 0, 30), Beat("s3", "Tom", 0, 10)]
     starts = schedule(beats, {"s2": 2.0}, ["s1", "s2", "s3"])
