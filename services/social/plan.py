@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 
+import msgspec
 import numpy as np
 
 from proto.motion_data import Segment
@@ -65,6 +66,82 @@ def plan_social(graphs: list[SentenceGraph], *, seed: int = 0, steps: int = 0) -
     """
     if not 0 <= steps <= MAX_MH_STEPS:
         raise ValueError(f"steps must be in 0..{MAX_MH_STEPS}, got {steps}")
+    groups = social_groups(graphs)
+    if len(groups) <= 1:
+        return _plan_group(graphs, seed, steps)
+    return _merge([_plan_group(_only(graphs, group), seed, steps) for group in groups], seed)
+
+
+def social_groups(graphs: list[SentenceGraph]) -> list[list[str]]:
+    """The characters that never meet split into groups, each in order of first appearance.
+
+    Two characters are in one group when they act in one sentence, when an action of one aims at the
+    other, or when a social node names both. Groups are planned apart (same seed), so what one group
+    does never changes another's faces or timing.
+    """
+    parent: dict[str, str] = {}
+
+    def find(n: str) -> str:
+        parent.setdefault(n, n)
+        while parent[n] != n:
+            parent[n] = parent[parent[n]]
+            n = parent[n]
+        return n
+
+    def join(names: list[str]) -> None:
+        for n in names[1:]:
+            parent[find(n)] = find(names[0])
+
+    order: list[str] = []
+    for g in graphs:
+        names = [c.name for c in g.characters]
+        order += names + [n for node in g.social for n in node.subjects]
+        join(names)
+        for node in g.social:
+            join(node.subjects)
+    known = set(order)
+    for g in graphs:
+        for c in g.characters:
+            join([c.name] + [a.target for a in c.actions if a.target in known])
+    groups: dict[str, list[str]] = {}
+    for n in dict.fromkeys(order):
+        groups.setdefault(find(n), []).append(n)
+    return list(groups.values())
+
+
+def _only(graphs: list[SentenceGraph], group: list[str]) -> list[SentenceGraph]:
+    """The graphs with only the characters and social nodes of one group."""
+    members = set(group)
+    return [
+        msgspec.structs.replace(
+            g,
+            characters=[c for c in g.characters if c.name in members],
+            social=[n for n in g.social if members.intersection(n.subjects)],
+        )
+        for g in graphs
+    ]
+
+
+def _merge(plans: list[SocialPlan], seed: int) -> SocialPlan:
+    """One plan from the plans of groups that never meet (no pair spans two groups)."""
+    return SocialPlan(
+        expression_names=plans[0].expression_names,
+        characters=[c for p in plans for c in p.characters],
+        pairs=[x for p in plans for x in p.pairs],
+        responses=[x for p in plans for x in p.responses],
+        proposals=[x for p in plans for x in p.proposals],
+        action_distances=[x for p in plans for x in p.action_distances],
+        energy_initial=_r(sum(p.energy_initial for p in plans), 6),
+        energy_final=_r(sum(p.energy_final for p in plans), 6),
+        steps=sum(p.steps for p in plans),
+        accepted=sum(p.accepted for p in plans),
+        seed=seed,
+        notes=list(dict.fromkeys(n for p in plans for n in p.notes)),
+    )
+
+
+def _plan_group(graphs: list[SentenceGraph], seed: int, steps: int) -> SocialPlan:
+    """plan_social for characters that all belong to one group."""
     story = read_story(graphs)
     model = build_model(story)
     result = sample(model, seed=seed, steps=steps)

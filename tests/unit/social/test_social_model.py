@@ -8,7 +8,7 @@ import pytest
 from proto.motion_data import Segment
 from proto.ssg import ActionNode, CharacterNode, SentenceGraph, SocialNode
 from services.social.face import face_weights
-from services.social.plan import expression_track, plan_social
+from services.social.plan import expression_track, plan_social, social_groups
 from services.social.sketch import sketch_graphs
 from services.social.story import StoryError
 from wana.assets.characters import EXPRESSIONS
@@ -159,3 +159,19 @@ def test_expression_track_rejects_bad_input():
         expression_track(p, "Tom", [], fps=0)
     with pytest.raises(ValueError, match="frames"):
         expression_track(p, "Tom", [Segment(index=0, action="wave", start_frame=10, end_frame=5)])
+
+
+def test_characters_who_never_meet_are_planned_apart():
+    pair = sketch_graphs("rel Tom Mary friends; act Tom hug Mary; emo Mary happy")
+    more = sketch_graphs("rel Tom Mary friends; act Tom hug Mary; emo Mary happy; emo Eve angry; act Eve cry")
+    assert social_groups(more) == [["Tom", "Mary"], ["Eve"]]
+    alone, together = plan_social(pair, seed=3), plan_social(more, seed=3)
+    by_name = {c.name: c for c in together.characters}
+    for c in alone.characters:  # Eve's story changes nothing of Tom's and Mary's plan
+        assert by_name[c.name] == c
+    assert [c.name for c in together.characters] == ["Tom", "Mary", "Eve"]
+    assert not any("Eve" in (p.character, p.other) for p in together.pairs)
+
+
+def test_an_action_aimed_at_a_character_joins_their_groups():
+    assert social_groups(sketch_graphs("act Tom cry; act Eve wave; act Eve point Tom")) == [["Tom", "Eve"]]
