@@ -17,6 +17,7 @@ Python API (in-process, pure, cached):
 Modules: segment (sentence splitting), commands (camera/weather/wait/speed lines), pipeline (the
 trained spaCy pipeline, lazily loaded), lemmatizer, lexicon (words -> catalog categories and action
 names), compounds (glued words), mentions (noun phrases -> objects/characters), scene (relations),
+repair (two parser errors on character sentences), arguments (a verb's objects and obliques),
 actions (characters, actions, social), builder, parse, resolve, errors (diagnostic codes), cli.
 The pipeline is rebuilt by ``scripts/train_nlp.py``.
 """

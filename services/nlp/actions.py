@@ -3,39 +3,38 @@
 Per verb clause (the root, its conjuncts, adverbial clauses; "starts to dance" reads as "dance"):
 subject -> character; obj / obl -> target, destination or instrument by the verb's kind and the
 preposition; advmod -> manner or direction; "for 5 seconds" -> duration. "They are friends",
-"Mary is Tom's boss" and "Tom is angry" -> social nodes; "Tom apologizes to Mary" -> an action plus
-a social emotion node.
+"Mary is Tom's boss", "Tom is angry" and "They are married" -> social nodes; "Tom apologizes to
+Mary" -> an action plus a social emotion node (lexicon.is_social); two subjects of a reciprocal act
+with no target ("Tom and Mary hug", "They quarrel", "... at each other") target each other.
+Reading the verb's arguments is services.nlp.arguments.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
+import msgspec
 from spacy.tokens import Span as SpacySpan
 from spacy.tokens import Token
 
 from proto.ssg import ActionNode
 from services.nlp import lexicon
+from services.nlp.arguments import (
+    Argument,
+    arguments,
+    case_of,
+    character_of,
+    event_action,
+    event_phrase,
+    object_words,
+    verb_lemma,
+)
 from services.nlp.builder import GraphBuilder
-from services.nlp.commands import NUMBER_WORDS, UNIT_SECONDS
-from services.nlp.lemmatizer import rule_lemma
-from services.nlp.mentions import CharacterMention, character_mention, is_unknown_object_word, object_mention
-from services.nlp.scene import SUBJECT_DEPS, _mention
+from services.nlp.mentions import CharacterMention, character_mention
+from services.nlp.scene import SUBJECT_DEPS
 
 CLAUSE_DEPS = frozenset({"ROOT", "conj", "advcl", "xcomp", "ccomp", "parataxis"})
-TIME_UNITS = frozenset(UNIT_SECONDS)
 LINKING_VERBS = frozenset(
     {"look", "feel", "seem", "become", "get", "appear", "grow", "turn", "remain", "stay"}
 )
-
-
-@dataclass
-class _Argument:
-    tok: Token
-    prep: str
-    object_id: str = ""
-    character: str = ""
-    word: str = ""
 
 
 def _subject_tokens(verb: Token) -> list[Token]:
@@ -62,36 +61,12 @@ def _subject_tokens(verb: Token) -> list[Token]:
     return []
 
 
-def verb_lemma(tok: Token) -> str:
-    """Lemma of a verb; for a word the tagger took for a noun or adverb, its verb reading."""
-    if tok.pos_ in ("VERB", "AUX"):
-        return tok.lemma_.lower()
-    return rule_lemma(tok.text, "VERB").lower()
-
-
 def _with_conj_people(tok: Token) -> list[Token]:
     out = [tok]
     for c in tok.children:
         if c.dep_ == "conj":
             out += _with_conj_people(c)
     return out
-
-
-def _duration(tok: Token) -> float | None:
-    """Seconds of "for 5 seconds" / "2 minutes" / "a second" headed by the unit noun ``tok``."""
-    unit = tok.lower_
-    if unit not in TIME_UNITS:
-        return None
-    value: float | None = None
-    for c in tok.children:
-        if c.dep_ in ("nummod", "det", "amod") or c.like_num:
-            try:
-                value = float(c.text)
-            except ValueError:
-                value = NUMBER_WORDS.get(c.lower_, value)
-    if value is None:
-        value = 1.0 if unit in ("second", "minute", "hour", "sec", "min") else None
-    return None if value is None else value * UNIT_SECONDS[unit]
 
 
 def _manner_and_direction(verb: Token) -> tuple[str, str]:
@@ -130,6 +105,8 @@ def _clause_verbs(sent: SpacySpan) -> list[Token]:
             c.dep_ == "xcomp" and c.pos_ == "VERB" for c in tok.children
         ):
             continue  # "starts to dance": the action is "dance"
+        if _relation_state(tok):
+            continue  # "are married": a relation, handled by _social
         if tok.lemma_.lower() in LINKING_VERBS and any(
             c.dep_ == "xcomp" and c.pos_ == "ADJ" for c in tok.children
         ):
@@ -160,116 +137,36 @@ def _verb_by_position(tok: Token) -> bool:
     return tok.dep_ == "conj" and tok.head.pos_ == "VERB" and lexicon.is_known_verb(verb_lemma(tok))
 
 
-def _character_of(tok: Token, builder: GraphBuilder) -> CharacterMention | None:
-    cm = character_mention(tok)
-    if cm is None and tok.pos_ == "PROPN" and object_mention(tok) is None:
-        cm = CharacterMention(head=tok, name=tok.text, mention=tok.text)
-    return cm
-
-
-_SALIENCE = {"obj": 0, "nsubj": 1, "nsubj:pass": 1, "obl": 2, "nmod": 3}
-
-
-def _antecedent(pronoun: Token, builder: GraphBuilder) -> str:
-    """Object id "it" refers to within its sentence: an earlier direct object, else subject, else the last."""
-    candidates: list[tuple[int, int, str]] = []
-    for tok in pronoun.sent:
-        if tok.i >= pronoun.i:
-            break
-        oid = builder._by_token.get(tok.i)
-        if oid is None:
-            m = object_mention(tok) if tok.pos_ in ("NOUN", "PROPN") else None
-            oid = builder.object_id(m) if m is not None else None
-        if oid is not None:
-            candidates.append((_SALIENCE.get(tok.dep_, 4), -tok.i, oid))
-    return min(candidates)[2] if candidates else ""
-
-
-def _argument(tok: Token, prep: str, builder: GraphBuilder, report_unknown: bool) -> _Argument:
-    arg = _Argument(tok=tok, prep=prep)
-    cm = _character_of(tok, builder)
-    if cm is not None and (cm.name or cm.pronoun in ("he", "she", "they")):
-        arg.character = cm.name or cm.mention
-        return arg
-    if tok.lower_ in lexicon.OBJECT_PRONOUNS:
-        antecedent = _antecedent(tok, builder)
-        if antecedent:
-            arg.object_id = antecedent
-        else:
-            arg.word = tok.lower_  # resolved against earlier sentences by resolve()
-        return arg
-    oid = _mention(tok, builder, report_unknown=False)
-    if oid is not None:
-        arg.object_id = oid
-        return arg
-    arg.word = tok.lemma_.lower()
-    if report_unknown and is_unknown_object_word(tok):
-        builder.diagnose(
-            "W101", f"'{tok.text}' is not in the object catalog", tok.idx, tok.idx + len(tok.text)
-        )
-    return arg
-
-
-def _object_words(arg: _Argument, builder: GraphBuilder) -> tuple[str, ...]:
-    if arg.object_id:
-        category = next(o.category for o in builder.objects if o.id == arg.object_id)
-        return (category, *lexicon.hypernyms(category), arg.tok.lemma_.lower(), arg.tok.lower_)
-    if arg.word:
-        return (arg.word, arg.tok.lower_)
-    return ()
-
-
-def _action(verb: Token, builder: GraphBuilder) -> ActionNode:
+def _action(verb: Token, builder: GraphBuilder) -> tuple[ActionNode, str]:
+    """The ActionNode of a verb clause and the verb its social meaning is read from ("hug" of "gives
+    Mary a hug"; the verb's lemma otherwise)."""
     lemma = verb_lemma(verb)
     particle = next((c.lower_ for c in verb.children if c.dep_ == "compound:prt"), "")
     manner, direction = _manner_and_direction(verb)
     if particle in lexicon.DIRECTION_ADVERBS and particle in ("left", "right", "around", "back"):
         direction = direction or lexicon.DIRECTION_ADVERBS[particle]
-    duration = 0.0
-    objects: list[_Argument] = []
-    obliques: list[_Argument] = []
-    for c in verb.children:
-        if c.pos_ == "ADV" and c.lower_.endswith("ly"):
-            continue  # a manner the parser attached as an argument
-        if c.lower_ in lexicon.DIRECTION_ADVERBS and not any(g.dep_ in ("det", "case") for g in c.children):
-            continue  # "turns right": a direction, read by _manner_and_direction
-        if c.dep_ in ("obj", "iobj", "dobj") or (c.dep_ == "advmod" and c.pos_ in ("NOUN", "PROPN")):
-            objects.append(_argument(c, "", builder, report_unknown=True))
-        elif c.dep_ in ("obl", "obl:unmarked", "obl:tmod", "obl:npmod", "nmod:tmod", "nmod"):
-            seconds = _duration(c)
-            if seconds is not None:
-                duration = seconds
-                continue
-            if (
-                c.lower_ in lexicon.DIRECTION_ADVERBS
-                or c.pos_ in ("ADV", "ADP", "PART", "SCONJ", "ADJ")
-                or (c.lower_.endswith("ly") and not any(g.dep_ == "case" for g in c.children))
-            ):
-                continue  # "walks in", "looks outside", "dances happily": no object
-            cases = [g for g in c.children if g.dep_ == "case"]
-            prep = " ".join(g.lower_ for g in cases)
-            obliques.append(_argument(c, prep, builder, report_unknown=True))
-            for conj in c.children:
-                if conj.dep_ == "conj" and conj.pos_ in ("NOUN", "PROPN"):
-                    obliques.append(_argument(conj, prep, builder, report_unknown=True))
+    objects, obliques, duration = arguments(verb, builder)
     target = instrument = destination = ""
     is_motion = lexicon.action_for(lemma, particle) in lexicon.LOCOMOTION_ACTIONS
-    primary: _Argument | None = None
-    for arg in objects:
+    primary: Argument | None = None
+    # A character is the target before a thing ("gives Mary a hug"); a thing or body part names the
+    # action before a character ("shakes hands with Mary", "gives Mary a high five").
+    for arg in sorted(objects, key=lambda a: not a.character):
         value = arg.object_id or arg.character or arg.word
         if is_motion and not arg.character and arg.object_id:
             destination = destination or value
         elif is_motion and arg.character:
             destination = destination or value
-        else:
+        elif not arg.body_part:
             target = target or value
-        primary = primary or arg
+    things = [a for a in objects if not a.character]
+    primary = things[0] if things and len(things) < len(objects) else (objects[0] if objects else None)
     for arg in obliques:
         value = arg.object_id or arg.character or arg.word
         last = arg.prep.split()[-1] if arg.prep else ""
         if last in lexicon.INSTRUMENT_PREPS and arg.object_id:
             instrument = instrument or value
-            if primary is None or primary.prep in ("",) and not primary.object_id:
+            if primary is None or primary.prep in ("",) and not primary.object_id and not primary.body_part:
                 primary = primary or arg
         elif is_motion and (last in lexicon.DESTINATION_PREPS or last in lexicon.RELATION_PREPS or not last):
             destination = destination or value
@@ -278,13 +175,17 @@ def _action(verb: Token, builder: GraphBuilder) -> ActionNode:
             primary = primary or arg
         elif not destination and last in lexicon.DESTINATION_PREPS:
             destination = value
+    if not target and not destination:
+        target = next((a.word for a in objects if a.body_part), "")  # "washes his hands": as written
     if primary is None and instrument:
         primary = next(a for a in obliques if (a.object_id or a.word) == instrument)
     obj_words: tuple[str, ...] = ()
     prep = ""
     person = False
     if primary is not None:
-        obj_words = _object_words(primary, builder)
+        obj_words = object_words(primary, builder)
+        if primary.word and not primary.object_id and not primary.body_part:
+            obj_words = (event_phrase(primary.tok), *obj_words)
         prep = primary.prep.split()[-1] if primary.prep else ""
         person = bool(primary.character)
     if instrument and primary is not None and (primary.object_id or primary.word) != instrument:
@@ -292,10 +193,20 @@ def _action(verb: Token, builder: GraphBuilder) -> ActionNode:
         action = lexicon.action_for(
             lemma, particle, obj_words, prep, direction, person
         ) or lexicon.action_for(
-            lemma, particle, _object_words(inst_arg, builder), inst_arg.prep.split()[-1], direction, False
+            lemma, particle, object_words(inst_arg, builder), inst_arg.prep.split()[-1], direction, False
         )
     else:
         action = lexicon.action_for(lemma, particle, obj_words, prep, direction, person)
+    social_verb = lemma
+    if lemma in lexicon.LIGHT_VERBS and primary is not None and primary.word and not primary.body_part:
+        # "gives Mary a hug", "has a quarrel with Tom", "takes a bow": the event noun is the action,
+        # the character (if any) its target
+        from_event = event_action(primary.tok)
+        if from_event:
+            action = action or from_event
+            social_verb = primary.word
+            people = [a for a in objects + obliques if a.character]
+            target = people[0].character if people else ""
     first = verb.i
     last_tok = max([verb.i] + [a.tok.i for a in objects + obliques])
     doc = verb.doc
@@ -306,7 +217,7 @@ def _action(verb: Token, builder: GraphBuilder) -> ActionNode:
         builder.diagnose(
             "W102", f"'{shown}' is not an action in the motion library", verb.idx, verb.idx + len(verb.text)
         )
-    return ActionNode(
+    node = ActionNode(
         verb=lemma + (f" {particle}" if particle else ""),
         action=action,
         manner=manner,
@@ -316,6 +227,15 @@ def _action(verb: Token, builder: GraphBuilder) -> ActionNode:
         duration_s=duration,
         span=builder.span(doc[first].idx, span_end),
     )
+    return node, social_verb
+
+
+def _relation_state(tok: Token) -> str:
+    """Relation label of a participle that states a relation ("are married" -> "couple"), or ""."""
+    label = lexicon.RELATION_STATES.get(tok.lower_, "")
+    if label and any(c.dep_ in ("aux", "aux:pass", "cop") and c.lemma_.lower() == "be" for c in tok.children):
+        return label
+    return ""
 
 
 def _social(sent: SpacySpan, builder: GraphBuilder) -> bool:
@@ -325,11 +245,12 @@ def _social(sent: SpacySpan, builder: GraphBuilder) -> bool:
         is_pred = any(c.dep_ == "cop" for c in tok.children) or (
             tok.dep_ == "xcomp" and tok.head.lemma_.lower() in LINKING_VERBS and tok.pos_ == "ADJ"
         )
-        if not is_pred:
+        state = _relation_state(tok)
+        if not is_pred and not state:
             continue
         subj_holder = tok if any(c.dep_ in SUBJECT_DEPS for c in tok.children) else tok.head
         subjects = _subject_tokens(subj_holder)
-        chars = [c for c in (_character_of(s, builder) for s in subjects) if c is not None]
+        chars = [c for c in (character_of(s, builder) for s in subjects) if c is not None]
         if not chars:
             continue
         names = [c.name or c.mention.lower() for c in chars]
@@ -338,12 +259,23 @@ def _social(sent: SpacySpan, builder: GraphBuilder) -> bool:
         lower = tok.lower_
         start = min(s.idx for s in subjects)
         end = tok.idx + len(tok.text)
-        if tok.pos_ == "ADJ" or lower in lexicon.EMOTION_WORDS:
+        if state:  # "Tom and Mary are married", "Tom is married to Mary"
+            others = [character_of(c, builder) for c in tok.children if c.dep_ in ("obj", "obl", "nmod")]
+            extra = [o.name or o.mention.lower() for o in others if o is not None]
+            for o in others:
+                if o is not None:
+                    builder.character(o.name, o.mention, o.pronoun)
+            builder.add_social("relation", names + [e for e in extra if e not in names], state, start, end)
+            found = True
+        elif tok.pos_ == "ADJ" or lower in lexicon.EMOTION_WORDS:
             builder.add_social("emotion", names, lower, start, end)
             found = True
         elif tok.lemma_.lower() in lexicon.SOCIAL_RELATION_WORDS or lower in lexicon.SOCIAL_RELATION_WORDS:
-            poss = [c for c in tok.children if c.dep_ == "nmod:poss"]
-            others = [_character_of(p, builder) for p in poss]
+            # "Mary is Tom's boss", "Mary is the boss of Tom": Tom is the second subject
+            poss = [c for c in tok.children if c.dep_ == "nmod:poss"] + [
+                c for c in tok.children if c.dep_ == "nmod" and case_of(c) == "of"
+            ]
+            others = [character_of(p, builder) for p in poss]
             extra = [o.name or o.mention.lower() for o in others if o is not None]
             for o in others:
                 if o is not None:
@@ -359,28 +291,55 @@ def extract_actions(sent: SpacySpan, builder: GraphBuilder) -> int:
     count = 0
     for verb in _clause_verbs(sent):
         subjects = _subject_tokens(verb)
-        chars = [c for c in (_character_of(s, builder) for s in subjects) if c is not None]
+        chars = [c for c in (character_of(s, builder) for s in subjects) if c is not None]
         if subjects and not chars:
             continue  # an object does something ("the lamp hangs"): not a character action
-        action = _action(verb, builder)
+        action, social_verb = _action(verb, builder)
         if not chars:
             chars = [CharacterMention(head=verb, name="", mention="")]  # imperative: the current character
-        for cm in chars:
-            node = builder.character(cm.name, cm.mention, cm.pronoun)
-            node.actions.append(action)
-            target = action.target
-            target_is_person = bool(target) and (target[0].isupper() or target.lower() in lexicon.PRONOUNS)
-            if verb_lemma(verb) in lexicon.SOCIAL_VERBS and target_is_person:
-                builder.add_social(
-                    "emotion",
-                    [cm.name or cm.mention.lower(), target],
-                    verb_lemma(verb),
-                    action.span.start - builder.offset,
-                    action.span.end - builder.offset,
-                )
+        _add_action(chars, action, social_verb, builder)
         count += 1
     if count == 0 and not social:
         verbless = not any(t.pos_ in ("VERB", "AUX") for t in sent)
         if verbless:
             builder.diagnose("W103", f"'{sent.text}'", sent.start_char, sent.end_char)
     return count
+
+
+def _is_plural(cm: CharacterMention) -> bool:
+    return cm.pronoun == "they" or (not cm.name and cm.head.tag_ in ("NNS", "NNPS"))
+
+
+def _add_action(
+    chars: list[CharacterMention], action: ActionNode, social_verb: str, builder: GraphBuilder
+) -> None:
+    """Give ``action`` to each subject; a social act aimed at a character also becomes a SocialNode.
+
+    Two or more subjects of a reciprocal act with no target ("Tom and Mary hug", "They quarrel",
+    "... wave at each other") act on each other: with two named subjects each one's target is the
+    other; "They" keeps the target "each other" for resolve() to fill in.
+    """
+    names = [cm.name or cm.mention.lower() for cm in chars]
+    start, end = action.span.start - builder.offset, action.span.end - builder.offset
+    reciprocal = action.target in lexicon.RECIPROCAL_PHRASES or (
+        (not action.target or action.target in lexicon.BODY_PARTS)  # "Tom and Mary shake hands"
+        and bool(action.action)
+        and (len(chars) >= 2 or any(_is_plural(c) for c in chars))
+        and lexicon.is_reciprocal(social_verb, action.action)
+    )
+    social = lexicon.is_social(social_verb, action.action)
+    label = lexicon.social_label(social_verb, action.action)
+    for cm, name in zip(chars, names, strict=True):
+        node = builder.character(cm.name, cm.mention, cm.pronoun)
+        if reciprocal:
+            others = [n for n in names if n != name]
+            target = others[0] if len(others) == 1 and cm.name else ("each other" if _is_plural(cm) else "")
+            node.actions.append(msgspec.structs.replace(action, target=target))
+            continue
+        node.actions.append(action)
+        target = action.target
+        target_is_person = bool(target) and (target[0].isupper() or target.lower() in lexicon.PRONOUNS)
+        if social and target_is_person:
+            builder.add_social("emotion", [name, target], label, start, end)
+    if reciprocal and social:
+        builder.add_social("emotion", names, label, start, end)

@@ -60,39 +60,154 @@ def _noun_rule(w: str) -> str:
     return w
 
 
-def _verb_rule(w: str) -> str:
+# Irregular pasts and participles of verbs wana's users write that the treebanks may lack.
+IRREGULAR_VERBS = {
+    "shook": "shake",
+    "shaken": "shake",
+    "threw": "throw",
+    "thrown": "throw",
+    "swung": "swing",
+    "knelt": "kneel",
+    "lit": "light",
+    "sank": "sink",
+    "swam": "swim",
+    "spun": "spin",
+    "fought": "fight",
+    "caught": "catch",
+    "taught": "teach",
+    "bent": "bend",
+    "fed": "feed",
+    "hid": "hide",
+    "hidden": "hide",
+    "leapt": "leap",
+    "crept": "creep",
+    "wept": "weep",
+    "slept": "sleep",
+    "swept": "sweep",
+    "stood": "stand",
+    "sat": "sit",
+    "lay": "lie",
+    "rode": "ride",
+    "drew": "draw",
+    "drank": "drink",
+    "ate": "eat",
+    "sang": "sing",
+    "ran": "run",
+    "went": "go",
+    "gave": "give",
+    "took": "take",
+    "hugged": "hug",
+}
+
+
+# Stem endings after which a dropped silent "e" comes back ("caus-ed" -> "cause").
+SILENT_E_STEMS = ("iz", "is", "us", "as", "os", "at", "ur", "uc", "nc", "rc", "rg", "dg", "ag", "v", "u")
+
+
+# Unstressed last syllables of longer verbs, which keep their form before "-ed"/"-ing" ("opened").
+UNSTRESSED_ENDINGS = ("en", "er", "it", "on", "el", "al", "or", "ol", "ip")
+
+
+def verb_lemma_candidates(w: str) -> list[str]:
+    """Possible lemmas of an inflected verb form, the most likely spelling first.
+
+    "criticizes" -> ["criticize", "criticiz"]; "quarrelled" -> ["quarrell", "quarrel", "quarrelle"];
+    "smiled" -> ["smile", "smil"]; the caller keeps the first one a lexicon knows.
+    """
+    w = w.lower()
+    if w in IRREGULAR_VERBS:
+        return [IRREGULAR_VERBS[w]]
+    out: list[str] = []
+
+    def add(x: str) -> None:
+        if len(x) >= 2 and x not in out:
+            out.append(x)
+
     if len(w) > 4 and w.endswith("ies"):
-        return w[:-3] + "y"
-    if len(w) > 4 and w.endswith(("ches", "shes", "sses", "xes", "zes", "oes")):
-        return w[:-2]
-    if len(w) > 3 and w.endswith("s") and not w.endswith("ss"):
-        return w[:-1]
+        add(w[:-3] + "y")
+    elif len(w) > 4 and w.endswith(("ches", "shes", "sses", "xes", "zzes")):
+        add(w[:-2])
+    elif len(w) > 3 and w.endswith("oes"):
+        add(w[:-2])  # "goes" -> "go"
+        add(w[:-1])  # "tiptoes" -> "tiptoe"
+    elif len(w) > 3 and w.endswith("s") and not w.endswith("ss"):
+        add(w[:-1])  # "criticizes" -> "criticize", "raises" -> "raise"
+        if w.endswith("es"):
+            add(w[:-2])
+    if w.endswith("ying") and len(w) == 5:
+        add(w[:-4] + "ie")  # "lying", "dying", "tying"
+    if w.endswith("ied") and len(w) == 4:
+        add(w[:-1])  # "tied", "died", "lied"
+    if w.endswith("ed") and len(w) == 4:
+        add(w[:-1])  # "used", "aged"
     for suffix in ("ing", "ed"):
         if len(w) > len(suffix) + 2 and w.endswith(suffix):
             stem = w[: -len(suffix)]
-            if len(stem) > 2 and stem[-1] == stem[-2] and stem[-1] not in "lsz":
-                return stem[:-1]  # "stopped" -> "stop"
-            if (
-                stem[-1] not in _VOWELS
+            if suffix == "ed" and stem.endswith("i") and len(stem) > 2:
+                add(stem[:-1] + "y")  # "carried" -> "carry"
+            if len(stem) > 2 and stem[-1] == stem[-2]:
+                if stem[-1] in "lsz":
+                    add(stem)  # "called", "kissed" (British "quarrelled" is tried next)
+                    add(stem[:-1])
+                else:
+                    add(stem[:-1])  # "stopped" -> "stop"
+                    add(stem)
+            elif len(stem) >= 4 and stem.endswith(UNSTRESSED_ENDINGS):
+                add(stem)  # "opened", "visited", "quarreled": no "e" came off
+                add(stem + "e")
+            elif (
+                len(stem) > 2
+                and stem[-1] not in _VOWELS
                 and stem[-2] in _VOWELS
                 and stem[-3] not in _VOWELS
                 and stem[-1] not in "wxy"
             ):
-                return stem + "e"  # "smiled" -> "smile"; a heuristic, the tables cover common verbs
-            return stem
-    return w
+                add(stem + "e")  # "smiled" -> "smile"; a heuristic, the known words decide
+                add(stem)
+            elif stem.endswith(SILENT_E_STEMS):
+                add(stem + "e")  # "criticized", "caused", "danced", "managed", "solved"
+                add(stem)
+            else:
+                add(stem)
+                add(stem + "e")
+            break
+    add(w)
+    return out
 
 
-def rule_lemma(form: str, pos: str) -> str:
-    """Lemma of a word the tables do not know, from its POS and English inflection."""
+def _verb_rule(w: str, known: frozenset[str] | set[str] = frozenset()) -> str:
+    candidates = verb_lemma_candidates(w)
+    for c in candidates:
+        if c in known:
+            return c
+    return candidates[0]
+
+
+def rule_lemma(form: str, pos: str, known: frozenset[str] | set[str] = frozenset()) -> str:
+    """Lemma of a word the tables do not know, from its POS and English inflection.
+
+    Args:
+        form: the word as written.
+        pos: its UPOS.
+        known: lemmas to prefer among a verb's possible spellings (treebank lemmas, action verbs).
+    """
     if pos == "PROPN":
         return form
     w = form.lower()
     if pos == "NOUN":
         return _noun_rule(w)
     if pos in ("VERB", "AUX"):
-        return _verb_rule(w)
+        return _verb_rule(w, known)
     return w
+
+
+def _action_verbs() -> frozenset[str]:
+    try:
+        from services.nlp.lexicon import verb_words
+
+        return verb_words()
+    except Exception:  # the lemmatizer must work without the action vocabulary (training, packaging)
+        return frozenset()
 
 
 class LookupLemmatizer:
@@ -101,6 +216,15 @@ class LookupLemmatizer:
     def __init__(self, name: str = "wana_lemmatizer", tables: LemmaTables | None = None) -> None:
         self.name = name
         self.tables: LemmaTables = tables or {"by_pos": {}, "by_form": {}}
+        self._known: frozenset[str] | None = None
+
+    @property
+    def known(self) -> frozenset[str]:
+        """Words a rule-made lemma may be: every treebank lemma and every action verb."""
+        if self._known is None:
+            lemmas = {v.lower() for v in self.tables["by_pos"].values()}
+            self._known = frozenset(lemmas) | _action_verbs()
+        return self._known
 
     def lemma(self, form: str, pos: str) -> str:
         lower = form.lower()
@@ -111,7 +235,7 @@ class LookupLemmatizer:
             hit = self.tables["by_form"].get(lower)
             if hit is not None:
                 return hit
-        return rule_lemma(form, pos)
+        return rule_lemma(form, pos, self.known)
 
     def __call__(self, doc: Doc) -> Doc:
         for token in doc:
@@ -127,6 +251,7 @@ class LookupLemmatizer:
 
     def from_disk(self, path: str | Path, exclude: Iterable[str] = ()) -> LookupLemmatizer:
         self.tables = json.loads((Path(path) / "tables.json").read_text(encoding="utf-8"))
+        self._known = None
         return self
 
 

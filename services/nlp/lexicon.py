@@ -2,7 +2,8 @@
 actions (from the motion library, ``services.motion.library``), plus the NLP stage's own word lists
 (people, relation words, manners, social labels).
 
-Every lookup is cached; the action library loads on first use.
+Every lookup is cached; the action library loads on first use. Over 400 lines because most of it
+is word lists and override tables, kept in one place so that one file says what a word means.
 """
 
 from __future__ import annotations
@@ -257,8 +258,26 @@ ASPECT_VERBS = frozenset(
 SOCIAL_VERBS = frozenset(
     "apologize apologise thank hug kiss greet comfort console insult praise blame scold forgive congratulate "
     "argue quarrel shout yell scream smile laugh threaten criticize criticise fight punch push hit slap "
-    "tease mock ignore admire love hate help invite welcome apologize cheer beg thank".split()
+    "tease mock ignore admire love hate help invite welcome cheer beg reprimand rebuke embrace cuddle "
+    "bicker reassure salute high-five highfive whisper chat".split()
 )
+# Verbs that two or more subjects do to each other when no one else is named ("Tom and Mary hug",
+# "They quarrel"); clips that touch a person or are social talk count too (see is_reciprocal).
+RECIPROCAL_VERBS = frozenset(
+    "hug embrace cuddle kiss greet meet fight quarrel argue bicker chat talk high-five highfive".split()
+)
+# Nouns an event verb like "give" or "have" turns into an action: "gives Mary a hug", "have a quarrel".
+LIGHT_VERBS = frozenset("give have make take do share".split())
+# Body parts as objects of a gesture ("shakes hands with", "waves his hands at"): part of the action's
+# name, never its target or an unknown object.
+BODY_PARTS = frozenset(
+    "hand hands arm arms head fist fists finger fingers thumb thumbs shoulder shoulders hair teeth face "
+    "foot feet leg legs cheek cheeks eye eyes".split()
+)
+REFLEXIVE_PRONOUNS = frozenset(
+    "himself herself themselves itself myself yourself ourselves yourselves oneself".split()
+)
+RECIPROCAL_PHRASES = frozenset({"each other", "one another"})
 EMOTION_WORDS = frozenset(
     "angry happy sad nervous excited tired scared afraid calm surprised bored anxious annoyed upset proud "
     "jealous confused disappointed furious glad worried lonely relaxed shy embarrassed ashamed hopeful "
@@ -271,6 +290,13 @@ SOCIAL_RELATION_WORDS = frozenset(
     "classmates teammate teammates roommate roommates cousin cousins parent parents child children "
     "boyfriend girlfriend fiance fiancee family relatives acquaintances acquaintance".split()
 )
+# Participles that state a relation between their subjects -> the social model's relation label.
+RELATION_STATES = {
+    "married": "couple",
+    "engaged": "couple",
+    "dating": "couple",
+    "related": "relatives",
+}
 
 # Verb lemma (+ object word) -> action name, for phrasings the motion library's synonyms do not carry.
 ACTION_OVERRIDES: dict[tuple[str, str], str] = {
@@ -366,6 +392,11 @@ VERB_OVERRIDES: dict[str, str] = {
     "type": "type",
     "sit": "sit",
     "greet": "wave",
+    "thank": "bow",  # the library has no "thank" clip: a small bow of thanks
+    "congratulate": "shake_hands",  # and none for congratulating: a handshake
+    "console": "comfort",
+    "highfive": "high_five",
+    "reassure": "comfort",
     "turn": "turn_around",
     "chat": "talk",
     "speak": "talk",
@@ -398,6 +429,64 @@ def action_names() -> frozenset[str]:
     return _library()[0]
 
 
+@functools.lru_cache(maxsize=1)
+def _clip_info() -> dict[str, tuple[frozenset[str], str]]:
+    """Action name -> (its tags, the object its interaction touches: "person", a category or "")."""
+    try:
+        from services.motion.library import load_library
+
+        return {
+            name: (frozenset(clip.tags), clip.interaction.object if clip.interaction else "")
+            for name, clip in load_library().items()
+        }
+    except Exception:
+        return {}
+
+
+def is_social(verb: str, action: str) -> bool:
+    """True when a verb aimed at a character is a social act (carries a SocialNode): a social verb or a
+    clip the motion library tags "social" ("hug", "bow", "criticize", "shake_hands"). A plain gesture
+    ("waves at", "points at", "claps for") is an action aimed at the character and no SocialNode, as
+    the gold set has it; "greets" is both."""
+    if verb.lower() in SOCIAL_VERBS:
+        return True
+    tags, _ = _clip_info().get(action, (frozenset(), ""))
+    return "social" in tags and "gesture" not in tags
+
+
+def is_reciprocal(verb: str, action: str) -> bool:
+    """True when plural subjects with no target do the action to each other ("Tom and Mary hug",
+    "They quarrel"); gestures of a crowd ("The students clap") are not."""
+    if verb.lower() in RECIPROCAL_VERBS:
+        return True
+    tags, touches = _clip_info().get(action, (frozenset(), ""))
+    return touches == "person" or {"social", "talk"} <= tags
+
+
+def social_label(verb: str, action: str) -> str:
+    """Label of the SocialNode of a social act: the verb as written ("scold", "greet") when it is a
+    social verb, else the library's name for what was done ("shake_hands" for "shake hands")."""
+    verb = verb.lower()
+    return verb if verb in SOCIAL_VERBS or not action else action
+
+
+@functools.lru_cache(maxsize=1)
+def verb_words() -> frozenset[str]:
+    """Verb lemmas the action vocabulary knows: library names and the first word of each synonym,
+    the override tables and the social verbs (the lemmatizer prefers these among its guesses)."""
+    names, synonyms = _library()
+    words = {n.split("_")[0] for n in names} | {p.split()[0] for p in synonyms if p.split()}
+    words |= {v for v, _ in ACTION_OVERRIDES} | set(VERB_OVERRIDES) | SOCIAL_VERBS | RECIPROCAL_VERBS
+    words |= set(RELATION_VERBS) | LIGHT_VERBS | ASPECT_VERBS
+    return frozenset(w for w in words if w.isalpha() or "-" in w)
+
+
+def hyphenated_verbs() -> frozenset[str]:
+    """Hyphenated action verbs ("high-five") the tokenizer must keep as one word (base forms)."""
+    _, synonyms = _library()
+    return frozenset(w for w in SOCIAL_VERBS | RECIPROCAL_VERBS | set(synonyms) if "-" in w and " " not in w)
+
+
 def _tokens(text: str) -> list[str]:
     return [t for t in re.split(r"[^a-z0-9]+", text.lower()) if t]
 
@@ -424,7 +513,7 @@ def action_for(
         person_object: the action is aimed at a character ("pushes Tom").
     """
     names, synonyms = _library()
-    verb = verb.lower()
+    verb = verb.lower().replace("-", " ")  # "high-five" -> the library's "high five"
     objs = [o.lower().replace(" ", "_") for o in obj_words if o]
     if person_object:
         objs.append("person")
@@ -448,6 +537,7 @@ def action_for(
         specific += [
             synonyms.get(f"{verb} the {phrase_obj}"),
             synonyms.get(f"{verb} {phrase_obj}"),
+            synonyms.get(f"{verb} a {phrase_obj}"),  # "give a hug", "take a bow"
             synonyms.get(f"{verb} {prep} the {phrase_obj}") if prep else None,
         ]
     if prep:

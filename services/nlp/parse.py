@@ -24,6 +24,7 @@ from services.nlp.actions import extract_actions
 from services.nlp.builder import GraphBuilder
 from services.nlp.commands import looks_like_command, parse_command
 from services.nlp.errors import MAX_SENTENCE_CHARS, diagnostic
+from services.nlp.repair import repair_character_sentence
 from services.nlp.scene import extract_scene, is_scene_like
 from services.nlp.segment import kind_hint as _kind_hint
 from services.nlp.segment import split_sentences
@@ -58,10 +59,20 @@ def _not_english(text: str) -> bool:
     if ascii_letters < 0.7 * letters:
         return True
     vocab = _english_words()
+    words = [w for w in words if len(w) >= 3]  # the vocabulary holds words of three letters or more
     if len(words) < 3 or not vocab:
         return False
-    known = sum(1 for w in words if w.lower() in vocab or w[0].isupper())
+    known = sum(1 for w in words if w.lower() in vocab or w[0].isupper() or _inflected_verb(w.lower()))
     return known < 0.5 * len(words)
+
+
+def _inflected_verb(word: str) -> bool:
+    """ "apologizing", "quarrelled": an inflection of a verb the action vocabulary knows."""
+    from services.nlp.lemmatizer import verb_lemma_candidates
+    from services.nlp.lexicon import verb_words
+
+    known = verb_words()
+    return any(c in known for c in verb_lemma_candidates(word))
 
 
 def _parser_text(text: str) -> str:
@@ -209,6 +220,8 @@ def _extract(doc: Doc, text: str, kind: str, diagnostics: list[Diagnostic]) -> S
     sents = list(doc.sents) or [doc[:]]
     if not is_scene and all(is_scene_like(s) for s in sents):
         is_scene = True
+    if not is_scene and any([repair_character_sentence(s) for s in sents]):
+        sents = list(doc.sents) or [doc[:]]
     for sent in sents:
         if is_scene:
             extract_scene(sent, builder)

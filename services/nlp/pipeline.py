@@ -35,8 +35,31 @@ def get_nlp() -> Language:
             if _nlp is None:
                 if not (MODEL_DIR / "config.cfg").exists():
                     raise ModelMissing(f"no trained pipeline at {MODEL_DIR}; run scripts/train_nlp.py")
-                _nlp = spacy.load(MODEL_DIR, exclude=["senter"])
+                nlp = spacy.load(MODEL_DIR, exclude=["senter"])
+                keep_hyphenated_verbs(nlp)
+                _nlp = nlp
     return _nlp
+
+
+def _inflections(base: str) -> list[str]:
+    stem = base[:-1] if base.endswith("e") else base
+    return [base, base + "s", stem + "ed", stem + "ing"]
+
+
+def keep_hyphenated_verbs(nlp: Language) -> None:
+    """Keep hyphenated action verbs ("high-fives") one token, as the tagger knows "highfives" a verb.
+
+    spaCy's English infixes split every hyphen ("high - fives"), which the parser reads as an adjective
+    and a number; a tokenizer special case per inflected (and capitalised) form keeps the word whole.
+    """
+    from spacy.symbols import ORTH
+
+    from services.nlp.lexicon import hyphenated_verbs
+
+    for base in sorted(hyphenated_verbs()):
+        for form in _inflections(base):
+            for variant in (form, form.capitalize()):
+                nlp.tokenizer.add_special_case(variant, [{ORTH: variant}])  # type: ignore[union-attr]
 
 
 def package_model(trained_dir: Path, out_dir: Path, tables: _lemmatizer.LemmaTables) -> None:

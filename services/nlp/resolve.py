@@ -93,14 +93,25 @@ def _span_of(graph: SentenceGraph, word: str, offset: int | None, fallback: Span
     return fallback
 
 
-def _resolve_ref(value: str, state: _State, actor: str, graph: SentenceGraph, before: int = -1) -> str:
+def _resolve_ref(
+    value: str,
+    state: _State,
+    actor: str,
+    graph: SentenceGraph,
+    before: int = -1,
+    group: tuple[str, ...] = (),
+) -> str:
     """A target/destination that is a pronoun or a character name -> canonical name or object id.
 
     ``before``: document offset of the action; "it" means the last object mentioned before it.
+    ``group``: the characters a plural subject stood for; "each other" is the one that is not ``actor``.
     """
     if not value:
         return value
     lower = value.lower()
+    if lower in lexicon.RECIPROCAL_PHRASES:
+        others = [n for n in group if n != actor]
+        return others[0] if len(others) == 1 else ""
     if lower in lexicon.OBJECT_PRONOUNS and lower != "them":
         ids = [o.id for o in graph.objects if before < 0 or o.span.end <= before]
         return ids[-1] if ids else state.last_object
@@ -167,7 +178,7 @@ def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> li
                     unresolved.append(char)
                     continue
             for name in names:
-                actions = [_resolve_action(a, state, name, graph) for a in char.actions]
+                actions = [_resolve_action(a, state, name, graph, tuple(names)) for a in char.actions]
                 merged.setdefault(name, []).extend(actions)
                 mentions.setdefault(name, char.mention or name)
                 if name not in sentence_names:
@@ -227,8 +238,10 @@ def _astuple(span: Span) -> tuple[int, int]:
     return span.start, span.end
 
 
-def _resolve_action(action: ActionNode, state: _State, actor: str, graph: SentenceGraph) -> ActionNode:
-    target = _resolve_ref(action.target, state, actor, graph, action.span.start)
+def _resolve_action(
+    action: ActionNode, state: _State, actor: str, graph: SentenceGraph, group: tuple[str, ...] = ()
+) -> ActionNode:
+    target = _resolve_ref(action.target, state, actor, graph, action.span.start, group)
     destination = _resolve_ref(action.destination, state, actor, graph, action.span.start)
     if target == action.target and destination == action.destination:
         return action

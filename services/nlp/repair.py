@@ -1,0 +1,127 @@
+"""Repairs of two parser errors on character sentences, made on the parsed Doc before extraction.
+
+The pipeline is trained mostly on web text, where verbs such as "quarrel", "high-five" or "shake
+hands" after a coordinated subject are rare; it then reads the verb as a noun and hangs the whole
+sentence under the first name ("Tom/ROOT and Mary quarrel/conj"). And a progressive of a rare verb
+comes out as a copula with an adjective ("Tom is/cop comforting/ADJ Mary"). Both are repaired only
+when the word's verb reading names an action of the motion library, so that real adjectives ("Tom
+is charming") and real nouns stay as parsed.
+
+    repair_character_sentence(sent) -> bool   True when the tree of ``sent`` was changed
+"""
+
+from __future__ import annotations
+
+from spacy.tokens import Span as SpacySpan
+from spacy.tokens import Token
+
+from services.nlp import lexicon
+from services.nlp.lemmatizer import verb_lemma_candidates
+
+_NOT_VERBS = frozenset({"PUNCT", "CCONJ", "DET", "ADP", "PRON", "PART", "SCONJ", "AUX", "SYM"})
+
+
+def action_reading(word: str) -> str:
+    """The lemma of ``word`` read as a verb when that verb names an action ("quarrel", "shake"), else ""."""
+    for lemma in verb_lemma_candidates(word):
+        if lemma in lexicon.SOCIAL_VERBS or lemma in lexicon.RECIPROCAL_VERBS or lexicon.is_known_verb(lemma):
+            return lemma
+        if lemma in lexicon.verb_words() and lemma not in lexicon.VERB_OVERRIDES:
+            return lemma  # "shake" of "shake hands": a verb the library knows with its object
+    return ""
+
+
+def _is_person(tok: Token) -> bool:
+    lower = tok.lower_
+    if lower in lexicon.PRONOUNS and tok.pos_ == "PRON":
+        return True
+    if tok.pos_ == "PROPN" and lower[:1].isalpha() and tok.text[:1].isupper():
+        return not action_reading(lower)  # "High-five Mary": not a name
+    return tok.lemma_.lower() in lexicon.PERSON_NOUNS or lower in lexicon.PERSON_NOUNS
+
+
+def _subject_group(sent: SpacySpan) -> list[Token]:
+    """Leading tokens that name who acts: "Tom and Mary", "The man and the woman", "They"."""
+    group: list[Token] = []
+    for tok in sent:
+        if _is_person(tok) or (group and tok.pos_ in ("CCONJ", "PUNCT") and tok.text in ("and", ",", "&")):
+            group.append(tok)
+        elif tok.pos_ == "DET" and tok.lower_ in ("the", "a", "an", "both"):
+            group.append(tok)
+        else:
+            break
+    while group and not _is_person(group[-1]):
+        group.pop()
+    return group
+
+
+def _repair_verbless(sent: SpacySpan) -> bool:
+    """ "Tom and Mary quarrel/NOUN." -> quarrel/VERB the root with Tom as subject and what follows as
+    its arguments; only when the sentence has no verb and the word after the subject names an action."""
+    if any(t.pos_ in ("VERB", "AUX") for t in sent):
+        return False
+    group = _subject_group(sent)
+    if not group or group[-1].i + 1 >= sent.end:
+        return False
+    verb = sent.doc[group[-1].i + 1]
+    if verb.pos_ in _NOT_VERBS or verb.is_punct:
+        return False
+    lemma = action_reading(verb.lower_)
+    if not lemma:
+        return False
+    people = [t for t in group if _is_person(t)]
+    subject = people[0]
+    in_group = {t.i for t in group}
+    after = range(verb.i + 1, sent.end)
+    verb.pos_ = "VERB"
+    verb.lemma_ = lemma
+    verb.head = verb
+    verb.dep_ = "ROOT"
+    subject.head = verb
+    subject.dep_ = "nsubj"
+    for tok in group:
+        if tok is subject or tok.head.i in in_group:
+            continue
+        tok.head = subject
+        tok.dep_ = "conj" if _is_person(tok) else ("cc" if tok.pos_ == "CCONJ" else tok.dep_)
+    has_object = False
+    for i in after:
+        tok = sent.doc[i]
+        if tok.head.i in after and tok.head.i != tok.i:
+            continue  # inside an argument ("with" under "Mary"): keep
+        tok.head = verb
+        if tok.is_punct:
+            tok.dep_ = "punct"
+        elif any(c.dep_ == "case" for c in tok.children):
+            tok.dep_ = "obl"
+        elif tok.pos_ in ("NOUN", "PROPN", "PRON", "NUM") and not has_object:
+            tok.dep_ = "obj"
+            has_object = True
+        elif tok.pos_ == "ADV":
+            tok.dep_ = "advmod"
+    return True
+
+
+def _repair_progressive(sent: SpacySpan) -> bool:
+    """ "Tom is comforting/ADJ Mary" -> comforting/VERB with "is" as its auxiliary."""
+    changed = False
+    for tok in sent:
+        if tok.pos_ != "ADJ" or not tok.lower_.endswith("ing") or tok.lower_ in lexicon.EMOTION_WORDS:
+            continue
+        cops = [c for c in tok.children if c.dep_ == "cop" and c.lemma_.lower() == "be"]
+        if not cops:
+            continue
+        lemma = action_reading(tok.lower_)
+        if not lemma:
+            continue
+        tok.pos_ = "VERB"
+        tok.lemma_ = lemma
+        for c in cops:
+            c.dep_ = "aux"
+        changed = True
+    return changed
+
+
+def repair_character_sentence(sent: SpacySpan) -> bool:
+    """Repair the tree of one character sentence in place; True when something changed."""
+    return _repair_progressive(sent) | _repair_verbless(sent)
