@@ -81,7 +81,9 @@ def test_the_orchestrator_reaches_remote_workers_from_several_threads():
     procs = [spawn("broker", "--bind", url)]
     try:
         time.sleep(0.5)
-        procs += [spawn("worker", service, "--connect", url) for service in ("nlp", "retrieval", "motion")]
+        procs += [
+            spawn("worker", service, "--connect", url) for service in ("nlp", "retrieval", "motion", "social")
+        ]
         backend = RemoteBusBackend(url)
         orchestrator = Orchestrator(":memory:", backend)
         try:
