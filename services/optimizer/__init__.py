@@ -21,5 +21,7 @@ spheres), costs (eq. 1, eq. 2, batched layouts), collisions (voxel-grid collider
 pairs), scoring (K proposals as one batch), shifted (the annealing's fast path: K proposals of the
 anchored surrogate as shifts of one motion, all objects in one broad phase), annealing (Algorithm 2),
 resynthesis, clearing (obstacles pushed off a blocked walk, for re-planning), reaching (a missed
-contact's object moved toward its joint), verify, handlers, worker.
+contact's object moved toward its joint), layout_model (annealing states as layouts; room, overlap
+and support rules), seating (a seated draft's seat joins its interaction and the verifier), verify,
+handlers, worker.
 """

@@ -17,19 +17,23 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-import msgspec
 import numpy as np
 
 from proto.motion_data import Motion
 from proto.optimizer import CostReport, Interaction, OptimiseSettings
-from proto.scene import PlacedObject, Scene
+from proto.scene import Scene
 from services.optimizer.costs import LayoutBatch, SceneGeometry
+from services.optimizer.layout_model import LayoutModel, support_order  # noqa: F401 - re-exported
 from services.optimizer.scoring import InteractionScorer
 from services.optimizer.shifted import ShiftedScorer
 
 MotionFn = Callable[[Scene], Motion]
 SCALE_RANGE = (0.8, 1.25)  # scale factors stay plausible: ±20 % of the object's own size
 NEAR_MOTION_M = 0.5  # objects this close to the walked path may move by default
+# A new best layout must lower C by more than this. Once the collisions are gone, C is flat up to the
+# float noise of C_T (1e-8); taking every such "gain" returned whatever layout the random walk had
+# drifted to by the last step (a chair 35 cm further from its desk for nothing).
+MIN_GAIN = 1e-4
 
 
 @dataclass
@@ -48,8 +52,8 @@ class OptimisationResult:
         steps_run: annealing steps run (fewer than asked when the budget ran out).
         elapsed_ms: wall-clock time of the whole optimisation.
         movable: ids of the objects the annealing moved (their supported objects followed).
-        candidates: the layouts that were, in turn, the best so far, latest (best) first; at most 12,
-            spread over the search.
+        candidates: the layouts that were, in turn, the best so far (ties within MIN_GAIN included),
+            latest first; at most 12, spread over the search.
     """
 
     scene: Scene
@@ -74,146 +78,6 @@ def truncated_normal(
         x[bad] = rng.normal(0.0, sigma, size=int(bad.sum()))
         bad = np.abs(x) > cut * sigma
     return x
-
-
-def support_order(scene: Scene) -> list[int]:
-    """Object indices with every support before the objects resting on it (cycles are cut)."""
-    index = {o.id: i for i, o in enumerate(scene.objects)}
-    order: list[int] = []
-    state = [0] * len(scene.objects)  # 0 new, 1 visiting, 2 done
-
-    def visit(i: int) -> None:
-        if state[i]:
-            return
-        state[i] = 1
-        parent = index.get(scene.objects[i].support)
-        if parent is not None and state[parent] == 0:
-            visit(parent)
-        state[i] = 2
-        order.append(i)
-
-    for i in range(len(scene.objects)):
-        visit(i)
-    return order
-
-
-class LayoutModel:
-    """Maps annealing states (K, M, 4) = (dx, dz, horizontal scale, vertical scale) to layouts."""
-
-    def __init__(self, scene: Scene, movable: list[str]) -> None:
-        self.scene = scene
-        ids = [o.id for o in scene.objects]
-        self.movable = [m for m in movable if m in ids]
-        self.movable_idx = np.array([ids.index(m) for m in self.movable], dtype=np.int64)
-        self.base = LayoutBatch.from_scenes([scene])
-        self.parent = np.array([ids.index(o.support) if o.support in ids else -1 for o in scene.objects])
-        self.order = support_order(scene)
-        # Each object's world footprint relative to its position, per unit of its own scale, for the room check.
-        from wana.assets.catalog import world_bounds
-
-        pos0 = self.base.position[0]
-
-        def bounds(o: PlacedObject) -> np.ndarray:
-            try:
-                return world_bounds(o)
-            except KeyError:  # not in the catalog (geometry given as arrays): treat it as a point
-                return np.array([o.position, o.position], dtype=float)
-
-        self.extent = (
-            np.stack([bounds(o) for o in scene.objects]) - pos0[:, None, :] if ids else np.zeros((0, 2, 3))
-        )
-        self.extent = self.extent / self.base.scale[0][:, None, :]
-        half_w, half_d = scene.room.width / 2 + 1e-3, scene.room.depth / 2 + 1e-3
-        self.room_min = np.array([-half_w, -half_d])
-        self.room_max = np.array([half_w, half_d])
-        lo = pos0[:, [0, 2]] + self.extent[:, 0][:, [0, 2]] * self.base.scale[0][:, [0, 2]]
-        hi = pos0[:, [0, 2]] + self.extent[:, 1][:, [0, 2]] * self.base.scale[0][:, [0, 2]]
-        # Objects already poking out (a window set into its wall) may not go further out, nothing more.
-        self.slack_lo = np.minimum(lo - self.room_min, 0.0)
-        self.slack_hi = np.minimum(self.room_max - hi, 0.0)
-
-    def _bounds(self, layout: LayoutBatch) -> tuple[np.ndarray, np.ndarray]:
-        lo = layout.position + self.extent[None, :, 0] * layout.scale
-        hi = layout.position + self.extent[None, :, 1] * layout.scale
-        return lo, hi
-
-    def no_new_overlaps(self, layout: LayoutBatch) -> np.ndarray:
-        """(K,) True where no two objects' bounds intersect that did not already (an object and its support
-        may touch)."""
-        lo, hi = self._bounds(layout)
-        inter = np.all(
-            (lo[:, :, None] < hi[:, None, :] - 1e-3) & (lo[:, None, :] < hi[:, :, None] - 1e-3), axis=-1
-        )
-        if not hasattr(self, "_allowed"):
-            blo, bhi = self._bounds(self.base)
-            base = np.all(
-                (blo[:, :, None] < bhi[:, None, :] - 1e-3) & (blo[:, None, :] < bhi[:, :, None] - 1e-3),
-                axis=-1,
-            )[0]
-            n = len(self.parent)
-            allowed = base | np.eye(n, dtype=bool)
-            for i, p in enumerate(
-                self.parent
-            ):  # an object rests on its support, and on its support's support
-                while p >= 0:
-                    allowed[i, p] = allowed[p, i] = True
-                    p = self.parent[p]
-            self._allowed = allowed
-        return ~np.any(inter & ~self._allowed[None], axis=(1, 2))
-
-    def inside_room(self, layout: LayoutBatch) -> np.ndarray:
-        """(K,) True where every object of the layout stays inside the room (x and z)."""
-        xz = layout.position[..., [0, 2]]
-        scale = layout.scale[..., [0, 2]]
-        lo = xz + self.extent[None, :, 0][..., [0, 2]] * scale
-        hi = xz + self.extent[None, :, 1][..., [0, 2]] * scale
-        ok = (lo - self.room_min >= self.slack_lo - 1e-9) & (self.room_max - hi >= self.slack_hi - 1e-9)
-        return np.all(ok, axis=(1, 2))
-
-    def identity(self) -> np.ndarray:
-        """(M, 4) the state of the input layout."""
-        s = np.zeros((len(self.movable), 4))
-        s[:, 2:] = 1.0
-        return s
-
-    def layouts(self, states: np.ndarray) -> LayoutBatch:
-        """(K, M, 4) states -> K layouts."""
-        k_ = states.shape[0]
-        p0, yaw, s0 = self.base.position[0], self.base.yaw[0], self.base.scale[0]
-        own = np.zeros((k_, len(p0), 4))
-        own[..., 2:] = 1.0
-        own[:, self.movable_idx] = states
-        pos = np.empty((k_, len(p0), 3))
-        scale = s0[None] * np.stack([own[..., 2], own[..., 3], own[..., 2]], axis=-1)
-        for i in self.order:
-            par = self.parent[i]
-            shift = np.stack([own[:, i, 0], np.zeros(k_), own[:, i, 1]], axis=-1)
-            if par < 0:
-                pos[:, i] = p0[i] + shift
-                continue
-            # Keep the offset from the support fixed in the support's frame, scaled with it.
-            c, s = math.cos(yaw[par]), math.sin(yaw[par])
-            d = p0[i] - p0[par]
-            local = np.array([c * d[0] - s * d[2], d[1], s * d[0] + c * d[2]])
-            local = local[None] * (scale[:, par] / s0[par])
-            world = np.stack(
-                [c * local[:, 0] + s * local[:, 2], local[:, 1], -s * local[:, 0] + c * local[:, 2]], -1
-            )
-            pos[:, i] = pos[:, par] + world + shift
-        return LayoutBatch(position=pos, yaw=np.repeat(yaw[None], k_, axis=0), scale=scale)
-
-    def scene_at(self, layout: LayoutBatch, k: int) -> Scene:
-        """The Scene of layout k (only changed objects are rebuilt)."""
-        objs = []
-        for i, o in enumerate(self.scene.objects):
-            p = tuple(float(v) for v in layout.position[k, i])
-            s = tuple(float(v) for v in layout.scale[k, i])
-            objs.append(
-                o
-                if (p == tuple(o.position) and s == tuple(o.scale))
-                else msgspec.structs.replace(o, position=p, scale=s)
-            )
-        return msgspec.structs.replace(self.scene, objects=objs)
 
 
 def default_movable(
@@ -343,6 +207,7 @@ def optimise_interaction(
     best: tuple[float, np.ndarray, Motion | None, int] = (cost, state, m0, 0)
     curve, best_curve = [cost], [cost]
     history: list[np.ndarray] = []
+    tie = cost  # lowest cost seen: below the best by less than MIN_GAIN
     k_ = max(1, int(st.proposals))
     steps_run = 0
     # A motion_fn whose motions are its base motion translated per frame (the anchored surrogate)
@@ -381,17 +246,19 @@ def optimise_interaction(
                 if fast is not None and shifts_fn is not None
                 else scorer.score(layouts, motions)  # type: ignore[arg-type]
             )
-            costs = np.where(
-                ok & model.inside_room(layouts) & model.no_new_overlaps(layouts), sc.cost, np.inf
-            )
+            costs = np.where(ok & model.allowed(layouts), sc.cost, np.inf)
             k = int(np.argmin(costs))
             u = rng.random()
             steps_run = step + 1
             if np.isfinite(costs[k]) and (costs[k] <= cost or u < math.exp(-(costs[k] - cost) / temp)):
                 state, cost = cand[k], float(costs[k])
-                if cost < best[0]:
+                if cost < best[0] - MIN_GAIN:  # a tie is no gain: keep the layout found first
                     best = (cost, state.copy(), motions[k], steps_run)
                     history.append(state.copy())
+                    tie = cost
+                elif cost < tie:  # still a candidate for the verifier (it sees what the search cannot)
+                    history.append(state.copy())
+                    tie = cost
             curve.append(cost)
             best_curve.append(best[0])
     best_layout = model.layouts(best[1][None])

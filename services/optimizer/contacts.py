@@ -33,18 +33,31 @@ def ik_chain(joint: str) -> tuple[int, float] | None:
     return None
 
 
-def contact_bones(spheres: BodySpheres, pairs: list[ContactPair], ids: tuple[str, ...]) -> np.ndarray:
+def contact_bones(
+    spheres: BodySpheres,
+    pairs: list[ContactPair],
+    ids: tuple[str, ...],
+    supports: dict[str, str] | None = None,
+) -> np.ndarray:
     """(S, O) true where a sphere's bone touches a contact joint of a pair on that object.
 
     A bone touches joint j when one of its ends is j, j's parent or one of j's children: hips on a
-    seat bring the pelvis and thighs onto it, a hand on keys its fingers and wrist.
+    seat bring the pelvis and thighs onto it, a hand on keys its fingers and wrist. A hand's bones
+    may also rest on what its object stands on (``supports``: object id -> support id): typing on a
+    laptop, the wrists and forearms lie on the desk.
     """
     out = np.zeros((len(spheres.radius), len(ids)), dtype=bool)
+    supports = supports or {}
     for p in pairs:
         j = JOINT_INDEX[p.joint]
         near = {j, int(PARENTS[j])} | {int(c) for c in np.flatnonzero(PARENTS == j)}
         touches = np.isin(spheres.a, list(near)) | np.isin(spheres.b, list(near))
         out[touches, ids.index(p.object_id)] = True
+        below, seen = supports.get(p.object_id, ""), {p.object_id}
+        while p.joint != "Hips" and below in ids and below not in seen:
+            out[touches, ids.index(below)] = True
+            seen.add(below)
+            below = supports.get(below, "")
     return out
 
 

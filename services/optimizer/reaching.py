@@ -10,7 +10,9 @@ rests on it follows) slides along the floor-plane vector from the contact point 
 position of its joint over the action, by multiples of the annealing's largest move (3σ of the
 truncated normal) up to the whole miss. The annealing's rules hold: the object stays in the room,
 makes no new overlap, and neither wall-mounted objects nor objects outside an explicit
-``Interaction.movable`` move. The motion service then re-synthesises each candidate
+``Interaction.movable`` move; an object on another slides on it first (a laptop toward the edge of
+its desk), then its support carries it, each as far as the rules allow. When the hips slid off a
+seat toward work out of reach, the work comes to the seat first. The motion service then re-synthesises each candidate
 (``verify.optimise_and_verify``), and only a verified contact is kept.
 """
 
@@ -27,6 +29,7 @@ from services.optimizer.costs import LayoutBatch, SceneGeometry, contact_points_
 from services.optimizer.scoring import action_frames
 
 STEPS = (1, 2, 4, 8)  # moves tried, in units of the annealing's largest move (3σ), then the whole miss
+SEAT_MISS_MULTIPLES = (1, 2, 3, 4)  # work brought to a seat, in units of the hips' slide off it
 
 
 def _wall_mounted(category: str) -> bool:
@@ -109,27 +112,65 @@ def reaching_layouts(
         if d > tolerance
     }
     out: list[Scene] = []
-    seen: set[tuple[str, float]] = set()
+    seen: set[tuple[str, float, float]] = set()
+    seat_ids = {p.object_id for p in report.contact_pairs if p.joint == "Hips"}
+    work = [o for o in dict.fromkeys(p.object_id for p in report.contact_pairs) if o not in seat_ids]
     for oid, unit, length in contact_misses(scene, interaction, motion, report, geom):
         if oid not in missed:
             continue
-        mover = by_id[oid]
-        while mover.support and mover.support in by_id and mover.support != mover.id:
-            mover = by_id[mover.support]  # a laptop moves with its desk
-        if _wall_mounted(mover.category) or (interaction.movable and mover.id not in interaction.movable):
-            continue
-        model = LayoutModel(scene, [mover.id])
         step = 3.0 * sigma
-        moves = sorted({round(min(k * step, length), 4) for k in STEPS} | {round(length, 4)})
-        for move in moves:
-            if (mover.id, move) in seen:
-                continue
-            seen.add((mover.id, move))
-            state = model.identity()
-            state[0, :2] = unit * move
-            layout = model.layouts(state[None])
-            if model.inside_room(layout)[0] and model.no_new_overlaps(layout)[0]:
-                out.append(model.scene_at(layout, 0))
-            if len(out) >= limit:
-                return out
+        toward = sorted({round(min(k * step, length), 4) for k in STEPS} | {round(length, 4)})
+        moves = [(oid, unit, toward)]
+        if oid in seat_ids:
+            # The hips slid forward off the seat toward work out of reach (services.motion.synthesis,
+            # SCOOT_MAX): bring the work to the seat first, which leaves the seat's approach as it is.
+            # The slide is capped, so the work may have to come further than the miss.
+            closer = sorted({round(k * length, 4) for k in SEAT_MISS_MULTIPLES})
+            moves = [(w, -unit, closer) for w in work] + moves
+        for target, direction, sizes in moves:
+            for mover in _movers(by_id, target, interaction):
+                model = LayoutModel(scene, [mover])
+                for size in sizes:
+                    move = _allowed_move(model, direction, size)  # as far as the rules let it go
+                    key = (mover, round(float(direction[0]), 3), round(move, 3))
+                    if move < 0.01 or key in seen:
+                        continue
+                    seen.add(key)
+                    state = model.identity()
+                    state[0, :2] = direction * move
+                    out.append(model.scene_at(model.layouts(state[None]), 0))
+                    if len(out) >= limit:
+                        return out
     return out
+
+
+def _allowed_move(model: LayoutModel, direction: np.ndarray, size: float, halvings: int = 6) -> float:
+    """The longest move of the model's one object along ``direction`` (x, z unit), at most ``size``
+    metres, that keeps the layout allowed (bisection; 0 when none is)."""
+
+    def ok(move: float) -> bool:
+        state = model.identity()
+        state[0, :2] = direction * move
+        return bool(model.allowed(model.layouts(state[None]))[0])
+
+    if ok(size):
+        return size
+    lo, hi = 0.0, size
+    for _ in range(halvings):
+        mid = (lo + hi) / 2
+        lo, hi = (mid, hi) if ok(mid) else (lo, mid)
+    return lo
+
+
+def _movers(by_id: dict, oid: str, interaction: Interaction) -> list[str]:
+    """The objects that may carry ``oid`` toward a joint: itself (a laptop slides on its desk), then
+    what it rests on (the desk, the laptop riding on it); never a wall-mounted object nor one outside
+    an explicit ``Interaction.movable``."""
+    chain = [oid]
+    while by_id[chain[-1]].support in by_id and by_id[chain[-1]].support not in chain:
+        chain.append(by_id[chain[-1]].support)
+    return [
+        m
+        for m in chain
+        if not _wall_mounted(by_id[m].category) and (not interaction.movable or m in interaction.movable)
+    ]

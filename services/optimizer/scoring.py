@@ -198,7 +198,8 @@ class InteractionScorer:
         self._radius_tile = np.zeros(0)
         self._frames: dict[int, np.ndarray] = {}
         self._bones_tile = np.zeros((0, len(ids)), dtype=bool)
-        self.contact_bones = contact_bones(self.spheres, self.pairs, ids)  # (S, O)
+        supports = {o.id: o.support for o in scene.objects if o.support}
+        self.contact_bones = contact_bones(self.spheres, self.pairs, ids, supports)  # (S, O)
         self.is_target = np.array([i in interaction.targets for i in ids], dtype=bool)
 
     def score(self, layout: LayoutBatch, motions: list[Motion]) -> Scores:

@@ -11,7 +11,9 @@ walks collision-free and the input's walk hits boxes, layouts with those obstacl
 input misses a contact (C_T above 5 cm), layouts with the missed contact's object moved toward its
 joint (services.optimizer.reaching) are re-synthesised first, and the search's layouts are verified
 even when its own exact report (on the surrogate's motion) saw no gain. Without a qualifying
-candidate the input comes back.
+candidate the input comes back; a qualifying one that still misses a contact is reached from once
+more. A draft that starts seated (and no character given) is re-synthesised on its seat first and
+verified by re-synthesising the sit and the action there (services.optimizer.seating).
 """
 
 from __future__ import annotations
@@ -29,6 +31,7 @@ from services.optimizer.costs import SceneGeometry
 from services.optimizer.reaching import reaching_layouts
 from services.optimizer.resynthesis import MotionFn, anchored_motion_fn, motion_service_fn
 from services.optimizer.scoring import InteractionScorer
+from services.optimizer.seating import seat_under, seated_interaction, seated_verifier
 
 CONTACT_OK_M = 0.05  # contact distance (metres) counted as contact
 
@@ -91,6 +94,8 @@ def optimise_and_verify(
     """
     st = settings or OptimiseSettings()
     geom = geometry if geometry is not None else SceneGeometry.from_scene(scene)
+    if verifier is None and character is None:
+        interaction, motion, verifier = _seated(scene, interaction, motion, geom)
     search = optimise_interaction(
         scene,
         anchored_motion_fn(scene, motion, interaction, geom),
@@ -177,4 +182,34 @@ def optimise_and_verify(
                 chosen = (key, cand, real, rep)
     if chosen is None:
         return VerifiedResult(search, scene, motion, base, "input")
+    if max(chosen[3].contact_distances, default=0.0) > CONTACT_OK_M:
+        # The best verified layout still misses a contact (the search cleared the walk, the laptop
+        # stayed out of reach): reach once more, from it, keeping its walk.
+        _, first, first_motion, first_rep = chosen
+        again = reaching_layouts(
+            first, interaction, first_motion, first_rep, geom, sigma=st.sigma, tolerance=CONTACT_OK_M
+        )
+        for cand in again[:reaching]:
+            real = verifier(cand)
+            rep = reporter.score_scenes([cand], [real]).report(0, reporter.pairs)
+            key = (rep.locomotion_collided_boxes, rep.cost)
+            if key < chosen[0]:
+                chosen = (key, cand, real, rep)
     return VerifiedResult(search, chosen[1], chosen[2], chosen[3], "motion_service")
+
+
+def _seated(
+    scene: Scene, interaction: Interaction, motion: Motion, geom: SceneGeometry
+) -> tuple[Interaction, Motion, MotionFn | None]:
+    """For a draft that starts seated: the interaction with its seat, the sit and the action
+    re-synthesised on the seat as it is now, and that re-synthesis as the verifier
+    (services.optimizer.seating); otherwise the inputs and no verifier."""
+    seat = seat_under(scene, motion, interaction, geom)
+    if seat is None:
+        return interaction, motion, None
+    verifier = seated_verifier(motion, interaction, seat)
+    try:
+        resynthesised = verifier(scene)
+    except Exception:  # noqa: BLE001 - the motion service cannot seat it here: optimise the draft as given
+        return interaction, motion, None
+    return seated_interaction(interaction, seat, geom), resynthesised, verifier
