@@ -5,7 +5,10 @@ makes it useless. Here the scene's world collision boxes (wana.assets.catalog.wo
 become occluders; a camera sees a character when the segments from the eye to the head, chest and hips
 pass through no box. When the commanded pose is blocked, the camera tries, in order of preference,
 moving along the arc around the character, rising, and coming closer (ADJUSTMENTS), and takes the
-first clear one (the least blocked one when none is).
+first clear one (the least blocked one when none is). A pose is clear only when nothing stands close in
+front of the lens either: a fan of rays across the frame (NEAR_FAN), each as long as NEAR_SHARE of the
+distance to the character, must hit no box — a cabinet beside the eye would otherwise fill a third of
+the picture while the character stays in sight.
 
     occluders = Occluders.from_scene(scene)
     share = occluders.blocked_share(eye, points)  # 0.0 = every point visible
@@ -26,6 +29,10 @@ from proto.scene import Scene
 STOP_SHORT = 0.25  # metres a sight line stops before its point (a seat under the hips does not hide them)
 HIPS_TO_CHEST = 0.35  # metres from the hips joint up to the chest
 MAX_MOVE = 1.6  # metres the eye may move from one decision to the next when it has a choice
+NEAR_SHARE = 0.4  # the fan's rays reach this share of the way from the eye to the target
+NEAR_TOLERANCE = 1  # fan rays per view that may hit before a pose counts as blocked
+# (horizontal, vertical) radians off the view axis: the frame's corners and edge midpoints, a little inside
+NEAR_FAN = tuple((h, v) for v in (-0.3, 0.0, 0.3) for h in (-0.4, 0.0, 0.4) if (h, v) != (0.0, 0.0))
 
 
 @dataclass(frozen=True)
@@ -186,13 +193,19 @@ class Occluders:
             for eye, target, points in views:
                 e = adjust_eye(eye, target, adj)
                 pts = np.asarray(points, dtype=np.float64).reshape(-1, 3)
-                starts.append(np.broadcast_to(e, pts.shape))
-                ends.append(pts)
-                owner.append(np.full(len(pts), a))
-        hit = self.blocked(np.concatenate(starts), np.concatenate(ends))
-        per = np.bincount(np.concatenate(owner), weights=hit.astype(float), minlength=len(adjustments))
-        total = np.bincount(np.concatenate(owner), minlength=len(adjustments))
-        return per / np.maximum(total, 1)
+                fan = near_fan(e, target)
+                starts.append(np.broadcast_to(e, (len(pts) + len(fan), 3)))
+                ends.append(np.concatenate([pts, fan]))
+                owner.append(np.concatenate([np.full(len(pts), a), np.full(len(fan), len(adjustments) + a)]))
+        who = np.concatenate(owner)
+        hit = self.blocked(np.concatenate(starts), np.concatenate(ends)).astype(float)
+        n = len(adjustments)
+        per = np.bincount(who, weights=hit, minlength=2 * n)
+        total = np.bincount(who, minlength=2 * n)
+        sight = per[:n] / np.maximum(total[:n], 1)
+        # A fan ray per view may graze something (a table edge low in the frame); more is clutter.
+        clutter = np.maximum(per[n:] - NEAR_TOLERANCE * len(views), 0.0) / np.maximum(total[n:], 1)
+        return sight + clutter
 
     def choose(
         self,
@@ -226,6 +239,23 @@ class Occluders:
         gaps = np.array([np.linalg.norm(adjust_eye(eye, target, candidates[k]) - here) for k in clear])
         within = clear[gaps <= MAX_MOVE]
         return candidates[int(within[0])] if len(within) else candidates[int(clear[int(np.argmin(gaps))])]
+
+
+def near_fan(eye: np.ndarray, target: np.ndarray) -> np.ndarray:
+    """(len(NEAR_FAN), 3) ends of the rays across the frame that must not hit a box (see the module doc)."""
+    eye, target = np.asarray(eye, dtype=np.float64), np.asarray(target, dtype=np.float64)
+    forward = target - eye
+    dist = float(np.linalg.norm(forward))
+    if dist < 1e-6:
+        return np.zeros((0, 3))
+    forward /= dist
+    right = np.cross(forward, [0.0, 1.0, 0.0])
+    if np.linalg.norm(right) < 1e-6:  # looking straight down: any horizontal axis will do
+        right = np.array([1.0, 0.0, 0.0])
+    right /= np.linalg.norm(right)
+    up = np.cross(right, forward)
+    ends = [eye + NEAR_SHARE * dist * (forward + math.tan(h) * right + math.tan(v) * up) for h, v in NEAR_FAN]
+    return np.array(ends)
 
 
 def sight_points(hips: np.ndarray, head: np.ndarray) -> np.ndarray:

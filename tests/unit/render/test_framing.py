@@ -10,7 +10,14 @@ import pytest
 from proto.scene import PlacedObject
 from services.render.camera import TRANSITION_FRAMES, CameraKey, camera_at, clear_overview, overview_pose
 from services.render.demo import demo_scene, walk_motion
-from services.render.framing import Occluders, segments_hit_boxes, sight_points
+from services.render.framing import (
+    ADJUSTMENTS,
+    Occluders,
+    adjust_eye,
+    near_fan,
+    segments_hit_boxes,
+    sight_points,
+)
 from services.render.renderer import FrameRenderer
 from services.render.skinning import Rig
 
@@ -132,3 +139,22 @@ def test_the_rendered_frame_shows_the_character_the_wardrobe_hides_from_the_comm
 
     assert character_pixels(hidden, empty_hidden) < 40  # behind the wardrobe (a shadow edge at most)
     assert character_pixels(cleared, empty_cleared) > 300
+
+
+def test_a_box_close_in_front_of_the_lens_makes_the_camera_move_though_the_character_stays_in_sight():
+    hips, head = np.array([0.0, 0.9, 0.0]), np.array([0.0, 1.6, 0.0])
+    eye, target = np.array([3.2, 1.6, 0.0]), hips + np.array([0.0, 0.35, 0.0])
+    # A cabinet beside the eye, 0.6-1.4 m in front of it, filling the right of the frame: no sight line
+    # to the character crosses it.
+    cabinet = np.array([[[2.0, 0.0, -1.4], [2.6, 1.7, -0.15]]])
+    occ = Occluders([cabinet])
+    assert occ.blocked_share(eye, sight_points(hips, head)) == 0.0
+    views = [(eye, target, sight_points(hips, head))]
+    assert occ.shares(views, ADJUSTMENTS)[0] > 0.0  # the commanded pose counts as cluttered
+    chosen = occ.choose(views, ADJUSTMENTS)
+    assert chosen != ADJUSTMENTS[0]
+    moved = adjust_eye(eye, target, chosen)
+    assert occ.blocked(np.broadcast_to(moved, (8, 3)), near_fan(moved, target)).sum() <= 1
+    assert occ.blocked_share(moved, sight_points(hips, head)) == 0.0
+    # nothing near the lens: the commanded pose stays
+    assert Occluders([cabinet + np.array([0.0, 0.0, -3.0])]).choose(views, ADJUSTMENTS) == ADJUSTMENTS[0]
