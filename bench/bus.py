@@ -135,6 +135,63 @@ def _throughput_round(client, payload: bytes, n: int, window: int, batched: bool
     return time.perf_counter() - t0
 
 
+def _raw_echo_main(url: str) -> None:
+    """A bare REP socket echoing until it gets b"stop": no broker, no bus code."""
+    import zmq
+
+    sock = zmq.Context.instance().socket(zmq.REP)
+    sock.bind(url)
+    while True:
+        message = sock.recv()
+        sock.send(message)
+        if message == b"stop":
+            break
+    sock.close(0)
+
+
+def raw_pair_rtt_us(transport: str, n: int) -> float:
+    """p50 round trip of plain pyzmq REQ/REP between two processes (1 kB): the floor under one hop.
+
+    A request through the broker makes two such hops (client -> broker -> worker and back), so on
+    a given machine its p50 cannot go below about twice this figure.
+    """
+    import zmq
+
+    tmp = tempfile.mkdtemp(prefix="wana-bench-")
+    url = f"ipc://{tmp}/raw.sock" if transport == "ipc" else f"tcp://127.0.0.1:{_free_port()}"
+    proc = mp.get_context("spawn").Process(target=_raw_echo_main, args=(url,), daemon=True)
+    proc.start()
+    sock = zmq.Context.instance().socket(zmq.REQ)
+    sock.setsockopt(zmq.LINGER, 0)
+    sock.connect(url)
+    payload = bytes(PAYLOAD_BYTES)
+    try:
+        samples = []
+        for i in range(n + 200):
+            t0 = time.perf_counter_ns()
+            sock.send(payload)
+            sock.recv()
+            if i >= 200:  # the first ones warm up
+                samples.append((time.perf_counter_ns() - t0) / 1000.0)
+        sock.send(b"stop")
+        sock.recv()
+        return round(statistics.median(samples), 1)
+    finally:
+        sock.close(0)
+        proc.join(timeout=5)
+        if proc.is_alive():
+            proc.kill()
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+def _free_port() -> int:
+    import socket
+
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
 def measure(
     transport: str,
     n_latency: int,
@@ -284,6 +341,7 @@ def main(argv: list[str] | None = None) -> int:
         results[transport], cpu[transport] = measure(
             transport, n_latency, n_throughput, args.window, args.workers, args.capacity, args.rounds
         )
+        results[transport]["raw_pair_rtt_us"] = raw_pair_rtt_us(transport, n_latency)
     print(
         f"{'transport':<10} {'p50 (us)':>10} {'p99 (us)':>10} {'req/s':>10} {'one-by-one':>10}"
         "   CPU us/request: broker workers client | cores used | client CPU/wall (latency)"
@@ -299,6 +357,10 @@ def main(argv: list[str] | None = None) -> int:
         print(
             f"{'  rounds':<10} p50 {r['p50_us_rounds']}  req/s {r['req_per_s_rounds']}"
             f"  (best round: {r['req_per_s_per_core_used']:.0f} req/s per core used)"
+        )
+        print(
+            f"{'  floor':<10} plain pyzmq REQ/REP between two processes: p50 {r['raw_pair_rtt_us']:.1f} us per hop; "
+            f"a request through the broker makes two hops (>= {2 * r['raw_pair_rtt_us']:.0f} us here)"
         )
     print(f"targets:   {'<= 200':>10} {'':>10} {'>= 20000':>10}")
     print(
