@@ -265,7 +265,7 @@ def main(argv: list[str] | None = None) -> int:
     )
     parser.add_argument("--sequences", type=int, default=80, help="procedural sequences (default 80)")
     parser.add_argument("--seconds", type=float, default=20.0, help="seconds per procedural sequence")
-    parser.add_argument("--hidden", type=int, default=96, help="hidden units per layer (default 96)")
+    parser.add_argument("--hidden", type=int, default=64, help="hidden units per layer (default 64)")
     parser.add_argument("--epochs", type=int, default=15)
     parser.add_argument("--batch", type=int, default=256)
     parser.add_argument("--lr", type=float, default=2e-3)
