@@ -35,83 +35,300 @@ POS_DEG = "Degree=Pos"
 
 # Objects: (singular, plural, compound modifier or "")
 OBJECTS = [
-    ("desk", "desks", ""), ("chair", "chairs", ""), ("table", "tables", ""), ("sofa", "sofas", ""),
-    ("couch", "couches", ""), ("lamp", "lamps", ""), ("laptop", "laptops", ""), ("window", "windows", ""),
-    ("door", "doors", ""), ("bookshelf", "bookshelves", ""), ("bed", "beds", ""), ("piano", "pianos", ""),
-    ("guitar", "guitars", ""), ("microphone", "microphones", ""), ("painting", "paintings", ""),
-    ("sculpture", "sculptures", ""), ("plant", "plants", ""), ("vase", "vases", ""), ("cup", "cups", ""),
-    ("mug", "mugs", ""), ("phone", "phones", ""), ("television", "televisions", ""), ("tv", "tvs", ""),
-    ("monitor", "monitors", ""), ("keyboard", "keyboards", ""), ("computer", "computers", ""),
-    ("book", "books", ""), ("box", "boxes", ""), ("clock", "clocks", ""), ("mirror", "mirrors", ""),
-    ("rug", "rugs", ""), ("cabinet", "cabinets", ""), ("stool", "stools", ""), ("bench", "benches", ""),
-    ("whiteboard", "whiteboards", ""), ("blackboard", "blackboards", ""), ("hammer", "hammers", ""),
-    ("workbench", "workbenches", ""), ("ladder", "ladders", ""), ("treadmill", "treadmills", ""),
-    ("fridge", "fridges", ""), ("stove", "stoves", ""), ("sink", "sinks", ""), ("bottle", "bottles", ""),
-    ("speaker", "speakers", ""), ("drum", "drums", ""), ("violin", "violins", ""), ("armchair", "armchairs", ""),
-    ("table", "tables", "coffee"), ("bag", "bags", "boxing"), ("painting", "paintings", "oil"),
-    ("chair", "chairs", "office"), ("lamp", "lamps", "floor"), ("table", "tables", "dining"),
-    ("can", "cans", "soda"), ("machine", "machines", "coffee"), ("mat", "mats", "yoga"),
-    ("stand", "stands", "music"), ("board", "boards", "cutting"), ("cabinet", "cabinets", "kitchen"),
+    ("desk", "desks", ""),
+    ("chair", "chairs", ""),
+    ("table", "tables", ""),
+    ("sofa", "sofas", ""),
+    ("couch", "couches", ""),
+    ("lamp", "lamps", ""),
+    ("laptop", "laptops", ""),
+    ("window", "windows", ""),
+    ("door", "doors", ""),
+    ("bookshelf", "bookshelves", ""),
+    ("bed", "beds", ""),
+    ("piano", "pianos", ""),
+    ("guitar", "guitars", ""),
+    ("microphone", "microphones", ""),
+    ("painting", "paintings", ""),
+    ("sculpture", "sculptures", ""),
+    ("plant", "plants", ""),
+    ("vase", "vases", ""),
+    ("cup", "cups", ""),
+    ("mug", "mugs", ""),
+    ("phone", "phones", ""),
+    ("television", "televisions", ""),
+    ("tv", "tvs", ""),
+    ("monitor", "monitors", ""),
+    ("keyboard", "keyboards", ""),
+    ("computer", "computers", ""),
+    ("book", "books", ""),
+    ("box", "boxes", ""),
+    ("clock", "clocks", ""),
+    ("mirror", "mirrors", ""),
+    ("rug", "rugs", ""),
+    ("cabinet", "cabinets", ""),
+    ("stool", "stools", ""),
+    ("bench", "benches", ""),
+    ("whiteboard", "whiteboards", ""),
+    ("blackboard", "blackboards", ""),
+    ("hammer", "hammers", ""),
+    ("workbench", "workbenches", ""),
+    ("ladder", "ladders", ""),
+    ("treadmill", "treadmills", ""),
+    ("fridge", "fridges", ""),
+    ("stove", "stoves", ""),
+    ("sink", "sinks", ""),
+    ("bottle", "bottles", ""),
+    ("speaker", "speakers", ""),
+    ("drum", "drums", ""),
+    ("violin", "violins", ""),
+    ("armchair", "armchairs", ""),
+    ("table", "tables", "coffee"),
+    ("bag", "bags", "boxing"),
+    ("painting", "paintings", "oil"),
+    ("chair", "chairs", "office"),
+    ("lamp", "lamps", "floor"),
+    ("table", "tables", "dining"),
+    ("can", "cans", "soda"),
+    ("machine", "machines", "coffee"),
+    ("mat", "mats", "yoga"),
+    ("stand", "stands", "music"),
+    ("board", "boards", "cutting"),
+    ("cabinet", "cabinets", "kitchen"),
 ]
-ADJS = ["red", "blue", "green", "black", "white", "brown", "grey", "yellow", "small", "large", "big",
-        "tall", "old", "modern", "wooden", "classic", "new", "messy", "empty", "round", "long", "comfortable"]
+ADJS = [
+    "red",
+    "blue",
+    "green",
+    "black",
+    "white",
+    "brown",
+    "grey",
+    "yellow",
+    "small",
+    "large",
+    "big",
+    "tall",
+    "old",
+    "modern",
+    "wooden",
+    "classic",
+    "new",
+    "messy",
+    "empty",
+    "round",
+    "long",
+    "comfortable",
+]
 NOUN_MODS = ["leather", "metal", "glass", "plastic", "stone"]  # material nouns as compound
-ROOMS = [("office", ""), ("kitchen", ""), ("bedroom", ""), ("classroom", ""), ("gym", ""), ("studio", ""),
-         ("gallery", ""), ("library", ""), ("room", "living"), ("shop", "working"), ("room", "dining"),
-         ("studio", "music"), ("room", "meeting")]
-NAMES = ["Eve", "Tom", "Mary", "John", "Alice", "Bob", "Anna", "Peter", "Lucy", "Sam", "Kate", "David",
-         "Emma", "Jack", "Lily", "Mike", "Sara", "Ben", "Nina", "Paul"]
-PRONOUNS = [("He", "he", "Case=Nom|Gender=Masc|Number=Sing|Person=3|PronType=Prs"),
-            ("She", "she", "Case=Nom|Gender=Fem|Number=Sing|Person=3|PronType=Prs")]
+ROOMS = [
+    ("office", ""),
+    ("kitchen", ""),
+    ("bedroom", ""),
+    ("classroom", ""),
+    ("gym", ""),
+    ("studio", ""),
+    ("gallery", ""),
+    ("library", ""),
+    ("room", "living"),
+    ("shop", "working"),
+    ("room", "dining"),
+    ("studio", "music"),
+    ("room", "meeting"),
+]
+NAMES = [
+    "Eve",
+    "Tom",
+    "Mary",
+    "John",
+    "Alice",
+    "Bob",
+    "Anna",
+    "Peter",
+    "Lucy",
+    "Sam",
+    "Kate",
+    "David",
+    "Emma",
+    "Jack",
+    "Lily",
+    "Mike",
+    "Sara",
+    "Ben",
+    "Nina",
+    "Paul",
+]
+PRONOUNS = [
+    ("He", "he", "Case=Nom|Gender=Masc|Number=Sing|Person=3|PronType=Prs"),
+    ("She", "she", "Case=Nom|Gender=Fem|Number=Sing|Person=3|PronType=Prs"),
+]
 THEY = ("They", "they", "Case=Nom|Number=Plur|Person=3|PronType=Prs")
-MANNERS = ["slowly", "quickly", "happily", "sadly", "angrily", "madly", "calmly", "carefully", "quietly",
-           "loudly", "nervously", "proudly", "casually", "fast"]
+MANNERS = [
+    "slowly",
+    "quickly",
+    "happily",
+    "sadly",
+    "angrily",
+    "madly",
+    "calmly",
+    "carefully",
+    "quietly",
+    "loudly",
+    "nervously",
+    "proudly",
+    "casually",
+    "fast",
+]
 # Intransitive motion/posture verbs: (base, 3sg, past, gerund, preposition options)
-MOTION = [("walk", "walks", "walked", "walking", ["to", "towards", "toward"]),
-          ("run", "runs", "ran", "running", ["to", "towards"]),
-          ("go", "goes", "went", "going", ["to"]),
-          ("jog", "jogs", "jogged", "jogging", ["to"]),
-          ("move", "moves", "moved", "moving", ["to"]),
-          ("sit", "sits", "sat", "sitting", ["on", "at"]),
-          ("lie", "lies", "lay", "lying", ["on"]),
-          ("stand", "stands", "stood", "standing", ["near", "behind", "by"]),
-          ("lean", "leans", "leaned", "leaning", ["on", "against"]),
-          ("type", "types", "typed", "typing", ["on"]),
-          ("wave", "waves", "waved", "waving", ["at", "to"]),
-          ("look", "looks", "looked", "looking", ["at"]),
-          ("jump", "jumps", "jumped", "jumping", ["on", "over"]),
-          ("dance", "dances", "danced", "dancing", ["with", "near"]),
-          ("sing", "sings", "sang", "singing", ["with", "into"]),
-          ("talk", "talks", "talked", "talking", ["to", "with"]),
-          ("point", "points", "pointed", "pointing", ["at"]),
-          ("climb", "climbs", "climbed", "climbing", ["on", "up"])]
+MOTION = [
+    ("walk", "walks", "walked", "walking", ["to", "towards", "toward"]),
+    ("run", "runs", "ran", "running", ["to", "towards"]),
+    ("go", "goes", "went", "going", ["to"]),
+    ("jog", "jogs", "jogged", "jogging", ["to"]),
+    ("move", "moves", "moved", "moving", ["to"]),
+    ("sit", "sits", "sat", "sitting", ["on", "at"]),
+    ("lie", "lies", "lay", "lying", ["on"]),
+    ("stand", "stands", "stood", "standing", ["near", "behind", "by"]),
+    ("lean", "leans", "leaned", "leaning", ["on", "against"]),
+    ("type", "types", "typed", "typing", ["on"]),
+    ("wave", "waves", "waved", "waving", ["at", "to"]),
+    ("look", "looks", "looked", "looking", ["at"]),
+    ("jump", "jumps", "jumped", "jumping", ["on", "over"]),
+    ("dance", "dances", "danced", "dancing", ["with", "near"]),
+    ("sing", "sings", "sang", "singing", ["with", "into"]),
+    ("talk", "talks", "talked", "talking", ["to", "with"]),
+    ("point", "points", "pointed", "pointing", ["at"]),
+    ("climb", "climbs", "climbed", "climbing", ["on", "up"]),
+]
 # Transitive verbs: (base, 3sg, past, gerund)
-TRANSITIVE = [("play", "plays", "played", "playing"), ("drink", "drinks", "drank", "drinking"),
-              ("read", "reads", "read", "reading"), ("open", "opens", "opened", "opening"),
-              ("close", "closes", "closed", "closing"), ("push", "pushes", "pushed", "pushing"),
-              ("punch", "punches", "punched", "punching"), ("kick", "kicks", "kicked", "kicking"),
-              ("hit", "hits", "hit", "hitting"), ("use", "uses", "used", "using"),
-              ("watch", "watches", "watched", "watching"), ("hold", "holds", "held", "holding"),
-              ("grab", "grabs", "grabbed", "grabbing"), ("carry", "carries", "carried", "carrying"),
-              ("clean", "cleans", "cleaned", "cleaning"), ("touch", "touches", "touched", "touching"),
-              ("hug", "hugs", "hugged", "hugging"), ("greet", "greets", "greeted", "greeting"),
-              ("call", "calls", "called", "calling"), ("approach", "approaches", "approached", "approaching")]
-INTRANS_BARE = [("sit", "sits"), ("stand", "stands"), ("sing", "sings"), ("dance", "dances"), ("wave", "waves"),
-                ("laugh", "laughs"), ("cry", "cries"), ("clap", "claps"), ("jump", "jumps"), ("sleep", "sleeps"),
-                ("wait", "waits"), ("kneel", "kneels"), ("bow", "bows"), ("nod", "nods"), ("stretch", "stretches"),
-                ("sneeze", "sneezes"), ("shout", "shouts"), ("cheer", "cheers"), ("turn", "turns"), ("squat", "squats")]
-PHRASAL = [("pick", "picks", "up"), ("sit", "sits", "down"), ("stand", "stands", "up"), ("put", "puts", "down"),
-           ("turn", "turns", "on"), ("turn", "turns", "off"), ("lie", "lies", "down"), ("walk", "walks", "in"),
-           ("walk", "walks", "away"), ("look", "looks", "around"), ("get", "gets", "up")]
-SOCIAL_NOUNS = [("friends", "friend"), ("colleagues", "colleague"), ("enemies", "enemy"), ("siblings", "sibling"),
-                ("strangers", "stranger"), ("partners", "partner"), ("neighbors", "neighbor"), ("rivals", "rival")]
-ROLE_NOUNS = ["boss", "friend", "teacher", "sister", "brother", "mother", "father", "wife", "husband", "student",
-              "coach", "manager", "colleague"]
-EMOTION_ADJS = ["angry", "happy", "sad", "nervous", "excited", "tired", "scared", "calm", "surprised", "bored"]
-SOCIAL_VERBS = [("apologize", "apologizes", "to"), ("shout", "shouts", "at"), ("smile", "smiles", "at"),
-                ("wave", "waves", "at"), ("talk", "talks", "to"), ("laugh", "laughs", "at"), ("yell", "yells", "at")]
-REL_SIMPLE = ["on", "near", "behind", "under", "above", "in", "beside", "by", "below", "against", "inside", "around"]
-NUMBERS = [("two", 2), ("three", 3), ("four", 4), ("five", 5), ("2", 2), ("3", 3), ("10", 10), ("5", 5), ("1.5", 1.5)]
+TRANSITIVE = [
+    ("play", "plays", "played", "playing"),
+    ("drink", "drinks", "drank", "drinking"),
+    ("read", "reads", "read", "reading"),
+    ("open", "opens", "opened", "opening"),
+    ("close", "closes", "closed", "closing"),
+    ("push", "pushes", "pushed", "pushing"),
+    ("punch", "punches", "punched", "punching"),
+    ("kick", "kicks", "kicked", "kicking"),
+    ("hit", "hits", "hit", "hitting"),
+    ("use", "uses", "used", "using"),
+    ("watch", "watches", "watched", "watching"),
+    ("hold", "holds", "held", "holding"),
+    ("grab", "grabs", "grabbed", "grabbing"),
+    ("carry", "carries", "carried", "carrying"),
+    ("clean", "cleans", "cleaned", "cleaning"),
+    ("touch", "touches", "touched", "touching"),
+    ("hug", "hugs", "hugged", "hugging"),
+    ("greet", "greets", "greeted", "greeting"),
+    ("call", "calls", "called", "calling"),
+    ("approach", "approaches", "approached", "approaching"),
+]
+INTRANS_BARE = [
+    ("sit", "sits"),
+    ("stand", "stands"),
+    ("sing", "sings"),
+    ("dance", "dances"),
+    ("wave", "waves"),
+    ("laugh", "laughs"),
+    ("cry", "cries"),
+    ("clap", "claps"),
+    ("jump", "jumps"),
+    ("sleep", "sleeps"),
+    ("wait", "waits"),
+    ("kneel", "kneels"),
+    ("bow", "bows"),
+    ("nod", "nods"),
+    ("stretch", "stretches"),
+    ("sneeze", "sneezes"),
+    ("shout", "shouts"),
+    ("cheer", "cheers"),
+    ("turn", "turns"),
+    ("squat", "squats"),
+]
+PHRASAL = [
+    ("pick", "picks", "up"),
+    ("sit", "sits", "down"),
+    ("stand", "stands", "up"),
+    ("put", "puts", "down"),
+    ("turn", "turns", "on"),
+    ("turn", "turns", "off"),
+    ("lie", "lies", "down"),
+    ("walk", "walks", "in"),
+    ("walk", "walks", "away"),
+    ("look", "looks", "around"),
+    ("get", "gets", "up"),
+]
+SOCIAL_NOUNS = [
+    ("friends", "friend"),
+    ("colleagues", "colleague"),
+    ("enemies", "enemy"),
+    ("siblings", "sibling"),
+    ("strangers", "stranger"),
+    ("partners", "partner"),
+    ("neighbors", "neighbor"),
+    ("rivals", "rival"),
+]
+ROLE_NOUNS = [
+    "boss",
+    "friend",
+    "teacher",
+    "sister",
+    "brother",
+    "mother",
+    "father",
+    "wife",
+    "husband",
+    "student",
+    "coach",
+    "manager",
+    "colleague",
+]
+EMOTION_ADJS = [
+    "angry",
+    "happy",
+    "sad",
+    "nervous",
+    "excited",
+    "tired",
+    "scared",
+    "calm",
+    "surprised",
+    "bored",
+]
+SOCIAL_VERBS = [
+    ("apologize", "apologizes", "to"),
+    ("shout", "shouts", "at"),
+    ("smile", "smiles", "at"),
+    ("wave", "waves", "at"),
+    ("talk", "talks", "to"),
+    ("laugh", "laughs", "at"),
+    ("yell", "yells", "at"),
+]
+REL_SIMPLE = [
+    "on",
+    "near",
+    "behind",
+    "under",
+    "above",
+    "in",
+    "beside",
+    "by",
+    "below",
+    "against",
+    "inside",
+    "around",
+]
+NUMBERS = [
+    ("two", 2),
+    ("three", 3),
+    ("four", 4),
+    ("five", 5),
+    ("2", 2),
+    ("3", 3),
+    ("10", 10),
+    ("5", 5),
+    ("1.5", 1.5),
+]
 
 
 @dataclass
@@ -153,8 +370,11 @@ class Sent:
         for i, t in enumerate(self.toks):
             head = self.heads[i] + 1
             misc = "_" if t.space_after else "SpaceAfter=No"
-            lines.append("\t".join([str(i + 1), t.form, t.lemma, t.upos, t.xpos, t.feats, str(head), t.deprel,
-                                    "_", misc]))
+            lines.append(
+                "\t".join(
+                    [str(i + 1), t.form, t.lemma, t.upos, t.xpos, t.feats, str(head), t.deprel, "_", misc]
+                )
+            )
         return "\n".join(lines) + "\n"
 
 
@@ -178,13 +398,19 @@ def article(word: str, definite: bool) -> tuple[str, str, str]:
     return ("an" if word[0] in "aeiou" else "a", "a", IND)
 
 
-def noun_phrase(s: Sent, rng: random.Random, plural: bool = False, definite: bool | None = None,
-                number: tuple[str, float] | None = None, adjs: int | None = None) -> int:
+def noun_phrase(
+    s: Sent,
+    rng: random.Random,
+    plural: bool = False,
+    definite: bool | None = None,
+    number: tuple[str, float] | None = None,
+    adjs: int | None = None,
+) -> int:
     """Append a determiner/number, adjectives and a (compound) noun; returns the head noun index."""
     sg, pl, mod = rng.choice(OBJECTS)
     noun = pl if plural else sg
     definite = rng.random() < 0.5 if definite is None else definite
-    n_adj = (rng.choice([0, 0, 1, 1, 2]) if adjs is None else adjs)
+    n_adj = rng.choice([0, 0, 1, 1, 2]) if adjs is None else adjs
     adj_words = rng.sample(ADJS, n_adj)
     material = rng.choice(NOUN_MODS) if rng.random() < 0.12 else ""
     first_word = (adj_words + [material, mod, noun])[0] or material or mod or noun
@@ -269,7 +495,11 @@ def there_is(rng: random.Random) -> Sent:
         c = s.add("in", "in", "ADP", "IN")
         d = s.add("the", "the", "DET", "DT", DEF)
         room, mod = rng.choice(ROOMS)
-        m = s.add(mod, mod, "ADJ" if mod.endswith("ing") and mod != "meeting" else "NOUN", "NN", SG) if mod else None
+        m = (
+            s.add(mod, mod, "ADJ" if mod.endswith("ing") and mod != "meeting" else "NOUN", "NN", SG)
+            if mod
+            else None
+        )
         r = s.add(room, room, "NOUN", "NN", SG)
         s.attach(c, r, "case")
         s.attach(d, r, "det")
@@ -311,9 +541,13 @@ def copular_location(rng: random.Random) -> Sent:
         plural = True
     kind = rng.random()
     if kind < 0.15:  # "The lamp is hanging above the table."
-        aux = s.add("are" if plural else "is", "be", "AUX", "VBP" if plural else "VBZ", VBP if plural else VBZ)
+        aux = s.add(
+            "are" if plural else "is", "be", "AUX", "VBP" if plural else "VBZ", VBP if plural else VBZ
+        )
         v = s.add(rng.choice(["hanging", "standing", "placed", "lying"]), "x", "VERB", "VBG", VBG)
-        s.toks[v].lemma = {"hanging": "hang", "standing": "stand", "placed": "place", "lying": "lie"}[s.toks[v].form]
+        s.toks[v].lemma = {"hanging": "hang", "standing": "stand", "placed": "place", "lying": "lie"}[
+            s.toks[v].form
+        ]
         if s.toks[v].form == "placed":
             s.toks[v].xpos, s.toks[v].feats = "VBN", "Tense=Past|VerbForm=Part|Voice=Pass"
         s.attach(aux, v, "aux:pass" if s.toks[v].form == "placed" else "aux")
@@ -321,13 +555,17 @@ def copular_location(rng: random.Random) -> Sent:
         relation_phrase(s, rng, v, as_root=False)
         root = v
     elif kind < 0.25:  # "The sofa faces the TV."
-        v = s.add("face" if plural else "faces", "face", "VERB", "VBP" if plural else "VBZ", VBP if plural else VBZ)
+        v = s.add(
+            "face" if plural else "faces", "face", "VERB", "VBP" if plural else "VBZ", VBP if plural else VBZ
+        )
         o = noun_phrase(s, rng, adjs=0)
         s.attach(subj, v, "nsubj")
         s.attach(o, v, "obj")
         root = v
     else:
-        cop = s.add("are" if plural else "is", "be", "AUX", "VBP" if plural else "VBZ", VBP if plural else VBZ)
+        cop = s.add(
+            "are" if plural else "is", "be", "AUX", "VBP" if plural else "VBZ", VBP if plural else VBZ
+        )
         root = relation_phrase(s, rng, -1, as_root=True)
         s.attach(cop, root, "cop")
         s.attach(subj, root, "nsubj")
@@ -414,7 +652,9 @@ def verb_token(s: Sent, rng: random.Random, forms: tuple, plural: bool, tense: s
     """Append (aux +) verb in the chosen tense; returns (verb index, aux index or None)."""
     base, third, past, ger = forms[0], forms[1], forms[2], forms[3]
     if tense == "prog":
-        aux = s.add("are" if plural else "is", "be", "AUX", "VBP" if plural else "VBZ", VBP if plural else VBZ)
+        aux = s.add(
+            "are" if plural else "is", "be", "AUX", "VBP" if plural else "VBZ", VBP if plural else VBZ
+        )
         v = s.add(ger, base, "VERB", "VBG", VBG)
         s.attach(aux, v, "aux")
         return v, aux
@@ -464,13 +704,25 @@ def action_clause(s: Sent, rng: random.Random, plural: bool, tense: str) -> int:
     elif kind < 0.85:
         base, third = rng.choice(INTRANS_BARE)
         forms = (base, third, base + "ed", base + "ing")
-        v = s.add(third if not plural else base, base, "VERB", "VBZ" if not plural else "VBP", VBZ if not plural else VBP)
+        v = s.add(
+            third if not plural else base,
+            base,
+            "VERB",
+            "VBZ" if not plural else "VBP",
+            VBZ if not plural else VBP,
+        )
         if rng.random() < 0.5:
             m = rng.choice(MANNERS)
             s.attach(s.add(m, m, "ADV", "RB", POS_DEG), v, "advmod")
     else:
         base, third, prt = rng.choice(PHRASAL)
-        v = s.add(third if not plural else base, base, "VERB", "VBZ" if not plural else "VBP", VBZ if not plural else VBP)
+        v = s.add(
+            third if not plural else base,
+            base,
+            "VERB",
+            "VBZ" if not plural else "VBP",
+            VBZ if not plural else VBP,
+        )
         p = s.add(prt, prt, "ADP", "RP")
         s.attach(p, v, "compound:prt")
         if base in ("pick", "put", "turn"):
@@ -575,7 +827,9 @@ def social_sentence(rng: random.Random) -> Sent:
         root = n
     elif kind < 0.75:  # Tom is angry.
         subj, plural = subject(s, rng, allow_they=True)
-        cop = s.add("are" if plural else "is", "be", "AUX", "VBP" if plural else "VBZ", VBP if plural else VBZ)
+        cop = s.add(
+            "are" if plural else "is", "be", "AUX", "VBP" if plural else "VBZ", VBP if plural else VBZ
+        )
         e = rng.choice(EMOTION_ADJS)
         adj = s.add(e, e, "ADJ", "JJ", POS_DEG)
         s.attach(cop, adj, "cop")
@@ -634,9 +888,17 @@ def command_sentence(rng: random.Random) -> Sent:
     return s
 
 
-GENERATORS = [(there_is, 14), (copular_location, 16), (attribute_sentence, 5), (has_sentence, 4),
-              (place_imperative, 4), (action_sentence, 34), (imperative_action, 8), (social_sentence, 10),
-              (command_sentence, 5)]
+GENERATORS = [
+    (there_is, 14),
+    (copular_location, 16),
+    (attribute_sentence, 5),
+    (has_sentence, 4),
+    (place_imperative, 4),
+    (action_sentence, 34),
+    (imperative_action, 8),
+    (social_sentence, 10),
+    (command_sentence, 5),
+]
 
 
 def generate(n: int, rng: random.Random, prefix: str) -> list[str]:
