@@ -45,6 +45,9 @@ class SynthesizeRequest(msgspec.Struct, frozen=True, kw_only=True, tag="synthesi
     others: dict[
         str, tuple[float, float]
     ] = {}  # other characters' x, z (metres, world) when the first action starts
+    distances: dict[
+        str, float
+    ] = {}  # metres to stop from another character when walking up to them (the social model's); absent = 0.8
 
 
 class SynthesizeReply(msgspec.Struct, frozen=True, kw_only=True, tag="synthesize_reply"):

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from proto.common import Header
@@ -29,6 +31,9 @@ def handle_synthesize(req: SynthesizeRequest) -> SynthesizeReply:
     """Plan the character's actions in the scene and synthesise segments from_segment on."""
     if not all(np.isfinite(req.start)):
         raise InvalidInput("start must be finite (x, z, yaw)")
+    for name, d in req.distances.items():
+        if not (math.isfinite(d) and 0.3 <= d <= 5.0):
+            raise InvalidInput(f"distances[{name!r}] must be between 0.3 and 5 metres, got {d}")
     for name, xz in req.others.items():
         if not all(np.isfinite(xz)):
             raise InvalidInput(f"others[{name!r}] must be finite (x, z)")
@@ -56,6 +61,7 @@ def handle_synthesize(req: SynthesizeRequest) -> SynthesizeReply:
         route_fn,
         posture=posture,
         others={k: (float(v[0]), float(v[1])) for k, v in req.others.items()},
+        distances=dict(req.distances),
     )
     if req.from_segment < 0 or req.from_segment > len(plan.segments):
         raise InvalidInput(f"from_segment {req.from_segment} outside 0..{len(plan.segments)}")

@@ -226,6 +226,7 @@ def plan_actions(
     route_fn: RouteFn | None = None,
     posture: str = "stand",
     others: dict[str, tuple[float, float]] | None = None,
+    distances: dict[str, float] | None = None,
 ) -> MotionPlan:
     """Turn a character's ordered actions into a MotionPlan.
 
@@ -238,6 +239,8 @@ def plan_actions(
         posture: the posture the character starts in ("stand", "sit", ...), when planning resumes mid-story.
         others: other characters' (x, z) metres, world, when the first action starts; actions aimed at
             one of them face it, and walking / touching actions go up to it.
+        distances: metres a walk up to another character stops short of them (the social model's
+            standing distance: friends closer than a boss); touching actions keep their clip's distance.
 
     Returns:
         the plan; unknown actions become a 1 s wait and a diagnostic.
@@ -312,7 +315,11 @@ def plan_actions(
                 not segs and posture in ("sit", "lie")
             )
             if "locomotion" in clip.tags or name in CLOSE_DISTANCE or touching:
-                near = CLOSE_DISTANCE.get(name, PERSON_DISTANCE)
+                near = CLOSE_DISTANCE.get(name) or (
+                    (distances or {}).get(person, PERSON_DISTANCE)
+                    if "locomotion" in clip.tags
+                    else PERSON_DISTANCE
+                )
                 goal = _short_of(pos, there, near)
                 face = _yaw_to(goal, there, yaw)
                 if "locomotion" in clip.tags:

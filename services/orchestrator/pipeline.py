@@ -137,6 +137,7 @@ class Pipeline:
         version: int,
         start_state: Any = None,
         others: dict[str, tuple[float, float]] | None = None,
+        distances: dict[str, float] | None = None,
     ) -> Any:
         SynthesizeRequest, SynthesizeReply = _messages(
             "motion", "motion", "SynthesizeRequest", "SynthesizeReply"
@@ -150,6 +151,7 @@ class Pipeline:
                 start=start,
                 start_state=start_state,
                 others=others or {},
+                distances=distances or {},
             ),
             SynthesizeReply,
         )
@@ -197,7 +199,11 @@ class Pipeline:
         ]
         done, total = 0, len(interactions) + len(characters)
         last = {name: max([k for n, k, _ in interactions if n == name], default=-1) for name in characters}
-        drafts = self._segments("draft", characters, sentences, scene, starts, engine, version, upto=last)
+        plan = self._social_plan(result, resolved, engine, version)
+        near = _social_distances(plan)
+        drafts = self._segments(
+            "draft", characters, sentences, scene, starts, engine, version, upto=last, distances=near
+        )
         for name, k, action in interactions:
             tick("optimise", done, total)
             draft = drafts[name][k]
@@ -222,7 +228,9 @@ class Pipeline:
             done += 1
         result.scene = scene
         tick("motion", done, total)
-        pieces = self._segments("segment", characters, sentences, scene, starts, engine, version)
+        pieces = self._segments(
+            "segment", characters, sentences, scene, starts, engine, version, distances=near
+        )
         tick("motion", total, total)
         # Story timing: sentence order sets when actions start; gaps hold the pose.
         beats = [
@@ -233,7 +241,6 @@ class Pipeline:
             if sid == s.id
         ]
         waits = {sid: c.seconds for sid, c in result.commands if c.kind == "wait"}
-        plan = self._social_plan(result, resolved, engine, version)
         responses = {
             (r.responder, r.response_index): ((r.actor, r.action_index), r.delay_s)
             for r in (plan.responses if plan is not None else [])
@@ -329,13 +336,15 @@ class Pipeline:
         engine: QueryEngine,
         version: int,
         upto: dict[str, int] | None = None,
+        distances: dict[tuple[str, int], dict[str, float]] | None = None,
     ) -> dict[str, list[Motion]]:
         """Every character's motion, one query node `<kind>:<name>:<k>` per action, in document order.
 
         Action k starts from the end state of action k-1 and sees only what it can touch: the objects on the
         floor (which routes go around), the objects it names with what they rest on, and where a character it
         names stands by then. So an edit that leaves an end state unchanged stops there (early cutoff), and
-        moving a lamp on a desk re-runs only the actions that use the lamp.
+        moving a lamp on a desk re-runs only the actions that use the lamp. ``distances``: (name, k) -> how
+        far action k stops from the characters it walks up to (the social plan's, see _social_distances).
         """
         (SegmentEndState,) = _messages("motion", "motion", "SegmentEndState")
         states = {name: SegmentEndState(x=st[0], z=st[1], yaw=st[2]) for name, st in starts.items()}
@@ -356,12 +365,20 @@ class Pipeline:
             single = CharacterNode(name=name, actions=[msgspec.structs.replace(action, verb="")])
             view = _scene_view(scene, action)
             others = _others(action, name, states, object_ids)
+            near = {o: d for o, d in (distances or {}).get((name, k), {}).items() if o in others}
             state = states[name]
             reply = engine.query(
                 f"{kind}:{name}:{k}",
-                [single, view, state, others],
+                [single, view, state, others, near] if near else [single, view, state, others],
                 partial(
-                    self._synthesise, single, view, (state.x, state.z, state.yaw), version, state, others
+                    self._synthesise,
+                    single,
+                    view,
+                    (state.x, state.z, state.yaw),
+                    version,
+                    state,
+                    others,
+                    near,
                 ),
             )
             segments = [
@@ -515,6 +532,20 @@ def _fit_frames(track: np.ndarray, frames: int) -> np.ndarray:
     return np.concatenate([track, np.repeat(track[-1:], frames - len(track), axis=0)])
 
 
+DISTANCE_STEP = (
+    0.05  # metres: social distances are rounded to this, so a re-sampled plan moves no one for less
+)
+
+
+def _social_distances(plan: Any) -> dict[tuple[str, int], dict[str, float]]:
+    """(character, action index) -> {other: metres} for actions aimed at another character."""
+    out: dict[tuple[str, int], dict[str, float]] = {}
+    for d in plan.action_distances if plan is not None else []:
+        metres = round(round(d.distance_m / DISTANCE_STEP) * DISTANCE_STEP, 2)
+        out.setdefault((d.character, d.action_index), {})[d.other] = metres
+    return out
+
+
 def _social_part(graphs: list[SentenceGraph]) -> list[Any]:
     """What the social model reads of the story (services/social/story.py): the action sentences'
     characters, their actions and the characters those aim at, and the social nodes; no spans."""
@@ -523,7 +554,13 @@ def _social_part(graphs: list[SentenceGraph]) -> list[Any]:
         [
             g.sentence_id,
             [
-                [c.name, [[a.verb, a.action, a.target if a.target in names else ""] for a in c.actions]]
+                [
+                    c.name,
+                    [
+                        [a.verb, a.action, *(r if r in names else "" for r in (a.target, a.destination))]
+                        for a in c.actions
+                    ],
+                ]
                 for c in g.characters
             ],
             [[n.kind, n.subjects, n.label] for n in g.social],

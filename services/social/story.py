@@ -105,7 +105,9 @@ def read_story(graphs: list[SentenceGraph]) -> Story:
                 vad = action_vad(a.action, a.verb)
                 if vad is None:
                     story.notes.append(f"no VAD for the action {a.verb or a.action!r} ({g.sentence_id})")
-                target = a.target if a.target in counts and a.target != c.name else ""
+                # "Tom walks to Mary" approaches her as much as "Tom waves at Mary" addresses her
+                aimed = a.target if a.target in counts else a.destination
+                target = aimed if aimed in counts and aimed != c.name else ""
                 if target:
                     story.first_step.setdefault(target, step)
                 step_acts.append(

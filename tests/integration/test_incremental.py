@@ -61,8 +61,8 @@ def test_editing_one_action_reruns_its_parse_and_that_action_of_that_character_o
     assert result.ran == [
         f"parse:{sid_of(session, 'Tom claps')}",
         "resolve",
-        "segment:Tom:1",
         "social",  # a new verb: Tom's emotions are sampled again; Eve never meets him, her face stays
+        "segment:Tom:1",
         "face:Tom",
     ]
     assert [seg.action for seg in result.motions["Tom"].segments][-1] == "clap"
@@ -149,8 +149,8 @@ def test_inserting_an_action_runs_only_its_parse_and_its_new_motion_node(session
     assert result.ran == [
         f"parse:{sid_of(session, 'Eve waves')}",
         "resolve",
-        "segment:Eve:2",
         "social",
+        "segment:Eve:2",
         "face:Eve",
         "face:Tom",  # his sentences now start after Eve's new one
     ]
@@ -159,7 +159,7 @@ def test_inserting_an_action_runs_only_its_parse_and_its_new_motion_node(session
 def test_reordering_two_sentences_reparses_nothing_and_reruns_that_characters_motion(session):
     replace(session, "Tom walks to the window. Tom waves.", "Tom waves. Tom walks to the window.")
     result = session.compute()
-    assert result.ran == ["resolve", "segment:Tom:0", "segment:Tom:1", "social", "face:Tom"]
+    assert result.ran == ["resolve", "social", "segment:Tom:0", "segment:Tom:1", "face:Tom"]
     assert [s.action for s in result.motions["Tom"].segments if s.action != "hold"][0] == "wave"
 
 

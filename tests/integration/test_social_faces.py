@@ -58,3 +58,19 @@ def test_a_response_waits_for_the_action_it_answers(orchestrator):
     mary_start = min(seg.start_frame for seg in acting["Mary"])
     assert mary_start >= tom_end  # she answers once he has finished, after a sampled delay
     assert mary_start - tom_end <= 3 * 30
+
+
+def _gap(result, walker: str, other: str) -> float:
+    """Metres between the two characters' roots at the end of the walker's walk up to the other."""
+    walk = [s for s in result.motions[walker].segments if s.action in ("walk", "run")][-1]
+    a = from_wire(result.motions[walker].root_position)[walk.end_frame - 1]
+    b = from_wire(result.motions[other].root_position)[walk.end_frame - 1]
+    return float(np.hypot(*(a - b)[[0, 2]]))
+
+
+def test_friends_walk_up_closer_than_a_boss_and_his_employee(orchestrator):
+    walks = "A door is in the room$. Mary walks to the door. Tom walks to Mary."
+    friends = orchestrator.create(f"Tom and Mary are friends. {walks}").compute()
+    boss = orchestrator.create(f"Tom is Mary's boss. {walks}").compute()
+    assert _gap(friends, "Tom", "Mary") + 0.2 < _gap(boss, "Tom", "Mary")
+    assert 0.6 < _gap(friends, "Tom", "Mary") < 1.3 and 1.0 < _gap(boss, "Tom", "Mary") < 1.8

@@ -1,0 +1,43 @@
+"""Walking up to another character stops at the distance the social model asks for."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from proto.common import Header
+from proto.motion import SynthesizeRequest
+from proto.scene import Room, Scene
+from proto.ssg import ActionNode, CharacterNode
+from services.motion.handlers import handle_synthesize
+from wana.arrays import from_wire
+from wana.bus.service import InvalidInput
+
+SCENE = Scene(room=Room(room_type="room", width=8, depth=8, height=3))
+TOM = CharacterNode(name="Tom", actions=[ActionNode(verb="walk", action="walk", destination="Mary")])
+
+
+def _gap(distances: dict[str, float]) -> float:
+    reply = handle_synthesize(
+        SynthesizeRequest(
+            header=Header(),
+            character=TOM,
+            scene=SCENE,
+            start=(-2.0, 0.0, 0.0),
+            others={"Mary": (2.0, 0.0)},
+            distances=distances,
+        )
+    )
+    end = from_wire(reply.motion.root_position)[-1]
+    return float(np.hypot(end[0] - 2.0, end[2]))
+
+
+def test_a_walk_up_to_a_character_stops_at_the_given_distance():
+    assert _gap({}) == pytest.approx(0.8, abs=0.05)  # the default
+    assert _gap({"Mary": 1.4}) == pytest.approx(1.4, abs=0.05)
+    assert _gap({"Mary": 0.6}) == pytest.approx(0.6, abs=0.05)
+
+
+def test_an_impossible_distance_is_refused():
+    with pytest.raises(InvalidInput, match="distances"):
+        _gap({"Mary": 0.0})
