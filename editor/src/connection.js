@@ -49,6 +49,12 @@ export class LiveDocument {
     };
   }
 
+  /** Ask for the current text and results again; the animation then comes with every entry in full. */
+  resume() {
+    if (this.ws?.readyState !== WebSocket.OPEN) return;
+    this.ws.send(JSON.stringify({ type: "resume", version: this.version ?? -1 }));
+  }
+
   close() {
     this.closed = true;
     this.ws?.close();

@@ -3,6 +3,7 @@
 import "./style.css";
 import { createDocument, downloadExport, getDocument, listDocuments } from "./api.js";
 import { LiveDocument } from "./connection.js";
+import { Holdings } from "./holdings.js";
 import { TextPane } from "./textpane.js";
 import { Timeline } from "./timeline.js";
 import { Viewer } from "./viewer.js";
@@ -17,6 +18,8 @@ const state = {
   diagnostics: null,
   progress: null,
   messages: 0,
+  holdings: new Holdings(), // characters and objects of the last animation, by hash
+  received: null, // what the last animation message carried: {version, unchanged: [character names]}
 };
 
 const viewer = new Viewer($("viewport"));
@@ -42,6 +45,30 @@ function showProgress(msg) {
   $("progress-text").textContent = `${msg.stage} ${msg.done}/${msg.total}`;
 }
 
+/** Show an animation message; its `unchanged` entries are filled from the last one (by content hash). */
+function showAnimation(received) {
+  const { message: msg, missing, unchanged } = state.holdings.resolve(received);
+  if (!msg) {
+    // A stub of something this page does not hold (should not happen): get everything again.
+    console.warn(`animation v${received.version}: ${missing.length} entries missing, resuming`);
+    state.live.resume();
+    return;
+  }
+  state.received = { version: msg.version, unchanged };
+  state.animation = msg;
+  state.version = msg.version;
+  viewer.setRoom(msg.room);
+  viewer.setObjects(msg.objects);
+  viewer.setCharacters(msg.characters); // rebuilds only the figures whose hash changed
+  viewer.setCommands(msg.commands);
+  viewer.invalidate();
+  timeline.setLength(msg.frames, msg.fps);
+  $("progress-bar").style.width = "0";
+  $("progress-text").textContent = msg.characters.length || msg.objects.length
+    ? `v${msg.version}: ${msg.objects.length} objects, ${msg.characters.length} characters, ${msg.stats.total_ms ?? msg.stats.compute_ms} ms`
+    : `v${msg.version}: nothing to animate yet`;
+}
+
 function onMessage(msg) {
   state.messages += 1;
   switch (msg.type) {
@@ -60,18 +87,7 @@ function onMessage(msg) {
       pane.setDiagnostics(msg, state.live.version === msg.version ? state.live.confirmed : null);
       break;
     case "animation":
-      state.animation = msg;
-      state.version = msg.version;
-      viewer.setRoom(msg.room);
-      viewer.setObjects(msg.objects);
-      viewer.setCharacters(msg.characters);
-      viewer.setCommands(msg.commands);
-      viewer.invalidate();
-      timeline.setLength(msg.frames, msg.fps);
-      $("progress-bar").style.width = "0";
-      $("progress-text").textContent = msg.characters.length || msg.objects.length
-        ? `v${msg.version}: ${msg.objects.length} objects, ${msg.characters.length} characters, ${msg.stats.total_ms ?? msg.stats.compute_ms} ms`
-        : `v${msg.version}: nothing to animate yet`;
+      showAnimation(msg);
       break;
     case "error":
       $("progress-text").textContent = `${msg.code}: ${msg.message}`;
@@ -85,6 +101,7 @@ async function open(docId) {
   state.live?.close();
   state.docId = docId;
   state.version = null;
+  state.holdings = new Holdings();
   if (location.hash !== `#doc=${docId}`) history.replaceState(null, "", `#doc=${docId}`);
   state.live = new LiveDocument(docId, {
     getText: () => pane.getText(),

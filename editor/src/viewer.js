@@ -50,6 +50,7 @@ export class Viewer {
     this.loader.setRequestHeader(authHeaders());
     this.meshes = new Map(); // mesh URL -> Promise<THREE.Object3D | null>
     this.characters = [];
+    this.lastCharacterUpdate = { built: [], kept: [] };
     this.objects = new Map(); // object id -> {key, node}
     this.room = null;
     this.cameraKey = "";
@@ -164,15 +165,39 @@ export class Viewer {
     }
   }
 
+  /**
+   * Show these characters. A figure whose entry has the same name, content hash and place as before is
+   * kept as it is; only the others are rebuilt. The current frame and the camera are kept.
+   * @returns {{built: string[], kept: string[]}} names of the figures rebuilt and kept
+   */
   setCharacters(characters) {
-    for (const c of this.characters) {
+    const previous = new Map(this.characters.map((c) => [c.key, c]));
+    const built = [];
+    const kept = [];
+    this.characters = characters.map((data, i) => {
+      const key = data.hash ? `${i}\u0000${data.name}\u0000${data.hash}` : null;
+      const figure = key !== null ? previous.get(key) : undefined;
+      if (figure) {
+        previous.delete(key);
+        kept.push(data.name);
+        return figure;
+      }
+      const fresh = new CharacterFigure(data, i);
+      fresh.key = key;
+      built.push(data.name);
+      this.characterGroup.add(fresh.group);
+      return fresh;
+    });
+    for (const c of previous.values()) {
       this.characterGroup.remove(c.group);
       c.dispose();
     }
-    this.characters = characters.map((data, i) => new CharacterFigure(data, i));
-    for (const c of this.characters) this.characterGroup.add(c.group);
-    this.frame = -1;
+    this.lastCharacterUpdate = { built, kept };
+    const frame = this.frame;
+    this.frame = -1; // pose every figure again at the current frame (new ones start at frame 0)
+    if (frame >= 0) this.setFrame(frame);
     this.invalidate();
+    return this.lastCharacterUpdate;
   }
 
   /** Apply camera and light commands (only when they changed, so the user's orbiting is kept). */

@@ -20,6 +20,7 @@ from starlette.concurrency import run_in_threadpool
 from starlette.websockets import WebSocket, WebSocketState
 
 from services.gateway import messages
+from services.gateway.delta import CharacterCache, EncodedAnimation, Holdings, encode_animation, encode_json
 from services.orchestrator.document import BadEdit, StaleEdit, TextChange
 from services.orchestrator.session import Orchestrator, Session
 
@@ -30,20 +31,42 @@ PROGRESS_INTERVAL_S = 0.05  # at most one progress message per stage per interva
 
 @dataclass(eq=False)
 class Client:
-    """One WebSocket connection; sends are serialised so messages never interleave."""
+    """One WebSocket connection; sends are serialised so messages never interleave.
+
+    `holdings` are the hashes of the characters and objects of the last animation message this client was
+    sent: it is updated under the send lock, so it always matches what the client has read in order.
+    """
 
     ws: WebSocket
     lock: asyncio.Lock = field(default_factory=asyncio.Lock)
+    holdings: Holdings = field(default_factory=Holdings)
 
-    async def send(self, message: dict[str, Any]) -> bool:
+    async def _send_text(self, text: str) -> bool:
+        if self.ws.client_state != WebSocketState.CONNECTED:
+            return False
+        try:
+            await self.ws.send_text(text)
+        except Exception:  # a closed socket: the receive loop will detach it
+            return False
+        return True
+
+    async def send(self, message: dict[str, Any] | str) -> bool:
+        """Send one message (a dict, or its JSON text when it was encoded once for many clients)."""
+        text = message if isinstance(message, str) else encode_json(message)
         async with self.lock:
-            if self.ws.client_state != WebSocketState.CONNECTED:
-                return False
-            try:
-                await self.ws.send_json(message)
-            except Exception:  # a closed socket: the receive loop will detach it
-                return False
-            return True
+            return await self._send_text(text)
+
+    async def send_animation(self, animation: EncodedAnimation) -> bool:
+        """Send an animation message, with `unchanged` stubs for the entries this client holds."""
+        async with self.lock:
+            text, holdings, _ = animation.text_for(self.holdings)
+            sent = await self._send_text(text)
+            self.holdings = holdings if sent else Holdings()
+            return sent
+
+    def forget_holdings(self) -> None:
+        """The next animation message goes to this client in full (it asked to resume)."""
+        self.holdings = Holdings()
 
 
 class DocumentChannel:
@@ -54,7 +77,8 @@ class DocumentChannel:
         self.executor = executor
         self.title = title
         self.clients: set[Client] = set()
-        self.latest: tuple[dict[str, Any], dict[str, Any]] | None = None  # (diagnostics, animation)
+        self.latest: tuple[dict[str, Any], EncodedAnimation] | None = None  # (diagnostics, animation)
+        self._characters = CharacterCache()  # used by one compute at a time (the compute loop's)
         self._dirty = False
         self._task: asyncio.Task[None] | None = None
         self._progress_sent: dict[str, float] = {}
@@ -65,7 +89,11 @@ class DocumentChannel:
 
     # -- clients -------------------------------------------------------------------------------------
     async def attach(self, client: Client, known_version: int | None = None) -> None:
-        """Send the current text (the client rebases onto it), then the newest results or start a compute."""
+        """Send the current text (the client rebases onto it), then the newest results or start a compute.
+
+        The client is treated as holding nothing: its next animation message is sent in full.
+        """
+        client.forget_holdings()
         state = await run_in_threadpool(self._state)
         state["resumed_from"] = known_version
         await client.send(state)  # first, before any broadcast can reach this client
@@ -75,8 +103,9 @@ class DocumentChannel:
             state["resumed_from"] = known_version
             await client.send(state)
         if self.latest is not None and self.latest[0]["version"] == self.version:
-            for message in self.latest:
-                await client.send(message)
+            diagnostics, animation = self.latest
+            await client.send(diagnostics)
+            await client.send_animation(animation)
         else:
             self.request_compute()
 
@@ -84,9 +113,17 @@ class DocumentChannel:
         self.clients.discard(client)
 
     async def broadcast(self, message: dict[str, Any], *, exclude: Client | None = None) -> None:
+        """Send one message to every client (but `exclude`), encoded once."""
         targets = [c for c in list(self.clients) if c is not exclude]
         if targets:
-            await asyncio.gather(*(c.send(message) for c in targets))
+            text = encode_json(message)
+            await asyncio.gather(*(c.send(text) for c in targets))
+
+    async def broadcast_animation(self, animation: EncodedAnimation) -> None:
+        """Send an animation to every client, each with stubs for the entries it holds."""
+        targets = list(self.clients)
+        if targets:
+            await asyncio.gather(*(c.send_animation(animation) for c in targets))
 
     def _state(self) -> dict[str, Any]:
         with self.session.lock:
@@ -155,15 +192,15 @@ class DocumentChannel:
                 if diag["version"] != self.version:
                     self._dirty = True  # an edit landed meanwhile: only the newest version is pushed
                     continue
-                anim["stats"]["total_ms"] = round((time.perf_counter() - started) * 1000.0, 2)
+                anim.head["stats"]["total_ms"] = round((time.perf_counter() - started) * 1000.0, 2)
                 self.latest = (diag, anim)
                 await self.broadcast(diag)
-                await self.broadcast(anim)
+                await self.broadcast_animation(anim)
         finally:
             self._task = None
 
-    def _compute(self, loop: asyncio.AbstractEventLoop) -> tuple[dict[str, Any], dict[str, Any]]:
-        """Runs in the compute pool: bring the session up to date and build both messages."""
+    def _compute(self, loop: asyncio.AbstractEventLoop) -> tuple[dict[str, Any], EncodedAnimation]:
+        """Runs in the compute pool: bring the session up to date and build (and encode) both messages."""
         version = self.version
         self._progress_sent.clear()
 
@@ -181,7 +218,7 @@ class DocumentChannel:
             result = self.session.compute(progress=progress)
             compute_ms = (time.perf_counter() - started) * 1000.0
             diag = messages.diagnostics_message(result, self.session.doc)
-        anim = messages.animation_message(result, compute_ms=compute_ms)
+        anim = encode_animation(result, self._characters, compute_ms=compute_ms)
         return diag, anim
 
 

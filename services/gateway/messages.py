@@ -1,7 +1,9 @@
 """JSON messages the gateway pushes to the editor, built from the orchestrator's results.
 
 The animation message is compact: arrays travel as base64 of little-endian float32 bytes, so a client
-decodes them with one `new Float32Array(...)`. Its layout is documented in services/gateway/README.md.
+decodes them with one `new Float32Array(...)`. Every character and object carries a content hash; the live
+WebSocket (services.gateway.delta) sends an entry the client already holds as a short `unchanged` stub.
+The layout is documented in services/gateway/README.md.
 """
 
 from __future__ import annotations
@@ -11,12 +13,14 @@ import json
 from typing import Any
 from urllib.parse import quote
 
+import msgspec
 import numpy as np
 
 from proto.motion_data import Motion
 from proto.scene import PlacedObject
 from services.orchestrator.document import Document
 from services.orchestrator.pipeline import PipelineResult
+from services.orchestrator.queries import content_hash
 from wana import skeleton
 from wana.arrays import from_wire
 
@@ -69,7 +73,25 @@ def diagnostics_message(result: PipelineResult, doc: Document) -> dict[str, Any]
     }
 
 
-def _character(motion: Motion) -> dict[str, Any]:
+def motion_hash(motion: Motion) -> str:
+    """Content hash of what the animation message carries of a Motion (not its foot contacts or face).
+
+    The face (`expression`) is not sent to the editor, and social sampling changes it for a character whose
+    body motion an edit of someone else left alone: that must not make the editor fetch the body again.
+    """
+    return content_hash(msgspec.structs.replace(motion, foot_contact=None, expression=None))
+
+
+def character_entry(motion: Motion, digest: str | None = None) -> dict[str, Any]:
+    """One character of the animation message, with the content hash of what it carries.
+
+    Args:
+        motion: the character's whole motion.
+        digest: `motion_hash(motion)` when the caller already has it.
+
+    Raises:
+        ValueError: rotations (T, J, 4) and root positions (T, 3) disagree.
+    """
     rotations = from_wire(motion.rotations)  # (T, J, 4)
     root = from_wire(motion.root_position)  # (T, 3)
     if rotations.ndim != 3 or rotations.shape[2] != 4 or root.shape != (rotations.shape[0], 3):
@@ -81,6 +103,7 @@ def _character(motion: Motion) -> dict[str, Any]:
     parents = [names.index(skeleton.JOINT_NAMES[p]) if p >= 0 else -1 for p in skeleton.PARENTS[index]]
     return {
         "name": motion.character,
+        "hash": digest or motion_hash(motion),  # equal hash, equal entry: a client may reuse what it has
         "fps": motion.fps,
         "frames": int(rotations.shape[0]),
         "joints": names,
@@ -101,31 +124,37 @@ def _character(motion: Motion) -> dict[str, Any]:
     }
 
 
-def animation_message(result: PipelineResult, *, compute_ms: float = 0.0) -> dict[str, Any]:
-    """The scene and every character's motion for one version, plus what the pipeline ran."""
-    scene = result.scene
+def object_entry(o: PlacedObject) -> dict[str, Any]:
+    """One placed object of the animation message, with the content hash of its other fields."""
+    entry = {
+        "id": o.id,
+        "category": o.category,
+        "attributes": dict(o.attributes),
+        "seed": o.seed,
+        "position": list(o.position),
+        "yaw": o.yaw,
+        "scale": list(o.scale),
+        "support": o.support,
+        "from_text": o.from_text,
+        "mesh_url": mesh_url(o),
+    }
+    return {**entry, "hash": content_hash(entry)}
+
+
+def animation_head(
+    result: PipelineResult, characters: list[dict[str, Any]], *, compute_ms: float = 0.0
+) -> dict[str, Any]:
+    """The animation message without its `objects` and `characters` lists.
+
+    Args:
+        result: the pipeline's result for one version.
+        characters: at least the `fps` and `frames` of each character entry, in message order.
+        compute_ms: how long the compute took (reported in `stats`).
+    """
     room = None
-    objects: list[dict[str, Any]] = []
-    if scene is not None:
-        r = scene.room
+    if result.scene is not None:
+        r = result.scene.room
         room = {"room_type": r.room_type, "width": r.width, "depth": r.depth, "height": r.height}
-        objects = [
-            {
-                "id": o.id,
-                "category": o.category,
-                "attributes": dict(o.attributes),
-                "seed": o.seed,
-                "position": list(o.position),
-                "yaw": o.yaw,
-                "scale": list(o.scale),
-                "support": o.support,
-                "from_text": o.from_text,
-                "mesh_url": mesh_url(o),
-            }
-            for o in scene.objects
-        ]
-    characters = [_character(m) for _, m in sorted(result.motions.items())]
-    frames = max((c["frames"] for c in characters), default=0)
     commands = [
         {"sentence_id": sid, "kind": c.kind, "value": c.value, "seconds": c.seconds, "target": c.target}
         for sid, c in result.commands
@@ -134,13 +163,22 @@ def animation_message(result: PipelineResult, *, compute_ms: float = 0.0) -> dic
         "type": "animation",
         "version": result.version,
         "fps": characters[0]["fps"] if characters else FPS,
-        "frames": frames,
+        "frames": max((c["frames"] for c in characters), default=0),
         "room": room,
-        "objects": objects,
-        "characters": characters,
         "commands": commands,
         "unavailable": dict(result.unavailable),
         "stats": {"ran": list(result.ran), "reused": len(result.reused), "compute_ms": round(compute_ms, 2)},
+    }
+
+
+def animation_message(result: PipelineResult, *, compute_ms: float = 0.0) -> dict[str, Any]:
+    """The scene and every character's motion for one version, plus what the pipeline ran (full data)."""
+    objects = [object_entry(o) for o in result.scene.objects] if result.scene is not None else []
+    characters = [character_entry(m) for _, m in sorted(result.motions.items())]
+    return {
+        **animation_head(result, characters, compute_ms=compute_ms),
+        "objects": objects,
+        "characters": characters,
     }
 
 

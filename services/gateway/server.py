@@ -31,6 +31,7 @@ class GatewayThread:
             log_level="warning",
             lifespan="on",
             ws_max_size=settings.max_message_bytes,
+            ws_per_message_deflate=settings.ws_compression,
         )
         self.server = uvicorn.Server(config)
         self.thread = threading.Thread(target=self.server.run, name="wana-gateway", daemon=True)

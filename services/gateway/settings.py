@@ -22,6 +22,17 @@ def _env_int(name: str, default: int) -> int:
         raise ValueError(f"{name} must be an integer, got {raw!r}") from exc
 
 
+def _env_bool(name: str, default: bool) -> bool:
+    raw = os.environ.get(name, "").strip().lower()
+    if not raw:
+        return default
+    if raw in ("1", "true", "yes", "on"):
+        return True
+    if raw in ("0", "false", "no", "off"):
+        return False
+    raise ValueError(f"{name} must be true or false, got {raw!r}")
+
+
 def is_loopback(host: str) -> bool:
     """True for addresses only this machine can reach (127.0.0.0/8, ::1, localhost)."""
     if host == "localhost":
@@ -68,6 +79,9 @@ class Settings:
     compute_threads: int = 2  # WANA_COMPUTE_THREADS: documents computed at the same time
     mesh_cache: int = 256  # WANA_MESH_CACHE: GLB variants kept in memory
     broker: str = ""  # WANA_BROKER: a broker URL (tcp://HOST:5555) whose workers do the work; implies remote
+    # WANA_WS_COMPRESSION: permessage-deflate on the WebSocket. Off by default: deflating a 1 MB animation
+    # costs ~50-70 ms of the event loop and saves only ~25% (base64 of float32 compresses poorly).
+    ws_compression: bool = False
 
     @classmethod
     def from_env(cls, **overrides: object) -> Settings:
@@ -91,6 +105,7 @@ class Settings:
             max_changes=_env_int("WANA_MAX_CHANGES", cls.max_changes),
             compute_threads=_env_int("WANA_COMPUTE_THREADS", cls.compute_threads),
             mesh_cache=_env_int("WANA_MESH_CACHE", cls.mesh_cache),
+            ws_compression=_env_bool("WANA_WS_COMPRESSION", cls.ws_compression),
         )
         return base.replace(**{k: v for k, v in overrides.items() if v is not None})
 

@@ -1,4 +1,7 @@
-"""End to end in headless Chromium: type a scene and two actions, see the character, edit, see the update.
+"""End to end in headless Chromium: type a scene and two characters' actions, see them, edit one, see the update.
+
+The edit changes only Eve's motion: the gateway sends Tom as an `unchanged` stub and the editor keeps his
+figure as it was (the same three.js object), while both stay on screen.
 
 The screenshots are kept under test-artifacts/ (gitignored). Skips with a reason when Debian's chromium,
 the Python Playwright client or the built editor (editor/dist) is missing. Never downloads a browser.
@@ -31,7 +34,9 @@ CHROMIUM_ARGS = [
 pytestmark = [pytest.mark.browser, pytest.mark.slow, pytest.mark.integration]
 
 SCENE = "In the office there is a desk near a window$. A chair is in front of the desk$."
-ACTIONS = " Eve walks to the chair. Eve sits on the chair."
+# Eve's sentence comes first and Tom's two walks outlast hers (walking or running), so editing Eve's action
+# leaves Tom's timeline, and the length every character is padded to, as they were.
+ACTIONS = " Eve walks to the chair. Tom walks to the window. Tom walks to the desk."
 
 
 @pytest.fixture(scope="module")
@@ -71,6 +76,7 @@ def wait_synced(page: Any, timeout_ms: int = 120_000) -> dict[str, Any]:
             characters: a.characters.map(c => ({name: c.name, root: c.root_position,
                 actions: c.segments.map(s => s.action)})),
             figures: wana.viewer.characterGroup.children.length,
+            received: wana.state.received, update: wana.viewer.lastCharacterUpdate,
             kinds: wana.state.diagnostics.sentences.map(s => s.kind)}; }"""
     )
 
@@ -101,6 +107,8 @@ def test_typing_a_story_shows_the_character_and_an_edit_updates_it(browser: Any,
         if not first["characters"]:
             pytest.skip(f"no character to see: stages not available in this build: {first['unavailable']}")
         assert first["figures"] == len(first["characters"]) >= 1 and first["characters"][0]["name"] == "Eve"
+        names = [c["name"] for c in first["characters"]]
+        assert names == ["Eve", "Tom"], names
 
         # The character is drawn: after Focus aims the camera at it, hiding it changes the viewer's pixels.
         page.click("#focus")
@@ -115,19 +123,28 @@ def test_typing_a_story_shows_the_character_and_an_edit_updates_it(browser: Any,
         changed = int((np.abs(with_figure - without_figure).sum(axis=2) > 30).sum())
         assert changed > 150, f"only {changed} pixels belong to the character"
 
-        # Edit one sentence: "walks" -> "runs"; a new version animates and the motion changes.
+        # Edit one sentence in one input event: Eve "walks" -> "runs"; a new version animates, her motion
+        # changes, and Tom (when both animate) comes as unchanged: his figure is kept, not rebuilt.
+        page.evaluate("() => { for (const c of wana.viewer.characters) c.group.userData.before = true; }")
         text = page.input_value("#text")
-        at = text.index("walks")
+        at = text.index("Eve walks") + len("Eve ")
         page.focus("#text")
         page.evaluate(f"() => document.getElementById('text').setSelectionRange({at}, {at + len('walks')})")
-        page.keyboard.type("runs")
+        page.keyboard.insert_text("runs")
         second = wait_synced(page)
         assert second["version"] > first["version"]
-        assert page.input_value("#text") == text.replace("walks", "runs", 1)
+        assert page.input_value("#text") == text[:at] + "runs" + text[at + len("walks") :]
         assert (
             second["characters"][0]["root"] != first["characters"][0]["root"]
             or second["characters"][0]["actions"] != first["characters"][0]["actions"]
         )
+        assert [c["name"] for c in second["characters"]] == names
+        assert second["figures"] == len(names)  # every character still shown
+        kept = page.evaluate(
+            "() => wana.viewer.characters.filter((c) => c.group.userData.before).map((c) => c.name)"
+        )
+        assert second["received"]["unchanged"] == ["Tom"], second["received"]
+        assert second["update"] == {"built": ["Eve"], "kept": ["Tom"]} and kept == ["Tom"]
         page.evaluate("() => { wana.timeline.seek(wana.state.animation.frames / 2 / 30); }")
         page.wait_for_timeout(300)
         page.screenshot(path=str(ARTIFACTS / "editor_e2e_edited.png"))
