@@ -22,7 +22,7 @@ from services.orchestrator.document import Document
 from services.orchestrator.pipeline import PipelineResult
 from services.orchestrator.queries import content_hash
 from wana import skeleton
-from wana.arrays import from_wire
+from wana.arrays import from_wire, to_wire
 
 FPS = 30
 
@@ -73,13 +73,32 @@ def diagnostics_message(result: PipelineResult, doc: Document) -> dict[str, Any]
     }
 
 
-def motion_hash(motion: Motion) -> str:
-    """Content hash of what the animation message carries of a Motion (not its foot contacts or face).
+def sent_motion(motion: Motion) -> Motion:
+    """What the animation message carries of a Motion: no foot contacts or face, no trailing hold.
 
     The face (`expression`) is not sent to the editor, and social sampling changes it for a character whose
-    body motion an edit of someone else left alone: that must not make the editor fetch the body again.
+    body motion an edit of someone else left alone. The orchestrator pads every character with a held
+    pose to the story's length, so an edit that lengthens one character's story would re-pad the others;
+    the editor holds a figure's last pose past its last frame, so the held frames after the first are cut.
+    Neither must make the editor fetch a body again.
     """
-    return content_hash(msgspec.structs.replace(motion, foot_contact=None, expression=None))
+    motion = msgspec.structs.replace(motion, foot_contact=None, expression=None)
+    last = motion.segments[-1] if motion.segments else None
+    rotations = from_wire(motion.rotations)
+    if last is None or last.action != "hold" or last.end_frame != len(rotations) or last.start_frame < 1:
+        return motion
+    cut = last.start_frame + 1
+    return msgspec.structs.replace(
+        motion,
+        rotations=to_wire(rotations[:cut]),
+        root_position=to_wire(from_wire(motion.root_position)[:cut]),
+        segments=[*motion.segments[:-1], msgspec.structs.replace(last, end_frame=cut)],
+    )
+
+
+def motion_hash(motion: Motion) -> str:
+    """Content hash of what the animation message carries of a Motion (see `sent_motion`)."""
+    return content_hash(sent_motion(motion))
 
 
 def character_entry(motion: Motion, digest: str | None = None) -> dict[str, Any]:
@@ -92,6 +111,8 @@ def character_entry(motion: Motion, digest: str | None = None) -> dict[str, Any]
     Raises:
         ValueError: rotations (T, J, 4) and root positions (T, 3) disagree.
     """
+    digest = digest or motion_hash(motion)
+    motion = sent_motion(motion)
     rotations = from_wire(motion.rotations)  # (T, J, 4)
     root = from_wire(motion.root_position)  # (T, 3)
     if rotations.ndim != 3 or rotations.shape[2] != 4 or root.shape != (rotations.shape[0], 3):
@@ -103,7 +124,7 @@ def character_entry(motion: Motion, digest: str | None = None) -> dict[str, Any]
     parents = [names.index(skeleton.JOINT_NAMES[p]) if p >= 0 else -1 for p in skeleton.PARENTS[index]]
     return {
         "name": motion.character,
-        "hash": digest or motion_hash(motion),  # equal hash, equal entry: a client may reuse what it has
+        "hash": digest,  # equal hash, equal entry: a client may reuse what it has
         "fps": motion.fps,
         "frames": int(rotations.shape[0]),
         "joints": names,
@@ -163,7 +184,12 @@ def animation_head(
         "type": "animation",
         "version": result.version,
         "fps": characters[0]["fps"] if characters else FPS,
-        "frames": max((c["frames"] for c in characters), default=0),
+        # the story's length: each character's entry may end earlier (its last pose held, see sent_motion)
+        "frames": max(
+            [c["frames"] for c in characters]
+            + [len(from_wire(m.rotations)) for m in result.motions.values()],
+            default=0,
+        ),
         "room": room,
         "commands": commands,
         "unavailable": dict(result.unavailable),

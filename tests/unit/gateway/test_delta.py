@@ -130,3 +130,41 @@ def test_a_character_whose_face_alone_changed_is_still_sent_as_unchanged() -> No
     moved = msgspec.structs.replace(eve, root_position=to_wire(np.ones((8, 3), np.float32)))
     third = encode_animation(PipelineResult(doc_id="d", version=3, motions={"Eve": moved}), cache)
     assert third.text_for(held)[2] == 0
+
+
+def _padded(motion: Motion, hold: int) -> Motion:
+    """The motion with its last pose held for ``hold`` more frames, as the orchestrator pads it."""
+    from wana.arrays import from_wire
+
+    rot, root = from_wire(motion.rotations), from_wire(motion.root_position)
+    frames = len(rot)
+    return msgspec.structs.replace(
+        motion,
+        rotations=to_wire(np.concatenate([rot, np.repeat(rot[-1:], hold, 0)])),
+        root_position=to_wire(np.concatenate([root, np.repeat(root[-1:], hold, 0)])),
+        segments=[
+            *motion.segments,
+            Segment(index=1, action="hold", start_frame=frames, end_frame=frames + hold),
+        ],
+    )
+
+
+def test_a_longer_held_end_is_the_same_entry_and_the_story_keeps_its_length() -> None:
+    from services.gateway.messages import character_entry, motion_hash
+
+    tom, rotations = _motion("Tom", 30, seed=4)
+    short, long = _padded(tom, 10), _padded(tom, 90)
+    assert motion_hash(short) == motion_hash(long)
+    entry = character_entry(long)
+    assert entry["frames"] == 31  # the motion, then its last pose once: the editor holds it from there
+    np.testing.assert_array_equal(_rotations(entry, 31)[:30], rotations)
+    assert entry["segments"][-1] == {
+        **entry["segments"][-1],
+        "action": "hold",
+        "start_frame": 30,
+        "end_frame": 31,
+    }
+    result = PipelineResult(doc_id="d", version=1, motions={"Tom": long})
+    assert animation_message(result)["frames"] == 120
+    moved = _padded(_motion("Tom", 30, seed=5)[0], 90)
+    assert motion_hash(moved) != motion_hash(long)
