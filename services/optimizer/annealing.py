@@ -7,7 +7,8 @@ rises with a desk that is scaled up. Each step draws ``proposals`` perturbations
 state from a truncated normal (σ = 0.02, cut at ±3σ), re-synthesises the motion for each through
 ``motion_fn``, scores them as one batch, takes the cheapest and accepts it by Metropolis-Hastings
 at temperature T = 1 − 0.002·step. The best layout seen is returned, also when the wall-clock
-budget runs out. Deterministic for a given seed.
+budget runs out; asked to, the search stops early once its cost is 0 (no later layout could beat
+it). Deterministic for a given seed.
 """
 
 from __future__ import annotations
@@ -49,7 +50,8 @@ class OptimisationResult:
         before: costs of the input layout and motion.
         after: costs of the returned layout and motion.
         best_curve: lowest search cost so far after each step.
-        steps_run: annealing steps run (fewer than asked when the budget ran out).
+        steps_run: annealing steps run (fewer than asked when the budget ran out or, with
+            ``stop_at_zero``, the search cost reached 0).
         elapsed_ms: wall-clock time of the whole optimisation.
         movable: ids of the objects the annealing moved (their supported objects followed).
         candidates: the layouts that were, in turn, the best so far (ties within MIN_GAIN included),
@@ -143,6 +145,7 @@ def optimise_interaction(
     search_action_frames: int | None = 6,
     coarse_search: bool = True,
     ik_search: bool = False,
+    stop_at_zero: bool = False,
 ) -> OptimisationResult:
     """Jointly improve the layout and the motion of one interaction.
 
@@ -166,6 +169,9 @@ def optimise_interaction(
         coarse_search: rank proposals with the cell-level collision test (reports are always exact).
         ik_search: rank hand contacts by arm reach (see InteractionScorer's ik_reach), for a motion_fn
             that does not re-solve the IK per proposal (the anchored surrogate).
+        stop_at_zero: stop once the best search cost is 0 (below MIN_GAIN): the best layout cannot
+            change after that, only the ties kept in ``candidates`` would; for callers that do not
+            verify the candidates.
 
     Returns:
         The best layout, its motion, the cost curve, and the costs before and after.
@@ -261,6 +267,8 @@ def optimise_interaction(
                     tie = cost
             curve.append(cost)
             best_curve.append(best[0])
+            if stop_at_zero and best[0] < MIN_GAIN:
+                break  # C is 0 up to float noise: no later layout can be a new best (see MIN_GAIN)
     best_layout = model.layouts(best[1][None])
     if best[2] is None:
         best = (best[0], best[1], motion_fn.from_layouts(best_layout)[0], best[3])  # type: ignore[attr-defined]

@@ -12,12 +12,17 @@ input misses a contact (C_T above 5 cm), layouts with the missed contact's objec
 joint (services.optimizer.reaching) are re-synthesised first, and the search's layouts are verified
 even when its own exact report (on the surrogate's motion) saw no gain. Without a qualifying
 candidate the input comes back; a qualifying one that still misses a contact is reached from once
-more. A draft that starts seated (and no character given) is re-synthesised on its seat first and
+more. The annealing itself runs only when its layouts would be verified: not when the input hits no
+box and every contact is within 1 cm, nor when a reach layout already verified collision-free with its
+contacts held. When the body, still (seated), ends up inside furniture the reach brought close (legs in a
+desk's drawer pedestal), that furniture slides sideways off it (services.optimizer.legroom). A
+draft that starts seated (and no character given) is re-synthesised on its seat first and
 verified by re-synthesising the sit and the action there (services.optimizer.seating).
 """
 
 from __future__ import annotations
 
+import time
 from collections.abc import Iterator
 from dataclasses import dataclass
 
@@ -28,12 +33,17 @@ from proto.ssg import CharacterNode
 from services.optimizer.annealing import OptimisationResult, optimise_interaction
 from services.optimizer.clearing import clearing_layouts
 from services.optimizer.costs import SceneGeometry
+from services.optimizer.legroom import legroom_layouts
 from services.optimizer.reaching import reaching_layouts
 from services.optimizer.resynthesis import MotionFn, anchored_motion_fn, motion_service_fn
 from services.optimizer.scoring import InteractionScorer
 from services.optimizer.seating import seat_under, seated_interaction, seated_verifier
 
 CONTACT_OK_M = 0.05  # contact distance (metres) counted as contact
+# A reach that holds within this (metres) ends the verification; one that holds only barely may be
+# beaten by a longer move, so the next reach is still tried.
+REACH_SETTLED_M = CONTACT_OK_M / 2
+CONTACT_EXACT_M = 0.01  # an input whose every contact is this close (metres) and that hits nothing is kept
 
 
 @dataclass
@@ -68,6 +78,7 @@ def optimise_and_verify(
     candidates: int = 4,
     clearing: int = 6,
     reaching: int = 6,
+    legroom: int = 2,
 ) -> VerifiedResult:
     """Optimise one interaction with the anchored surrogate and verify the result.
 
@@ -88,6 +99,9 @@ def optimise_and_verify(
         reaching: when the input misses a contact (C_T above 5 cm), at most this many layouts with the
             missed contact's object moved toward its joint (services.optimizer.reaching) are
             re-synthesised first, smallest move first.
+        legroom: when the returned layout's still body (seated legs) hits furniture, at most this many
+            layouts with that furniture slid sideways off it (services.optimizer.legroom) are
+            re-synthesised; the first that hits fewer boxes and keeps the contacts is returned.
 
     Returns:
         The verified result.
@@ -96,38 +110,48 @@ def optimise_and_verify(
     geom = geometry if geometry is not None else SceneGeometry.from_scene(scene)
     if verifier is None and character is None:
         interaction, motion, verifier = _seated(scene, interaction, motion, geom)
-    search = optimise_interaction(
-        scene,
-        anchored_motion_fn(scene, motion, interaction, geom),
-        interaction,
-        seed=st.seed,
-        steps=st.steps,
-        budget_s=st.budget_s if st.budget_s > 0 else None,
-        settings=st,
-        motion=motion,
-        geometry=geom,
-        ik_search=verifier is not None or character is not None,
-    )
+    t_start = time.perf_counter()
+
+    def run_search(stop_at_zero: bool = False) -> OptimisationResult:
+        return optimise_interaction(
+            scene,
+            anchored_motion_fn(scene, motion, interaction, geom),
+            interaction,
+            seed=st.seed,
+            steps=st.steps,
+            budget_s=st.budget_s if st.budget_s > 0 else None,
+            settings=st,
+            motion=motion,
+            geometry=geom,
+            ik_search=verifier is not None or character is not None,
+            stop_at_zero=stop_at_zero,
+        )
+
     if verifier is None and character is not None:
         verifier = motion_service_fn(character, start)
-    if verifier is None:
+    if verifier is None:  # nothing verifies the search's other candidates: stop once C is 0
+        search = run_search(stop_at_zero=True)
         return VerifiedResult(search, search.scene, search.motion, search.after, "anchored")
-    base = search.before
-    # The search's best layouts are verified even when its exact report kept the input: that report
-    # scores the surrogate's motion, which does not re-solve the arm IK nor re-plan the approach, so
-    # a layout that brings a contact within reach looks no better there than the input.
-    history = search.candidates  # best first
-    if not history and base.locomotion_collided_boxes == 0 and base.contact_cost <= CONTACT_OK_M:
-        return VerifiedResult(search, scene, motion, search.before, "input")
     reporter = InteractionScorer(
         scene, interaction, lambda_d=st.lambda_d, lambda_t=st.lambda_t, frame_stride=1, geometry=geom
     )
+    base = reporter.score_scenes([scene], [motion]).report(0, reporter.pairs)
+    if base.collided_boxes == 0 and max(base.contact_distances, default=0.0) <= CONTACT_EXACT_M:
+        # Nothing to gain: no box hit, every contact on its point (a layout already optimised).
+        return VerifiedResult(_unsearched(scene, motion, base, t_start), scene, motion, base, "input")
+    searched: list[OptimisationResult] = []  # the annealing, run when the reach alone does not settle it
     chosen: tuple[tuple[int, float], Scene, Motion, CostReport] | None = None
-    picks = (
-        sorted({round(i * (len(history) - 1) / max(candidates - 1, 1)) for i in range(candidates)})
-        if history
-        else []
-    )
+
+    def search_picks() -> list[Scene]:
+        # The search's best layouts are verified even when its exact report kept the input: that
+        # report scores the surrogate's motion, which does not re-solve the arm IK nor re-plan the
+        # approach, so a layout that brings a contact within reach looks no better there than the input.
+        searched.append(run_search())
+        history = searched[0].candidates  # best first
+        if not history and base.locomotion_collided_boxes == 0 and base.contact_cost <= CONTACT_OK_M:
+            return []
+        picks = sorted({round(i * (len(history) - 1) / max(candidates - 1, 1)) for i in range(candidates)})
+        return [history[i] for i in picks] if history else []
 
     tried: list[tuple[int, Scene, Motion]] = []  # verified clearing layouts: walk hits, scene, motion
 
@@ -147,7 +171,9 @@ def optimise_and_verify(
                     scene, interaction, motion, base, geom, sigma=st.sigma, tolerance=CONTACT_OK_M
                 )[:reaching]
             )
-        yield from ((history[i], "search") for i in picks)
+        if solved():
+            return  # a reach verified: the search's layouts would not be tried (see the loop below)
+        yield from ((c, "search") for c in search_picks())
         if not unsolved():
             return
         # The walk still runs into something: move those obstacles off it and let the motion service
@@ -165,7 +191,7 @@ def optimise_and_verify(
         yield from ((c, "clearing again") for c in again[: max(1, clearing // 2)])
 
     for cand, kind in queue():
-        if kind != "reach" and solved():
+        if solved() and (kind != "reach" or chosen[3].contact_cost <= REACH_SETTLED_M):  # type: ignore[index]
             break  # take it
         real = verifier(cand)
         rep = reporter.score_scenes([cand], [real]).report(0, reporter.pairs)
@@ -180,9 +206,7 @@ def optimise_and_verify(
             key = (rep.locomotion_collided_boxes, rep.cost)
             if chosen is None or key < chosen[0]:
                 chosen = (key, cand, real, rep)
-    if chosen is None:
-        return VerifiedResult(search, scene, motion, base, "input")
-    if max(chosen[3].contact_distances, default=0.0) > CONTACT_OK_M:
+    if chosen is not None and max(chosen[3].contact_distances, default=0.0) > CONTACT_OK_M:
         # The best verified layout still misses a contact (the search cleared the walk, the laptop
         # stayed out of reach): reach once more, from it, keeping its walk.
         _, first, first_motion, first_rep = chosen
@@ -195,7 +219,37 @@ def optimise_and_verify(
             key = (rep.locomotion_collided_boxes, rep.cost)
             if key < chosen[0]:
                 chosen = (key, cand, real, rep)
-    return VerifiedResult(search, chosen[1], chosen[2], chosen[3], "motion_service")
+                if max(rep.contact_distances, default=0.0) <= CONTACT_OK_M:
+                    break  # every contact met: a longer move only moves the furniture further
+    # The still body (seated legs) inside furniture the reach brought close: slide it sideways.
+    kept = (chosen[1], chosen[2], chosen[3], "motion_service") if chosen else (scene, motion, base, "input")
+    if legroom and kept[2].collided_boxes > kept[2].locomotion_collided_boxes:
+        for cand in legroom_layouts(kept[0], interaction, kept[1], reporter, limit=legroom):
+            real = verifier(cand)
+            rep = reporter.score_scenes([cand], [real]).report(0, reporter.pairs)
+            if (
+                rep.locomotion_collided_boxes <= kept[2].locomotion_collided_boxes
+                and rep.collided_boxes < kept[2].collided_boxes
+                and rep.contact_cost <= max(kept[2].contact_cost, CONTACT_OK_M)
+            ):
+                kept = (cand, real, rep, "motion_service")
+                break
+    search = searched[0] if searched else _unsearched(scene, motion, base, t_start)
+    return VerifiedResult(search, kept[0], kept[1], kept[2], kept[3])
+
+
+def _unsearched(scene: Scene, motion: Motion, base: CostReport, t_start: float) -> OptimisationResult:
+    """The result of an annealing that did not need to run (0 steps): the input, its costs."""
+    return OptimisationResult(
+        scene=scene,
+        motion=motion,
+        cost_curve=[base.cost],
+        before=base,
+        after=base,
+        best_curve=[base.cost],
+        steps_run=0,
+        elapsed_ms=(time.perf_counter() - t_start) * 1000.0,
+    )
 
 
 def _seated(

@@ -122,7 +122,9 @@ def test_optimise_request_moves_the_desk_off_the_body_and_returns_its_curve(opti
     reply = check_contract(CONTRACT, req, raw)
     assert reply.before.collided_boxes > 0
     assert reply.after.cost < reply.before.cost
-    assert len(reply.cost_curve) == reply.steps_run + 1 == 61 and reply.movable == ["desk"]
+    assert len(reply.cost_curve) == len(reply.best_curve) == reply.steps_run + 1 and reply.movable == ["desk"]
+    # All 60 steps, or fewer because the search cost reached 0 (nothing could beat it after that).
+    assert reply.steps_run == 60 or (reply.steps_run < 60 and reply.best_curve[-1] < 1e-4)
     assert reply.scene.objects[0].position != DESK_SCENE.objects[0].position
     assert reply.scene.objects[0].position[1] == 0.0 and reply.resynthesis == "anchored"
     again = check_contract(
