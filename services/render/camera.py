@@ -22,7 +22,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from proto.scene import Room
-from services.render.framing import ADJUSTMENTS, Adjust, Occluders, adjust_eye, blend_adjust, sight_points
+from services.render.framing import (
+    ADJUSTMENTS,
+    Adjust,
+    Occluders,
+    adjust_eye,
+    blend_adjust,
+    person_box,
+    sight_points,
+)
 
 CAMERA_MODES = ("overview", "front", "back", "left", "right", "top", "follow", "close")
 TRANSITION_FRAMES = 24  # a camera change eases in over 0.8 s at 30 fps
@@ -255,11 +263,13 @@ def camera_at(
     def decide(k: CameraKey, track: CharacterTrack, d: int, previous: Adjust | None) -> Adjust:
         assert occluders is not None
         views = []
+        others = [t for t in tracks.values() if t is not track]
         for g in sorted({max(k.frame, d + off) for off in DECISION_LOOK}):
             p = commanded(k, track, g)
             hips, _, head = track.smoothed(g)
             pts = sight_points(hips, head)[:1] if k.mode == "close" else sight_points(hips, head)
-            views.append((p.eye, p.target, pts))
+            people = np.array([person_box(t.at(g)[0], t.at(g)[2]) for t in others]).reshape(-1, 2, 3)
+            views.append((p.eye, p.target, pts, people))
         return occluders.choose(views, ADJUSTMENTS, previous)
 
     def decision(k: CameraKey, track: CharacterTrack, d: int) -> Adjust:

@@ -157,10 +157,7 @@ class Occluders:
         out = np.zeros(len(starts), dtype=bool)
         if not len(self.groups) or not len(starts):
             return out
-        d = ends - starts
-        length = np.linalg.norm(d, axis=1, keepdims=True)
-        keep = np.clip(1.0 - STOP_SHORT / np.maximum(length, 1e-9), 0.0, 1.0)
-        ends = starts + d * keep
+        ends = _stop_short(starts, ends)
         coarse = segments_hit_boxes(starts, ends, self.bounds)  # (S, K)
         for k in np.nonzero(coarse.any(axis=0))[0]:
             rows = np.nonzero(coarse[:, k] & ~out)[0]
@@ -177,28 +174,41 @@ class Occluders:
 
     def shares(
         self,
-        views: Sequence[tuple[np.ndarray, np.ndarray, np.ndarray]],
+        views: Sequence[tuple[np.ndarray, ...]],
         adjustments: Sequence[Adjust] = ADJUSTMENTS,
     ) -> np.ndarray:
         """(A,) share of the sight lines each adjustment leaves blocked over all the views.
 
         Args:
-            views: (eye (3,), target (3,), points (P, 3)) of the commanded camera at a few frames.
+            views: (eye (3,), target (3,), points (P, 3)) of the commanded camera at a few frames, optionally
+                with a fourth item: (M, 2, 3) boxes of the other characters at that frame (see person_box),
+                which hide sight lines too (Tom's back in a close-up of Mary during a hug).
             adjustments: A candidate changes of that camera.
         """
-        if not views or not self.groups:
+        people_in_view = any(len(v) > 3 and len(v[3]) for v in views)
+        if not views or not (self.groups or people_in_view):
             return np.zeros(len(adjustments))
         starts, ends, owner = [], [], []
+        people: list[tuple[int, np.ndarray, np.ndarray, np.ndarray]] = []  # (first ray, eye, points, boxes)
+        first = 0
         for a, adj in enumerate(adjustments):
-            for eye, target, points in views:
+            for view in views:
+                eye, target, points = view[0], view[1], view[2]
                 e = adjust_eye(eye, target, adj)
                 pts = np.asarray(points, dtype=np.float64).reshape(-1, 3)
                 fan = near_fan(e, target)
                 starts.append(np.broadcast_to(e, (len(pts) + len(fan), 3)))
                 ends.append(np.concatenate([pts, fan]))
                 owner.append(np.concatenate([np.full(len(pts), a), np.full(len(fan), len(adjustments) + a)]))
+                if len(view) > 3 and len(view[3]):
+                    people.append((first, e, pts, np.asarray(view[3], dtype=np.float64).reshape(-1, 2, 3)))
+                first += len(pts) + len(fan)
         who = np.concatenate(owner)
-        hit = self.blocked(np.concatenate(starts), np.concatenate(ends)).astype(float)
+        hit = self.blocked(np.concatenate(starts), np.concatenate(ends))
+        for at, e, pts, boxes in people:
+            eyes = np.broadcast_to(e, pts.shape)
+            hit[at : at + len(pts)] |= segments_hit_boxes(eyes, _stop_short(eyes, pts), boxes).any(axis=1)
+        hit = hit.astype(float)
         n = len(adjustments)
         per = np.bincount(who, weights=hit, minlength=2 * n)
         total = np.bincount(who, minlength=2 * n)
@@ -209,7 +219,7 @@ class Occluders:
 
     def choose(
         self,
-        views: Sequence[tuple[np.ndarray, np.ndarray, np.ndarray]],
+        views: Sequence[tuple[np.ndarray, ...]],
         adjustments: Sequence[Adjust] = ADJUSTMENTS,
         previous: Adjust | None = None,
     ) -> Adjust:
@@ -220,7 +230,8 @@ class Occluders:
         the clear one nearest to it. When nothing is clear: the least blocked.
 
         Args:
-            views: (eye (3,), target (3,), points (P, 3)) of the commanded camera at a few frames.
+            views: (eye (3,), target (3,), points (P, 3)[, other characters' boxes (M, 2, 3)]) of the
+                commanded camera at a few frames (see shares).
             adjustments: candidates, most preferred first.
             previous: what the camera chose at the decision before (None: none).
         """
@@ -234,11 +245,30 @@ class Occluders:
             return candidates[int(np.argmin(share + rank))]
         if previous is None:
             return candidates[int(clear[0])]
-        eye, target, _ = views[len(views) // 2]
+        eye, target = views[len(views) // 2][:2]
         here = adjust_eye(eye, target, previous)
         gaps = np.array([np.linalg.norm(adjust_eye(eye, target, candidates[k]) - here) for k in clear])
         within = clear[gaps <= MAX_MOVE]
         return candidates[int(within[0])] if len(within) else candidates[int(clear[int(np.argmin(gaps))])]
+
+
+def _stop_short(starts: np.ndarray, ends: np.ndarray) -> np.ndarray:
+    """Ends (S, 3) moved STOP_SHORT metres back toward their starts (S, 3)."""
+    d = ends - starts
+    length = np.linalg.norm(d, axis=1, keepdims=True)
+    return starts + d * np.clip(1.0 - STOP_SHORT / np.maximum(length, 1e-9), 0.0, 1.0)
+
+
+PERSON_HALF_WIDTH = 0.17  # metres: a character's box around the line from the floor to above its head
+
+
+def person_box(hips: np.ndarray, head: np.ndarray) -> np.ndarray:
+    """(2, 3) a standing or seated character's box, from the floor to a little above the head."""
+    lo = np.array([min(hips[0], head[0]) - PERSON_HALF_WIDTH, 0.0, min(hips[2], head[2]) - PERSON_HALF_WIDTH])
+    hi = np.array(
+        [max(hips[0], head[0]) + PERSON_HALF_WIDTH, head[1] + 0.12, max(hips[2], head[2]) + PERSON_HALF_WIDTH]
+    )
+    return np.stack([lo, hi])
 
 
 def near_fan(eye: np.ndarray, target: np.ndarray) -> np.ndarray:

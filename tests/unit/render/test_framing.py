@@ -158,3 +158,19 @@ def test_a_box_close_in_front_of_the_lens_makes_the_camera_move_though_the_chara
     assert occ.blocked_share(moved, sight_points(hips, head)) == 0.0
     # nothing near the lens: the commanded pose stays
     assert Occluders([cabinet + np.array([0.0, 0.0, -3.0])]).choose(views, ADJUSTMENTS) == ADJUSTMENTS[0]
+
+
+def test_another_character_between_the_camera_and_its_character_moves_the_camera():
+    from services.render.framing import person_box
+
+    hips, head = np.array([0.0, 0.9, 0.0]), np.array([0.0, 1.6, 0.0])
+    eye, target = np.array([0.0, 1.62, 0.9]), head  # a close-up of the face from the front
+    tom = person_box(np.array([0.0, 0.9, 0.45]), np.array([0.0, 1.7, 0.45]))  # hugging her, his back to us
+    empty = Occluders([])
+    face = sight_points(hips, head)[:1]
+    assert empty.shares([(eye, target, face)], ADJUSTMENTS)[0] == 0.0
+    views = [(eye, target, face, tom[None])]
+    assert empty.shares(views, ADJUSTMENTS)[0] > 0.0
+    chosen = empty.choose(views, ADJUSTMENTS)
+    assert chosen != ADJUSTMENTS[0]
+    assert empty.shares([(eye, target, face, tom[None])], [chosen])[0] == 0.0
