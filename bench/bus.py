@@ -218,11 +218,7 @@ def measure(
     if transport == "ipc":
         url = f"ipc://{tmp}/bus.sock"
     else:
-        import socket
-
-        with socket.socket() as s:
-            s.bind(("127.0.0.1", 0))
-            url = f"tcp://127.0.0.1:{s.getsockname()[1]}"
+        url = f"tcp://127.0.0.1:{_free_port()}"
     ctx = mp.get_context("spawn")
     stop, ready = ctx.Event(), ctx.Event()
     procs = [ctx.Process(target=_broker_main, args=(url, ready, stop), daemon=True)]

@@ -111,8 +111,8 @@ def character_entry(motion: Motion, digest: str | None = None) -> dict[str, Any]
     Raises:
         ValueError: rotations (T, J, 4) and root positions (T, 3) disagree.
     """
-    digest = digest or motion_hash(motion)
     motion = sent_motion(motion)
+    digest = digest or content_hash(motion)  # = motion_hash of the motion as given
     rotations = from_wire(motion.rotations)  # (T, J, 4)
     root = from_wire(motion.root_position)  # (T, 3)
     if rotations.ndim != 3 or rotations.shape[2] != 4 or root.shape != (rotations.shape[0], 3):

@@ -559,9 +559,6 @@ class Broker:
         for i, job_id in enumerate(job_ids):  # a client: keep its replies in case it asks again
             self._keep_undelivered(peer, job_id, pairs[2 * i], pairs[2 * i + 1])
 
-    def _send_to_client(self, client: bytes, job_id: str, envelope: object, body: object) -> None:
-        self._post(client, job_id, envelope, body)
-
     def _keep_undelivered(self, client: bytes, job_id: str, envelope: object, body: object) -> None:
         self._undelivered[job_id] = (client, (envelope, body))
         if len(self._undelivered) > _UNDELIVERED_MEMORY:
@@ -585,7 +582,7 @@ class Broker:
         )
         log.debug("job %r: %s %s", job_id, code, message)
         envelope = wire.encoder.encode(ErrorFrame(job_id))
-        self._send_to_client(client, job_id, envelope, wire.encoder.encode(reply))
+        self._post(client, job_id, envelope, wire.encoder.encode(reply))
 
     def _remember_done(self, job_id: str) -> None:
         done = self._done

@@ -191,6 +191,9 @@ class Client:
         """
         if deadline_s <= 0:
             raise ValueError("deadline_s must be positive")
+        bad = [i for i, p in enumerate(payloads) if not isinstance(p, (bytes, bytearray, memoryview))]
+        if bad:  # checked before any job is registered: nothing half-sent
+            raise TypeError(f"payloads must be bytes; item {bad[0]} is {type(payloads[bad[0]]).__name__}")
         jobs = [self._pending_job(service, p, None, deadline_s, doc_id, revision) for p in payloads]
         encode = wire.encoder.encode
         for start in range(0, len(jobs), MAX_BATCH):

@@ -5,6 +5,8 @@ from __future__ import annotations
 import time
 
 import msgspec
+import pytest
+import zmq
 
 from proto.bus import MAX_BATCH, BatchFrame, ErrorFrame, JobFrame, ReadyFrame, ReplyFrame, RequestFrame
 from proto.common import ErrorReply
@@ -66,62 +68,62 @@ def test_an_undecodable_envelope_inside_a_batch_fails_alone(ipc_url, make_broker
     assert errors == ["E001"]
 
 
-def test_a_worker_answers_a_batch_of_quick_jobs_in_one_batch(ipc_url, make_broker, raw_peer, thread_worker):
-    """The raw peer plays the broker: a ROUTER bound where the real worker connects."""
-    import zmq
+@pytest.fixture
+def fake_broker(ipc_url, thread_worker):
+    """``fake_broker(handler)``: a bare ROUTER plays the broker for a real Worker serving ``handler``;
+    returns the socket and the worker's routing id once its READY arrived."""
+    sockets = []
 
-    router = zmq.Context.instance().socket(zmq.ROUTER)
-    router.setsockopt(zmq.LINGER, 0)
-    router.bind(ipc_url)
-    try:
-        thread_worker("echo", _echo, ipc_url, heartbeat_s=1.0)
+    def start(handler):
+        router = zmq.Context.instance().socket(zmq.ROUTER)
+        router.setsockopt(zmq.LINGER, 0)
+        router.bind(ipc_url)
+        sockets.append(router)
+        thread_worker("echo", handler, ipc_url, heartbeat_s=1.0)
         assert router.poll(5000)
         worker_id, ready = router.recv_multipart()
         assert isinstance(msgspec.msgpack.decode(ready, type=ReadyFrame), ReadyFrame)
-        frames = [worker_id, _encode(BatchFrame(3))]
-        for i in range(3):
-            frames += [_encode(JobFrame(f"j{i}", "k", 1, 5000)), f"{i}".encode()]
-        router.send_multipart(frames)
-        assert router.poll(5000)
-        reply = router.recv_multipart()
-        assert msgspec.msgpack.decode(reply[1]) == ["BATCH", 3]
-        pairs = [(msgspec.msgpack.decode(reply[i]), reply[i + 1]) for i in range(2, len(reply), 2)]
-        assert pairs == [(["REPLY", f"j{i}"], b"echo:" + f"{i}".encode()) for i in range(3)]
-    finally:
+        return router, worker_id
+
+    yield start
+    for router in sockets:
         router.close(0)
 
 
-def test_a_worker_does_not_hold_a_reply_behind_a_slow_job(ipc_url, thread_worker):
-    import zmq
+def test_a_worker_answers_a_batch_of_quick_jobs_in_one_batch(fake_broker):
+    router, worker_id = fake_broker(_echo)
+    frames = [worker_id, _encode(BatchFrame(3))]
+    for i in range(3):
+        frames += [_encode(JobFrame(f"j{i}", "k", 1, 5000)), f"{i}".encode()]
+    router.send_multipart(frames)
+    assert router.poll(5000)
+    reply = router.recv_multipart()
+    assert msgspec.msgpack.decode(reply[1]) == ["BATCH", 3]
+    pairs = [(msgspec.msgpack.decode(reply[i]), reply[i + 1]) for i in range(2, len(reply), 2)]
+    assert pairs == [(["REPLY", f"j{i}"], b"echo:" + f"{i}".encode()) for i in range(3)]
 
+
+def test_a_worker_does_not_hold_a_reply_behind_a_slow_job(fake_broker):
     def handler(payload: bytes) -> bytes:
         time.sleep(float(payload))
         return payload
 
-    router = zmq.Context.instance().socket(zmq.ROUTER)
-    router.setsockopt(zmq.LINGER, 0)
-    router.bind(ipc_url)
-    try:
-        thread_worker("echo", handler, ipc_url, heartbeat_s=1.0)
-        assert router.poll(5000)
-        worker_id, _ = router.recv_multipart()
-        frames = [worker_id, _encode(BatchFrame(2))]
-        frames += [
-            _encode(JobFrame("fast", "k", 1, 5000)),
-            b"0.02",
-            _encode(JobFrame("slow", "k", 1, 5000)),
-            b"0.5",
-        ]
-        start = time.monotonic()
-        router.send_multipart(frames)
-        assert router.poll(5000)
-        first = router.recv_multipart()
-        first_at = time.monotonic() - start
-        assert msgspec.msgpack.decode(first[1]) == ["REPLY", "fast"] and first_at < 0.4
-        assert router.poll(5000)
-        assert msgspec.msgpack.decode(router.recv_multipart()[1]) == ["REPLY", "slow"]
-    finally:
-        router.close(0)
+    router, worker_id = fake_broker(handler)
+    frames = [worker_id, _encode(BatchFrame(2))]
+    frames += [
+        _encode(JobFrame("fast", "k", 1, 5000)),
+        b"0.02",
+        _encode(JobFrame("slow", "k", 1, 5000)),
+        b"0.5",
+    ]
+    start = time.monotonic()
+    router.send_multipart(frames)
+    assert router.poll(5000)
+    first = router.recv_multipart()
+    first_at = time.monotonic() - start
+    assert msgspec.msgpack.decode(first[1]) == ["REPLY", "fast"] and first_at < 0.4
+    assert router.poll(5000)
+    assert msgspec.msgpack.decode(router.recv_multipart()[1]) == ["REPLY", "slow"]
 
 
 def test_jobs_queued_for_a_vanished_worker_go_to_another_without_counting_an_attempt(
@@ -146,3 +148,12 @@ def test_jobs_queued_for_a_vanished_worker_go_to_another_without_counting_an_att
     assert [got[j] for j in job_ids] == [b"a", b"b", b"c"]
     stats = client.stats()
     assert stats.requeued == 0 and stats.errors == {}
+
+
+def test_submit_many_refuses_a_non_bytes_payload_before_sending_any(ipc_url, make_broker, make_client):
+    make_broker(ipc_url)
+    client = make_client(ipc_url)
+    with pytest.raises(TypeError, match="item 1"):
+        client.submit_many("echo", [b"a", "not bytes", b"c"])  # type: ignore[list-item]
+    assert client.pending == 0
+    assert client.submit_many("echo", []) == []

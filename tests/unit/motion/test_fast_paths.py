@@ -148,9 +148,7 @@ def test_quaternion_helpers_agree_with_scipy():
 
 
 def test_numpy_phase_table_rollout_matches_onnxruntime_on_the_same_graph():
-    pytest.importorskip("onnxruntime")
-    if not (MODEL_DIR / "pfnn_fast.onnx").is_file():
-        pytest.skip("no pfnn_fast.onnx in models/locomotion (run services.motion.pfnn_onnx)")
+    assert (MODEL_DIR / "pfnn_fast.onnx").is_file(), "pfnn_fast.onnx is committed in models/locomotion"
     from services.motion.locomotion import PfnnRuntime, plan_root, standing_pose_features
     from services.motion.locomotion_features import sensor_features, trajectory_features
     from services.motion.pfnn_tables import PhaseTableRuntime

@@ -142,7 +142,6 @@ def test_a_contact_missed_because_the_approach_is_blocked_is_reached_by_a_small_
     ["piano_bench_0.35_m_from_the_keys", "laptop_with_the_chair_0.25_m_back"],
 )
 def test_eval_contact_cases_come_within_reach_through_the_motion_service(case):
-    pytest.importorskip("services.motion.synthesis", reason="needs the motion service")
     from proto.ssg import ActionNode, CharacterNode
     from services.optimizer.resynthesis import motion_service_fn, planned_contacts
 

@@ -3,11 +3,9 @@ optimiser brings the work within reach of the seat (real catalog, real motion se
 
 from __future__ import annotations
 
-import msgspec
 import numpy as np
 import pytest
 
-from proto.motion_data import Motion
 from proto.optimizer import Interaction
 from proto.scene import PlacedObject, Room, Scene
 from proto.ssg import ActionNode
@@ -17,7 +15,6 @@ from services.optimizer.costs import LayoutBatch, SceneGeometry, contact_points_
 from services.optimizer.layout_model import LayoutModel
 from services.optimizer.seating import seat_under, seated_interaction
 from services.optimizer.verify import optimise_and_verify
-from wana.arrays import from_wire, to_wire
 from wana.skeleton import JOINT_INDEX
 
 ROOM = Room(room_type="office", width=5.0, depth=5.0, height=3.0)
@@ -36,25 +33,10 @@ def _office(chair_z: float, laptop_z: float = -1.0) -> Scene:
     )
 
 
-def _typing_draft(scene: Scene) -> Motion:
-    """What the orchestrator's draft of "Eve types on the laptop" is after "Eve sits on the chair":
-    the typing only, starting seated."""
-    full = seated_action_fn("Eve", "chair", ActionNode(verb="type", action="type", target="laptop"))(scene)
-    seg = next(s for s in full.segments if s.action == "type")
-    cut = slice(seg.start_frame, seg.end_frame)
-    return msgspec.structs.replace(
-        full,
-        root_position=to_wire(from_wire(full.root_position)[cut]),
-        rotations=to_wire(from_wire(full.rotations)[cut]),
-        foot_contact=to_wire(from_wire(full.foot_contact)[cut]),
-        segments=[msgspec.structs.replace(seg, start_frame=0, end_frame=seg.end_frame - seg.start_frame)],
-    )
-
-
 @pytest.fixture(scope="module")
-def far():
+def far(typing_draft):
     scene = _office(0.1)
-    return scene, _typing_draft(scene)
+    return scene, typing_draft(scene)
 
 
 def test_the_seat_under_a_seated_draft_is_found_even_after_it_moved(far):

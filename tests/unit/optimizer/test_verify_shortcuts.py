@@ -3,17 +3,12 @@ hits nothing and meets its contacts, nor when a reach layout verifies (real cata
 
 from __future__ import annotations
 
-import msgspec
 import numpy as np
 import pytest
 
-from proto.motion_data import Motion
 from proto.optimizer import Interaction
 from proto.scene import PlacedObject, Room, Scene
-from proto.ssg import ActionNode
-from services.motion.seated import seated_action_fn
 from services.optimizer.verify import CONTACT_OK_M, optimise_and_verify
-from wana.arrays import from_wire, to_wire
 
 ROOM = Room(room_type="office", width=4.71, depth=4.095, height=2.7)
 PI = float(np.pi)
@@ -41,25 +36,11 @@ def _office(desk_z: float, laptop_z: float, chair_z: float = 0.7807) -> Scene:
     )  # fmt: skip
 
 
-def _typing_draft(scene: Scene) -> Motion:
-    """The orchestrator's draft of "Eve types on the laptop" after she sat: the typing only, seated."""
-    full = seated_action_fn("Eve", "chair", ActionNode(verb="type", action="type", target="laptop"))(scene)
-    seg = next(s for s in full.segments if s.action == "type")
-    cut = slice(seg.start_frame, seg.end_frame)
-    return msgspec.structs.replace(
-        full,
-        root_position=to_wire(from_wire(full.root_position)[cut]),
-        rotations=to_wire(from_wire(full.rotations)[cut]),
-        foot_contact=to_wire(from_wire(full.foot_contact)[cut]),
-        segments=[msgspec.structs.replace(seg, start_frame=0, end_frame=seg.end_frame - seg.start_frame)],
-    )
-
-
 @pytest.fixture(scope="module")
-def out_of_reach():
+def out_of_reach(typing_draft):
     """The desk pushed back to the wall (the walk to the chair needed it): the laptop is out of reach."""
     scene = _office(1.6955, 1.6862)
-    return scene, optimise_and_verify(scene, TYPE, _typing_draft(scene))
+    return scene, optimise_and_verify(scene, TYPE, typing_draft(scene))
 
 
 def test_a_laptop_out_of_reach_is_reached_with_no_box_hit_and_no_annealing(out_of_reach):
@@ -71,17 +52,17 @@ def test_a_laptop_out_of_reach_is_reached_with_no_box_hit_and_no_annealing(out_o
     assert res.search.steps_run == 0 and res.search.cost_curve == [res.search.before.cost]
 
 
-def test_a_layout_that_already_meets_both_criteria_comes_back_as_it_is_without_annealing():
+def test_a_layout_that_already_meets_both_criteria_comes_back_as_it_is_without_annealing(typing_draft):
     # The laptop at the desk's front edge and the chair pulled in: no box hit, every contact on its point.
     scene = _office(1.6955, 1.4843, chair_z=0.82)
-    res = optimise_and_verify(scene, TYPE, _typing_draft(scene))
+    res = optimise_and_verify(scene, TYPE, typing_draft(scene))
     assert res.made == "input" and res.scene is scene and res.search.steps_run == 0
     assert res.after.collided_boxes == 0 and max(res.after.contact_distances) <= 0.01
 
 
-def test_a_contact_missed_by_a_few_centimetres_is_still_optimised():
+def test_a_contact_missed_by_a_few_centimetres_is_still_optimised(typing_draft):
     # The same with the chair where the story put it: the hips slide 3 cm forward on the seat.
     scene = _office(1.6955, 1.4843)
-    res = optimise_and_verify(scene, TYPE, _typing_draft(scene))
+    res = optimise_and_verify(scene, TYPE, typing_draft(scene))
     assert max(res.search.before.contact_distances) > 0.02
     assert res.search.steps_run > 0 or res.made == "motion_service"
