@@ -41,9 +41,9 @@ eval:  ## every evaluation, quick mode, JSON under eval/results/
 models:  ## rebuild every committed model and generated asset (needs ../shared/data; about 40 min on 2 cores)
 	$(PY) scripts/train_nlp.py --force
 	OMP_NUM_THREADS=1 nice -n 10 $(PY) -m services.motion.train_locomotion
-	$(PY) -m services.motion.author_actions
+	$(PY) -m tools.authoring.author_actions
 	$(PY) -m wana.assets.scenedb --per-room 10
-	$(PY) -m services.social.build_vad
+	$(PY) -m tools.authoring.build_vad
 
 clean:
 	rm -rf $(OUT) .pytest_cache .ruff_cache .mypy_cache

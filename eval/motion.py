@@ -26,11 +26,11 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from proto.scene import PlacedObject, Room, Scene  # noqa: E402
 from proto.ssg import ActionNode, CharacterNode  # noqa: E402
 from services.motion.ik import global_transforms  # noqa: E402
-from services.motion.library import load_library  # noqa: E402
+from wana.domain.actions import load_library  # noqa: E402
 from services.motion.planning import plan_actions  # noqa: E402
 from services.motion.synthesis import synthesise  # noqa: E402
 from wana.arrays import from_wire  # noqa: E402
-from wana.skeleton import JOINT_INDEX  # noqa: E402
+from wana.domain.skeleton import JOINT_INDEX  # noqa: E402
 
 SCRIPTS = [
     [("walk", "", "chair"), ("sit", "chair", ""), ("type", "desk", ""), ("stand", "", "")],
@@ -147,7 +147,7 @@ def scenarios(n: int, seed: int):
 
 def cmu_heldout(quick: bool) -> list[dict]:
     """Replay held-out CMU root paths through the controller; report path error and foot sliding."""
-    from services.motion.bvh import read_bvh
+    from wana.domain.bvh import read_bvh
     from services.motion.locomotion import locomote
     from services.motion.retarget import retarget_clip
     from services.motion.train_locomotion import HELD_OUT, SHARED

@@ -19,7 +19,7 @@ class Segment(msgspec.Struct, frozen=True, kw_only=True):
 class Motion(msgspec.Struct, frozen=True, kw_only=True):
     character: str  # character name
     fps: int = 30
-    joint_names: list[str] = []  # canonical skeleton order (wana.skeleton.JOINT_NAMES)
+    joint_names: list[str] = []  # canonical skeleton order (wana.domain.skeleton.JOINT_NAMES)
     root_position: NDArray  # (T, 3) float32, metres, world frame: the Hips joint position
     rotations: NDArray  # (T, J, 4) float32 local joint rotations, quaternion x, y, z, w
     foot_contact: NDArray | None = None  # (T, 2) uint8, left/right foot planted

@@ -60,6 +60,9 @@ def _cmd_worker(args: argparse.Namespace) -> int:
         print(f"wana: the {args.service} worker is not available in this build ({exc})", file=sys.stderr)
         return 3
     print(f"wana worker {args.service} connecting to {args.connect}", file=sys.stderr, flush=True)
+    from wana.compose import compose
+
+    compose()  # the optimiser's motion re-synthesis comes from the motion service's code
     try:
         mod.main(args.connect)
     except KeyboardInterrupt:

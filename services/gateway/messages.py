@@ -23,8 +23,7 @@ from services.orchestrator.pipeline import PipelineResult
 from services.orchestrator.queries import content_hash
 from wana import skeleton
 from wana.arrays import from_wire, to_wire
-
-FPS = 30
+from wana.domain.units import FPS
 
 
 def b64_f32(array: np.ndarray) -> str:

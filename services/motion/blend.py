@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from services.motion import quat
-from wana.skeleton import JOINT_INDEX, JOINT_NAMES, N_JOINTS, UPPER_BODY
+from wana.domain import quat
+from wana.domain.skeleton import JOINT_INDEX, JOINT_NAMES, N_JOINTS, UPPER_BODY
 
 
 def upper_body_mask(spine_weight: float = 1.0) -> np.ndarray:

@@ -15,9 +15,9 @@ from pathlib import Path
 import numpy as np
 from tqdm import tqdm
 
-from services.motion import quat
-from services.motion.library import EULER_ORDER, IMPORTED_DIR, clip_from_dict, load_library, reload_library
-from wana.skeleton import JOINT_NAMES
+from wana.domain import quat
+from wana.domain.actions import EULER_ORDER, IMPORTED_DIR, clip_from_dict, load_library, reload_library
+from wana.domain.skeleton import JOINT_NAMES
 
 
 def clip_dict_from_bvh(
@@ -30,8 +30,8 @@ def clip_dict_from_bvh(
     key_step: int = 2,
 ) -> dict:
     """Read, retarget and convert a BVH file into the library's keyframe JSON (a key every key_step frames)."""
-    from services.motion.bvh import canonical_motion, read_bvh
     from services.motion.retarget import KNOWN_MAPS, retarget_clip
+    from wana.domain.bvh import canonical_motion, read_bvh
 
     clip = read_bvh(path)
     if clip.joint_names == list(JOINT_NAMES):

@@ -11,10 +11,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from services.motion import quat
-from wana.skeleton import JOINT_INDEX, N_JOINTS, REST_OFFSETS
+from wana.domain import quat
+from wana.domain.skeleton import JOINT_INDEX, N_JOINTS, REST_OFFSETS
+from wana.domain.units import FPS
 
-FPS = 30
 J = JOINT_INDEX
 UPPER_LEN = float(np.linalg.norm(REST_OFFSETS[J["LeftLeg"]]))
 LOWER_LEN = float(np.linalg.norm(REST_OFFSETS[J["LeftFoot"]]))
@@ -169,7 +169,7 @@ def synthesize_gait(
         rot[:, J[f"{name}Leg"]] = q_lo
         rot[:, J[f"{name}Foot"]] = quat.mul(quat.inv(g_lo), hq)
     # Arms swing against the legs, amplitude with speed.
-    from services.motion.library import neutral_rotations
+    from wana.domain.actions import neutral_rotations
 
     base = neutral_rotations()
     swing = np.sin(2 * np.pi * phase) * np.radians(np.minimum(8 + 10 * spd, 40))

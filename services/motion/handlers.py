@@ -16,11 +16,11 @@ from proto.motion import (
     SynthesizeRequest,
 )
 from proto.scene import Scene
-from services.motion.library import load_library
 from services.motion.planning import plan_actions
 from services.motion.routing import scene_route
 from services.motion.synthesis import SegmentState, assemble, synthesise_segment
 from wana.bus.service import Contract, InvalidInput
+from wana.domain.actions import load_library
 
 
 def _reply_header(h: Header) -> Header:

@@ -10,8 +10,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from services.motion import quat
-from wana.skeleton import JOINT_INDEX, N_JOINTS, PARENTS, REST_OFFSETS
+from wana.domain import quat
+from wana.domain.skeleton import JOINT_INDEX, N_JOINTS, PARENTS, REST_OFFSETS
 
 CHAINS = {  # end joint -> (upper, middle, end)
     "LeftHand": ("LeftArm", "LeftForeArm", "LeftHand"),

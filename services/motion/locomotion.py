@@ -24,13 +24,14 @@ from typing import Protocol
 
 import numpy as np
 
-from services.motion import quat
 from services.motion.gait import synthesize_gait
 from services.motion.locomotion_features import sensor_features, trajectory_features
 from services.motion.pfnn import N_JOINTS, N_OUT, N_POSE, SLICE_CONTACT, SLICE_DPHASE, SLICE_POSE, SLICE_ROT
+from wana.domain import quat
+from wana.domain.paths import model_path
+from wana.domain.units import FPS
 
-FPS = 30
-MODEL_DIR = Path(__file__).resolve().parents[2] / "models" / "locomotion"
+MODEL_DIR = model_path("locomotion")
 ACCEL = 1.6  # m/s^2
 TURN_RATE = 4.0  # rad/s while walking
 TURN_IN_PLACE_RATE = 2.5  # rad/s

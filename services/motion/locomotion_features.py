@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from services.motion import quat
 from services.motion.pfnn import N_JOINTS, N_SENSOR, TRAJ_OFFSETS
-from wana.skeleton import forward_kinematics
+from wana.domain import quat
+from wana.domain.skeleton import forward_kinematics
 
 
 def to_local(points: np.ndarray, ground: np.ndarray, heading: np.ndarray) -> np.ndarray:

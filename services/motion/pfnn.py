@@ -15,7 +15,7 @@ from __future__ import annotations
 import torch
 from torch import nn
 
-from wana.skeleton import N_JOINTS
+from wana.domain.skeleton import N_JOINTS
 
 TRAJ_OFFSETS = tuple(range(-30, 30, 5))  # frames at 30 fps: 12 samples
 N_TRAJ = len(TRAJ_OFFSETS) * 4

@@ -22,8 +22,8 @@ import numpy as np
 
 from proto.scene import PlacedObject, Scene
 from proto.ssg import ActionNode, CharacterNode
-from services.motion.library import ActionClip, get_clip, load_library
 from services.motion.synthesis import MotionPlan, PlannedSegment
+from wana.domain.actions import ActionClip, contact_targets, get_clip, load_library
 
 RouteFn = Callable[..., np.ndarray]  # (scene, start_xz, goal_xz[, ignore: frozenset[str]]) -> (N, 2)
 SPEEDS = {
@@ -39,60 +39,6 @@ SPEEDS = {
     "sidestep_right": 0.8,
 }
 MANNER_SPEED = {"slowly": 0.6, "slow": 0.6, "quickly": 1.5, "fast": 1.5, "hurriedly": 1.6, "leisurely": 0.7}
-# Catalog contact-point names (wana.assets.catalog make_object(cat).contact_points) preferred for each
-# interaction kind, best first; CLIP_POINTS comes before them for the clips that mean one point.
-PREFERRED_POINTS = {
-    "seat": ("sit", "sit_0"),
-    "bed": ("lie", "sit"),
-    "keyboard": ("type", "click", "use", "work", "write", "touch"),
-    "instrument": ("play", "work", "touch"),
-    "surface": ("write", "work", "eat", "cook", "wash", "touch"),
-    "button": ("switch", "use", "touch"),
-    "door": ("open", "touch"),
-    "container": ("open", "take", "touch", "pick_up"),
-    "tool": ("work", "saw", "hammer", "drill", "screw", "cut", "touch"),
-    "bag": ("punch", "touch"),
-    "floor_item": ("pick_up", "lift", "carry", "touch"),
-}
-CLIP_POINTS = {
-    "type": ("type",),
-    "use_mouse": ("click", "use", "type"),
-    "play_piano": ("play",),
-    "play_drums": ("play",),
-    "punch_bag": ("punch",),
-    "write": ("write",),
-    "write_on_blackboard": ("write",),
-    "draw": ("write", "paint"),
-    "paint": ("paint", "write"),
-    "eat": ("eat",),
-    "cook": ("cook",),
-    "chop": ("cook", "cut", "work"),
-    "wash_dishes": ("wash",),
-    "wash_hands": ("wash",),
-    "iron": ("work", "write"),
-    "fold_clothes": ("work", "write"),
-    "wipe_table": ("touch",),
-    "wipe_window": ("touch",),
-    "lean_on_wall": ("touch",),
-    "push": ("touch",),
-    "pull": ("open", "touch"),
-    "knock": ("touch",),
-    "open_door": ("open",),
-    "close_door": ("open",),
-    "open_fridge": ("open",),
-    "open_drawer": ("open",),
-    "press_switch": ("switch", "use"),
-    "push_button": ("use", "switch"),
-    "saw": ("saw",),
-    "hammer": ("hammer", "work"),
-    "drill": ("drill", "work"),
-    "screw": ("screw", "work"),
-    "sweep": ("sweep",),
-    "pick_up": ("pick_up", "lift"),
-    "put_down": ("pick_up",),
-    "lie_down": ("lie",),
-    "sleep": ("lie",),
-}
 SEAT_BACK = 0.22  # metres the hips travel backwards while sitting down (sit clip)
 REACH = 0.42  # metres from the contact points to where the character stands
 PERSON_DISTANCE = 0.8  # metres between two characters after one walks up to the other
@@ -147,31 +93,6 @@ def _fallback_geometry(placed: PlacedObject):
     front = np.array([np.sin(placed.yaw), np.cos(placed.yaw)])
     stand = np.array([placed.position[0], placed.position[2]]) + front * 0.6
     return stand, {}
-
-
-def contact_targets(
-    clip: ActionClip, points: dict[str, list[tuple[str, np.ndarray]]]
-) -> dict[str, tuple[float, float, float]]:
-    """joint -> world target for the clip's contact joints, from the object's contact points."""
-    if not clip.interaction or not points:
-        return {}
-    preferred = CLIP_POINTS.get(clip.name, ()) + PREFERRED_POINTS.get(clip.interaction.object, ())
-    names = list(dict.fromkeys([n for n in preferred if n in points] + sorted(points)))
-    wanted = {
-        _limb(j) for j in clip.interaction.contacts
-    }  # a hand point serves a middle-finger contact and back
-    for name in names:
-        pairs = points[name]
-        joints = {j for j, _ in pairs}
-        if wanted & {_limb(j) for j in joints} or (
-            clip.interaction.object in ("seat", "bed") and "Hips" in joints
-        ):
-            return {j: (float(p[0]), float(p[1]), float(p[2])) for j, p in pairs}
-    return {}
-
-
-def _limb(joint: str) -> str:
-    return joint.replace("Middle1", "")
 
 
 def _find_object(scene: Scene, ref: str) -> PlacedObject | None:

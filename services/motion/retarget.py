@@ -13,9 +13,9 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from services.motion import quat
-from services.motion.bvh import BvhClip
-from wana.skeleton import JOINT_INDEX, N_JOINTS, PARENTS, REST_OFFSETS
+from wana.domain import quat
+from wana.domain.bvh import BvhClip
+from wana.domain.skeleton import JOINT_INDEX, N_JOINTS, PARENTS, REST_OFFSETS
 
 # canonical joint -> source joint, for rigs we know. Unmapped canonical joints follow their parent.
 CC_BASE_MAP: dict[str, str] = {

@@ -1,6 +1,6 @@
-"""Walking routes for planning: the optimizer's A* (services.optimizer.routes) on cached occupancy grids.
+"""Walking routes for planning: the optimizer's A* (wana.domain.routes) on cached occupancy grids.
 
-``scene_route`` answers exactly what ``services.optimizer.routes.plan_route`` answers (the same grid,
+``scene_route`` answers exactly what ``wana.domain.routes.plan_route`` answers (the same grid,
 the same A*, the same last step into the goal object's clearance), but rasterises each floor object
 only once: the grid of a scene is the OR of per-object masks, cached by the object's placement
 (category, variant, position, yaw, scale) and the room. An edit that moves one chair re-rasterises
@@ -56,7 +56,7 @@ def _room_key(room: Room) -> tuple:
 
 
 def _walls(room: Room, radius: float, cell: float) -> tuple[np.ndarray, np.ndarray]:
-    from services.optimizer.routes import Footprints, occupancy_grid
+    from wana.domain.routes import Footprints, occupancy_grid
 
     def build():  # noqa: ANN202
         grid = occupancy_grid(room, Footprints.from_aabbs(np.zeros((0, 2, 3))), radius=radius, cell=cell)
@@ -72,8 +72,8 @@ def wall_mask(room: Room, radius: float = RADIUS, cell: float = CELL) -> np.ndar
 
 def object_mask(room: Room, obj: PlacedObject, radius: float = RADIUS, cell: float = CELL):  # noqa: ANN201
     """(blocked (H, W) bool of the object's footprints grown by ``radius``, its Footprints), cached by placement."""
-    from services.optimizer.geometry import scene_footprints
-    from services.optimizer.routes import Footprints, occupancy_grid
+    from wana.domain.object_geometry import scene_footprints
+    from wana.domain.routes import Footprints, occupancy_grid
 
     def build():  # noqa: ANN202
         try:
@@ -91,7 +91,7 @@ def scene_grid(
     scene: Scene, ignore: frozenset[str] = frozenset(), radius: float = RADIUS, cell: float = CELL
 ):  # noqa: ANN201
     """The optimizer's OccupancyGrid of the scene minus the ignored objects (built from cached masks)."""
-    from services.optimizer.routes import OccupancyGrid
+    from wana.domain.routes import OccupancyGrid
 
     walls, origin = _walls(scene.room, radius, cell)
     blocked = walls.copy()
@@ -112,7 +112,7 @@ def plan_scene_route(
     step_in: float = STEP_IN,
     into_hosts: bool = True,
 ) -> np.ndarray:
-    """``services.optimizer.routes.plan_route`` on cached grids (same arguments, same answer).
+    """``wana.domain.routes.plan_route`` on cached grids (same arguments, same answer).
 
     With ``into_hosts=False`` the last step never enters an object the goal lies on (within HOST_M
     of its footprint): the caller has already ignored the object it walks to, so such a host is
@@ -135,7 +135,7 @@ def plan_scene_route(
     Raises:
         NoRouteError: when no route exists.
     """
-    from services.optimizer.routes import (
+    from wana.domain.routes import (
         HOST_M,
         OccupancyGrid,
         plan_route_on_grid,
@@ -219,7 +219,7 @@ def scene_route(
     Returns:
         waypoints (N, 2) metres, world; "" or a diagnostic saying why the route is straight.
     """
-    from services.optimizer.routes import NoRouteError
+    from wana.domain.routes import NoRouteError
 
     try:
         return plan_scene_route(scene, start_xz, goal_xz, ignore=ignore, into_hosts=False), ""

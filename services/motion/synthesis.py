@@ -16,15 +16,15 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 
 from proto.motion_data import Motion, Segment
-from services.motion import quat
 from services.motion.blend import fade_from, layer, upper_body_mask
 from services.motion.ik import joint_globals, lean_needed, lean_spine, lock_feet, two_bone_ik
-from services.motion.library import ActionClip, get_clip, neutral_rotations
 from services.motion.locomotion import locomote
 from wana.arrays import to_wire
-from wana.skeleton import JOINT_INDEX, JOINT_NAMES, N_JOINTS, REST_OFFSETS
+from wana.domain import quat
+from wana.domain.actions import ActionClip, get_clip, neutral_rotations
+from wana.domain.skeleton import JOINT_INDEX, JOINT_NAMES, N_JOINTS, REST_OFFSETS
+from wana.domain.units import FPS
 
-FPS = 30
 FADE = 6  # frames of cross-fade at the start of each piece
 POSTURE_AFTER = {
     "sit": "sit",

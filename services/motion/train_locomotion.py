@@ -21,12 +21,13 @@ from pathlib import Path
 
 import numpy as np
 
-from services.motion import quat
 from services.motion.gait import random_trajectory, synthesize_gait
 from services.motion.locomotion_features import build_xy
+from wana.domain import quat
+from wana.domain.paths import model_path
 
-REPO = Path(__file__).resolve().parents[2]
-MODEL_DIR = REPO / "models" / "locomotion"
+REPO = Path(__file__).resolve().parents[2]  # training runs from a checkout (reads ../shared/data)
+MODEL_DIR = model_path("locomotion")
 SHARED = Path(os.environ.get("WANA_SHARED_DATA", REPO.parent / "shared" / "data"))
 ROLLOUT_STEPS = 10
 SEED = 1234
@@ -83,9 +84,9 @@ def label_phase(contacts: np.ndarray) -> np.ndarray:
 
 def cmu_corpus(shared: Path = SHARED):
     """Retargeted CMU locomotion clips (skeleton variant A) with heading, phase and contacts."""
-    from services.motion.bvh import read_bvh
     from services.motion.retarget import retarget_clip
-    from wana.skeleton import JOINT_INDEX, forward_kinematics
+    from wana.domain.bvh import read_bvh
+    from wana.domain.skeleton import JOINT_INDEX, forward_kinematics
 
     labels = shared / "cmu_mocap_iclone" / "labels.csv"
     if not labels.is_file():

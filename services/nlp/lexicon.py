@@ -1,5 +1,5 @@
 """Words -> canonical names: object categories, attributes, rooms (from ``wana.assets.vocabulary``) and
-actions (from the motion library, ``services.motion.library``), plus the NLP stage's own word lists
+actions (from the motion library, ``wana.domain.actions``), plus the NLP stage's own word lists
 (people, relation words, manners, social labels).
 
 Every lookup is cached; the action library loads on first use. Over 400 lines because most of it
@@ -418,7 +418,7 @@ VERB_OVERRIDES: dict[str, str] = {
 @functools.lru_cache(maxsize=1)
 def _library() -> tuple[frozenset[str], dict[str, str]]:
     try:
-        from services.motion.library import action_names, synonym_index
+        from wana.domain.actions import action_names, synonym_index
 
         return frozenset(action_names()), synonym_index()
     except Exception:  # the motion library is optional for parsing: fall back to the overrides alone
@@ -433,7 +433,7 @@ def action_names() -> frozenset[str]:
 def _clip_info() -> dict[str, tuple[frozenset[str], str]]:
     """Action name -> (its tags, the object its interaction touches: "person", a category or "")."""
     try:
-        from services.motion.library import load_library
+        from wana.domain.actions import load_library
 
         return {
             name: (frozenset(clip.tags), clip.interaction.object if clip.interaction else "")

@@ -14,9 +14,9 @@ import spacy
 from spacy.language import Language
 
 from services.nlp import lemmatizer as _lemmatizer  # noqa: F401 - registers the "wana_lemmatizer" factory
+from wana.domain.paths import model_path
 
-REPO = Path(__file__).resolve().parents[2]
-MODEL_DIR = REPO / "models" / "nlp" / "en_wana"
+MODEL_DIR = model_path("nlp", "en_wana")
 MODEL_VERSION = "0.1.0"
 
 _lock = threading.Lock()

@@ -3,7 +3,7 @@
 Each bone is a capsule (segment between two joints, a radius); a capsule is represented by
 spheres spaced at most its radius apart along the segment, so that a box test against spheres is a
 clamp and a norm, fully vectorised over frames, spheres and boxes. Forward kinematics here is a
-numpy rotation-matrix chain (same result as ``wana.skeleton.forward_kinematics``, several times
+numpy rotation-matrix chain (same result as ``wana.domain.skeleton.forward_kinematics``, several times
 faster, which matters when every annealing proposal needs the body of a whole motion).
 """
 
@@ -17,7 +17,7 @@ import numpy as np
 
 from proto.motion_data import Motion
 from wana.arrays import from_wire
-from wana.skeleton import JOINT_INDEX, JOINT_NAMES, N_JOINTS, PARENTS, REST_OFFSETS
+from wana.domain.skeleton import JOINT_INDEX, JOINT_NAMES, N_JOINTS, PARENTS, REST_OFFSETS
 
 # (from joint, to joint, radius in metres) for a 1.75 m character. "HeadTop" is the head joint
 # extended by one neck length, so the skull gets a capsule of its own.
@@ -185,7 +185,9 @@ def motion_joint_positions(motion: Motion) -> np.ndarray:
     then cost a hash instead of a forward-kinematics pass.
     """
     if motion.joint_names and tuple(motion.joint_names) != JOINT_NAMES:
-        raise ValueError("motion joints are not in the canonical skeleton order (wana.skeleton.JOINT_NAMES)")
+        raise ValueError(
+            "motion joints are not in the canonical skeleton order (wana.domain.skeleton.JOINT_NAMES)"
+        )
     if motion.rotations.shape[:1] != motion.root_position.shape[:1]:
         raise ValueError(
             f"motion has {motion.rotations.shape[:1]} rotation frames but "

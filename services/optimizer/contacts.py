@@ -12,7 +12,7 @@ import numpy as np
 from proto.optimizer import ContactPair, Interaction
 from services.optimizer.body import BodySpheres
 from services.optimizer.costs import SceneGeometry
-from wana.skeleton import JOINT_INDEX, JOINT_NAMES, PARENTS, REST_OFFSETS
+from wana.domain.skeleton import JOINT_INDEX, JOINT_NAMES, PARENTS, REST_OFFSETS
 
 IK_ROOTS = ("LeftArm", "RightArm")  # the motion service's two-bone IK brings hands to their contacts
 

@@ -26,8 +26,8 @@ import numpy as np
 
 from proto.scene import Scene
 from services.optimizer.body import BodySpheres
-from services.optimizer.geometry import object_shape
-from wana.skeleton import JOINT_INDEX
+from wana.domain.object_geometry import object_shape
+from wana.domain.skeleton import JOINT_INDEX
 
 
 @dataclass(frozen=True)
@@ -359,7 +359,9 @@ def joint_index(names: list[str] | tuple[str, ...]) -> np.ndarray:
     try:
         return np.array([JOINT_INDEX[n] for n in names], dtype=np.int64)
     except KeyError as exc:
-        raise ValueError(f"unknown joint {exc.args[0]!r}; joints are wana.skeleton.JOINT_NAMES") from exc
+        raise ValueError(
+            f"unknown joint {exc.args[0]!r}; joints are wana.domain.skeleton.JOINT_NAMES"
+        ) from exc
 
 
 def sphere_centres(spheres: BodySpheres, positions: np.ndarray) -> np.ndarray:

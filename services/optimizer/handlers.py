@@ -19,13 +19,13 @@ from proto.optimizer import (
 )
 from proto.scene import Scene
 from services.optimizer.annealing import optimise_interaction
-from services.optimizer.geometry import CatalogUnavailable
 from services.optimizer.resynthesis import motion_service_fn
-from services.optimizer.routes import NoRouteError, plan_route
 from services.optimizer.scoring import InteractionScorer
 from services.optimizer.verify import optimise_and_verify
 from wana.arrays import to_wire
 from wana.bus.service import InvalidInput
+from wana.domain.object_geometry import CatalogUnavailable
+from wana.domain.routes import NoRouteError, plan_route
 
 MAX_OBJECTS = 512
 MAX_FRAMES = 30 * 600  # ten minutes of motion

@@ -25,7 +25,7 @@ from services.optimizer.costs import LayoutBatch, world_boxes
 from services.optimizer.layout_model import LayoutModel
 from services.optimizer.reaching import _wall_mounted
 from services.optimizer.scoring import InteractionScorer, is_locomotion
-from wana.skeleton import JOINT_INDEX
+from wana.domain.skeleton import JOINT_INDEX
 
 LATERAL_STEPS_M = (0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.4)  # sideways moves tried, metres
 RANK_STRIDE = 2  # frames tested when ranking the moves: every n-th

@@ -1,8 +1,8 @@
 """How the motion follows a changed layout: the motion service itself, or a fast anchored surrogate.
 
 ``motion_service_fn`` re-plans and re-synthesises the character's whole plan through the motion
-service's logic (services.motion.planning.plan_actions + synthesis.synthesise, with A* routes from
-services.optimizer.routes), which is faithful and slow (a few hundred ms per call).
+service's logic (its planning and synthesis, installed in ``motion_port`` by the composition root,
+with A* routes from wana.domain.routes), which is faithful and slow (a few hundred ms per call).
 
 ``anchored_motion_fn`` keeps the given motion and moves it with the object it is anchored to (the
 interaction's first target): from the action's start on, the root follows the anchor's contact
@@ -26,14 +26,21 @@ from proto.ssg import CharacterNode
 from services.optimizer.body import motion_joint_positions, remember_joint_positions
 from services.optimizer.contacts import default_contacts
 from services.optimizer.costs import LayoutBatch, SceneGeometry, contact_points_world
+from services.optimizer.motion_port import MotionSynthesis, installed
 from services.optimizer.scoring import action_segment, is_locomotion
 from wana.arrays import from_wire, to_wire
+from wana.domain.actions import contact_targets
+from wana.domain.routes import NoRouteError, plan_route
 
 MotionFn = Callable[[Scene], Motion]
 
 
 def motion_service_fn(
-    character: CharacterNode, start: tuple[float, float, float], *, radius: float = 0.3
+    character: CharacterNode,
+    start: tuple[float, float, float],
+    *,
+    radius: float = 0.3,
+    synthesis: MotionSynthesis | None = None,
 ) -> MotionFn:
     """scene -> Motion through the motion service (plan + synthesis), routes by A*.
 
@@ -45,10 +52,12 @@ def motion_service_fn(
         start: (x, z, yaw) where the character starts.
         radius: clearance of the routes, metres: the body's 0.25 m plus room for swinging arms and
             for the walk's deviation from its path.
+        synthesis: the motion service's functions; None: the ones the composition root installed.
+
+    Raises:
+        MotionSynthesisMissing: synthesis is None and none was installed.
     """
-    from services.motion.planning import plan_actions
-    from services.motion.synthesis import synthesise
-    from services.optimizer.routes import NoRouteError, plan_route
+    character_motion = (synthesis or installed()).character_motion
 
     def route(scene: Scene, a: tuple[float, float], b: tuple[float, float]) -> np.ndarray:
         try:
@@ -58,8 +67,7 @@ def motion_service_fn(
             return np.array([a, b], dtype=np.float64)
 
     def motion_fn(scene: Scene) -> Motion:
-        motion, _, _ = synthesise(plan_actions(character, scene, start, route_fn=route))
-        return motion
+        return character_motion(character, scene, start, route)
 
     return motion_fn
 
@@ -71,9 +79,8 @@ def planned_contacts(character: CharacterNode, scene: Scene) -> list[ContactPair
     names for the clip's kind of interaction) and brings the clip's contact joints to it; C_T should
     measure those same pairs.
     """
-    from services.motion.library import get_clip
-    from services.motion.planning import contact_targets
     from wana.assets.catalog import asset_for
+    from wana.domain.actions import get_clip
 
     by_id = {o.id: o for o in scene.objects}
     pairs: list[ContactPair] = []

@@ -114,7 +114,7 @@ def contact_window(action: str, fps: int = 30) -> tuple[int, int] | None:
     library is not available.
     """
     try:
-        from services.motion.library import get_clip
+        from wana.domain.actions import get_clip
 
         clip = get_clip(action)
     except Exception:  # noqa: BLE001 - no library, or an action it does not know: the whole segment

@@ -28,6 +28,7 @@ from proto.scene import Scene
 from proto.ssg import ActionNode
 from services.optimizer.contacts import default_contacts
 from services.optimizer.costs import LayoutBatch, SceneGeometry, contact_points_world
+from services.optimizer.motion_port import installed
 from services.optimizer.resynthesis import MotionFn
 from services.optimizer.scoring import action_segment, is_locomotion
 from wana.arrays import from_wire
@@ -99,8 +100,6 @@ def seated_verifier(motion: Motion, interaction: Interaction, seat: Seat) -> Mot
 
     The action keeps the draft's length; its target is the interaction's first non-seat target.
     """
-    from services.motion.seated import seated_action_fn
-
     a0, a1 = action_segment(motion, interaction, len(from_wire(motion.root_position)))
     target = next((t for t in interaction.targets if t != seat.object_id), "")
     node = ActionNode(
@@ -109,4 +108,4 @@ def seated_verifier(motion: Motion, interaction: Interaction, seat: Seat) -> Mot
         target=target,
         duration_s=(a1 - a0) / float(motion.fps or 30),
     )
-    return seated_action_fn(motion.character, seat.object_id, node)
+    return installed().seated_action(motion.character, seat.object_id, node)

@@ -34,6 +34,9 @@ class StageFailed(RuntimeError):
 
 
 def load_contract(service: str) -> dict[type, Any]:
+    from wana.compose import compose
+
+    compose()  # what one service needs of another (the optimiser's motion) is wired in here
     try:
         handlers = importlib.import_module(f"services.{service}.handlers")
     except ImportError as exc:

@@ -47,6 +47,9 @@ class Embedded:
         from wana.bus.client import Client
         from wana.bus.service import make_frame_handler
         from wana.bus.worker import Worker
+        from wana.compose import compose
+
+        compose()  # what one service needs of another (the optimiser's motion) is wired in here
 
         self._broker = Broker(self.url, context=self.context)
         self.threads.append(self._broker.start_thread())

@@ -17,8 +17,7 @@ import numpy as np
 
 from proto.motion_data import Motion, Segment
 from wana.arrays import from_wire, to_wire
-
-FPS = 30
+from wana.domain.units import FPS
 
 
 @dataclass(frozen=True)

@@ -1,6 +1,6 @@
 """One BVH per character: the canonical skeleton with that character's bone lengths, metres, 30 fps.
 
-Written with the motion service's writer (``services.motion.bvh``), so our importer reads it back
+Written with the motion service's writer (``wana.domain.bvh``), so our importer reads it back
 exactly; the channel layout (root XYZ position + ZYX rotations, ZYX rotations elsewhere) is the
 common one that Blender, MotionBuilder and PyPI parsers such as ``bvh`` read.
 """
@@ -12,8 +12,8 @@ import warnings
 from pathlib import Path
 
 from proto.motion_data import Motion
-from services.motion.bvh import canonical_clip, format_bvh
 from services.render.skinning import Rig
+from wana.domain.bvh import canonical_clip, format_bvh
 
 
 def safe_filename(name: str) -> str:

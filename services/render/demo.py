@@ -14,7 +14,7 @@ from proto.motion_data import Motion, Segment
 from proto.scene import PlacedObject, Room, Scene
 from wana.arrays import to_wire
 from wana.assets.characters import EXPRESSIONS, make_character
-from wana.skeleton import JOINT_INDEX, JOINT_NAMES, N_JOINTS
+from wana.domain.skeleton import JOINT_INDEX, JOINT_NAMES, N_JOINTS
 
 
 def demo_scene() -> Scene:

@@ -25,7 +25,7 @@ from proto.scene import Scene
 from services.render.scene_geometry import ColouredMesh, object_meshes, room_meshes
 from services.render.skinning import Rig
 from wana.assets.characters import EXPRESSIONS
-from wana.skeleton import JOINT_NAMES, N_JOINTS, PARENTS
+from wana.domain.skeleton import JOINT_NAMES, N_JOINTS, PARENTS
 
 ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER = 34962, 34963
 FLOAT, UNSIGNED_BYTE, UNSIGNED_SHORT, UNSIGNED_INT = 5126, 5121, 5123, 5125

@@ -17,7 +17,7 @@ from proto.motion_data import Motion
 from services.render.camera import CharacterTrack
 from wana.arrays import from_wire
 from wana.assets.characters import EXPRESSIONS, Character, character_names, make_character
-from wana.skeleton import JOINT_INDEX, JOINT_NAMES, N_JOINTS, forward_kinematics
+from wana.domain.skeleton import JOINT_INDEX, JOINT_NAMES, N_JOINTS, forward_kinematics
 
 
 def character_for(name: str) -> Character:

@@ -15,7 +15,8 @@ from pathlib import Path
 import av
 import numpy as np
 
-FPS = 30
+from wana.domain.units import FPS
+
 CRF = 20  # x264 constant rate factor: visually lossless-ish for flat-shaded renders
 ENCODER_OPTIONS = {"crf": str(CRF), "preset": "veryfast", "tune": "zerolatency", "bf": "0"}
 

@@ -11,11 +11,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from proto.scene import Room
+from wana.domain.units import FPS
 
 WEATHERS = ("sunny", "night", "rainy", "foggy", "snowy")
 TRANSITION_FRAMES = 30
 PARTICLE_SEED = 20210801  # recorded seed: particles are the same in every run and every chunk
-FPS = 30.0
 
 
 @dataclass(frozen=True)

@@ -45,7 +45,7 @@ def handle_compose(req: ComposeRequest) -> ComposeReply:
 
 @lru_cache(maxsize=1)
 def _clips() -> tuple[ClipWords, ...]:
-    from services.motion.library import load_library
+    from wana.domain.actions import load_library
 
     return tuple(prepare_clips(load_library()))
 

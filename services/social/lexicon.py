@@ -9,9 +9,10 @@ from __future__ import annotations
 import functools
 import math
 from dataclasses import dataclass
-from pathlib import Path
 
-TABLE = Path(__file__).resolve().parents[2] / "assets" / "social" / "vad.tsv"
+from wana.domain.paths import asset_path
+
+TABLE = asset_path("social", "vad.tsv")
 NEUTRAL: tuple[float, float, float] = (0.0, 0.0, 0.0)
 
 STOPWORDS = frozenset(
@@ -81,7 +82,7 @@ def load_table(
     """(word -> VAD, action name -> ActionEntry) from the committed table.
 
     Raises:
-        FileNotFoundError: the table is missing (rebuild it with ``python -m services.social.build_vad``).
+        FileNotFoundError: the table is missing (rebuild it with ``python -m tools.authoring.build_vad``).
     """
     words: dict[str, tuple[float, float, float]] = {}
     actions: dict[str, ActionEntry] = {}

@@ -10,7 +10,7 @@ import av
 import pytest
 import trimesh
 
-from services.motion.bvh import read_bvh
+from wana.domain.bvh import read_bvh
 
 pytestmark = [pytest.mark.integration, pytest.mark.slow]
 

@@ -9,7 +9,7 @@ from services.optimizer.body import motion_joint_positions
 from services.optimizer.costs import LayoutBatch, SceneGeometry, contact_points_world
 from services.orchestrator.backend import InProcessBackend
 from services.orchestrator.session import Orchestrator
-from wana.skeleton import JOINT_INDEX
+from wana.domain.skeleton import JOINT_INDEX
 
 pytestmark = [pytest.mark.integration, pytest.mark.slow]
 

@@ -18,7 +18,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from wana.assets.geometry import Part, _rotation_from_y
-from wana.skeleton import JOINT_INDEX, JOINT_NAMES, N_JOINTS, PARENTS, REST_OFFSETS
+from wana.domain.skeleton import JOINT_INDEX, JOINT_NAMES, N_JOINTS, PARENTS, REST_OFFSETS
 
 # Face blendshape names, in the order of Motion.expression columns.
 EXPRESSIONS: tuple[str, ...] = (
@@ -93,7 +93,7 @@ class Character:
     Attributes:
         name: display name.
         height: metres.
-        offsets: (J, 3) float32 rest offsets (canonical joint order, wana.skeleton.JOINT_NAMES).
+        offsets: (J, 3) float32 rest offsets (canonical joint order, wana.domain.skeleton.JOINT_NAMES).
         vertices: (V, 3) float32 rest-pose positions, metres.
         faces: (F, 3) uint32.
         colours: (V, 4) uint8 vertex colours.
@@ -360,7 +360,7 @@ def pose_vertices(
     Returns:
         (T, V, 3) world vertex positions.
     """
-    from wana.skeleton import forward_kinematics
+    from wana.domain.skeleton import forward_kinematics
 
     rotations = np.asarray(rotations, float)
     pos, quat = forward_kinematics(

@@ -17,7 +17,7 @@ import trimesh
 
 from proto.scene import Scene
 from wana.assets.characters import EXPRESSIONS, Character
-from wana.skeleton import JOINT_NAMES, N_JOINTS, PARENTS
+from wana.domain.skeleton import JOINT_NAMES, N_JOINTS, PARENTS
 
 _GLB_MAGIC = 0x46546C67
 _JSON, _BIN = 0x4E4F534A, 0x004E4942

@@ -19,9 +19,9 @@ import msgspec
 
 from proto.scene import Scene
 from proto.ssg import ObjectNode, RelationNode
+from wana.domain.paths import asset_path
 
-REPO = Path(__file__).resolve().parents[2]
-SCENEDB_PATH = REPO / "assets" / "scenedb" / "scenes.json"
+SCENEDB_PATH = asset_path("scenedb", "scenes.json")
 GRAMMAR_VERSION = "scene-grammar-v1"
 
 

@@ -21,7 +21,7 @@ from proto.scene import PlacedObject, Room, Scene
 from services.optimizer.handlers import CONTRACT
 from tests.contract.harness import check_contract, service_fixture
 from wana.arrays import from_wire, to_wire
-from wana.skeleton import JOINT_NAMES, N_JOINTS
+from wana.domain.skeleton import JOINT_NAMES, N_JOINTS
 
 optimizer = service_fixture("optimizer")
 

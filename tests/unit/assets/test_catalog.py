@@ -55,7 +55,7 @@ def test_collision_boxes_are_many_small_boxes_inside_the_bounds():
 
 
 def test_contact_points_name_canonical_joints():
-    from wana.skeleton import JOINT_NAMES
+    from wana.domain.skeleton import JOINT_NAMES
 
     expect = {
         "office_chair": ("sit", "Hips"),

@@ -9,7 +9,7 @@ from scipy.spatial.transform import Rotation
 
 from wana.assets.characters import EXPRESSIONS, character_names, make_character, pose_vertices
 from wana.assets.gltf import export_character_glb, load_character_glb, read_glb
-from wana.skeleton import JOINT_INDEX, N_JOINTS, identity_pose
+from wana.domain.skeleton import JOINT_INDEX, N_JOINTS, identity_pose
 
 
 def test_at_least_ten_characters_with_different_heights_and_clothes():

@@ -5,10 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from services.motion import quat
-from services.motion.bvh import BvhError, canonical_motion, parse_bvh, read_bvh, write_bvh, write_clip
+from wana.domain import quat
+from wana.domain.bvh import BvhError, canonical_motion, parse_bvh, read_bvh, write_bvh, write_clip
 from services.motion.retarget import retarget_clip
-from wana.skeleton import JOINT_INDEX, forward_kinematics
+from wana.domain.skeleton import JOINT_INDEX, forward_kinematics
 
 
 def _random_motion(t: int = 20, seed: int = 0):
@@ -47,7 +47,7 @@ def test_malformed_bvh_names_the_problem():
 
 
 def test_retarget_of_a_canonical_file_in_centimetres_recovers_positions(tmp_path):
-    from services.motion.library import get_clip
+    from wana.domain.actions import get_clip
 
     rot, offs, _ = get_clip("wave").sample()
     root = offs + np.array([0.0, 0.95, 0.0])

@@ -7,16 +7,16 @@ import pytest
 
 from proto.scene import PlacedObject, Room, Scene
 from proto.ssg import ActionNode, CharacterNode
-from services.motion import quat
+from wana.domain import quat
 from services.motion.ik import bend_spine_to_reach, global_transforms, joint_globals, lock_feet, two_bone_ik
-from services.motion.library import get_clip
+from wana.domain.actions import get_clip
 from services.motion.locomotion import MODEL_DIR
 from services.motion.planning import plan_actions
-from wana.skeleton import JOINT_INDEX, N_JOINTS
+from wana.domain.skeleton import JOINT_INDEX, N_JOINTS
 
 
 def _reference_fk_position(rot: np.ndarray, root: np.ndarray, joint: str) -> np.ndarray:
-    from wana.skeleton import (
+    from wana.domain.skeleton import (
         forward_kinematics,  # scipy-based reference FK, independent of services.motion.ik
     )
 

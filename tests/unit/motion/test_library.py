@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from services.motion.library import action_names, clip_from_dict, get_clip, load_library, synonym_index
+from wana.domain.actions import action_names, clip_from_dict, get_clip, load_library, synonym_index
 
 REQUIRED = (
     "sit stand type play_piano call_with_phone drink sing_with_microphone listen_with_headphones "

@@ -10,7 +10,7 @@ from services.motion.gait import random_trajectory, synthesize_gait
 from services.motion.ik import global_transforms
 from services.motion.locomotion import MODEL_DIR, locomote, plan_root
 from services.motion.pfnn import N_IN, PFNN, catmull_rom_coefficients
-from wana.skeleton import JOINT_INDEX
+from wana.domain.skeleton import JOINT_INDEX
 
 
 def test_catmull_rom_weights_sum_to_one_and_pick_the_control_set_at_knots():

@@ -11,13 +11,13 @@ from proto.scene import PlacedObject, Room, Scene
 from proto.ssg import ActionNode, CharacterNode
 from services.motion.handlers import handle_synthesize
 from services.motion.ik import global_transforms
-from services.motion.library import get_clip
+from wana.domain.actions import get_clip
 from services.motion.planning import _object_geometry, contact_targets, plan_actions, straight_route
 from services.motion.routing import plan_scene_route
 from services.motion.synthesis import synthesise
 from wana.arrays import from_wire
 from wana.assets.catalog import make_object, to_world, world_collision_boxes
-from wana.skeleton import JOINT_INDEX
+from wana.domain.skeleton import JOINT_INDEX
 
 ROOM = Room(room_type="office", width=6, depth=6, height=3)
 TABLE = PlacedObject(id="table", category="dining_table", position=(0.0, 0.0, 0.0))
@@ -49,7 +49,7 @@ def test_a_walk_past_a_table_goes_around_it_and_never_enters_its_boxes():
 
 
 def test_cached_routes_equal_the_optimizer_routes_and_follow_a_moved_object():
-    from services.optimizer.routes import plan_route
+    from wana.domain.routes import plan_route
 
     chair = PlacedObject(id="chair", category="chair", position=(1.0, 0.0, 0.0))
     for chair_x in (1.0, -0.2, 1.0):  # the grid must follow the chair, and come back from the cache

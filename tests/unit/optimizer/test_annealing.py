@@ -11,7 +11,7 @@ from proto.scene import PlacedObject, Room, Scene
 from services.optimizer.annealing import LayoutModel, optimise_interaction, truncated_normal
 from services.optimizer.costs import SceneGeometry
 from wana.arrays import to_wire
-from wana.skeleton import JOINT_NAMES, N_JOINTS
+from wana.domain.skeleton import JOINT_NAMES, N_JOINTS
 
 ROOM = Room(room_type="office", width=5.0, depth=5.0, height=3.0)
 HAND_T_POSE = np.array([0.81, 1.41, 0.0])  # LeftHandMiddle1 of the T-pose at hips (0, 0.95, 0)

@@ -1,4 +1,4 @@
-"""The paper's eq. 1 and eq. 2 on hand-built geometry, and the body model against wana.skeleton."""
+"""The paper's eq. 1 and eq. 2 on hand-built geometry, and the body model against wana.domain.skeleton."""
 
 from __future__ import annotations
 
@@ -16,7 +16,7 @@ from services.optimizer.costs import (
     contact_points_world,
     world_boxes,
 )
-from wana.skeleton import N_JOINTS, forward_kinematics
+from wana.domain.skeleton import N_JOINTS, forward_kinematics
 
 
 def _grid_boxes(n: int, size: float = 0.1) -> np.ndarray:

@@ -12,7 +12,7 @@ from proto.scene import PlacedObject, Room, Scene
 from services.optimizer.handlers import CONTRACT
 from wana.arrays import to_wire
 from wana.bus.service import InvalidInput, call_in_process
-from wana.skeleton import JOINT_NAMES, N_JOINTS
+from wana.domain.skeleton import JOINT_NAMES, N_JOINTS
 
 pytest.importorskip("wana.assets.catalog", reason="needs the asset catalog")
 

@@ -14,7 +14,7 @@ from services.optimizer.reaching import reaching_layouts
 from services.optimizer.scoring import InteractionScorer
 from services.optimizer.verify import optimise_and_verify
 from wana.arrays import from_wire, to_wire
-from wana.skeleton import JOINT_NAMES, N_JOINTS
+from wana.domain.skeleton import JOINT_NAMES, N_JOINTS
 
 ROOM = Room(room_type="office", width=5.0, depth=5.0, height=3.0)
 SEAT = (

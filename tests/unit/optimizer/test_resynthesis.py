@@ -12,7 +12,7 @@ from services.optimizer.costs import SceneGeometry
 from services.optimizer.resynthesis import anchored_motion_fn
 from services.optimizer.verify import optimise_and_verify
 from wana.arrays import from_wire, to_wire
-from wana.skeleton import JOINT_NAMES, N_JOINTS
+from wana.domain.skeleton import JOINT_NAMES, N_JOINTS
 
 ROOM = Room(room_type="office", width=5.0, depth=5.0, height=3.0)
 SEAT = (

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from proto.scene import Room
-from services.optimizer.routes import (
+from wana.domain.routes import (
     Footprints,
     NoRouteError,
     astar,

@@ -6,11 +6,11 @@ import numpy as np
 import pytest
 
 from proto.scene import PlacedObject, Room, Scene
-from services.optimizer.routes import NoRouteError, plan_route, point_rect_distance
+from wana.domain.routes import NoRouteError, plan_route, point_rect_distance
 
 catalog = pytest.importorskip("wana.assets.catalog", reason="needs the asset catalog")
 
-from services.optimizer.geometry import object_shape, scene_footprints, world_obbs  # noqa: E402
+from wana.domain.object_geometry import object_shape, scene_footprints, world_obbs  # noqa: E402
 
 DESK = PlacedObject(id="desk", category="desk", position=(0.4, 0.0, -0.3), yaw=0.7, scale=(1.1, 0.9, 1.0))
 

@@ -15,7 +15,7 @@ from services.optimizer.costs import LayoutBatch, SceneGeometry, contact_points_
 from services.optimizer.layout_model import LayoutModel
 from services.optimizer.seating import seat_under, seated_interaction
 from services.optimizer.verify import optimise_and_verify
-from wana.skeleton import JOINT_INDEX
+from wana.domain.skeleton import JOINT_INDEX
 
 ROOM = Room(room_type="office", width=5.0, depth=5.0, height=3.0)
 TYPE = Interaction(character="Eve", action="type", targets=["laptop"])

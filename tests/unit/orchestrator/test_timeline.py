@@ -3,7 +3,7 @@ import numpy as np
 from proto.motion_data import Motion, Segment
 from services.orchestrator.timeline import Beat, assemble, schedule
 from wana.arrays import from_wire, to_wire
-from wana.skeleton import N_JOINTS
+from wana.domain.skeleton import N_JOINTS
 
 
 def test_a_characters_actions_follow_one_another():

@@ -8,7 +8,7 @@ from scipy.spatial.transform import Rotation
 from services.render.demo import hips_path, walk_motion
 from services.render.skinning import Rig, character_for
 from wana.assets.characters import make_character, pose_vertices
-from wana.skeleton import N_JOINTS, identity_pose
+from wana.domain.skeleton import N_JOINTS, identity_pose
 
 
 def test_skinned_vertices_match_the_reference_skinning_for_random_poses_and_expressions():

@@ -72,7 +72,7 @@ def test_top_k_limits_the_clips(clips):
 
 
 def test_the_project_library_answers_the_papers_examples():
-    from services.motion.library import load_library
+    from wana.domain.actions import load_library
 
     library = load_library()
     if not library:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from services.social import build_vad
+from tools.authoring import build_vad
 from services.social.face import FACE_MATRIX, face_weights
 from services.social.lexicon import TABLE, action_vad, load_table, response_candidates, word_vad
 from wana.assets.characters import EXPRESSIONS
@@ -20,7 +20,7 @@ def test_the_table_cites_its_source_and_stays_in_range():
 
 
 def test_every_library_action_has_a_row():
-    from services.motion.library import action_names
+    from wana.domain.actions import action_names
 
     _, actions = load_table()
     assert set(action_names()) <= set(actions)

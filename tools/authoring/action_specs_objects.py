@@ -6,8 +6,8 @@ seat, bed, keyboard, instrument, handheld, surface, button, door, container, too
 
 from __future__ import annotations
 
-from services.motion.author_actions import Spec, cycle, hold, loop, seq
-from services.motion.posing import arm, arms, head, hips, legs, merge, neutral, spine
+from tools.authoring.author_actions import Spec, cycle, hold, loop, seq
+from wana.domain.posing import arm, arms, head, hips, legs, merge, neutral, spine
 
 N = neutral()
 SIT_ROOT = (0.0, -0.42, -0.22)

@@ -6,8 +6,8 @@ fallback when the locomotion network is unavailable; synthesis drives travel wit
 
 from __future__ import annotations
 
-from services.motion.author_actions import Spec, cycle, hold, loop, seq
-from services.motion.posing import arm, arms, head, hips, leg, legs, merge, neutral, spine
+from tools.authoring.author_actions import Spec, cycle, hold, loop, seq
+from wana.domain.posing import arm, arms, head, hips, leg, legs, merge, neutral, spine
 
 N = neutral()
 STEP_L = merge(N, leg("L", (0.0, -1.0, 0.45), (0.0, -1.0, -0.35)))

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from services.motion import quat
-from services.motion.author_actions import Spec, cycle, hold, loop, seq
-from services.motion.posing import arm, arms, head, legs, merge, neutral, spine
+from tools.authoring.author_actions import Spec, cycle, hold, loop, seq
+from wana.domain import quat
+from wana.domain.posing import arm, arms, head, legs, merge, neutral, spine
 
 N = neutral()
 

@@ -391,7 +391,7 @@ def plan_route(
     Raises:
         NoRouteError: when no route exists.
     """
-    from services.optimizer.geometry import scene_footprints
+    from wana.domain.object_geometry import scene_footprints
 
     fp = scene_footprints(scene, ignore=ignore)
     grid = occupancy_grid(scene.room, fp, radius=radius, cell=cell)

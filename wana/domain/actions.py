@@ -7,7 +7,7 @@ poses, and an optional root offset (metres, character frame: x left, y up, z for
 Joints a key does not name take the neutral standing pose. New clips are data: drop a file in
 assets/actions/ (or run `wana motion import FILE.bvh`) and no model needs retraining.
 
-Rebuild the authored files with `python -m services.motion.author_actions`.
+Rebuild the authored files with `python -m tools.authoring.author_actions`.
 """
 
 from __future__ import annotations
@@ -20,14 +20,14 @@ from pathlib import Path
 
 import numpy as np
 
-from services.motion import quat
-from wana.skeleton import JOINT_INDEX, JOINT_NAMES, N_JOINTS
+from wana.domain import quat
+from wana.domain.paths import asset_path
+from wana.domain.skeleton import JOINT_INDEX, JOINT_NAMES, N_JOINTS
+from wana.domain.units import FPS
 
-REPO = Path(__file__).resolve().parents[2]
-ACTIONS_DIR = REPO / "assets" / "actions"
+ACTIONS_DIR = asset_path("actions")
 IMPORTED_DIR = ACTIONS_DIR / "imported"
 EULER_ORDER = "ZYX"
-FPS = 30
 
 BODY_PARTS = ("full_body", "upper_body", "lower_body", "left_arm", "right_arm", "spine", "head", "legs")
 EASINGS = ("linear", "in", "out", "in_out", "step")
@@ -103,7 +103,7 @@ def _ease(u: np.ndarray, kind: str) -> np.ndarray:
 @functools.lru_cache(maxsize=1)
 def neutral_rotations() -> np.ndarray:
     """(J, 4) the neutral standing pose every clip starts from."""
-    from services.motion.posing import neutral
+    from wana.domain.posing import neutral
 
     rot = quat.identity((N_JOINTS,))
     for name, q in neutral().items():
@@ -295,7 +295,91 @@ def get_clip(name: str) -> ActionClip:
     raise KeyError(f"unknown action {name!r}")
 
 
+# Catalog contact-point names (wana.assets.catalog make_object(cat).contact_points) preferred for each
+# interaction kind, best first; CLIP_POINTS comes before them for the clips that mean one point.
+PREFERRED_POINTS = {
+    "seat": ("sit", "sit_0"),
+    "bed": ("lie", "sit"),
+    "keyboard": ("type", "click", "use", "work", "write", "touch"),
+    "instrument": ("play", "work", "touch"),
+    "surface": ("write", "work", "eat", "cook", "wash", "touch"),
+    "button": ("switch", "use", "touch"),
+    "door": ("open", "touch"),
+    "container": ("open", "take", "touch", "pick_up"),
+    "tool": ("work", "saw", "hammer", "drill", "screw", "cut", "touch"),
+    "bag": ("punch", "touch"),
+    "floor_item": ("pick_up", "lift", "carry", "touch"),
+}
+CLIP_POINTS = {
+    "type": ("type",),
+    "use_mouse": ("click", "use", "type"),
+    "play_piano": ("play",),
+    "play_drums": ("play",),
+    "punch_bag": ("punch",),
+    "write": ("write",),
+    "write_on_blackboard": ("write",),
+    "draw": ("write", "paint"),
+    "paint": ("paint", "write"),
+    "eat": ("eat",),
+    "cook": ("cook",),
+    "chop": ("cook", "cut", "work"),
+    "wash_dishes": ("wash",),
+    "wash_hands": ("wash",),
+    "iron": ("work", "write"),
+    "fold_clothes": ("work", "write"),
+    "wipe_table": ("touch",),
+    "wipe_window": ("touch",),
+    "lean_on_wall": ("touch",),
+    "push": ("touch",),
+    "pull": ("open", "touch"),
+    "knock": ("touch",),
+    "open_door": ("open",),
+    "close_door": ("open",),
+    "open_fridge": ("open",),
+    "open_drawer": ("open",),
+    "press_switch": ("switch", "use"),
+    "push_button": ("use", "switch"),
+    "saw": ("saw",),
+    "hammer": ("hammer", "work"),
+    "drill": ("drill", "work"),
+    "screw": ("screw", "work"),
+    "sweep": ("sweep",),
+    "pick_up": ("pick_up", "lift"),
+    "put_down": ("pick_up",),
+    "lie_down": ("lie",),
+    "sleep": ("lie",),
+}
+
+
+def contact_targets(
+    clip: ActionClip, points: dict[str, list[tuple[str, np.ndarray]]]
+) -> dict[str, tuple[float, float, float]]:
+    """joint -> world target for the clip's contact joints, from the object's contact points."""
+    if not clip.interaction or not points:
+        return {}
+    preferred = CLIP_POINTS.get(clip.name, ()) + PREFERRED_POINTS.get(clip.interaction.object, ())
+    names = list(dict.fromkeys([n for n in preferred if n in points] + sorted(points)))
+    wanted = {
+        _limb(j) for j in clip.interaction.contacts
+    }  # a hand point serves a middle-finger contact and back
+    for name in names:
+        pairs = points[name]
+        joints = {j for j, _ in pairs}
+        if wanted & {_limb(j) for j in joints} or (
+            clip.interaction.object in ("seat", "bed") and "Hips" in joints
+        ):
+            return {j: (float(p[0]), float(p[1]), float(p[2])) for j, p in pairs}
+    return {}
+
+
+def _limb(joint: str) -> str:
+    return joint.replace("Middle1", "")
+
+
 __all__ = [
+    "CLIP_POINTS",
+    "PREFERRED_POINTS",
+    "contact_targets",
     "ActionClip",
     "Interaction",
     "Keyframe",

@@ -1,7 +1,7 @@
 """Author the action library: turn the compact specs into assets/actions/<name>.json keyframe files.
 
 Usage:
-    python -m services.motion.author_actions [--out assets/actions]
+    python -m tools.authoring.author_actions [--out assets/actions]
 
 The specs live in action_specs_*.py as Python (so poses can be built from aimed limbs); what ships
 and what the runtime reads is the JSON the script writes (Euler degrees, order ZYX, 0.1 degree).
@@ -16,10 +16,10 @@ from pathlib import Path
 
 import numpy as np
 
-from services.motion import quat
-from services.motion.library import ACTIONS_DIR, EULER_ORDER, neutral_rotations
-from services.motion.posing import Pose, neutral
-from wana.skeleton import JOINT_INDEX
+from wana.domain import quat
+from wana.domain.actions import ACTIONS_DIR, EULER_ORDER, neutral_rotations
+from wana.domain.posing import Pose, neutral
+from wana.domain.skeleton import JOINT_INDEX
 
 
 @dataclass
@@ -130,7 +130,7 @@ def spec_to_dict(spec: Spec) -> dict:
 
 
 def all_specs() -> list[Spec]:
-    from services.motion import action_specs_body, action_specs_objects, action_specs_social
+    from tools.authoring import action_specs_body, action_specs_objects, action_specs_social
 
     specs = action_specs_objects.specs() + action_specs_social.specs() + action_specs_body.specs()
     names = [s.name for s in specs]
@@ -142,7 +142,7 @@ def all_specs() -> list[Spec]:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(
-        prog="python -m services.motion.author_actions",
+        prog="python -m tools.authoring.author_actions",
         description="Write the authored action clips as JSON keyframe files.",
     )
     parser.add_argument(

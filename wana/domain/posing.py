@@ -1,6 +1,6 @@
 """Pose authoring helpers: limbs aimed by body-frame directions, spine and head by angles.
 
-Used by the action authoring script (services/motion/author_actions.py) to write the keyframes of
+Used by the action authoring script (tools/authoring/author_actions.py) to write the keyframes of
 assets/actions. Directions are in the parent's frame at rest, which for arms is the chest and for
 legs the pelvis: x = the character's left, y = up, z = forward. A pose is a dict joint -> unit
 quaternion (x, y, z, w); joints not named keep the neutral standing pose.
@@ -10,8 +10,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from services.motion import quat
-from wana.skeleton import JOINT_INDEX, REST_OFFSETS
+from wana.domain import quat
+from wana.domain.skeleton import JOINT_INDEX, REST_OFFSETS
 
 Pose = dict[str, np.ndarray]
 

@@ -13,7 +13,7 @@ Rows:
         phrase's mean word VAD (dimensions without data are skipped), with a ``response`` flag (the clip
         may be proposed as a character's reaction) and ``contact`` flag (the clip touches the other person).
 
-Usage: ``python -m services.social.build_vad [--glasgow CSV] [--vader TXT] [-o assets/social/vad.tsv]``.
+Usage: ``python -m tools.authoring.build_vad [--glasgow CSV] [--vader TXT] [-o assets/social/vad.tsv]``.
 """
 
 from __future__ import annotations
@@ -26,12 +26,13 @@ from pathlib import Path
 
 from services.social.lexicon import content_words, word_variants
 from services.social.relations import RELATIONS
+from wana.domain.paths import asset_path
 
-REPO = Path(__file__).resolve().parents[2]
+REPO = Path(__file__).resolve().parents[2]  # a build tool: runs from the checkout it rebuilds
 SHARED = REPO.parent / "shared" / "data"
 DEFAULT_GLASGOW = SHARED / "glasgow_norms" / "glasgow_norms.csv"
 DEFAULT_VADER = SHARED / "vader_lexicon" / "vader_lexicon.txt"
-DEFAULT_OUT = REPO / "assets" / "social" / "vad.tsv"
+DEFAULT_OUT = asset_path("social", "vad.tsv")
 
 # Tags of clips that read as a reaction to another person (and need no object but, at most, that person).
 # (Upper-body or head clips only, plus a few whole-body recoils; never the object or exercise clips.)
@@ -52,7 +53,7 @@ HEADER = (
     "scaled by / 4; arousal and dominance 'nan'.\n"
     "# Action rows (kind 'action', source 'derived'): mean over the action's name and synonyms of each "
     "phrase's mean word VAD.\n"
-    "# Regenerate: python -m services.social.build_vad\n"
+    "# Regenerate: python -m tools.authoring.build_vad\n"
 )
 COLUMNS = ("key", "kind", "valence", "arousal", "dominance", "source", "response", "contact")
 
@@ -91,8 +92,8 @@ def read_vader(path: Path) -> dict[str, float]:
 
 def needed_words() -> tuple[set[str], dict[str, list[str]], dict[str, tuple[bool, bool]]]:
     """(words, action -> phrases, action -> (response, contact)) from the motion library and NLP lexicon."""
-    from services.motion.library import load_library
     from services.nlp import lexicon
+    from wana.domain.actions import load_library
 
     words: set[str] = set()
     phrases: dict[str, list[str]] = {}
@@ -175,7 +176,7 @@ def write_table(rows: list[tuple], out: Path) -> None:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(
-        prog="python -m services.social.build_vad",
+        prog="python -m tools.authoring.build_vad",
         description="Rebuild assets/social/vad.tsv (VAD norms of action, emotion and relation words) from the "
         "Glasgow Norms, with VADER valence for words Glasgow lacks.",
     )

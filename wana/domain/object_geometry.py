@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from proto.scene import PlacedObject, Scene
-from services.optimizer.routes import Footprints
+from wana.domain.routes import Footprints
 
 
 class CatalogUnavailable(RuntimeError):

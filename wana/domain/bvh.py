@@ -3,7 +3,7 @@
 `read_bvh` keeps every channel exactly as written so that a read -> write -> read round trip
 reproduces each channel (to the 1e-6 printed precision); `BvhClip.local_rotations()` and
 `BvhClip.global_positions()` give quaternions and FK positions in the file's own units.
-`write_bvh` writes the canonical skeleton (wana.skeleton) from root positions and quaternions.
+`write_bvh` writes the canonical skeleton (wana.domain.skeleton) from root positions and quaternions.
 """
 
 from __future__ import annotations
@@ -15,8 +15,8 @@ from pathlib import Path
 
 import numpy as np
 
-from services.motion import quat
-from wana.skeleton import JOINT_NAMES, N_JOINTS, PARENTS, REST_OFFSETS
+from wana.domain import quat
+from wana.domain.skeleton import JOINT_NAMES, N_JOINTS, PARENTS, REST_OFFSETS
 
 
 class BvhError(ValueError):
@@ -305,7 +305,7 @@ def write_bvh(
     Args:
         path: output file (.bvh, or .bvh.gz to compress).
         root_position: (T, 3) Hips position in metres, world frame.
-        rotations: (T, J, 4) local quaternions (x, y, z, w) in wana.skeleton.JOINT_NAMES order.
+        rotations: (T, J, 4) local quaternions (x, y, z, w) in wana.domain.skeleton.JOINT_NAMES order.
         fps: frames per second.
         offsets: (J, 3) rest offsets in metres (default: the reference skeleton).
         scale: unit multiplier for the file (1 = metres, 100 = centimetres).
