@@ -25,10 +25,11 @@ test:  ## the whole suite, slow tests included (what CI runs): pytest, then the 
 test-fast:  ## skip tests marked slow
 	$(PY) -m pytest -q -m "not slow"
 
-lint:  ## ruff and mypy
+lint:  ## ruff, mypy and the import contracts (services never import each other; see pyproject.toml)
 	$(VENV)/bin/ruff check .
 	$(VENV)/bin/ruff format --check .
 	$(VENV)/bin/mypy proto services wana
+	PYTHONPATH=. $(VENV)/bin/lint-imports
 
 bench:  ## every benchmark, quick mode, JSON under bench/results/
 	mkdir -p bench/results

@@ -31,8 +31,8 @@ from proto.ssg import ActionNode, CharacterNode  # noqa: E402
 from services.optimizer.annealing import optimise_interaction  # noqa: E402
 from services.optimizer.costs import SceneGeometry  # noqa: E402
 from services.optimizer.resynthesis import anchored_motion_fn, motion_service_fn, planned_contacts  # noqa: E402
-from wana.domain.routes import plan_route  # noqa: E402
 from services.optimizer.scoring import InteractionScorer  # noqa: E402
+from wana.domain.routes import plan_route  # noqa: E402
 
 
 def bench_case() -> tuple[Scene, CharacterNode, Interaction]:

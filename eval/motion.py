@@ -26,10 +26,10 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from proto.scene import PlacedObject, Room, Scene  # noqa: E402
 from proto.ssg import ActionNode, CharacterNode  # noqa: E402
 from services.motion.ik import global_transforms  # noqa: E402
-from wana.domain.actions import load_library  # noqa: E402
 from services.motion.planning import plan_actions  # noqa: E402
 from services.motion.synthesis import synthesise  # noqa: E402
 from wana.arrays import from_wire  # noqa: E402
+from wana.domain.actions import load_library  # noqa: E402
 from wana.domain.skeleton import JOINT_INDEX  # noqa: E402
 
 SCRIPTS = [
@@ -147,10 +147,10 @@ def scenarios(n: int, seed: int):
 
 def cmu_heldout(quick: bool) -> list[dict]:
     """Replay held-out CMU root paths through the controller; report path error and foot sliding."""
-    from wana.domain.bvh import read_bvh
     from services.motion.locomotion import locomote
     from services.motion.retarget import retarget_clip
     from services.motion.train_locomotion import HELD_OUT, SHARED
+    from wana.domain.bvh import read_bvh
 
     out = []
     for rel in HELD_OUT[:1] if quick else HELD_OUT:

@@ -21,8 +21,8 @@ from proto.scene import PlacedObject
 from services.orchestrator.document import Document
 from services.orchestrator.pipeline import PipelineResult
 from services.orchestrator.queries import content_hash
-from wana import skeleton
 from wana.arrays import from_wire, to_wire
+from wana.domain import skeleton
 from wana.domain.units import FPS
 
 

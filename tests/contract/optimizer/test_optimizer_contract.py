@@ -23,7 +23,7 @@ from tests.contract.harness import check_contract, service_fixture
 from wana.arrays import from_wire, to_wire
 from wana.domain.skeleton import JOINT_NAMES, N_JOINTS
 
-optimizer = service_fixture("optimizer")
+optimizer = service_fixture("optimizer", "wana.compose:optimizer_worker")  # as `wana worker optimizer`
 
 ROOM = Room(room_type="office", width=5.0, depth=5.0, height=3.0)
 DESK_SCENE = Scene(room=ROOM, objects=[PlacedObject(id="desk", category="desk", position=(0.0, 0.0, 0.0))])

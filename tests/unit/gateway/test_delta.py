@@ -15,8 +15,8 @@ from proto.scene import PlacedObject, Room, Scene
 from services.gateway.delta import CharacterCache, Holdings, encode_animation
 from services.gateway.messages import animation_message
 from services.orchestrator.pipeline import PipelineResult
-from wana import skeleton
 from wana.arrays import to_wire
+from wana.domain import skeleton
 
 
 def _motion(name: str, frames: int, seed: int) -> tuple[Motion, np.ndarray]:

@@ -14,8 +14,8 @@ from proto.ssg import Command, Diagnostic
 from services.gateway.messages import animation_message, diagnostics_message, mesh_url
 from services.orchestrator.document import Document
 from services.orchestrator.pipeline import PipelineResult, SentenceView
-from wana import skeleton
 from wana.arrays import to_wire
+from wana.domain import skeleton
 
 
 def _f32(b64: str) -> np.ndarray:

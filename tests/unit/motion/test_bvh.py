@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from services.motion.retarget import retarget_clip
 from wana.domain import quat
 from wana.domain.bvh import BvhError, canonical_motion, parse_bvh, read_bvh, write_bvh, write_clip
-from services.motion.retarget import retarget_clip
 from wana.domain.skeleton import JOINT_INDEX, forward_kinematics
 
 

@@ -7,11 +7,11 @@ import pytest
 
 from proto.scene import PlacedObject, Room, Scene
 from proto.ssg import ActionNode, CharacterNode
-from wana.domain import quat
 from services.motion.ik import bend_spine_to_reach, global_transforms, joint_globals, lock_feet, two_bone_ik
-from wana.domain.actions import get_clip
 from services.motion.locomotion import MODEL_DIR
 from services.motion.planning import plan_actions
+from wana.domain import quat
+from wana.domain.actions import get_clip
 from wana.domain.skeleton import JOINT_INDEX, N_JOINTS
 
 

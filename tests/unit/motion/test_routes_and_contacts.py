@@ -11,12 +11,12 @@ from proto.scene import PlacedObject, Room, Scene
 from proto.ssg import ActionNode, CharacterNode
 from services.motion.handlers import handle_synthesize
 from services.motion.ik import global_transforms
-from wana.domain.actions import get_clip
 from services.motion.planning import _object_geometry, contact_targets, plan_actions, straight_route
 from services.motion.routing import plan_scene_route
 from services.motion.synthesis import synthesise
 from wana.arrays import from_wire
 from wana.assets.catalog import make_object, to_world, world_collision_boxes
+from wana.domain.actions import get_clip
 from wana.domain.skeleton import JOINT_INDEX
 
 ROOM = Room(room_type="office", width=6, depth=6, height=3)

@@ -13,11 +13,11 @@ from proto.scene import PlacedObject, Room, Scene
 from proto.ssg import ActionNode, CharacterNode
 from services.motion.handlers import CONTRACT
 from services.motion.ik import global_transforms, two_bone_ik
-from wana.domain.actions import get_clip
 from services.motion.planning import plan_actions
 from services.motion.synthesis import synthesise, synthesise_segment
 from wana.arrays import from_wire
 from wana.bus.service import call_in_process
+from wana.domain.actions import get_clip
 from wana.domain.skeleton import JOINT_INDEX
 
 SCENE = Scene(
@@ -91,8 +91,8 @@ def test_handler_returns_a_motion_and_reports_unknown_actions():
 
 def test_motion_import_cli_adds_a_clip_without_retraining(tmp_path, monkeypatch):
     from services.motion import cli
-    from wana.domain.bvh import write_bvh
     from wana.domain.actions import reload_library
+    from wana.domain.bvh import write_bvh
 
     rot, off, _ = get_clip("clap").sample()
     write_bvh(tmp_path / "My Clap.bvh", off + [0, 0.95, 0], rot, scale=100.0)

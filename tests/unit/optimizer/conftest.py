@@ -12,6 +12,7 @@ from proto.scene import Scene
 from proto.ssg import ActionNode
 from services.motion.seated import seated_action_fn
 from wana.arrays import from_wire, to_wire
+from wana.compose import compose
 
 
 def _typing_draft(scene: Scene) -> Motion:
@@ -27,6 +28,12 @@ def _typing_draft(scene: Scene) -> Motion:
         foot_contact=to_wire(from_wire(full.foot_contact)[cut]),
         segments=[msgspec.structs.replace(seg, start_frame=0, end_frame=seg.end_frame - seg.start_frame)],
     )
+
+
+@pytest.fixture(scope="session", autouse=True)
+def composed() -> None:
+    """The optimiser re-synthesises through the motion service's code, wired in as every runtime does."""
+    compose()
 
 
 @pytest.fixture(scope="session")

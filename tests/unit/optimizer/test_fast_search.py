@@ -20,8 +20,8 @@ from wana.domain.skeleton import JOINT_INDEX, JOINT_NAMES, N_JOINTS
 catalog = pytest.importorskip("wana.assets.catalog", reason="needs the asset catalog")
 
 from services.optimizer.clearing import clearing_layouts  # noqa: E402
-from wana.domain.routes import NoRouteError, plan_route  # noqa: E402
 from services.optimizer.verify import optimise_and_verify  # noqa: E402
+from wana.domain.routes import NoRouteError, plan_route  # noqa: E402
 
 ROOM = Room(room_type="office", width=5.0, depth=5.0, height=3.0)
 PI = float(np.pi)

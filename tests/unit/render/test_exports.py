@@ -13,7 +13,6 @@ import trimesh
 from scipy.spatial.transform import Rotation
 
 from proto.ssg import Command
-from wana.domain.bvh import canonical_motion, read_bvh
 from services.render.bvh_export import write_character_bvh
 from services.render.demo import demo_scene, walk_motion
 from services.render.gltf_export import clean_skin, scene_glb
@@ -21,6 +20,7 @@ from services.render.skinning import Rig
 from services.render.video import probe
 from wana.assets.characters import EXPRESSIONS
 from wana.assets.gltf import read_glb
+from wana.domain.bvh import canonical_motion, read_bvh
 from wana.domain.skeleton import JOINT_NAMES, N_JOINTS
 
 REPO = Path(__file__).resolve().parents[3]

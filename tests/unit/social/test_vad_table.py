@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import pytest
 
-from tools.authoring import build_vad
 from services.social.face import FACE_MATRIX, face_weights
 from services.social.lexicon import TABLE, action_vad, load_table, response_candidates, word_vad
+from tools.authoring import build_vad
 from wana.assets.characters import EXPRESSIONS
 
 
