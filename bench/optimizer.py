@@ -32,6 +32,7 @@ from services.optimizer.annealing import optimise_interaction  # noqa: E402
 from services.optimizer.costs import SceneGeometry  # noqa: E402
 from services.optimizer.resynthesis import anchored_motion_fn, motion_service_fn, planned_contacts  # noqa: E402
 from services.optimizer.scoring import InteractionScorer  # noqa: E402
+from wana.compose import compose  # noqa: E402
 from wana.domain.routes import plan_route  # noqa: E402
 
 
@@ -61,6 +62,7 @@ def bench_case() -> tuple[Scene, CharacterNode, Interaction]:
 
 
 def main(argv: list[str] | None = None) -> int:
+    compose()  # the optimiser re-synthesises through the motion service, as its runtimes wire it
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quick", action="store_true", help="3 repeats (< 30 s)")
     ap.add_argument("--json", type=Path, default=None, help="write the timings here")

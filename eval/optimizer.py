@@ -38,6 +38,7 @@ from proto.ssg import ActionNode, CharacterNode  # noqa: E402
 from services.optimizer.resynthesis import motion_service_fn, planned_contacts  # noqa: E402
 from services.optimizer.scoring import InteractionScorer  # noqa: E402
 from services.optimizer.verify import optimise_and_verify  # noqa: E402
+from wana.compose import compose  # noqa: E402
 
 REPO = Path(__file__).resolve().parents[1]
 CONTACT_OK_M = 0.05
@@ -276,6 +277,7 @@ def plot_curves(rows: list[dict], path: Path) -> None:
 
 
 def main(argv: list[str] | None = None) -> int:
+    compose()  # the optimiser re-synthesises through the motion service, as its runtimes wire it
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument(
         "--quick",

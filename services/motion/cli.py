@@ -18,6 +18,7 @@ from tqdm import tqdm
 from wana.domain import quat
 from wana.domain.actions import EULER_ORDER, IMPORTED_DIR, clip_from_dict, load_library, reload_library
 from wana.domain.skeleton import JOINT_NAMES
+from wana.domain.units import FPS
 
 
 def clip_dict_from_bvh(
@@ -58,7 +59,7 @@ def clip_dict_from_bvh(
         e = quat.to_euler(EULER_ORDER, local[f])
         keys.append(
             {
-                "t": round(f / 30.0, 4),
+                "t": round(f / FPS, 4),
                 "ease": "linear",
                 "pose": {n: [round(float(v), 3) for v in e[j]] for j, n in enumerate(JOINT_NAMES)},
                 "root": [round(float(v), 4) for v in offs[f]],
@@ -68,7 +69,7 @@ def clip_dict_from_bvh(
         "name": name,
         "tags": tags,
         "synonyms": synonyms,
-        "duration_s": round((len(rot) - 1) / 30.0, 4),
+        "duration_s": round((len(rot) - 1) / FPS, 4),
         "looping": looping,
         "body_parts": ["full_body"],
         "contact_joints": [],

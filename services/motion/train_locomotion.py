@@ -25,6 +25,7 @@ from services.motion.gait import random_trajectory, synthesize_gait
 from services.motion.locomotion_features import build_xy
 from wana.domain import quat
 from wana.domain.paths import model_path
+from wana.domain.units import FPS
 
 REPO = Path(__file__).resolve().parents[2]  # training runs from a checkout (reads ../shared/data)
 MODEL_DIR = model_path("locomotion")
@@ -67,7 +68,7 @@ def label_phase(contacts: np.ndarray) -> np.ndarray:
         events += [(i, val) for i in on]
     events.sort()
     if len(events) < 2:
-        return np.mod(np.arange(t) / 30.0, 1.0)
+        return np.mod(np.arange(t) / FPS, 1.0)
     idx = np.array([e[0] for e in events], float)
     vals = np.array([e[1] for e in events])
     unwrapped = [vals[0]]
@@ -107,7 +108,7 @@ def cmu_corpus(shared: Path = SHARED):
         for k, name in enumerate(("LeftFoot", "RightFoot")):
             f = pos[:, JOINT_INDEX[name]]
             v = np.zeros(len(f))
-            v[1:] = np.linalg.norm(np.diff(f, axis=0), axis=1) * 30
+            v[1:] = np.linalg.norm(np.diff(f, axis=0), axis=1) * FPS
             contacts[:, k] = ((f[:, 1] < f[:, 1].min() + 0.05) & (v < 0.6)).astype(np.uint8)
         yield root, rot, heading, label_phase(contacts), contacts, None
 

@@ -26,9 +26,10 @@ from wana.arrays import to_wire
 from wana.bus.service import InvalidInput
 from wana.domain.object_geometry import CatalogUnavailable
 from wana.domain.routes import NoRouteError, plan_route
+from wana.domain.units import FPS
 
 MAX_OBJECTS = 512
-MAX_FRAMES = 30 * 600  # ten minutes of motion
+MAX_FRAMES = FPS * 600  # ten minutes of motion
 
 
 def _reply_header(request: Any) -> Header:

@@ -22,6 +22,7 @@ from services.optimizer.costs import (
     joint_index,
     total_cost,
 )
+from wana.domain.units import FPS
 
 LOCOMOTION_ACTIONS = ("walk", "run", "jog", "turn", "locomotion")
 APPROACH_S = 2.0  # the end of a walk into an action, during which touching the action's targets is contact
@@ -107,7 +108,7 @@ def action_frames(motion: Motion, interaction: Interaction, n_frames: int) -> tu
 
 
 @functools.lru_cache(maxsize=256)
-def contact_window(action: str, fps: int = 30) -> tuple[int, int] | None:
+def contact_window(action: str, fps: int = FPS) -> tuple[int, int] | None:
     """[first, last) frame, from the clip's start, during which a non-looping clip holds its contacts.
 
     From the motion service's action library; None when the clip loops, has no window, or the

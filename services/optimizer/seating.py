@@ -32,6 +32,7 @@ from services.optimizer.motion_port import installed
 from services.optimizer.resynthesis import MotionFn
 from services.optimizer.scoring import action_segment, is_locomotion
 from wana.arrays import from_wire
+from wana.domain.units import FPS
 
 SEATED_HIPS_MAX_M = 0.8  # hips below this height (metres) at the first frame: the character is seated
 SEAT_SEARCH_M = 0.8  # a seat point this far (x, z metres) from the draft's hips may be its seat
@@ -106,6 +107,6 @@ def seated_verifier(motion: Motion, interaction: Interaction, seat: Seat) -> Mot
         verb=interaction.action,
         action=interaction.action,
         target=target,
-        duration_s=(a1 - a0) / float(motion.fps or 30),
+        duration_s=(a1 - a0) / float(motion.fps or FPS),
     )
     return installed().seated_action(motion.character, seat.object_id, node)

@@ -16,9 +16,10 @@ from services.social.plan import MAX_MH_STEPS, expression_track, plan_social
 from services.social.story import StoryError
 from wana.arrays import to_wire
 from wana.bus.service import InvalidInput
+from wana.domain.units import FPS
 
 MAX_GRAPHS = 2000
-MAX_FRAMES = 30 * 600  # ten minutes at 30 fps
+MAX_FRAMES = FPS * 600  # ten minutes
 
 
 def _reply_header(request: Any) -> Header:

@@ -32,6 +32,7 @@ from services.social.face import expression_names, face_weights
 from services.social.relations import inverse_label
 from services.social.sampler import sample
 from services.social.story import Story, read_story
+from wana.domain.units import FPS
 
 ONSET_S = 0.4
 REACTION_LAG_S = 0.3
@@ -288,7 +289,7 @@ def expression_track(
     plan: SocialPlan,
     character: str,
     segments: list[Segment],
-    fps: int = 30,
+    fps: int = FPS,
     *,
     frames: int | None = None,
     others: dict[str, list[Segment]] | None = None,

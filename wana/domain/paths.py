@@ -35,7 +35,10 @@ def _checkout_root() -> Path:
 def _locate(kind: str, env: str) -> Path:
     override = os.environ.get(env)
     if override:
-        return Path(override).expanduser().resolve()
+        folder = Path(override).expanduser().resolve()
+        if not folder.is_dir():
+            raise AssetsNotFound(f"${env} is {override!r}, which is no folder")
+        return folder
     packaged = Path(str(resources.files("wana"))) / PACKAGED / kind
     if packaged.is_dir():
         return packaged
