@@ -1,4 +1,4 @@
-"""Walking routes for planning: the optimizer's A* (wana.domain.routes) on cached occupancy grids.
+"""Walking routes for planning: the domain library's A* (wana.domain.routes) on cached occupancy grids.
 
 ``scene_route`` answers exactly what ``wana.domain.routes.plan_route`` answers (the same grid,
 the same A*, the same last step into the goal object's clearance), but rasterises each floor object
@@ -90,7 +90,7 @@ def object_mask(room: Room, obj: PlacedObject, radius: float = RADIUS, cell: flo
 def scene_grid(
     scene: Scene, ignore: frozenset[str] = frozenset(), radius: float = RADIUS, cell: float = CELL
 ):  # noqa: ANN201
-    """The optimizer's OccupancyGrid of the scene minus the ignored objects (built from cached masks)."""
+    """The OccupancyGrid (wana.domain.routes) of the scene minus the ignored objects (built from cached masks)."""
     from wana.domain.routes import OccupancyGrid
 
     walls, origin = _walls(scene.room, radius, cell)

@@ -1,5 +1,5 @@
 """Words -> canonical names: object categories, attributes, rooms (from ``wana.assets.vocabulary``) and
-actions (from the motion library, ``wana.domain.actions``), plus the NLP stage's own word lists
+actions (from the action catalogue, ``wana.domain.actions``), plus the NLP stage's own word lists
 (people, relation words, manners, social labels).
 
 Every lookup is cached; the action library loads on first use. Over 400 lines because most of it

@@ -1,6 +1,6 @@
 """One BVH per character: the canonical skeleton with that character's bone lengths, metres, 30 fps.
 
-Written with the motion service's writer (``wana.domain.bvh``), so our importer reads it back
+Written with the domain library's BVH writer (``wana.domain.bvh``), so our importer reads it back
 exactly; the channel layout (root XYZ position + ZYX rotations, ZYX rotations elsewhere) is the
 common one that Blender, MotionBuilder and PyPI parsers such as ``bvh`` read.
 """

@@ -1,9 +1,9 @@
-"""Object geometry the optimiser needs, read from the asset catalog and cached per variant.
+"""Object geometry for collisions and routes, read from the asset catalog and cached per variant.
 
 An object's pose is T(position) · R_y(yaw) · S(scale) (the catalog's ``object_to_world``). Under a
 yaw-only rotation an object-frame box stays a box, so each collision box becomes an oriented box
-in the world: centre, half extents and the object's yaw. The optimiser works on those arrays;
-everything here is vectorised over boxes.
+in the world: centre, half extents and the object's yaw. The optimiser and the routes work on
+those arrays; everything here is vectorised over boxes.
 """
 
 from __future__ import annotations
