@@ -47,4 +47,4 @@ models:  ## rebuild every committed model and generated asset (needs ../shared/d
 	$(PY) -m tools.authoring.build_vad
 
 clean:
-	rm -rf $(OUT) .pytest_cache .ruff_cache .mypy_cache
+	rm -rf $(OUT) .pytest_cache .ruff_cache .mypy_cache .import_linter_cache
