@@ -2,8 +2,8 @@
 
 Target objects' stand points and contact points come from the asset catalog
 (wana.assets.catalog); routes from route_fn(scene, start_xz, goal_xz[, ignore]) -> (N, 2)
-waypoints. The default is the optimizer's A* around the furniture (services.motion.routing, on
-cached occupancy grids), ignoring the object walked to and what rests on it so that a goal inside
+waypoints. The default is the domain library's A* (wana.domain.routes) around the furniture
+(services.motion.routing, on cached occupancy grids), ignoring the object walked to and what rests on it so that a goal inside
 its clearance is reachable; where no route exists the character walks the straight line and the
 plan carries a diagnostic.
 

@@ -18,6 +18,17 @@ import msgspec
 import numpy as np
 
 from proto.scene import PlacedObject, Room, Scene
+from wana.domain.object_geometry import scene_footprints
+from wana.domain.routes import (
+    HOST_M,
+    Footprints,
+    NoRouteError,
+    OccupancyGrid,
+    occupancy_grid,
+    plan_route_on_grid,
+    point_rect_distance,
+    segment_is_free,
+)
 
 RADIUS = 0.25  # metres: the walking body's clearance (plan_route's default)
 CELL = 0.05  # metres per grid cell (plan_route's default)
@@ -56,8 +67,6 @@ def _room_key(room: Room) -> tuple:
 
 
 def _walls(room: Room, radius: float, cell: float) -> tuple[np.ndarray, np.ndarray]:
-    from wana.domain.routes import Footprints, occupancy_grid
-
     def build():  # noqa: ANN202
         grid = occupancy_grid(room, Footprints.from_aabbs(np.zeros((0, 2, 3))), radius=radius, cell=cell)
         return grid.blocked, grid.origin
@@ -72,8 +81,6 @@ def wall_mask(room: Room, radius: float = RADIUS, cell: float = CELL) -> np.ndar
 
 def object_mask(room: Room, obj: PlacedObject, radius: float = RADIUS, cell: float = CELL):  # noqa: ANN201
     """(blocked (H, W) bool of the object's footprints grown by ``radius``, its Footprints), cached by placement."""
-    from wana.domain.object_geometry import scene_footprints
-    from wana.domain.routes import Footprints, occupancy_grid
 
     def build():  # noqa: ANN202
         try:
@@ -91,8 +98,6 @@ def scene_grid(
     scene: Scene, ignore: frozenset[str] = frozenset(), radius: float = RADIUS, cell: float = CELL
 ):  # noqa: ANN201
     """The OccupancyGrid (wana.domain.routes) of the scene minus the ignored objects (built from cached masks)."""
-    from wana.domain.routes import OccupancyGrid
-
     walls, origin = _walls(scene.room, radius, cell)
     blocked = walls.copy()
     for obj in scene.objects:
@@ -135,14 +140,6 @@ def plan_scene_route(
     Raises:
         NoRouteError: when no route exists.
     """
-    from wana.domain.routes import (
-        HOST_M,
-        OccupancyGrid,
-        plan_route_on_grid,
-        point_rect_distance,
-        segment_is_free,
-    )
-
     grid = scene_grid(scene, ignore, radius, cell)
     start = np.asarray(start_xz, dtype=np.float64).reshape(2)
     goal = np.asarray(goal_xz, dtype=np.float64).reshape(2)
@@ -219,8 +216,6 @@ def scene_route(
     Returns:
         waypoints (N, 2) metres, world; "" or a diagnostic saying why the route is straight.
     """
-    from wana.domain.routes import NoRouteError
-
     try:
         return plan_scene_route(scene, start_xz, goal_xz, ignore=ignore, into_hosts=False), ""
     except NoRouteError as exc:

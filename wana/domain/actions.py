@@ -22,6 +22,7 @@ import numpy as np
 
 from wana.domain import quat
 from wana.domain.paths import asset_path
+from wana.domain.posing import neutral
 from wana.domain.skeleton import JOINT_INDEX, JOINT_NAMES, N_JOINTS
 from wana.domain.units import FPS
 
@@ -103,8 +104,6 @@ def _ease(u: np.ndarray, kind: str) -> np.ndarray:
 @functools.lru_cache(maxsize=1)
 def neutral_rotations() -> np.ndarray:
     """(J, 4) the neutral standing pose every clip starts from."""
-    from wana.domain.posing import neutral
-
     rot = quat.identity((N_JOINTS,))
     for name, q in neutral().items():
         rot[JOINT_INDEX[name]] = q
