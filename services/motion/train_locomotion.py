@@ -24,10 +24,10 @@ import numpy as np
 from services.motion.gait import random_trajectory, synthesize_gait
 from services.motion.locomotion_features import build_xy
 from wana.domain import quat
-from wana.domain.paths import model_path
+from wana.domain.paths import model_path, repo_root
 from wana.domain.units import FPS
 
-REPO = Path(__file__).resolve().parents[2]  # training runs from a checkout (reads ../shared/data)
+REPO = repo_root() or Path.cwd()  # training runs from a checkout (reads ../shared/data beside it)
 MODEL_DIR = model_path("locomotion")
 SHARED = Path(os.environ.get("WANA_SHARED_DATA", REPO.parent / "shared" / "data"))
 ROLLOUT_STEPS = 10

@@ -20,7 +20,6 @@ RUNTIME = [REPO / "proto", REPO / "services", REPO / "wana"]
 # Modules that may still compute the checkout from __file__, and why.
 CHECKOUT_READERS = {
     "services/gateway/settings.py": "the editor's dist/ is built beside the checkout, not packaged",
-    "services/motion/train_locomotion.py": "training reads ../shared/data beside a checkout",
 }
 
 
