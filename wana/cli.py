@@ -55,16 +55,15 @@ def _cmd_broker(args: argparse.Namespace) -> int:
 
 def _cmd_worker(args: argparse.Namespace) -> int:
     try:
-        mod = importlib.import_module(f"services.{args.service}.worker")
+        importlib.import_module(f"services.{args.service}.worker")  # in this build?
     except ImportError as exc:
         print(f"wana: the {args.service} worker is not available in this build ({exc})", file=sys.stderr)
         return 3
     print(f"wana worker {args.service} connecting to {args.connect}", file=sys.stderr, flush=True)
-    from wana.compose import compose
+    from wana.compose import serve_worker  # wires what the service needs of others (the optimiser's motion)
 
-    compose()  # the optimiser's motion re-synthesis comes from the motion service's code
     try:
-        mod.main(args.connect)
+        serve_worker(args.service, args.connect)
     except KeyboardInterrupt:
         pass
     return 0

@@ -47,9 +47,17 @@ def contract(service: str) -> dict[type, Any]:
     return importlib.import_module(f"services.{service}.handlers").CONTRACT  # type: ignore[no-any-return]
 
 
-def optimizer_worker(connect: str) -> None:
-    """``wana worker optimizer``: compose, then serve the optimiser at the broker ``connect``."""
-    compose()
-    from services.optimizer.worker import main
+def serve_worker(service: str, connect: str) -> None:
+    """``wana worker SERVICE``: one worker at the broker ``connect``, with what it needs wired in.
 
-    main(connect)
+    Raises:
+        ImportError: the service is not in this build.
+    """
+    worker = importlib.import_module(f"services.{service}.worker")
+    compose()
+    worker.main(connect)
+
+
+def optimizer_worker(connect: str) -> None:
+    """``wana worker optimizer`` as a one-argument entry point (the contract tests' worker)."""
+    serve_worker("optimizer", connect)

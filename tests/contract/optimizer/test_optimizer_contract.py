@@ -7,7 +7,7 @@ import msgspec
 import numpy as np
 import pytest
 
-from proto.common import Header
+from proto.common import ErrorReply, Header
 from proto.motion_data import Motion, Segment
 from proto.optimizer import (
     ContactPair,
@@ -18,6 +18,7 @@ from proto.optimizer import (
     RouteRequest,
 )
 from proto.scene import PlacedObject, Room, Scene
+from proto.ssg import ActionNode, CharacterNode
 from services.optimizer.handlers import CONTRACT
 from tests.contract.harness import check_contract, service_fixture
 from wana.arrays import from_wire, to_wire
@@ -181,3 +182,46 @@ def test_bad_requests_get_error_replies_and_the_worker_keeps_serving(optimizer):
     )
     ok = RouteRequest(header=Header(), scene=DESK_SCENE, start=(-2.0, -2.0), goal=(2.0, -2.0))
     check_contract(CONTRACT, ok, optimizer.request("optimizer", msgspec.msgpack.encode(ok)))
+
+
+def _motion_service_request() -> OptimiseRequest:
+    """Eve walks to the chair; the desk may move; motion re-synthesised by the motion service."""
+    scene = Scene(
+        room=ROOM,
+        objects=[
+            PlacedObject(id="desk", category="desk", position=(0.0, 0.0, 0.0)),
+            PlacedObject(id="chair", category="chair", position=(1.2, 0.0, 1.2)),
+        ],
+    )
+    eve = CharacterNode(name="Eve", actions=[ActionNode(verb="walk", action="walk", destination="chair")])
+    return OptimiseRequest(
+        header=Header(doc_id="doc", revision=6),
+        scene=scene,
+        motion=_standing(-1.5, -1.5),
+        interaction=Interaction(character="Eve", action="walk", movable=["desk"]),
+        settings=OptimiseSettings(steps=2, proposals=1, seed=1),
+        resynthesis="motion_service",
+        character=eve,
+        start=(-1.5, -1.5, 0.0),
+    )
+
+
+@pytest.mark.contract
+def test_motion_service_resynthesis_runs_in_the_worker_through_the_composed_motion(optimizer):
+    """The worker process re-synthesises with the motion service's code that `wana worker` wires in."""
+    req = _motion_service_request()
+    raw = optimizer.request("optimizer", msgspec.msgpack.encode(req), deadline_s=120)
+    reply = check_contract(CONTRACT, req, raw)  # an ErrorReply here: the worker could not re-synthesise
+    assert reply.resynthesis == "motion_service" and reply.steps_run == 2
+    assert len(reply.cost_curve) == 3
+
+
+@pytest.mark.contract
+def test_a_worker_started_without_the_composition_root_answers_motion_service_with_an_error():
+    """Started as services.optimizer.worker:main alone it has no motion synthesis, and says so."""
+    from tests.contract.harness import running_service
+
+    with running_service("optimizer") as bare:
+        raw = bare.request("optimizer", msgspec.msgpack.encode(_motion_service_request()), deadline_s=60)
+    reply = msgspec.msgpack.decode(raw, type=ErrorReply)
+    assert reply.status == "error" and "wana worker optimizer" in reply.message
