@@ -11,7 +11,6 @@ first: ``wana worker optimizer`` (wana.cli), the embedded runtime and the in-pro
 from __future__ import annotations
 
 import importlib
-from typing import Any
 
 from proto.motion_data import Motion
 from proto.scene import Scene
@@ -39,12 +38,6 @@ def motion_for_optimizer() -> motion_port.MotionSynthesis:
 def compose() -> None:
     """Wire the services of this process together (idempotent; loads motion's modules once)."""
     motion_port.install(motion_for_optimizer())
-
-
-def contract(service: str) -> dict[type, Any]:
-    """A service's request -> handler table, with what it needs of other services wired in."""
-    compose()
-    return importlib.import_module(f"services.{service}.handlers").CONTRACT  # type: ignore[no-any-return]
 
 
 def serve_worker(service: str, connect: str) -> None:
