@@ -135,7 +135,7 @@ def story_kinds(story: Path | str, text: str) -> list[str]:
 def assign_splits(names: Iterable[str]) -> dict[str, str]:
     """The split rule: in name order, each story goes where its kind, then its room, then all are fewest.
 
-    Deterministic, so adding a story moves no other; every kind and room with two stories is in both splits.
+    Deterministic and blind to the text; a story whose name sorts last moves no other.
     """
     count: dict[str, collections.Counter[str]] = {s: collections.Counter() for s in ("dev", "test")}
     out: dict[str, str] = {}
