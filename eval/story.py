@@ -29,11 +29,11 @@ import json
 import os
 import pkgutil
 import re
+import shutil
 import sys
 import tempfile
 import time
 import traceback
-import warnings
 from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
 from typing import Any
@@ -181,7 +181,7 @@ class MissingStage(RuntimeError):
 def fidelity_api() -> tuple[Callable[..., Any], Callable[..., Any]]:
     """``wana.fidelity.story_checks`` and ``verdicts``; MissingStage when the package is not there."""
     try:
-        from wana.fidelity import story_checks, verdicts  # type: ignore[import-not-found]
+        from wana.fidelity import story_checks, verdicts
     except ImportError as exc:
         raise MissingStage(f"wana.fidelity (the story checks) is not in this build: {exc}") from exc
     return story_checks, verdicts
@@ -205,7 +205,7 @@ def camera_api() -> Callable[..., Any]:
 def gallery_api() -> Callable[..., Any] | None:
     """``services.render.gallery.contact_sheet``, or None (the gallery is skipped with a warning)."""
     try:
-        from services.render.gallery import contact_sheet  # type: ignore[import-not-found]
+        from services.render.gallery import contact_sheet
     except ImportError:
         return None
     return contact_sheet
@@ -256,13 +256,17 @@ def _compute(text: str, doc_id: str, seed: int) -> Any:
 
 
 def evaluate_story(path: Path, seed: int = 0, gallery: Path | None = None) -> dict[str, Any]:
+    """One story file (read as `wana animate` reads it: undecodable bytes replaced)."""
+    return evaluate_text(path.stem, path.read_text(encoding="utf-8", errors="replace"), seed, gallery)
+
+
+def evaluate_text(story: str, text: str, seed: int = 0, gallery: Path | None = None) -> dict[str, Any]:
     """Compute one story, check every sentence; a crash anywhere is this story's failure, with its reason."""
-    text = path.read_text(encoding="utf-8", errors="replace")
-    row: dict[str, Any] = {"story": path.stem, "kinds": story_kinds(path, text), "error": "", "gallery": []}
+    row: dict[str, Any] = {"story": story, "kinds": story_kinds(story, text), "error": "", "gallery": []}
     pieces = split_sentences(text)
     t0 = time.perf_counter()
     try:
-        result = _compute(text, path.stem, seed)
+        result = _compute(text, story, seed)
         row["compute_s"] = time.perf_counter() - t0
         story_checks, verdicts = fidelity_api()
         camera_checks = camera_api()
@@ -308,7 +312,7 @@ def evaluate_story(path: Path, seed: int = 0, gallery: Path | None = None) -> di
     t1 = time.perf_counter()
     if gallery is not None:
         try:
-            row["gallery"] = _gallery(result, row, gallery / path.stem)
+            row["gallery"] = _gallery(result, row, gallery / story)
         except Exception:
             row.setdefault("gallery_errors", []).append(traceback.format_exc().strip().splitlines()[-1])
     row["gallery_s"] = time.perf_counter() - t1
@@ -322,6 +326,7 @@ def _gallery(result: Any, row: dict[str, Any], folder: Path) -> list[str]:
     contact_sheet = gallery_api()
     if contact_sheet is None:
         return []
+    shutil.rmtree(folder, ignore_errors=True)  # no sheet left from an earlier run of a sentence now ok
     total = max((m.root_position.shape[0] for m in result.motions.values()), default=1)
     written = []
     for s in row["per_sentence"]:
@@ -459,7 +464,10 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     gallery: Path | None = args.gallery_dir if args.gallery else None
     if gallery is not None and gallery_api() is None:
-        warnings.warn("services.render.gallery.contact_sheet is not in this build: no gallery", stacklevel=1)
+        print(
+            "eval/story.py: warning: services.render.gallery is not in this build: no gallery",
+            file=sys.stderr,
+        )
         gallery = None
     paths = story_paths(args.split, args.stories)
     if not paths:

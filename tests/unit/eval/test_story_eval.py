@@ -221,3 +221,17 @@ def test_a_folder_of_two_stories_gives_the_documented_json(story_eval, tmp_path)
     assert set(data["checks"]) >= {"object_exists", "performed", "in_view", "command_visible"}
     for name, failures in data["checks"].items():
         assert failures == sum(any(f["name"] == name for f in s["failed"]) for s in sentences)
+
+
+def test_a_story_that_crashes_the_pipeline_is_a_failed_story_not_a_crash_of_the_eval(story_eval):
+    # A lone surrogate (what a JSON "\ud800" escape decodes to) is a text the session store cannot encode today.
+    text = "In the office there is a desk$.\nEve walks to the desk. Eve sits.\ud800\ncamera left"
+    row = story_eval.evaluate_text("surrogate", text, seed=0, gallery=None)
+    assert row["story"] == "surrogate" and row["sentences"] == len(row["per_sentence"]) == 4
+    if row["error"]:
+        assert not row["ok"] and "\n" not in row["error"] and ":" in row["error"]
+        assert all(s["verdict"] == "failed" for s in row["per_sentence"])
+        assert all(s["failed"][0]["reason"] == row["error"] for s in row["per_sentence"])
+    summary = story_eval.summarise([row], seed=0, split="x")
+    assert summary["crashed"] == bool(row["error"]) and summary["stories"] == 1
+    assert summary["story_fidelity"] == float(row["ok"])
