@@ -235,3 +235,45 @@ def test_a_story_that_crashes_the_pipeline_is_a_failed_story_not_a_crash_of_the_
     summary = story_eval.summarise([row], seed=0, split="x")
     assert summary["crashed"] == bool(row["error"]) and summary["stories"] == 1
     assert summary["story_fidelity"] == float(row["ok"])
+
+
+def _sentence(sid: str, verdict: str, checks: list[str], failed: list[str]) -> dict:
+    return {
+        "id": sid,
+        "kind": "action",
+        "text": sid,
+        "verdict": verdict,
+        "checks": checks,
+        "failed": [{"name": n, "reason": f"{n} fails", "frames": [1], "character": "Eve"} for n in failed],
+    }
+
+
+def test_the_summary_counts_failing_sentences_per_check_and_the_two_shares(story_eval):
+    shown = {
+        "story": "a",
+        "ok": True,
+        "error": "",
+        "compute_s": 1.0,
+        "sentences": 2,
+        "per_sentence": [_sentence("s1", "ok", ["performed"], []), _sentence("s2", "ok", [], [])],
+    }
+    partial = {
+        "story": "b",
+        "ok": False,
+        "error": "",
+        "compute_s": 3.0,
+        "sentences": 3,
+        "per_sentence": [
+            _sentence("s1", "partial", ["contact", "performed"], ["contact"]),
+            _sentence("s2", "failed", ["contact", "performed"], ["contact", "performed"]),
+            _sentence("s3", "ok", ["in_view"], []),
+        ],
+    }
+    summary = story_eval.summarise([shown, partial], seed=3, split="dev")
+    assert JSON_KEYS <= set(summary)
+    assert summary["sentence_fidelity"] == pytest.approx(3 / 5) and summary["story_fidelity"] == 0.5
+    assert summary["checks"]["contact"] == 2 and summary["checks"]["performed"] == 1
+    assert summary["checked"]["performed"] == 3 and summary["checks"]["overlap"] == 0
+    assert (summary["stories"], summary["sentences"], summary["seed"], summary["split"]) == (2, 5, 3, "dev")
+    assert summary["verdicts"] == {"ok": 3, "partial": 1, "failed": 1} and summary["unchecked"] == 1
+    assert summary["compute_s_max"] == 3.0 and json.loads(json.dumps(summary)) == summary
