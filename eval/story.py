@@ -225,7 +225,10 @@ def _sentence_frames(motions: dict[str, Any], sentence_id: str) -> tuple[int, in
 
 
 def sheet_frames(failing: Sequence[int], span: tuple[int, int] | None, total: int) -> list[int]:
-    """At most SHEET_TILES frames for one sentence's contact sheet: failing ones, and its first and last."""
+    """At most SHEET_TILES frames for one sentence's contact sheet: failing ones, and its first and last.
+
+    Failing frames inside the sentence's own frames come first (a check may also name frames elsewhere).
+    """
 
     def spread(frames: Sequence[int], n: int) -> list[int]:
         frames = sorted(set(frames))
@@ -234,6 +237,8 @@ def sheet_frames(failing: Sequence[int], span: tuple[int, int] | None, total: in
         return [frames[round(i * (len(frames) - 1) / (n - 1))] for i in range(n)]
 
     context = [span[0], max(span[0], span[1] - 1)] if span else []
+    inside = [f for f in failing if span and span[0] <= f < span[1]]
+    failing = inside or failing
     if failing:
         picked = spread(failing, SHEET_TILES - len(context)) + context
     elif span:

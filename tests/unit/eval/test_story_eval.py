@@ -173,6 +173,8 @@ def test_sheet_frames_keep_the_failing_frames_and_the_sentence_ends(story_eval):
     frames = story_eval.sheet_frames(list(range(100, 200)), (90, 210), 400)
     assert len(frames) <= story_eval.SHEET_TILES and {90, 209, 100, 199} <= set(frames)
     assert story_eval.sheet_frames([], None, 10) == [0, 5, 9]
+    assert story_eval.sheet_frames([5, 150, 160], (100, 200), 400) == [100, 150, 160, 199]
+    assert story_eval.sheet_frames([5, 6], (100, 200), 400) == [5, 6, 100, 199]
 
 
 def _real_checks_or_skip(story_eval):
