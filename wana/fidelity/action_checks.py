@@ -223,20 +223,23 @@ def _candidates(act: Act, world: World, characters: set[str]) -> tuple[list[Plac
     return [o for o in world.scene.objects if meant & set(world.contact_points(o))], ""
 
 
-def contact(act: Act, body: Body, world: World, bodies: Mapping[str, Body]) -> tuple[Check | None, set[str]]:
-    """The `contact` check of one action and the objects it touches on purpose (exempt from `penetration`)."""
+def contact(
+    act: Act, body: Body, world: World, bodies: Mapping[str, Body]
+) -> tuple[Check | None, dict[str, bool]]:
+    """The `contact` check of one action and the objects it touches on purpose (exempt from `penetration`):
+    object id -> True when the whole body may touch it, False for the arms only."""
     clip = clip_needs(act.node.action)
     who, verb = act.character, act.node.verb or act.node.action
     base = {"name": "contact", "character": who}
     if clip is None or act.clip is None:
-        return None, set()
+        return None, {}
     if is_locomotion(act.node.action):
-        return _arrival(act, body, world, bodies), set()
+        return _arrival(act, body, world, bodies), {}
     if not clip.object:
-        return None, set()
+        return None, {}
     frames = window_frames(act)
     if clip.object == "person":
-        return _touch_person(act, body, bodies, frames), set()
+        return _touch_person(act, body, bodies, frames), {}
     candidates, word = _candidates(act, world, set(bodies))
     if not candidates:
         if clip.object in HELD:
@@ -252,14 +255,15 @@ def contact(act: Act, body: Body, world: World, bodies: Mapping[str, Body]) -> t
                 essential=True,
                 reason=reason,
             ),
-            set(),
+            {},
         )
     got = reach(act, body, world, candidates)
     if got is None:
         name = display(candidates[0].id)
-        return Check(**base, ok=False, reason=f"the {name} has no place for {who} to {verb} with"), set()
+        return Check(**base, ok=False, reason=f"the {name} has no place for {who} to {verb} with"), {}
     name = display(got.placed.id)
-    touching = world.supports_chain(got.placed)
+    # the object itself with the whole body; what it rests on (the desk under the laptop) with the arms only
+    touching = {oid: oid == got.placed.id for oid in world.supports_chain(got.placed)}
     shares = {j: float(np.mean(d <= CONTACT_M)) for j, d in got.distance.items()}
     worst = min(shares, key=lambda j: shares[j])
     fr = np.asarray(frames)

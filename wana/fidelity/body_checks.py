@@ -54,8 +54,8 @@ def penetration(body: Body, world: World, exempt: dict[str, np.ndarray]) -> Fram
     Args:
         body: the character.
         world: the room.
-        exempt: object id -> (T,) bool frames where touching it is the stated contact (the chair being sat
-            on, the desk under the laptop being typed on).
+        exempt: object id -> (T, P) bool: the body spheres and frames whose touching it is the stated contact
+            (the whole body on the chair being sat on, the arms on the desk under the laptop being typed on).
     """
     out = FrameFailures.none(body.frames)
     for placed, boxes, outer in world.solids:
@@ -63,7 +63,7 @@ def penetration(body: Body, world: World, exempt: dict[str, np.ndarray]) -> Fram
         r = body.radii[None, :, None]
         near = np.all((body.points >= outer[0] - r) & (body.points <= outer[1] + r), axis=2)  # (T, P)
         if allowed is not None:
-            near &= ~allowed[:, None]
+            near &= ~allowed
         if not near.any():
             continue
         t_idx, p_idx = np.nonzero(near)

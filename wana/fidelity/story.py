@@ -39,6 +39,9 @@ DROPPED = {
     "E110": ("performed", True),
     "E112": ("performed", True),
 }
+ARMS = np.array(
+    [n.removeprefix("Left").removeprefix("Right") in ("Hand", "HandMiddle1", "ForeArm") for n in JOINT_NAMES]
+)
 STAGE_NEEDS = {  # stage -> the sentence kinds that cannot be shown without it
     "parse": ("scene", "action", "command", "empty"),
     "scene": ("scene", "action"),
@@ -148,10 +151,10 @@ def _action_checks(
         if act.clip is not None:
             hold = np.zeros(body.frames, bool)
             hold[act.start : until] = True  # backing up to a seat touches it too
-            for oid in used:
-                exempt[act.character][oid] = (
-                    exempt[act.character].get(oid, np.zeros(body.frames, bool)) | hold
-                )
+            for oid, whole in used.items():
+                points = np.ones(len(body.radii), bool) if whole else ARMS[body.point_joint]
+                mask = exempt[act.character].setdefault(oid, np.zeros((body.frames, len(body.radii)), bool))
+                mask |= hold[:, None] & points[None, :]
             clip = clip_needs(act.node.action)
             if clip is not None and clip.object == "person":
                 other = ac._other_character(act, bodies)
