@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
+from functools import partial
 
 import numpy as np
 
@@ -105,14 +106,13 @@ def span_words(frames: np.ndarray | list[int]) -> str:
 def performed(act: Act, has_motion: bool, previous_start: int) -> Check:
     """The right character plays the asked clip, no earlier than the action the text puts before it."""
     who, verb = act.character, act.node.verb or act.node.action
-    base = {"name": "performed", "character": who}
+    base = partial(Check, name="performed", character=who)
     if not has_motion:
-        return Check(**base, ok=False, essential=True, reason=f"{who} does not appear in the animation")
+        return base(ok=False, essential=True, reason=f"{who} does not appear in the animation")
     shown = sorted({s.action for s in act.segments if s.action not in ("hold",)})
     if not act.node.action:
         instead = f"{who} {'does ' + ', '.join(shown) if shown else 'stands still'} instead"
-        return Check(
-            **base,
+        return base(
             ok=False,
             essential=True,
             reason=f"'{verb}' is not an action wana knows: {instead}",
@@ -121,23 +121,20 @@ def performed(act: Act, has_motion: bool, previous_start: int) -> Check:
     seg = act.clip
     if seg is None:
         instead = f"{who} does {', '.join(shown)} instead" if shown else f"{who} never does it"
-        return Check(
-            **base,
+        return base(
             ok=False,
             essential=True,
             reason=f"the animation does not show {who} {verb}: {instead}",
             frames=frame_list(range(act.start, act.end)) if act.start >= 0 else [],
         )
     if act.start < previous_start:
-        return Check(
-            **base,
+        return base(
             ok=False,
             reason=f"{who} starts to {verb} at frame {act.start}, before the action the text tells earlier "
             f"(frame {previous_start})",
             frames=[seg.start_frame],
         )
-    return Check(
-        **base,
+    return base(
         ok=True,
         reason=f"{who} does {act.node.action.replace('_', ' ')} ({span_words([seg.start_frame, seg.end_frame - 1])})",
     )
@@ -230,7 +227,7 @@ def contact(
     object id -> True when the whole body may touch it, False for the arms only."""
     clip = clip_needs(act.node.action)
     who, verb = act.character, act.node.verb or act.node.action
-    base = {"name": "contact", "character": who}
+    base = partial(Check, name="contact", character=who)
     if clip is None or act.clip is None:
         return None, {}
     if is_locomotion(act.node.action):
@@ -249,8 +246,7 @@ def contact(
             what = display(word) if word else KIND_WORDS.get(clip.object, clip.object)
             reason = f"there is no {what} in the room for {who} to {verb}"
         return (
-            Check(
-                **base,
+            base(
                 ok=False,
                 essential=True,
                 reason=reason,
@@ -260,7 +256,7 @@ def contact(
     got = reach(act, body, world, candidates)
     if got is None:
         name = display(candidates[0].id)
-        return Check(**base, ok=False, reason=f"the {name} has no place for {who} to {verb} with"), {}
+        return base(ok=False, reason=f"the {name} has no place for {who} to {verb} with"), {}
     name = display(got.placed.id)
     # the object itself with the whole body; what it rests on (the desk under the laptop) with the arms only
     touching = {oid: oid == got.placed.id for oid in world.supports_chain(got.placed)}
@@ -277,15 +273,14 @@ def contact(
                 f"{who}'s {joint_words([worst])} stay {gap:.2f} m from the {name} "
                 f"(within 5 cm on {shares[worst]:.0%} of the frames, needs half)"
             )
-        return Check(**base, ok=False, reason=reason, frames=frame_list(far)), touching
+        return base(ok=False, reason=reason, frames=frame_list(far)), touching
     if act.node.action == "drink":
         head = body.points[np.clip(fr, 0, body.frames - 1), -1]
         hand = body.joint(worst)[np.clip(fr, 0, body.frames - 1)]
         at_mouth = np.linalg.norm(head - hand, axis=1) <= MOUTH_M + CONTACT_M
         if np.mean(at_mouth) < CONTACT_SHARE:
             return (
-                Check(
-                    **base,
+                base(
                     ok=False,
                     reason=f"the {name} never reaches {who}'s mouth",
                     frames=frame_list(fr[~at_mouth]),
@@ -293,8 +288,7 @@ def contact(
                 touching,
             )
     return (
-        Check(
-            **base,
+        base(
             ok=True,
             reason=f"{who}'s {joint_words(list(got.distance))} on the {name} ({shares[worst]:.0%} of the frames within 5 cm)",
         ),
@@ -453,12 +447,12 @@ def _nearest_seat_words(hips: np.ndarray, world: World) -> str:
         gap = float(np.hypot(*d))
         if gap < best_gap:
             best, best_gap = placed, gap
-    height = f"hips {at[1]:.2f} m above the floor"
+    hips_words = f"hips {at[1]:.2f} m above the floor"
     if best is None:
-        return f"no seat in the room ({height})"
+        return f"no seat in the room ({hips_words})"
     if best_gap < 0.02:
-        return f"{height}, off the {display(best.id)}'s seat height"
-    return f"{best_gap:.2f} m beside the {display(best.id)} ({height})"
+        return f"{hips_words}, off the {display(best.id)}'s seat height"
+    return f"{best_gap:.2f} m beside the {display(best.id)} ({hips_words})"
 
 
 def _leaning(act: Act, body: Body, world: World) -> Check:
