@@ -136,7 +136,7 @@ def performed(act: Act, has_motion: bool, previous_start: int) -> Check:
         )
     return base(
         ok=True,
-        reason=f"{who} does {act.node.action.replace('_', ' ')} ({span_words([seg.start_frame, seg.end_frame - 1])})",
+        reason=f"{who} {third_person(act.node.action.replace('_', ' '))} ({span_words([seg.start_frame, seg.end_frame - 1])})",
     )
 
 

@@ -100,8 +100,11 @@ def stays_until(act: Act, motion: Motion) -> int:
     seg = act.clip
     if seg is None:
         return act.end
+    # standing up still starts on the seat: the pose is left when the next walk (or run...) begins
     later = [
-        s.start_frame for s in motion.segments if s.start_frame >= seg.end_frame and is_locomotion(s.action)
+        s.start_frame
+        for s in motion.segments
+        if s.start_frame >= seg.end_frame and is_locomotion(s.action) and s.action != "stand"
     ]
     frames = int(motion.root_position.shape[0])
     return min(later, default=frames)

@@ -59,6 +59,12 @@ class Body:
     point_joint: np.ndarray
 
     @property
+    def bounds(self) -> np.ndarray:
+        """(T, 2, 3) per frame, the box around every sphere (min and max corners)."""
+        r = self.radii[None, :, None]
+        return np.stack([(self.points - r).min(axis=1), (self.points + r).max(axis=1)], axis=1)
+
+    @property
     def frames(self) -> int:
         return int(self.joints.shape[0])
 

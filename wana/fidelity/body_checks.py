@@ -19,7 +19,6 @@ HIPS_MAX_MS = 6.0  # metres per second between two frames
 HANDS_MAX_MS = 10.0
 POP_M = 0.10  # metres: a joint jumping this far (relative to the hips) in one frame at an action boundary
 POP_RATIO = 3.0  # ... and this many times more than it moves on the frames around the boundary
-CLOSE_M = 1.5  # metres between hips beyond which two bodies cannot touch
 
 
 @dataclass(frozen=True)
@@ -58,16 +57,30 @@ def penetration(body: Body, world: World, exempt: dict[str, np.ndarray]) -> Fram
             (the whole body on the chair being sat on, the arms on the desk under the laptop being typed on).
     """
     out = FrameFailures.none(body.frames)
+    frame_box = body.bounds  # (T, 2, 3)
+    r = body.radii[None, :, None]
     for placed, boxes, outer in world.solids:
+        frames = np.nonzero(np.all((frame_box[:, 0] <= outer[1]) & (frame_box[:, 1] >= outer[0]), axis=1))[0]
+        if not len(frames):
+            continue
+        pts = body.points[frames]
+        near = np.zeros((body.frames, len(body.radii)), bool)
+        near[frames] = np.all((pts >= outer[0] - r) & (pts <= outer[1] + r), axis=2)  # (T, P)
         allowed = exempt.get(placed.id)
-        r = body.radii[None, :, None]
-        near = np.all((body.points >= outer[0] - r) & (body.points <= outer[1] + r), axis=2)  # (T, P)
         if allowed is not None:
             near &= ~allowed
         if not near.any():
             continue
         t_idx, p_idx = np.nonzero(near)
-        depth = body.radii[p_idx] - point_box_distance(body.points[t_idx, p_idx], boxes).min(axis=1)
+        centres = body.points[t_idx, p_idx]
+        reach = float(body.radii.max())
+        lo, hi = centres.min(axis=0) - reach, centres.max(axis=0) + reach
+        boxes = boxes[
+            np.all((boxes[:, 0] <= hi) & (boxes[:, 1] >= lo), axis=1)
+        ]  # only boxes a sphere can reach
+        if not len(boxes):
+            continue
+        depth = body.radii[p_idx] - point_box_distance(centres, boxes).min(axis=1)
         deep = depth > PENETRATION_M
         if not deep.any():
             continue
@@ -95,15 +108,14 @@ def overlap(a: Body, b: Body, allowed: np.ndarray | None = None) -> tuple[FrameF
     """
     frames = min(a.frames, b.frames)
     fa, fb = FrameFailures.none(a.frames), FrameFailures.none(b.frames)
-    hips = JOINT_INDEX["Hips"]
-    gap = np.linalg.norm(a.joints[:frames, hips] - b.joints[:frames, hips], axis=1)
-    test = gap < CLOSE_M
+    ba, bb = a.bounds[:frames], b.bounds[:frames]
+    test = np.all((ba[:, 0] < bb[:, 1] - PENETRATION_M) & (bb[:, 0] < ba[:, 1] - PENETRATION_M), axis=1)
     if allowed is not None:
         test &= ~allowed[:frames]
     t = np.nonzero(test)[0]
     if not len(t):
         return fa, fb
-    pa, pb = a.points[t], b.points[t]  # (n, P, 3)
+    pa, pb = a.points[t].astype(np.float32), b.points[t].astype(np.float32)  # (n, P, 3)
     sq = (
         (pa * pa).sum(-1)[:, :, None]
         + (pb * pb).sum(-1)[:, None, :]
