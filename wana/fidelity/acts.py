@@ -104,8 +104,9 @@ def stays_until(act: Act, motion: Motion) -> int:
     later = [
         s.start_frame
         for s in motion.segments
-        if s.start_frame >= seg.end_frame and is_locomotion(s.action) and s.action != "stand"
-    ]
+        if s.start_frame >= seg.end_frame
+        and ((is_locomotion(s.action) and s.action != "stand") or s.action in SEATING)
+    ]  # ... or another sit or lie down, which answers for itself
     frames = int(motion.root_position.shape[0])
     return min(later, default=frames)
 
