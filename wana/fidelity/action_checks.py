@@ -73,6 +73,10 @@ def joint_words(joints: list[str] | tuple[str, ...]) -> str:
     )
 
 
+def stays(parts: str) -> str:
+    return "stay" if parts.endswith("s") or " and " in parts else "stays"
+
+
 def third_person(verb: str) -> str:
     """ "hammer" -> "hammers", "watch" -> "watches", "carry" -> "carries" (the first word of a phrase)."""
     head, _, rest = verb.partition(" ")
@@ -270,7 +274,7 @@ def contact(
             reason = f"the {name} is not in {who}'s hand: it stays {gap:.2f} m from it"
         else:
             reason = (
-                f"{who}'s {joint_words([worst])} stay {gap:.2f} m from the {name} "
+                f"{who}'s {joint_words([worst])} {stays(joint_words([worst]))} {gap:.2f} m from the {name} "
                 f"(within 5 cm on {shares[worst]:.0%} of the frames, needs half)"
             )
         return base(ok=False, reason=reason, frames=frame_list(far)), touching
@@ -331,7 +335,7 @@ def _touch_person(act: Act, body: Body, bodies: Mapping[str, Body], frames: rang
             name="contact",
             character=who,
             ok=False,
-            reason=f"{who}'s {joint_words(clip.contacts)} stay {float(np.median(gap)):.2f} m from {other}",
+            reason=f"{who}'s {joint_words(clip.contacts)} {stays(joint_words(clip.contacts))} {float(np.median(gap)):.2f} m from {other}",
             frames=frame_list(np.asarray(frames)[gap > CONTACT_M]),
         )
     return Check(

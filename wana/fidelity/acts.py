@@ -95,18 +95,26 @@ def window_frames(act: Act) -> range:
     return range(a, max(b, a + 1))
 
 
-def stays_until(act: Act, motion: Motion) -> int:
-    """The frame the character leaves the pose an action put it in (the next locomotion, or the motion's end)."""
+def stays_until(act: Act, motion: Motion, *, through_standing_up: bool = False) -> int:
+    """The frame the character leaves the pose an action put it in: the next locomotion, sit or lie down (which
+    answer for themselves), or the motion's end.
+
+    Args:
+        through_standing_up: count standing up as still in the pose (it starts on the seat: the seat stays the
+            stated contact while the character gets up), not as leaving it.
+    """
     seg = act.clip
     if seg is None:
         return act.end
-    # standing up still starts on the seat: the pose is left when the next walk (or run...) begins
     later = [
         s.start_frame
         for s in motion.segments
         if s.start_frame >= seg.end_frame
-        and ((is_locomotion(s.action) and s.action != "stand") or s.action in SEATING)
-    ]  # ... or another sit or lie down, which answers for itself
+        and (
+            (is_locomotion(s.action) and not (through_standing_up and s.action == "stand"))
+            or s.action in SEATING
+        )
+    ]
     frames = int(motion.root_position.shape[0])
     return min(later, default=frames)
 

@@ -145,12 +145,13 @@ def _action_checks(
         first = act.character not in seen
         seen.add(act.character)
         until = stays_until(act, motion)
+        touching_until = stays_until(act, motion, through_standing_up=True)
         contact, used = ac.contact(act, body, world, bodies)
         if contact is not None:
             checks.append(contact)
         if act.clip is not None:
             hold = np.zeros(body.frames, bool)
-            hold[act.start : until] = True  # backing up to a seat touches it too
+            hold[act.start : touching_until] = True  # backing up to a seat touches it too
             for oid, whole in used.items():
                 points = np.ones(len(body.radii), bool) if whole else ARMS[body.point_joint]
                 mask = exempt[act.character].setdefault(oid, np.zeros((body.frames, len(body.radii)), bool))
@@ -220,6 +221,17 @@ def _joint_word(j: int) -> str:
     return side + words.get(part, part.lower())
 
 
+def _frames_words(n: int) -> str:
+    return "1 frame" if n == 1 else f"{n} frames"
+
+
+def _verb(j: int, singular: str) -> str:
+    """ "is"/"moves" for a part, "are"/"move" for the parts named in the plural (fingers, toes)."""
+    if not _joint_word(j).endswith("s"):
+        return singular
+    return "are" if singular == "is" else singular.removesuffix("s")
+
+
 def _worst(fail: bc.FrameFailures, f: np.ndarray) -> tuple[np.ndarray, int]:
     bad = f[fail.failing[f]]
     worst = int(bad[np.argmax(fail.amount[bad])]) if len(bad) else -1
@@ -236,8 +248,8 @@ def _penetration_check(name: str, fail: bc.FrameFailures, f: np.ndarray) -> Chec
         name="penetration",
         character=name,
         ok=False,
-        reason=f"{name}'s {_joint_word(int(fail.joint[w]))} is {fail.amount[w] * 100:.0f} cm inside the "
-        f"{display(str(fail.what[w]))} ({len(bad)} frames, worst at frame {w})",
+        reason=f"{name}'s {_joint_word(int(fail.joint[w]))} {_verb(int(fail.joint[w]), 'is')} {fail.amount[w] * 100:.0f} cm inside the "
+        f"{display(str(fail.what[w]))} ({_frames_words(len(bad))}, worst at frame {w})",
         frames=ac.frame_list(bad),
     )
 
@@ -259,8 +271,8 @@ def _overlap_check(name: str, fails: list[bc.FrameFailures], f: np.ndarray) -> C
         name="overlap",
         character=name,
         ok=False,
-        reason=f"{name}'s {_joint_word(int(merged.joint[w]))} is {merged.amount[w] * 100:.0f} cm inside "
-        f"{merged.what[w]}'s body ({len(bad)} frames, worst at frame {w})",
+        reason=f"{name}'s {_joint_word(int(merged.joint[w]))} {_verb(int(merged.joint[w]), 'is')} {merged.amount[w] * 100:.0f} cm inside "
+        f"{merged.what[w]}'s body ({_frames_words(len(bad))}, worst at frame {w})",
         frames=ac.frame_list(bad),
     )
 
@@ -274,12 +286,12 @@ def _continuity_check(name: str, fast: bc.FrameFailures, popped: bc.FrameFailure
     if wf >= 0:
         limit = bc.HIPS_MAX_MS if JOINT_NAMES[int(fast.joint[wf])] == "Hips" else bc.HANDS_MAX_MS
         reasons.append(
-            f"{name}'s {_joint_word(int(fast.joint[wf]))} moves {fast.amount[wf]:.0f} m/s at frame {wf} "
+            f"{name}'s {_joint_word(int(fast.joint[wf]))} {_verb(int(fast.joint[wf]), 'moves')} {fast.amount[wf]:.0f} m/s at frame {wf} "
             f"(at most {limit:.0f} m/s)"
         )
     if wp >= 0:
         reasons.append(
-            f"{name}'s pose jumps at frame {wp}: the {_joint_word(int(popped.joint[wp]))} moves "
+            f"{name}'s pose jumps at frame {wp}: the {_joint_word(int(popped.joint[wp]))} {_verb(int(popped.joint[wp]), 'moves')} "
             f"{popped.amount[wp]:.2f} m in one frame"
         )
     frames = sorted(set(bad_fast.tolist()) | set(bad_pop.tolist()))

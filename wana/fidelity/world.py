@@ -23,8 +23,8 @@ def base_id(object_id: str) -> str:
 
 
 def display(word: str) -> str:
-    """A name as a user reads it: "coffee_table#2" -> "coffee table"."""
-    return base_id(word).replace("_", " ")
+    """A name as a user reads it: "coffee_table#2" -> "coffee table", a context object "ctx_armchair" -> "armchair"."""
+    return base_id(word).removeprefix("ctx_").replace("_", " ")
 
 
 class World:
