@@ -7,6 +7,8 @@ spheres along the bone plus one at every joint and one at the centre of the head
 
 from __future__ import annotations
 
+import hashlib
+from collections import OrderedDict
 from dataclasses import dataclass
 
 import numpy as np
@@ -110,8 +112,31 @@ def skeleton_offsets(name: str) -> np.ndarray:
     return np.asarray(character.offsets, dtype=np.float64)
 
 
+BODY_CACHE_SIZE = 32  # bodies kept: an edit usually leaves most characters' motions as they were
+_BODIES: OrderedDict[bytes, Body] = OrderedDict()
+
+
 def body_of(motion: Motion) -> Body:
-    """FK once (on the character's own skeleton), then the capsule spheres (vectorised over frames)."""
+    """FK once (on the character's own skeleton), then the capsule spheres (vectorised over frames).
+
+    Bodies are kept by the content of the motion's arrays, so the checks after an edit redo FK only for the
+    characters whose motion changed.
+    """
+    key = hashlib.blake2b(
+        motion.character.encode() + motion.rotations.data + motion.root_position.data, digest_size=16
+    ).digest()
+    found = _BODIES.get(key)
+    if found is not None:
+        _BODIES.move_to_end(key)
+        return found
+    body = _body_of(motion)
+    _BODIES[key] = body
+    if len(_BODIES) > BODY_CACHE_SIZE:
+        _BODIES.popitem(last=False)
+    return body
+
+
+def _body_of(motion: Motion) -> Body:
     rotations = from_wire(motion.rotations)
     root = from_wire(motion.root_position)
     joints, global_rot = forward_kinematics(rotations, root, skeleton_offsets(motion.character))
@@ -122,6 +147,8 @@ def body_of(motion: Motion) -> Body:
     points = np.concatenate([spheres, centre[:, None]], axis=1)
     radii = np.concatenate([_RADII, [HEAD_RADIUS]])
     owner = np.concatenate([_OWNER, [head]])
+    for array in (joints, points, radii, owner):
+        array.setflags(write=False)  # shared through the cache
     return Body(motion.character, joints, points, radii, owner)
 
 
