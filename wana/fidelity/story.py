@@ -19,10 +19,12 @@ from proto.scene import Scene
 from proto.ssg import SentenceGraph
 from wana.fidelity import action_checks as ac
 from wana.fidelity import body_checks as bc
+from wana.fidelity import contact_checks as cc
 from wana.fidelity.acts import Act, owned_frames, stays_until, story_acts
 from wana.fidelity.bodies import Body, body_of
 from wana.fidelity.clips import clip_needs
 from wana.fidelity.scene_checks import object_checks, relation_checks
+from wana.fidelity.words import frame_list
 from wana.fidelity.world import World, display
 from wana.skeleton import JOINT_NAMES
 
@@ -146,7 +148,7 @@ def _action_checks(
         seen.add(act.character)
         until = stays_until(act, motion)
         touching_until = stays_until(act, motion, through_standing_up=True)
-        contact, used = ac.contact(act, body, world, bodies)
+        contact, used = cc.contact(act, body, world, bodies)
         if contact is not None:
             checks.append(contact)
         if act.clip is not None:
@@ -158,7 +160,7 @@ def _action_checks(
                 mask |= hold[:, None] & points[None, :]
             clip = clip_needs(act.node.action)
             if clip is not None and clip.object == "person":
-                other = ac._other_character(act, bodies)
+                other = cc.other_character(act, bodies)
                 if other:
                     on = np.zeros(body.frames, bool)
                     on[act.clip.start_frame : act.clip.end_frame] = True
@@ -250,7 +252,7 @@ def _penetration_check(name: str, fail: bc.FrameFailures, f: np.ndarray) -> Chec
         ok=False,
         reason=f"{name}'s {_joint_word(int(fail.joint[w]))} {_verb(int(fail.joint[w]), 'is')} {fail.amount[w] * 100:.0f} cm inside the "
         f"{display(str(fail.what[w]))} ({_frames_words(len(bad))}, worst at frame {w})",
-        frames=ac.frame_list(bad),
+        frames=frame_list(bad),
     )
 
 
@@ -273,7 +275,7 @@ def _overlap_check(name: str, fails: list[bc.FrameFailures], f: np.ndarray) -> C
         ok=False,
         reason=f"{name}'s {_joint_word(int(merged.joint[w]))} {_verb(int(merged.joint[w]), 'is')} {merged.amount[w] * 100:.0f} cm inside "
         f"{merged.what[w]}'s body ({_frames_words(len(bad))}, worst at frame {w})",
-        frames=ac.frame_list(bad),
+        frames=frame_list(bad),
     )
 
 
@@ -296,7 +298,7 @@ def _continuity_check(name: str, fast: bc.FrameFailures, popped: bc.FrameFailure
         )
     frames = sorted(set(bad_fast.tolist()) | set(bad_pop.tolist()))
     return Check(
-        name="continuity", character=name, ok=False, reason="; ".join(reasons), frames=ac.frame_list(frames)
+        name="continuity", character=name, ok=False, reason="; ".join(reasons), frames=frame_list(frames)
     )
 
 
