@@ -103,3 +103,20 @@ def test_someone_on_stage_before_their_sentence_fails_the_entrance(make):
         if early_on_stage:
             assert "before Tom's first sentence" in entrance.reason and entrance.frames[0] == 0
             assert "no door" in entrance.reason
+
+
+def test_leaning_on_air_is_not_supported_and_a_hand_on_the_wall_is(make):
+    from wana.fidelity.bodies import body_of
+    from wana.fidelity.clips import clip_needs
+
+    frames = round(clip_needs("lean_on_wall").duration_s * 30)
+    graph = {"s1": make.action_graph("s1", "Eve", "lean", "lean_on_wall")}
+    probe = body_of(make.motion("Eve", make.still(0.0, 0.95, 0.0, 1), []))
+    reach = float(probe.joint("LeftHand")[0, 0])  # a T-pose's left hand is this far along +X from the hips
+    room = make.scene(width=6.0)
+    for x, on_wall in ((0.0, False), (3.0 - reach - 0.02, True)):
+        eve = make.motion("Eve", make.still(x, 0.95, 0.0, frames), [("lean_on_wall", 0, frames, "s1", 0)])
+        (check,) = by_name(story_checks([("s1", "action")], graph, room, {"Eve": eve})["s1"], "supported")
+        assert check.ok is on_wall, check.reason
+        if not on_wall:
+            assert "leans on air" in check.reason and check.essential
