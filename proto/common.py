@@ -58,6 +58,7 @@ ERROR_CODES: dict[str, str] = {
     "E010": "invalid input",
     "E011": "stage not available yet",
     "E012": "schema version not supported",
+    "W401": "the animation does not show this (a story check failed: wana.fidelity)",
 }
 
 

@@ -10,12 +10,14 @@ from __future__ import annotations
 
 import base64
 import json
+from collections.abc import Mapping
 from typing import Any
 from urllib.parse import quote
 
 import msgspec
 import numpy as np
 
+from proto.fidelity import Check, SentenceVerdict
 from proto.motion_data import Motion
 from proto.scene import PlacedObject
 from services.orchestrator.document import Document
@@ -24,6 +26,9 @@ from services.orchestrator.queries import content_hash
 from wana.arrays import from_wire, to_wire
 from wana.domain import skeleton
 from wana.domain.units import FPS
+from wana.fidelity import story_checks, verdicts
+
+FIDELITY_CODE = "W401"  # proto.common.ERROR_CODES: the animation does not show this
 
 
 def b64_f32(array: np.ndarray) -> str:
@@ -47,8 +52,41 @@ def sentence_list(result: PipelineResult | None, doc: Document) -> list[dict[str
     return [{"id": s.id, "start": s.start, "end": s.end, "kind": "unknown"} for s in doc.sentences]
 
 
-def diagnostics_message(result: PipelineResult, doc: Document) -> dict[str, Any]:
-    """Per-sentence diagnostics with document offsets, and the stages that could not run."""
+def story_verdicts(
+    result: PipelineResult, extra_checks: Mapping[str, list[Check]] | None = None
+) -> dict[str, SentenceVerdict]:
+    """Sentence id -> verdict of the story checks (wana.fidelity) on this result, with any extra checks.
+
+    A result the pipeline was not asked to animate (no scene and nothing unavailable: the parse alone) has
+    nothing to judge yet and gets no verdicts.
+    """
+    if result.scene is None and not result.unavailable:
+        return {}
+    checks = story_checks(
+        [(s.id, s.kind) for s in result.sentences],
+        result.graphs,
+        result.scene,
+        result.motions,
+        result.unavailable,
+    )
+    return verdicts(checks, extra_checks)
+
+
+def check_entry(check: Check) -> dict[str, Any]:
+    return {
+        "name": check.name,
+        "ok": check.ok,
+        "reason": check.reason,
+        "frames": list(check.frames),
+        "character": check.character,
+    }
+
+
+def diagnostics_message(
+    result: PipelineResult, doc: Document, extra_checks: Mapping[str, list[Check]] | None = None
+) -> dict[str, Any]:
+    """Per-sentence diagnostics with document offsets, the stages that could not run, and each sentence's
+    verdict: every failed story check is also a W401 warning on its sentence's span."""
     diags = []
     for sid, items in result.diagnostics.items():
         for d in items:
@@ -62,6 +100,23 @@ def diagnostics_message(result: PipelineResult, doc: Document) -> dict[str, Any]
                     "end": d.span.end,
                 }
             )
+    judged = story_verdicts(result, extra_checks)
+    spans = {s.id: (s.start, s.end) for s in result.sentences}
+    for sid, verdict in judged.items():
+        start, end = spans.get(sid, (0, 0))
+        for check in verdict.checks:
+            if not check.ok:
+                diags.append(
+                    {
+                        "sentence_id": sid,
+                        "code": FIDELITY_CODE,
+                        "message": f"the animation does not show this: {check.reason}",
+                        "severity": "warning",
+                        "start": start,
+                        "end": end,
+                        "check": check.name,
+                    }
+                )
     diags.sort(key=lambda d: (d["start"], d["end"], d["code"]))
     return {
         "type": "diagnostics",
@@ -69,6 +124,10 @@ def diagnostics_message(result: PipelineResult, doc: Document) -> dict[str, Any]
         "sentences": sentence_list(result, doc),
         "diagnostics": diags,
         "unavailable": dict(result.unavailable),
+        "verdicts": [
+            {"sentence_id": sid, "verdict": v.verdict, "checks": [check_entry(c) for c in v.checks]}
+            for sid, v in judged.items()
+        ],
     }
 
 

@@ -10,14 +10,17 @@ import argparse
 import json
 import sys
 import tempfile
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
 import msgspec
 
+from proto.fidelity import Check
 from services.orchestrator.backend import InProcessBackend
 from services.orchestrator.pipeline import PipelineResult
 from services.orchestrator.session import Orchestrator
+from wana.fidelity import story_checks, verdicts
 
 MAX_INPUT_BYTES = 1_000_000
 
@@ -84,9 +87,35 @@ def _without_header(value: Any) -> Any:
     return value
 
 
-def summary(result: PipelineResult) -> dict[str, Any]:
-    """The report: sentences, SSG, retrieval choices, diagnostics and what ran."""
+def _dropped(result: PipelineResult, checks: Mapping[str, list[Check]]) -> dict[str, str]:
+    """The report's `unavailable`: the stages that did not run, and each sentence whose essential checks fail
+    (what it asked for was dropped: an unknown verb, a missing object), keyed by sentence id."""
+    out = dict(result.unavailable)
+    for sid, items in checks.items():
+        lost = [c.reason for c in items if c.essential and not c.ok]
+        if lost:
+            out[sid] = "; ".join(dict.fromkeys(lost))
+    return out
+
+
+def summary(result: PipelineResult, extra_checks: Mapping[str, list[Check]] | None = None) -> dict[str, Any]:
+    """The report: sentences (each with its verdict and story checks), SSG, retrieval choices, diagnostics,
+    what was dropped and what ran.
+
+    Args:
+        result: the pipeline's result.
+        extra_checks: sentence id -> more checks to join into the verdicts (the render service's camera and
+            command checks, which only it can compute).
+    """
     to_builtins = msgspec.to_builtins
+    checks = story_checks(
+        [(s.id, s.kind) for s in result.sentences],
+        result.graphs,
+        result.scene,
+        result.motions,
+        result.unavailable,
+    )
+    judged = verdicts(checks, extra_checks)
     return {
         "doc_version": result.version,
         "sentences": [
@@ -98,6 +127,17 @@ def summary(result: PipelineResult) -> dict[str, Any]:
                 "kind": s.kind,
                 "ssg": to_builtins(result.graphs.get(s.id)),
                 "diagnostics": to_builtins(result.diagnostics.get(s.id, [])),
+                "verdict": judged[s.id].verdict if s.id in judged else "ok",
+                "checks": [
+                    {
+                        "name": c.name,
+                        "ok": c.ok,
+                        "reason": c.reason,
+                        "frames": list(c.frames),
+                        "character": c.character,
+                    }
+                    for c in (judged[s.id].checks if s.id in judged else [])
+                ],
             }
             for s in result.sentences
         ],
@@ -107,16 +147,31 @@ def summary(result: PipelineResult) -> dict[str, Any]:
         else None,
         "optimisation": [_without_header(to_builtins(o)) for o in result.optimisations],
         "characters": sorted(result.motions),
-        "unavailable": result.unavailable,
+        "unavailable": _dropped(result, {sid: v.checks for sid, v in judged.items()}),
         "nodes_ran": result.ran,
     }
+
+
+def nothing_to_animate(result: PipelineResult) -> str:
+    """Why a story cannot be animated at all ("" when it can): no text, or no character and no object."""
+    if not any(s.text.strip() for s in result.sentences):
+        return "the story is empty"
+    if "parse" in result.unavailable:
+        return ""
+    people = any(g.characters for g in result.graphs.values())
+    things = any(g.objects for g in result.graphs.values() if g.kind == "scene")
+    if not people and not things:
+        return "the story names no character and no object to put in a room (nothing to animate)"
+    return ""
 
 
 def main(argv: list[str]) -> int:
     args = build_parser().parse_args(argv)
     text = read_story(args.file)
     out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+    if not text.strip():
+        print("wana animate: the story is empty; wrote nothing", file=sys.stderr)
+        return 2
     tick, close = _progress_bar(not args.no_progress and sys.stderr.isatty())
     with tempfile.TemporaryDirectory(prefix="wana-") as tmp:
         if args.in_process:
@@ -131,6 +186,14 @@ def main(argv: list[str]) -> int:
                 result = orchestrator.create(text, doc_id="story").compute(progress=tick)
                 orchestrator.close()
     close()
+    empty = nothing_to_animate(result)
+    if empty:
+        for sid, diags in result.diagnostics.items():
+            for d in diags:
+                print(f"{sid} [{d.span.start}:{d.span.end}] {d.severity}: {d.message}", file=sys.stderr)
+        print(f"wana animate: {empty}; wrote nothing", file=sys.stderr)
+        return 2
+    out.mkdir(parents=True, exist_ok=True)
     report = summary(result)
     (out / "report.json").write_text(json.dumps(report, indent=2))
     if result.scene is not None and not result.unavailable:

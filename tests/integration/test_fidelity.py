@@ -1,0 +1,147 @@
+"""Story checks on animations the real pipeline made (in-process services), and where users see them."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import pytest
+
+from services.gateway.messages import diagnostics_message
+from services.orchestrator.animate import summary
+from services.orchestrator.backend import InProcessBackend
+from services.orchestrator.session import Orchestrator
+from wana.fidelity import story_checks, verdicts
+
+pytestmark = [pytest.mark.integration, pytest.mark.slow]
+
+SOFA = "A sofa is near a window$.\nEve sits on the sofa.\nTom sits on the sofa.\nEve drinks from the cup.\n"
+
+
+@pytest.fixture(scope="module")
+def orchestrator(tmp_path_factory):
+    orch = Orchestrator(tmp_path_factory.mktemp("db") / "s.db", InProcessBackend())
+    yield orch
+    orch.close()
+
+
+def checks_of(result):
+    return story_checks(
+        [(s.id, s.kind) for s in result.sentences],
+        result.graphs,
+        result.scene,
+        result.motions,
+        result.unavailable,
+    )
+
+
+def failing(checks, name):
+    return [c for c in checks if c.name == name and not c.ok]
+
+
+@pytest.fixture(scope="module")
+def office(orchestrator, repo_root):
+    session = orchestrator.create((repo_root / "examples" / "office.txt").read_text())
+    return session, session.compute()
+
+
+@pytest.fixture(scope="module")
+def sofa(orchestrator):
+    session = orchestrator.create(SOFA)
+    return session, session.compute()
+
+
+def test_the_office_shows_its_room_and_eve_seated_at_the_laptop(office):
+    _, result = office
+    checks = checks_of(result)
+    by_text = {s.text: checks[s.id] for s in result.sentences}
+    for scene_sentence in [s for s in result.sentences if s.kind == "scene"]:
+        assert all(c.ok for c in checks[scene_sentence.id]), checks[scene_sentence.id]
+    sits = by_text["Eve sits on the chair and types on the laptop."]
+    contacts = [c for c in sits if c.name == "contact"]
+    assert len(contacts) == 2 and all(c.ok for c in contacts), contacts
+    assert [c.ok for c in sits if c.name == "supported"] == [True]
+
+
+def test_tom_who_walks_in_stands_in_the_office_from_the_first_frame(office):
+    _, result = office
+    walks_in = next(s for s in result.sentences if s.text == "Tom walks in.")
+    (entrance,) = failing(checks_of(result)[walks_in.id], "entrance")
+    assert entrance.character == "Tom" and entrance.frames[0] == 0
+    assert "before Tom's first sentence" in entrance.reason
+
+
+def test_two_characters_sent_to_one_sofa_overlap_and_a_cup_never_placed_is_not_drunk(sofa):
+    _, result = sofa
+    checks = checks_of(result)
+    eve_sits, tom_sits, drinks = (s.id for s in result.sentences[1:])
+    assert (
+        failing(checks[tom_sits], "overlap")
+        and "inside Eve's body" in failing(checks[tom_sits], "overlap")[0].reason
+    )
+    (cup,) = failing(checks[drinks], "contact")
+    assert cup.essential and cup.reason.startswith("there is no cup in the room")
+    assert verdicts(checks)[drinks].verdict == "failed"
+
+
+def test_the_report_carries_each_sentence_verdict_and_what_was_dropped(sofa):
+    _, result = sofa
+    report = summary(result)
+    rows = {s["text"]: s for s in report["sentences"]}
+    drink = rows["Eve drinks from the cup."]
+    assert drink["verdict"] == "failed"
+    assert {"name", "ok", "reason", "frames", "character"} <= set(drink["checks"][0])
+    assert "no cup" in report["unavailable"][drink["id"]]
+    assert rows["A sofa is near a window$."]["verdict"] == "ok"
+
+
+def test_the_editor_gets_a_w401_warning_on_the_span_of_each_sentence_not_shown(sofa):
+    session, result = sofa
+    msg = diagnostics_message(result, session.doc)
+    spans = {s.id: (s.start, s.end) for s in result.sentences}
+    warnings = [d for d in msg["diagnostics"] if d["code"] == "W401"]
+    assert warnings and all(d["severity"] == "warning" for d in warnings)
+    assert all((d["start"], d["end"]) == spans[d["sentence_id"]] for d in warnings)
+    drink = next(s.id for s in result.sentences if "cup" in s.text)
+    assert any("no cup" in d["message"] for d in warnings if d["sentence_id"] == drink)
+    assert {v["sentence_id"]: v["verdict"] for v in msg["verdicts"]}[drink] == "failed"
+
+
+@pytest.mark.parametrize("text", ["", "  \n", "Der Hund läuft schnell.", "camera left\n"])
+def test_a_story_with_nothing_to_animate_exits_non_zero_and_writes_nothing(tmp_path, text):
+    story = tmp_path / "story.txt"
+    story.write_text(text)
+    out = tmp_path / "out"
+    proc = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "wana.cli",
+            "animate",
+            str(story),
+            "-o",
+            str(out),
+            "--in-process",
+            "--no-progress",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert proc.returncode == 2, proc.stderr[-2000:]
+    assert "nothing" in proc.stderr and not (out / "report.json").exists()
+
+
+def test_sitting_again_while_seated_pops_and_sitting_with_no_free_seat_is_on_air(orchestrator):
+    result = orchestrator.create(
+        "A chair is near a desk$.\nEve sits on the chair. Eve sits.\nTom sits.\n"
+    ).compute()
+    checks = checks_of(result)
+    again = next(s.id for s in result.sentences if s.text == "Eve sits.")
+    tom = next(s.id for s in result.sentences if s.text == "Tom sits.")
+    (pop,) = failing(checks[again], "continuity")
+    sit_again = next(seg for seg in result.motions["Eve"].segments if seg.sentence_id == again)
+    assert pop.frames == [sit_again.start_frame]
+    assert not failing(checks[again], "supported")  # the replayed sit still ends on the seat
+    (air,) = failing(checks[tom], "supported")
+    assert air.essential and "Tom sits on air" in air.reason

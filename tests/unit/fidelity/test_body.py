@@ -1,0 +1,122 @@
+"""Body checks on hand-made motions: each one fails on the case it is for and passes on its neighbour."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from proto.scene import PlacedObject
+from wana.fidelity import story_checks, verdicts
+
+
+def by_name(checks, name):
+    return [c for c in checks if c.name == name]
+
+
+def test_sitting_with_the_hips_half_a_metre_above_nothing_is_not_supported(make):
+    hips = make.still(0.0, 0.5, 0.0, 60)
+    eve = make.motion("Eve", hips, [("sit", 0, 60, "s1", 0)])
+    graph = {"s1": make.action_graph("s1", "Eve", "sit", "sit", target="chair")}
+    far = make.scene(PlacedObject(id="chair", category="chair", position=(1.5, 0.0, 0.0)))
+    checks = story_checks([("s1", "action")], graph, far, {"Eve": eve})["s1"]
+    (supported,) = by_name(checks, "supported")
+    assert not supported.ok and supported.essential
+    assert "on air" in supported.reason and "beside the chair" in supported.reason
+    assert supported.frames and min(supported.frames) >= 36  # the clip's window starts at 1.2 s
+    assert verdicts({"s1": checks})["s1"].verdict == "failed"
+
+
+def test_sitting_on_the_seat_is_supported_and_at_its_contact_point(make):
+    hips = make.still(0.0, 0.5, 0.0, 60)
+    eve = make.motion("Eve", hips, [("sit", 0, 60, "s1", 0)])
+    graph = {"s1": make.action_graph("s1", "Eve", "sit", "sit", target="chair")}
+    under = make.scene(PlacedObject(id="chair", category="chair", position=(0.0, 0.0, -0.02)))
+    checks = story_checks([("s1", "action")], graph, under, {"Eve": eve})["s1"]
+    assert by_name(checks, "supported")[0].ok
+    assert by_name(checks, "contact")[0].ok, by_name(checks, "contact")[0].reason
+    assert by_name(checks, "penetration")[0].ok  # the seat being sat on is the stated contact
+
+
+def test_a_teleport_breaks_continuity_at_the_frame_it_happens(make):
+    walk = np.stack([np.linspace(0.0, 1.0, 60), np.full(60, 0.95), np.zeros(60)], axis=1)
+    graph = {"s1": make.action_graph("s1", "Eve", "walk", "walk")}
+    smooth = make.motion("Eve", walk, [("walk", 0, 60, "s1", 0)])
+    jumped = walk.copy()
+    jumped[30:, 0] += 1.0  # one metre in one frame: 30 m/s
+    teleport = make.motion("Eve", jumped, [("walk", 0, 60, "s1", 0)])
+    room = make.scene()
+    ok = by_name(story_checks([("s1", "action")], graph, room, {"Eve": smooth})["s1"], "continuity")[0]
+    bad = by_name(story_checks([("s1", "action")], graph, room, {"Eve": teleport})["s1"], "continuity")[0]
+    assert ok.ok
+    assert not bad.ok and bad.frames == [30] and "m/s" in bad.reason
+
+
+def test_two_characters_at_one_spot_overlap_and_two_metres_apart_do_not(make):
+    graphs = {
+        "s1": make.action_graph("s1", "Eve", "wave", "wave"),
+        "s2": make.action_graph("s2", "Tom", "wave", "wave"),
+    }
+    sentences = [("s1", "action"), ("s2", "action")]
+    eve = make.motion("Eve", make.still(0.0, 0.95, 0.0, 69), [("wave", 0, 69, "s1", 0)])
+    room = make.scene()
+    for x, fused in ((0.05, True), (2.0, False)):
+        tom = make.motion("Tom", make.still(x, 0.95, 0.0, 69), [("wave", 0, 69, "s2", 0)])
+        checks = story_checks(sentences, graphs, room, {"Eve": eve, "Tom": tom})
+        eve_overlap = by_name(checks["s1"], "overlap")[0]
+        tom_overlap = by_name(checks["s2"], "overlap")[0]
+        assert eve_overlap.ok is (not fused) and tom_overlap.ok is (not fused)
+        if fused:
+            assert "inside Tom's body" in eve_overlap.reason and len(eve_overlap.frames) == 69
+
+
+def test_standing_inside_a_desk_is_penetration_and_beside_it_is_not(make):
+    graph = {"s1": make.action_graph("s1", "Eve", "wave", "wave")}
+    desk = PlacedObject(id="desk", category="desk", position=(0.0, 0.0, 0.0))
+    for z, inside in ((0.0, True), (1.5, False)):
+        eve = make.motion("Eve", make.still(0.0, 0.95, z, 30), [("wave", 0, 30, "s1", 0)])
+        (check,) = by_name(
+            story_checks([("s1", "action")], graph, make.scene(desk), {"Eve": eve})["s1"], "penetration"
+        )
+        assert check.ok is (not inside)
+        if inside:
+            assert "inside the desk" in check.reason and check.frames[0] == 0
+
+
+def test_someone_on_stage_before_their_sentence_fails_the_entrance(make):
+    graphs = {
+        "s1": make.action_graph("s1", "Eve", "wave", "wave"),
+        "s2": make.action_graph("s2", "Tom", "walk in", "walk"),
+    }
+    sentences = [("s1", "action"), ("s2", "action")]
+    eve = make.motion(
+        "Eve", make.still(1.0, 0.95, 0.0, 90), [("wave", 0, 69, "s1", 0), ("hold", 69, 90, "", -1)]
+    )
+    room = make.scene()
+    for start_z, early_on_stage in ((-2.4, True), (-3.6, False)):  # the room's front wall is at z = -3
+        path = np.concatenate(
+            [make.still(-1.0, 0.95, start_z, 30), np.linspace([-1.0, 0.95, start_z], [-1.0, 0.95, 0.0], 60)]
+        )
+        tom = make.motion("Tom", path, [("hold", 0, 30, "", -1), ("walk", 30, 90, "s2", 0)])
+        (entrance,) = by_name(
+            story_checks(sentences, graphs, room, {"Eve": eve, "Tom": tom})["s2"], "entrance"
+        )
+        assert entrance.ok is (not early_on_stage), entrance.reason
+        if early_on_stage:
+            assert "before Tom's first sentence" in entrance.reason and entrance.frames[0] == 0
+            assert "no door" in entrance.reason
+
+
+def test_leaning_on_air_is_not_supported_and_a_hand_on_the_wall_is(make):
+    from wana.fidelity.bodies import body_of
+    from wana.fidelity.clips import clip_needs
+
+    frames = round(clip_needs("lean_on_wall").duration_s * 30)
+    graph = {"s1": make.action_graph("s1", "Eve", "lean", "lean_on_wall")}
+    probe = body_of(make.motion("Eve", make.still(0.0, 0.95, 0.0, 1), []))
+    reach = float(probe.joint("LeftHand")[0, 0])  # a T-pose's left hand is this far along +X from the hips
+    room = make.scene(width=6.0)
+    for x, on_wall in ((0.0, False), (3.0 - reach - 0.02, True)):
+        eve = make.motion("Eve", make.still(x, 0.95, 0.0, frames), [("lean_on_wall", 0, frames, "s1", 0)])
+        (check,) = by_name(story_checks([("s1", "action")], graph, room, {"Eve": eve})["s1"], "supported")
+        assert check.ok is on_wall, check.reason
+        if not on_wall:
+            assert "leans on air" in check.reason and check.essential

@@ -1,0 +1,147 @@
+"""Scene sentences, targets and what was dropped: a missing object, a false relation, an empty hand, an unknown
+verb and a stage that did not run each fail with a reason a user can read."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from proto.common import Span
+from proto.fidelity import Check
+from proto.scene import PlacedObject
+from proto.ssg import Diagnostic, ObjectNode, RelationNode, SentenceGraph
+from wana.assets.catalog import world_bounds
+from wana.fidelity import story_checks, verdicts
+from wana.fidelity.clips import clip_needs
+
+
+def scene_graph(*objects: ObjectNode, relations=()):
+    return {
+        "s1": SentenceGraph(
+            sentence_id="s1", text="...$", kind="scene", objects=list(objects), relations=list(relations)
+        )
+    }
+
+
+def test_the_clip_reader_gives_the_interaction_of_sit_and_nothing_for_an_unknown_clip():
+    sit = clip_needs("sit")
+    assert sit is not None and sit.object == "seat" and sit.contacts == ("Hips",) and sit.window == (1.2, 2.0)
+    assert clip_needs("flarp") is None
+
+
+def test_a_missing_object_and_a_short_count_fail_object_exists(make):
+    graphs = scene_graph(
+        ObjectNode(id="lamp", category="lamp", word="lamp"),
+        ObjectNode(id="chair", category="chair", word="chairs", count=2),
+    )
+    room = make.scene(PlacedObject(id="chair", category="chair", position=(0.0, 0.0, 0.0)))
+    checks = story_checks([("s1", "scene")], graphs, room, {})["s1"]
+    lamp, chairs = checks
+    assert not lamp.ok and lamp.essential and lamp.reason == "there is no lamp in the room"
+    assert not chairs.ok and chairs.reason == "only 1 of the 2 chairs are in the room"
+    room2 = make.scene(
+        PlacedObject(id="chair", category="chair", position=(0.0, 0.0, 0.0)),
+        PlacedObject(id="chair/2", category="chair", position=(1.0, 0.0, 0.0)),
+        PlacedObject(id="lamp", category="lamp", position=(-1.0, 0.0, 0.0)),
+    )
+    assert all(c.ok for c in story_checks([("s1", "scene")], graphs, room2, {})["s1"])
+
+
+def test_a_laptop_beside_the_desk_is_not_on_it_and_on_its_top_it_is(make):
+    graphs = scene_graph(
+        ObjectNode(id="laptop", category="laptop", word="laptop"),
+        ObjectNode(id="desk", category="desk", word="desk"),
+        relations=[RelationNode(subject="laptop", relation="on", object="desk")],
+    )
+    desk = PlacedObject(id="desk", category="desk", position=(0.0, 0.0, 0.0))
+    top = float(world_bounds(desk)[1, 1])
+    floor = PlacedObject(id="laptop", category="laptop", position=(2.0, 0.0, 0.0))
+    on_top = PlacedObject(id="laptop", category="laptop", position=(0.0, top, 0.0), support="desk")
+    rel = story_checks([("s1", "scene")], graphs, make.scene(desk, floor), {})["s1"][-1]
+    assert rel.name == "relation_holds" and not rel.ok
+    assert (
+        rel.reason.startswith("the laptop is not on the desk: its base is") and "below the top" in rel.reason
+    )
+    assert story_checks([("s1", "scene")], graphs, make.scene(desk, on_top), {})["s1"][-1].ok
+
+
+def test_hammering_with_the_hammer_left_on_the_table_is_an_empty_hand(make):
+    table = PlacedObject(id="table", category="table", position=(0.0, 0.0, 0.0))
+    top = float(world_bounds(table)[1, 1])
+    hammer = PlacedObject(id="hammer", category="hammer", position=(0.0, top, 0.0), support="table")
+    frames = round(clip_needs("hammer").duration_s * 30)
+    tom = make.motion("Tom", make.still(0.0, 0.95, 2.0, frames), [("hammer", 0, frames, "s1", 0)])
+    graphs = {"s1": make.action_graph("s1", "Tom", "hammer", "hammer")}
+    checks = story_checks([("s1", "action")], graphs, make.scene(table, hammer), {"Tom": tom})["s1"]
+    (contact,) = [c for c in checks if c.name == "contact"]
+    assert not contact.ok and contact.reason.startswith("the hammer is not in Tom's hand")
+    from wana.assets.catalog import asset_for
+    from wana.fidelity.bodies import body_of
+
+    hand = body_of(tom).joint("RightHand")[0]
+    grip = np.asarray(asset_for(hammer).contact_points["hammer"].position)
+    held = PlacedObject(id="hammer", category="hammer", position=tuple(hand - grip))
+    in_hand = story_checks([("s1", "action")], graphs, make.scene(table, held), {"Tom": tom})["s1"]
+    (holding,) = [c for c in in_hand if c.name == "contact"]
+    assert holding.ok, holding.reason
+    no_hammer = story_checks([("s1", "action")], graphs, make.scene(table), {"Tom": tom})["s1"]
+    (empty,) = [c for c in no_hammer if c.name == "contact"]
+    assert not empty.ok and empty.essential and "Tom hammers with an empty hand" in empty.reason
+
+
+def test_typing_with_both_hands_on_the_keys_is_contact(make):
+    """The body is moved so that its fingers are on the laptop's key points during the whole clip."""
+    from wana.assets.catalog import asset_for, to_world
+    from wana.fidelity.bodies import body_of
+
+    laptop = PlacedObject(id="laptop", category="laptop", position=(0.0, 0.7, 0.0))
+    cp = asset_for(laptop).contact_points["type"]
+    keys = to_world(laptop, np.stack([cp.position, cp.extra["LeftHandMiddle1"]]))
+    frames = 12
+    probe = body_of(make.motion("Eve", make.still(0.0, 0.95, 0.0, frames), []))
+    fingers = (probe.joint("RightHandMiddle1")[0] + probe.joint("LeftHandMiddle1")[0]) / 2
+    hips = np.array([0.0, 0.95, 0.0]) + keys.mean(axis=0) - fingers
+    # a T-pose's fingers are 1 m apart, the keys 12 cm: only one hand can be on them
+    eve = make.motion("Eve", make.still(*hips, frames), [("type", 0, frames, "s1", 0)])
+    graphs = {"s1": make.action_graph("s1", "Eve", "type", "type", target="laptop")}
+    (contact,) = [
+        c
+        for c in story_checks([("s1", "action")], graphs, make.scene(laptop), {"Eve": eve})["s1"]
+        if c.name == "contact"
+    ]
+    assert not contact.ok and "hand stay" in contact.reason
+
+
+def test_an_unknown_verb_and_a_stage_that_did_not_run_never_pass(make):
+    graphs = {
+        "s1": SentenceGraph(
+            sentence_id="s1",
+            text="Tom flarps.",
+            kind="action",
+            diagnostics=[
+                Diagnostic(code="W109", message="action without a character: flarps", span=Span(0, 6))
+            ],
+        ),
+        "s2": make.action_graph("s2", "Eve", "wave", "wave"),
+    }
+    checks = story_checks(
+        [("s1", "action"), ("s2", "action")], graphs, make.scene(), {}, {"motion": "worker died"}
+    )
+    assert [c.reason for c in checks["s1"] if not c.ok] == [
+        "the motion stage did not run: worker died",
+        "not shown: action without a character: flarps",
+    ]
+    (eve,) = [c for c in checks["s2"] if c.name == "performed" and c.character]
+    assert not eve.ok and eve.reason == "Eve does not appear in the animation"
+    assert {v.verdict for v in verdicts(checks).values()} == {"failed"}
+
+
+def test_verdicts_join_extra_checks_by_sentence_id():
+    mine = {"s1": [Check(name="performed", ok=True, reason="Eve waves")]}
+    camera = {"s1": [Check(name="in_view", ok=False, reason="Eve is off screen")], "s9": []}
+    joined = verdicts(mine, camera)
+    assert joined["s1"].verdict == "partial" and [c.name for c in joined["s1"].checks] == [
+        "performed",
+        "in_view",
+    ]
+    assert joined["s9"].verdict == "ok"
+    assert verdicts(mine)["s1"].verdict == "ok"

@@ -1,0 +1,216 @@
+"""Checks of one action: done by its character in story order, on something that holds it up, and, for a
+character's first sentence, entering rather than standing there from the first frame (its `contact` check is
+in wana.fidelity.contact_checks).
+"""
+
+from __future__ import annotations
+
+from functools import partial
+
+import numpy as np
+
+from proto.fidelity import Check
+from wana.fidelity.acts import SEATING, Act, window_frames
+from wana.fidelity.bodies import Body
+from wana.fidelity.clips import clip_needs
+from wana.fidelity.contact_checks import CONTACT_SHARE
+from wana.fidelity.words import frame_list, joint_words, span_words, third_person
+from wana.fidelity.world import World, display, point_box_distance
+
+SEAT_BELOW_M = 0.06  # hips at most this far below a supporting surface ...
+SEAT_ABOVE_M = 0.30  # ... and at most this far above it
+SUPPORT_MARGIN_M = 0.08  # hips may overhang a surface's edge by this much
+UNSUPPORTED_FRAMES = 3  # frames on air allowed (the moment of sitting down)
+LEAN_M = 0.08  # a leaning hand within this of a wall or a piece of furniture
+DOOR_M = 1.0  # an entrance starts within this of a door
+ENTRANCE_VERBS = ("walk in", "enter", "come in", "run in", "step in", "burst in", "walk into", "come into")
+
+
+# -- performed -----------------------------------------------------------------------------------
+
+
+def performed(act: Act, has_motion: bool, previous_start: int) -> Check:
+    """The right character plays the asked clip, no earlier than the action the text puts before it."""
+    who, verb = act.character, act.node.verb or act.node.action
+    base = partial(Check, name="performed", character=who)
+    if not has_motion:
+        return base(ok=False, essential=True, reason=f"{who} does not appear in the animation")
+    shown = sorted({s.action for s in act.segments if s.action not in ("hold",)})
+    if not act.node.action:
+        instead = f"{who} {'does ' + ', '.join(shown) if shown else 'stands still'} instead"
+        return base(
+            ok=False,
+            essential=True,
+            reason=f"'{verb}' is not an action wana knows: {instead}",
+            frames=frame_list(range(act.start, act.end)) if act.start >= 0 else [],
+        )
+    seg = act.clip
+    if seg is None:
+        instead = f"{who} does {', '.join(shown)} instead" if shown else f"{who} never does it"
+        return base(
+            ok=False,
+            essential=True,
+            reason=f"the animation does not show {who} {verb}: {instead}",
+            frames=frame_list(range(act.start, act.end)) if act.start >= 0 else [],
+        )
+    if act.start < previous_start:
+        return base(
+            ok=False,
+            reason=f"{who} starts to {verb} at frame {act.start}, before the action the text tells earlier "
+            f"(frame {previous_start})",
+            frames=[seg.start_frame],
+        )
+    return base(
+        ok=True,
+        reason=f"{who} {third_person(act.node.action.replace('_', ' '))} ({span_words([seg.start_frame, seg.end_frame - 1])})",
+    )
+
+
+# -- supported -----------------------------------------------------------------------------------
+
+
+def supported(act: Act, body: Body, world: World, until: int) -> Check | None:
+    """Sitting, lying and leaning rest on something: a surface under the hips (and back), a wall under the hand."""
+    action = act.node.action
+    who = act.character
+    seg = act.clip
+    if seg is None:
+        return None
+    clip = clip_needs(action)
+    if action == "lean_on_wall" and clip is not None:
+        return _leaning(act, body, world)
+    if action not in SEATING or action in ("sit_on_floor", "kneel"):
+        return None
+    frames = np.arange(window_frames(act).start, max(until, window_frames(act).stop))
+    frames = frames[frames < body.frames]
+    if not len(frames):
+        return None
+    held = _on_surface(body.joint("Hips")[frames], world)
+    if action != "sit":
+        held &= _on_surface(body.joint("Spine1")[frames], world, above=0.45)
+    air = frames[~held]
+    posture = "sits" if action == "sit" else "lies"
+    if len(air) > UNSUPPORTED_FRAMES:
+        hips = body.joint("Hips")[air]
+        return Check(
+            name="supported",
+            character=who,
+            ok=False,
+            essential=True,
+            reason=f"{who} {posture} on air: " + _nearest_seat_words(hips, world),
+            frames=frame_list(air),
+        )
+    return Check(
+        name="supported", character=who, ok=True, reason=f"{who} {posture} on a surface that holds them"
+    )
+
+
+def _on_surface(points: np.ndarray, world: World, above: float = SEAT_ABOVE_M) -> np.ndarray:
+    """(T,) whether each (T, 3) point rests on some support surface (or, low enough, on the floor)."""
+    held = points[:, 1] <= above * 0.5  # on the floor itself
+    for _, height, lo, hi in world.surfaces:
+        inside = np.all(
+            (points[:, [0, 2]] >= lo - SUPPORT_MARGIN_M) & (points[:, [0, 2]] <= hi + SUPPORT_MARGIN_M),
+            axis=1,
+        )
+        dy = points[:, 1] - height
+        held |= inside & (dy >= -SEAT_BELOW_M) & (dy <= above)
+    return held
+
+
+def _nearest_seat_words(hips: np.ndarray, world: World) -> str:
+    at = np.median(hips, axis=0)
+    best, best_gap = None, np.inf
+    for placed, height, lo, hi in world.surfaces:
+        if not 0.2 <= height <= 0.9:
+            continue
+        d = np.maximum(0.0, np.maximum(lo - at[[0, 2]], at[[0, 2]] - hi))
+        gap = float(np.hypot(*d))
+        if gap < best_gap:
+            best, best_gap = placed, gap
+    hips_words = f"hips {at[1]:.2f} m above the floor"
+    if best is None:
+        return f"no seat in the room ({hips_words})"
+    if best_gap < 0.02:
+        return f"{hips_words}, off the {display(best.id)}'s seat height"
+    return f"{best_gap:.2f} m beside the {display(best.id)} ({hips_words})"
+
+
+def _leaning(act: Act, body: Body, world: World) -> Check:
+    clip = clip_needs(act.node.action)
+    assert clip is not None
+    frames = np.asarray(window_frames(act))
+    frames = frames[frames < body.frames]
+    joint = clip.contacts[0] if clip.contacts else "LeftHand"
+    hand = body.joint(joint)[frames]
+    room = world.room
+    wall = np.minimum(room.width / 2 - np.abs(hand[:, 0]), room.depth / 2 - np.abs(hand[:, 2])) <= LEAN_M
+    for _, boxes, outer in world.solids:
+        near = np.all((hand >= outer[0] - LEAN_M) & (hand <= outer[1] + LEAN_M), axis=1)
+        if near.any():
+            wall[near] |= point_box_distance(hand[near], boxes).min(axis=1) <= LEAN_M
+    who = act.character
+    if np.mean(wall) < CONTACT_SHARE:
+        return Check(
+            name="supported",
+            character=who,
+            ok=False,
+            essential=True,
+            reason=f"{who} leans on air: the {joint_words([joint])} touches no wall",
+            frames=frame_list(frames[~wall]),
+        )
+    return Check(name="supported", character=who, ok=True, reason=f"{who} leans on something solid")
+
+
+# -- entrance ------------------------------------------------------------------------------------
+
+
+def is_entrance(act: Act) -> bool:
+    verb = act.node.verb.lower()
+    return any(verb == v or verb.startswith(v + " ") for v in ENTRANCE_VERBS)
+
+
+def entrance(act: Act, body: Body, world: World, first: bool) -> Check | None:
+    """An entrance starts outside or at a door; nobody is on stage before their first sentence."""
+    who = act.character
+    if act.start < 0:
+        return None
+    problems: list[str] = []
+    frames: list[int] = []
+    hips = body.joint("Hips")[:, [0, 2]]
+    if first and act.start > 0:
+        early = np.nonzero(world.inside_room(hips[: act.start]))[0]
+        if len(early):
+            problems.append(f"{who} is in the room from {span_words(early)}, before {who}'s first sentence")
+            frames.extend(int(f) for f in early)
+    if is_entrance(act):
+        at = hips[min(act.start, body.frames - 1)]
+        inside = bool(world.inside_room(at[None])[0])
+        doors = [o for o in world.scene.objects if o.category == "door"]
+        door_gap = min(
+            (float(np.hypot(at[0] - d.position[0], at[1] - d.position[2])) for d in doors), default=np.inf
+        )
+        if inside and door_gap > DOOR_M:
+            wall = min(world.room.width / 2 - abs(at[0]), world.room.depth / 2 - abs(at[1]))
+            where = "with no door in the room" if not doors else f"{door_gap:.1f} m from the door"
+            problems.append(f"{who} starts {wall:.1f} m inside the room, {where}, instead of coming in")
+            frames.append(act.start)
+    if not first and not is_entrance(act):
+        return None
+    if problems:
+        return Check(
+            name="entrance",
+            character=who,
+            ok=False,
+            reason="; ".join(problems),
+            frames=frame_list(sorted(set(frames))),
+        )
+    why = (
+        f"{who} comes in from outside or a door"
+        if is_entrance(act)
+        else f"{who} appears with the first sentence"
+    )
+    return Check(name="entrance", character=who, ok=True, reason=why)
+
+
+__all__ = ["entrance", "is_entrance", "performed", "supported"]

@@ -1,0 +1,146 @@
+"""The story's actions lined up with the motion that plays them: which frames serve which sentence.
+
+An action node k of a character is served by the motion segments whose `action_index` is k (an approach
+walk, a turn, then the clip itself); holds belong to the action before them.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+
+from proto.motion_data import Motion, Segment
+from proto.ssg import ActionNode, SentenceGraph
+from wana.fidelity.clips import clip_needs
+
+SEATING = ("sit", "lie_down", "sleep", "sit_on_floor", "kneel")  # clips after which the character stays down
+LOCOMOTION = (
+    "walk",
+    "walk_slowly",
+    "walk_backward",
+    "run",
+    "jog",
+    "tiptoe",
+    "march",
+    "limp",
+    "crawl",
+    "stand",
+)
+
+
+def is_locomotion(action: str) -> bool:
+    clip = clip_needs(action)
+    return action in LOCOMOTION or (clip is not None and "locomotion" in clip.tags)
+
+
+@dataclass
+class Act:
+    """One action node of one character and the segments that play it."""
+
+    sentence_id: str
+    character: str
+    k: int  # index among the character's actions (Segment.action_index)
+    node: ActionNode
+    segments: list[Segment] = field(default_factory=list)
+
+    @property
+    def clip(self) -> Segment | None:
+        """The segment that plays the asked clip (the last one, after any approach), None when absent."""
+        playing = [s for s in self.segments if s.action == self.node.action]
+        return playing[-1] if playing else None
+
+    @property
+    def start(self) -> int:
+        return min((s.start_frame for s in self.segments), default=-1)
+
+    @property
+    def end(self) -> int:
+        return max((s.end_frame for s in self.segments), default=-1)
+
+
+def story_acts(
+    sentences: Sequence[tuple[str, str]], graphs: Mapping[str, SentenceGraph], motions: Mapping[str, Motion]
+) -> list[Act]:
+    """Every action node in document order (the k of each character counts as the pipeline counts it)."""
+    counters: dict[str, int] = {}
+    acts = []
+    for sid, _ in sentences:
+        graph = graphs.get(sid)
+        if graph is None:
+            continue
+        for c in graph.characters:
+            for node in c.actions:
+                k = counters.get(c.name, 0)
+                counters[c.name] = k + 1
+                motion = motions.get(c.name)
+                segs = [s for s in motion.segments if s.action_index == k] if motion is not None else []
+                acts.append(Act(sid, c.name, k, node, segs))
+    return acts
+
+
+def window_frames(act: Act) -> range:
+    """The frames of the clip's contact window (the whole clip when it loops), story frames."""
+    seg = act.clip
+    clip = clip_needs(act.node.action)
+    if seg is None:
+        return range(0)
+    length = seg.end_frame - seg.start_frame
+    if clip is None or clip.looping or clip.duration_s <= 0 or clip.window[1] <= clip.window[0]:
+        if clip is not None and not clip.looping and clip.duration_s > 0 and clip.window[1] <= clip.window[0]:
+            at = seg.start_frame + min(length - 1, round(clip.window[0] / clip.duration_s * length))
+            return range(at, at + 1)
+        return range(seg.start_frame, seg.end_frame)
+    a = seg.start_frame + round(clip.window[0] / clip.duration_s * length)
+    b = seg.start_frame + round(clip.window[1] / clip.duration_s * length)
+    return range(a, max(b, a + 1))
+
+
+def stays_until(act: Act, motion: Motion, *, through_standing_up: bool = False) -> int:
+    """The frame the character leaves the pose an action put it in: the next locomotion, sit or lie down (which
+    answer for themselves), or the motion's end.
+
+    Args:
+        through_standing_up: count standing up as still in the pose (it starts on the seat: the seat stays the
+            stated contact while the character gets up), not as leaving it.
+    """
+    seg = act.clip
+    if seg is None:
+        return act.end
+    later = [
+        s.start_frame
+        for s in motion.segments
+        if s.start_frame >= seg.end_frame
+        and (
+            (is_locomotion(s.action) and not (through_standing_up and s.action == "stand"))
+            or s.action in SEATING
+        )
+    ]
+    frames = int(motion.root_position.shape[0])
+    return min(later, default=frames)
+
+
+def owned_frames(acts: list[Act], motion: Motion) -> dict[str, range]:
+    """Sentence id -> the character's frames that sentence is answerable for (its actions and the holds after)."""
+    frames = int(motion.root_position.shape[0])
+    starts: dict[str, int] = {}
+    for a in acts:
+        if a.start >= 0:
+            starts[a.sentence_id] = min(starts.get(a.sentence_id, a.start), a.start)
+    ordered = sorted(starts.items(), key=lambda kv: kv[1])
+    out = {}
+    for i, (sid, start) in enumerate(ordered):
+        end = ordered[i + 1][1] if i + 1 < len(ordered) else frames
+        out[sid] = range(start, max(end, start))
+    return out
+
+
+__all__ = [
+    "LOCOMOTION",
+    "SEATING",
+    "Act",
+    "is_locomotion",
+    "owned_frames",
+    "stays_until",
+    "story_acts",
+    "window_frames",
+]

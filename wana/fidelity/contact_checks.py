@@ -1,0 +1,305 @@
+"""The `contact` check: an action's contact joints at its target for at least half of its contact window.
+
+Sit: the hips on the seat's point; type: both hands on the keys; drink: the cup in the hand and at the mouth;
+tool use: the tool in the hand; a touch between people: the hand on the other's body; a walk to something:
+ending next to it. The target is the object the sentence names, else the fitting object the body came
+closest to; with none in the room the check fails and says so (nothing dropped passes silently).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from functools import partial
+
+import numpy as np
+
+from proto.fidelity import Check
+from proto.scene import PlacedObject
+from wana.assets.catalog import world_bounds
+from wana.fidelity.acts import Act, is_locomotion, window_frames
+from wana.fidelity.bodies import Body
+from wana.fidelity.clips import ClipNeeds, clip_needs
+from wana.fidelity.words import frame_list, joint_words, stays, third_person
+from wana.fidelity.world import World, display
+
+CONTACT_M = 0.05  # the contact joint within this of the object's contact point ...
+CONTACT_SHARE = 0.5  # ... on at least this share of the window's frames
+MOUTH_M = 0.15  # a drink's cup within this of the head's centre
+ARRIVE_M = 1.0  # a walk to an object ends within this of its footprint
+ARRIVE_PERSON_M = 1.5  # a walk to a character ends within this of them
+# Catalog contact-point names that mean each interaction kind, best first (the motion planner's choice).
+PREFERRED_POINTS = {
+    "seat": ("sit", "sit_0", "sit_2"),
+    "bed": ("lie", "sit"),
+    "keyboard": ("type", "click", "use", "work", "write", "touch"),
+    "instrument": ("play", "work", "touch"),
+    "surface": ("write", "work", "eat", "cook", "wash", "touch"),
+    "button": ("switch", "use", "touch"),
+    "door": ("open", "touch"),
+    "container": ("open", "take", "touch", "pick_up"),
+    "tool": ("work", "saw", "hammer", "drill", "screw", "cut", "touch"),
+    "bag": ("punch", "touch"),
+    "floor_item": ("pick_up", "lift", "carry", "touch"),
+    "handheld": ("drink", "call", "read", "play", "sing", "pick_up", "carry", "lift", "touch"),
+}
+KIND_WORDS = {
+    "seat": "seat",
+    "bed": "bed",
+    "keyboard": "keyboard",
+    "handheld": "thing to hold",
+    "tool": "tool",
+    "surface": "surface",
+    "door": "door",
+    "container": "container",
+    "button": "switch",
+    "instrument": "instrument",
+    "bag": "bag",
+    "floor_item": "thing to pick up",
+}
+HELD = ("handheld", "tool")
+
+
+@dataclass(frozen=True)
+class Reach:
+    """Where an action's contact joints went relative to the object point they were meant for."""
+
+    placed: PlacedObject
+    point: str  # contact point name on the object
+    targets: dict[str, np.ndarray]  # body joint -> (3,) world target
+    distance: dict[str, np.ndarray]  # body joint -> (W,) metres over the window frames
+
+
+def _limb(joint: str) -> str:
+    return joint.replace("Middle1", "")
+
+
+def _fitting(
+    clip: ClipNeeds, points: Mapping[str, list[tuple[str, np.ndarray]]]
+) -> list[tuple[str, dict[str, np.ndarray]]]:
+    """(point name, joint -> world target) for each contact point that serves the clip's contact joints."""
+    wanted = {_limb(j) for j in clip.contacts}
+    names = list(
+        dict.fromkeys([n for n in PREFERRED_POINTS.get(clip.object, ()) if n in points] + sorted(points))
+    )
+    out = []
+    for name in names:
+        pairs = points[name]
+        if clip.object in ("seat", "bed"):
+            hips = [p for j, p in pairs if j == "Hips"]
+            if hips:
+                out.append((name, {"Hips": hips[0]}))
+            continue
+        by_limb = {_limb(j): (j, p) for j, p in pairs}
+        if wanted and wanted <= set(by_limb):
+            out.append((name, {by_limb[w][0]: by_limb[w][1] for w in wanted}))
+        elif clip.object in HELD and wanted & set(by_limb):
+            j, p = by_limb[next(iter(wanted & set(by_limb)))]
+            out.append((name, {j: p}))
+    return out
+
+
+def reach(act: Act, body: Body, world: World, candidates: list[PlacedObject]) -> Reach | None:
+    """The candidate object and contact point the body came closest to during the window, None if none fits."""
+    clip = clip_needs(act.node.action)
+    frames = window_frames(act)
+    if clip is None or not len(frames):
+        return None
+    idx = np.clip(np.asarray(frames), 0, body.frames - 1)
+    best: Reach | None = None
+    best_score = np.inf
+    for placed in candidates:
+        for name, targets in _fitting(clip, world.contact_points(placed)):
+            dist = {j: np.linalg.norm(body.joint(j)[idx] - p, axis=1) for j, p in targets.items()}
+            score = float(np.mean([d.mean() for d in dist.values()]))
+            if score < best_score:
+                best, best_score = Reach(placed, name, targets, dist), score
+    return best
+
+
+def _candidates(act: Act, world: World, characters: set[str]) -> tuple[list[PlacedObject], str]:
+    """The objects the action may use, and the word the text used for them ("" when it named none).
+
+    With no object named, a held object must be one made for the action (a hammer has a "hammer" point, a cup
+    a "drink" point); anything else must offer the interaction's own point, not just a place to touch.
+    """
+    clip = clip_needs(act.node.action)
+    for ref in (act.node.instrument, act.node.target, act.node.destination):
+        if ref and ref not in characters:
+            return world.find(ref), ref
+    if clip is None:
+        return [], ""
+    action = act.node.action
+    if clip.object in HELD:
+        meant = {action, action.split("_")[0]}
+    else:
+        meant = {action, *PREFERRED_POINTS.get(clip.object, ())} - {"touch", "pick_up"}
+    return [o for o in world.scene.objects if meant & set(world.contact_points(o))], ""
+
+
+def contact(
+    act: Act, body: Body, world: World, bodies: Mapping[str, Body]
+) -> tuple[Check | None, dict[str, bool]]:
+    """The `contact` check of one action and the objects it touches on purpose (exempt from `penetration`):
+    object id -> True when the whole body may touch it, False for the arms only."""
+    clip = clip_needs(act.node.action)
+    who, verb = act.character, act.node.verb or act.node.action
+    base = partial(Check, name="contact", character=who)
+    if clip is None or act.clip is None:
+        return None, {}
+    if is_locomotion(act.node.action):
+        return _arrival(act, body, world, bodies), {}
+    if not clip.object:
+        return None, {}
+    frames = window_frames(act)
+    if clip.object == "person":
+        return _touch_person(act, body, bodies, frames), {}
+    candidates, word = _candidates(act, world, set(bodies))
+    if not candidates:
+        if clip.object in HELD:
+            what = f"no {display(word)} in the room" if word else f"nothing in the room to {verb} with"
+            reason = f"there is {what}: {who} {third_person(verb)} with an empty hand"
+        else:
+            what = display(word) if word else KIND_WORDS.get(clip.object, clip.object)
+            reason = f"there is no {what} in the room for {who} to {verb}"
+        return (
+            base(
+                ok=False,
+                essential=True,
+                reason=reason,
+            ),
+            {},
+        )
+    got = reach(act, body, world, candidates)
+    if got is None:
+        name = display(candidates[0].id)
+        return base(ok=False, reason=f"the {name} has no place for {who} to {verb} with"), {}
+    name = display(got.placed.id)
+    # the object itself with the whole body; what it rests on (the desk under the laptop) with the arms only
+    touching = {oid: oid == got.placed.id for oid in world.supports_chain(got.placed)}
+    shares = {j: float(np.mean(d <= CONTACT_M)) for j, d in got.distance.items()}
+    worst = min(shares, key=lambda j: shares[j])
+    fr = np.asarray(frames)
+    far = fr[got.distance[worst] > CONTACT_M]
+    if shares[worst] < CONTACT_SHARE:
+        gap = float(np.median(got.distance[worst]))
+        if clip.object in HELD:
+            reason = f"the {name} is not in {who}'s hand: it stays {gap:.2f} m from it"
+        else:
+            reason = (
+                f"{who}'s {joint_words([worst])} {stays(joint_words([worst]))} {gap:.2f} m from the {name} "
+                f"(within 5 cm on {shares[worst]:.0%} of the frames, needs half)"
+            )
+        return base(ok=False, reason=reason, frames=frame_list(far)), touching
+    if act.node.action == "drink":
+        head = body.points[np.clip(fr, 0, body.frames - 1), -1]
+        hand = body.joint(worst)[np.clip(fr, 0, body.frames - 1)]
+        at_mouth = np.linalg.norm(head - hand, axis=1) <= MOUTH_M + CONTACT_M
+        if np.mean(at_mouth) < CONTACT_SHARE:
+            return (
+                base(
+                    ok=False,
+                    reason=f"the {name} never reaches {who}'s mouth",
+                    frames=frame_list(fr[~at_mouth]),
+                ),
+                touching,
+            )
+    return (
+        base(
+            ok=True,
+            reason=f"{who}'s {joint_words(list(got.distance))} on the {name} ({shares[worst]:.0%} of the frames within 5 cm)",
+        ),
+        touching,
+    )
+
+
+def other_character(act: Act, bodies: Mapping[str, Body]) -> str:
+    for ref in (act.node.target, act.node.destination, act.node.instrument):
+        if ref in bodies and ref != act.character:
+            return ref
+    others = [n for n in bodies if n != act.character]
+    return others[0] if len(others) == 1 else ""
+
+
+def _touch_person(act: Act, body: Body, bodies: Mapping[str, Body], frames: range) -> Check:
+    clip = clip_needs(act.node.action)
+    assert clip is not None
+    who, verb = act.character, act.node.verb or act.node.action
+    other = other_character(act, bodies)
+    if not other:
+        return Check(
+            name="contact",
+            character=who,
+            ok=False,
+            essential=True,
+            reason=f"there is nobody for {who} to {verb}",
+        )
+    them = bodies[other]
+    fr = np.clip(np.asarray(frames), 0, min(body.frames, them.frames) - 1)
+    gaps = []
+    for j in clip.contacts:
+        p = body.joint(j)[fr]  # (W, 3)
+        surface = np.linalg.norm(them.points[fr] - p[:, None], axis=2) - them.radii[None]  # (W, P)
+        gaps.append(np.maximum(surface.min(axis=1), 0.0))
+    gap = np.max(gaps, axis=0)
+    share = float(np.mean(gap <= CONTACT_M))
+    if share < CONTACT_SHARE:
+        return Check(
+            name="contact",
+            character=who,
+            ok=False,
+            reason=f"{who}'s {joint_words(clip.contacts)} {stays(joint_words(clip.contacts))} {float(np.median(gap)):.2f} m from {other}",
+            frames=frame_list(np.asarray(frames)[gap > CONTACT_M]),
+        )
+    return Check(
+        name="contact", character=who, ok=True, reason=f"{who} touches {other} ({share:.0%} of the frames)"
+    )
+
+
+def _arrival(act: Act, body: Body, world: World, bodies: Mapping[str, Body]) -> Check | None:
+    """A walk to something ends next to it."""
+    dest = act.node.destination or act.node.target
+    seg = act.clip
+    if not dest or seg is None:
+        return None
+    who = act.character
+    end = min(seg.end_frame, body.frames) - 1
+    hips = body.joint("Hips")[end, [0, 2]]
+    if dest in bodies and dest != who:
+        gap = float(
+            np.linalg.norm(bodies[dest].joint("Hips")[min(end, bodies[dest].frames - 1), [0, 2]] - hips)
+        )
+        ok = gap <= ARRIVE_PERSON_M
+        return Check(
+            name="contact",
+            character=who,
+            ok=ok,
+            reason=f"{who} stops {gap:.1f} m from {dest}" + ("" if ok else f" (at most {ARRIVE_PERSON_M} m)"),
+            frames=[] if ok else [end],
+        )
+    found = world.find(dest)
+    if not found:
+        return Check(
+            name="contact",
+            character=who,
+            ok=False,
+            reason=f"there is no {display(dest)} in the room for {who} to walk to",
+        )
+    gaps = []
+    for placed in found:
+        b = world_bounds(placed)
+        d = np.maximum(0.0, np.maximum(b[0, [0, 2]] - hips, hips - b[1, [0, 2]]))
+        gaps.append(float(np.hypot(*d)))
+    gap = min(gaps)
+    ok = gap <= ARRIVE_M
+    return Check(
+        name="contact",
+        character=who,
+        ok=ok,
+        reason=f"{who} stops {gap:.1f} m from the {display(dest)}"
+        + ("" if ok else f" (at most {ARRIVE_M} m)"),
+        frames=[] if ok else [end],
+    )
+
+
+__all__ = ["CONTACT_M", "contact", "other_character", "reach"]

@@ -1,0 +1,128 @@
+"""Checks of a scene sentence: the objects it names are in the room, with their count, and its relations hold.
+
+The relation geometry is the project's own predicate (wana.assets.relations, on world bounds and support
+surfaces), the same one retrieval keeps true, so a relation that retrieval could not keep shows here.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from proto.fidelity import Check
+from proto.ssg import SentenceGraph
+from wana.assets import vocabulary
+from wana.assets.catalog import world_bounds
+from wana.assets.relations import footprint_gap, relation_holds
+from wana.fidelity.world import World, display
+
+RELATION_WORDS = {
+    "on": "on",
+    "near": "near",
+    "in_front_of": "in front of",
+    "behind": "behind",
+    "left_of": "left of",
+    "right_of": "right of",
+    "under": "under",
+    "above": "above",
+    "next_to": "next to",
+    "facing": "facing",
+    "in": "in",
+    "around": "around",
+    "hanging_above": "hanging above",
+}
+
+
+def plural(name: str) -> str:
+    if name.endswith(("s", "sh", "ch", "x")):
+        return name + "es"
+    return name[:-1] + "ies" if name.endswith("y") and name[-2:-1] not in "aeiou" else name + "s"
+
+
+def _family(category: str) -> str:
+    info = vocabulary.CATEGORIES.get(category)
+    return info.parent if info is not None and info.parent else category
+
+
+def object_checks(graph: SentenceGraph, world: World) -> list[Check]:
+    """One `object_exists` check per object the sentence names (count and category included)."""
+    checks = []
+    for node in graph.objects:
+        name = display(node.category)
+        placed = world.copies(node.id)
+        if not placed:
+            checks.append(
+                Check(
+                    name="object_exists", ok=False, essential=True, reason=f"there is no {name} in the room"
+                )
+            )
+            continue
+        wrong = [
+            p for p in placed if p.category != node.category and _family(p.category) != _family(node.category)
+        ]
+        if len(placed) < node.count:
+            checks.append(
+                Check(
+                    name="object_exists",
+                    ok=False,
+                    reason=f"only {len(placed)} of the {node.count} {plural(name)} are in the room",
+                )
+            )
+        elif wrong:
+            checks.append(
+                Check(
+                    name="object_exists",
+                    ok=False,
+                    reason=f"the room has a {display(wrong[0].category)} where the text asks for a {name}",
+                )
+            )
+        else:
+            many = f"{node.count} {plural(name)} are" if node.count > 1 else f"the {name} is"
+            checks.append(Check(name="object_exists", ok=True, reason=f"{many} in the room"))
+    return checks
+
+
+def _why_not(relation: str, subject, anchor) -> str:  # noqa: ANN001 - PlacedObjects
+    if relation == "on":
+        top = float(world_bounds(anchor)[1, 1])
+        base = float(subject.position[1])
+        if abs(base - top) > 0.03:
+            where = "above" if base > top else "below"
+            return f"its base is {abs(base - top):.2f} m {where} the top of the {display(anchor.id)}"
+        return f"it is beside the {display(anchor.id)}, not over it"
+    gap = footprint_gap(subject, anchor)
+    if relation in ("near", "next_to", "around"):
+        return f"they are {gap:.1f} m apart"
+    d = np.subtract(subject.position, anchor.position)
+    return f"it stands {float(np.hypot(d[0], d[2])):.1f} m from the {display(anchor.id)} in another direction"
+
+
+def relation_checks(graph: SentenceGraph, world: World) -> list[Check]:
+    """One `relation_holds` check per stated relation, between every copy of the subject and the anchor."""
+    checks = []
+    for rel in graph.relations:
+        words = RELATION_WORDS.get(rel.relation, rel.relation.replace("_", " "))
+        subjects, anchors = world.copies(rel.subject), world.copies(rel.object) or world.find(rel.object)
+        said = f"the {display(rel.subject)} {words} the {display(rel.object)}"
+        if not subjects or not anchors:
+            missing = display(rel.subject) if not subjects else display(rel.object)
+            checks.append(
+                Check(name="relation_holds", ok=False, reason=f"{said}: there is no {missing} to place")
+            )
+            continue
+        anchor = anchors[0]
+        failing = [s for s in subjects if not relation_holds(rel.relation, s, anchor)]
+        if failing:
+            checks.append(
+                Check(
+                    name="relation_holds",
+                    ok=False,
+                    reason=f"the {display(failing[0].id)} is not {words} the {display(anchor.id)}: "
+                    + _why_not(rel.relation, failing[0], anchor),
+                )
+            )
+        else:
+            checks.append(Check(name="relation_holds", ok=True, reason=f"{said} holds"))
+    return checks
+
+
+__all__ = ["RELATION_WORDS", "object_checks", "relation_checks"]

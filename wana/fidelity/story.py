@@ -1,0 +1,317 @@
+"""Every sentence's checks, from its parse and the computed animation; verdicts that join in other checks.
+
+    checks = story_checks([(s.id, s.kind) ...], graphs, scene, motions, unavailable)
+    verdicts(checks, extra=camera_checks)      # sentence id -> SentenceVerdict
+
+FK runs once per character and every per-frame test once per motion; each sentence takes its own frames
+out of those passes (the editor calls this after every edit).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+
+from proto.fidelity import Check, SentenceVerdict, verdict_of
+from proto.motion_data import Motion
+from proto.scene import Scene
+from proto.ssg import SentenceGraph
+from wana.fidelity import action_checks as ac
+from wana.fidelity import body_checks as bc
+from wana.fidelity import contact_checks as cc
+from wana.fidelity.acts import Act, owned_frames, stays_until, story_acts
+from wana.fidelity.bodies import Body, body_of
+from wana.fidelity.clips import clip_needs
+from wana.fidelity.scene_checks import object_checks, relation_checks
+from wana.fidelity.words import frame_list
+from wana.fidelity.world import World, display
+from wana.domain.skeleton import JOINT_NAMES
+
+# Parser diagnostics that mean something the sentence asked for was dropped -> (check name, essential).
+DROPPED = {
+    "W101": ("object_exists", False),
+    "W102": ("performed", True),
+    "W103": ("performed", True),
+    "W104": ("command_visible", True),
+    "W105": ("performed", True),
+    "W107": ("relation_holds", False),
+    "W108": ("performed", False),
+    "W109": ("performed", True),
+    "E110": ("performed", True),
+    "E112": ("performed", True),
+}
+ARMS = np.array(
+    [n.removeprefix("Left").removeprefix("Right") in ("Hand", "HandMiddle1", "ForeArm") for n in JOINT_NAMES]
+)
+STAGE_NEEDS = {  # stage -> the sentence kinds that cannot be shown without it
+    "parse": ("scene", "action", "command", "empty"),
+    "scene": ("scene", "action"),
+    "motion": ("action",),
+}
+
+
+def story_checks(
+    sentences: Sequence[tuple[str, str]],
+    graphs: Mapping[str, SentenceGraph],
+    scene: Scene | None,
+    motions: Mapping[str, Motion],
+    unavailable: Mapping[str, str] | None = None,
+) -> dict[str, list[Check]]:
+    """Per-sentence checks of what the animation shows.
+
+    Args:
+        sentences: (sentence id, kind) in document order.
+        graphs: sentence id -> resolved SentenceGraph (what the sentence asks).
+        scene: the composed (optimised) scene, None when none was composed.
+        motions: character -> assembled Motion (segments carry sentence_id and action_index).
+        unavailable: stage -> why it did not run (each sentence that needed it gets a failing check).
+
+    Returns:
+        sentence id -> its checks (every sentence id of `sentences` is a key).
+    """
+    unavailable = dict(unavailable or {})
+    out: dict[str, list[Check]] = {sid: [] for sid, _ in sentences}
+    world = World(scene) if scene is not None else None
+    bodies = {name: body_of(m) for name, m in motions.items() if m.root_position.shape[0] > 0}
+    acts = story_acts(sentences, graphs, motions)
+
+    for sid, kind in sentences:
+        graph = graphs.get(sid)
+        kind = graph.kind if graph is not None else kind
+        out[sid].extend(_dropped(graph, kind, unavailable, world))
+        if graph is not None and kind == "scene" and world is not None:
+            out[sid].extend(object_checks(graph, world))
+            out[sid].extend(relation_checks(graph, world))
+    if world is not None:
+        _action_checks(out, acts, world, bodies, motions)
+    for sid, checks in out.items():  # a dropped verb said once, by the check that names the character
+        if any(c.name == "performed" and c.character and not c.ok for c in checks):
+            out[sid] = [c for c in checks if not (c.name == "performed" and not c.character and not c.ok)]
+    return out
+
+
+def _dropped(
+    graph: SentenceGraph | None, kind: str, unavailable: Mapping[str, str], world: World | None
+) -> list[Check]:
+    """Failing checks for what the sentence asked and the pipeline dropped (nothing passes silently)."""
+    checks = []
+    first_name = (
+        "object_exists" if kind == "scene" else "command_visible" if kind == "command" else "performed"
+    )
+    for stage, why in unavailable.items():
+        if kind in STAGE_NEEDS.get(stage, ()) or (stage == "social" and graph is not None and graph.social):
+            checks.append(
+                Check(
+                    name=first_name, ok=False, essential=True, reason=f"the {stage} stage did not run: {why}"
+                )
+            )
+    if graph is None:
+        return checks
+    if world is None and kind in ("scene", "action") and "scene" not in unavailable:
+        checks.append(Check(name=first_name, ok=False, essential=True, reason="no room was composed"))
+    for d in graph.diagnostics:
+        code = d.code.split()[0]
+        if code in DROPPED:
+            name, essential = DROPPED[code]
+            checks.append(Check(name=name, ok=False, essential=essential, reason=f"not shown: {d.message}"))
+    return checks
+
+
+def _action_checks(
+    out: dict[str, list[Check]],
+    acts: list[Act],
+    world: World,
+    bodies: Mapping[str, Body],
+    motions: Mapping[str, Motion],
+) -> None:
+    exempt: dict[str, dict[str, np.ndarray]] = {name: {} for name in bodies}
+    touching: dict[tuple[str, str], np.ndarray] = {}  # (a, b) -> frames they touch on purpose
+    seen: set[str] = set()
+    begins: dict[str, int] = {}  # sentence id -> the first frame any of its actions plays
+    for act in acts:
+        if act.start >= 0:
+            begins[act.sentence_id] = min(begins.get(act.sentence_id, act.start), act.start)
+    floor, floors, last = 0, {}, ""
+    for act in acts:  # the floor of a sentence: when the action sentence before it began
+        if act.sentence_id != last and last:
+            floor = begins.get(last, floor)
+        floors[act.sentence_id], last = floor, act.sentence_id
+    for act in acts:
+        body = bodies.get(act.character)
+        motion = motions.get(act.character)
+        checks = out.setdefault(act.sentence_id, [])
+        checks.append(ac.performed(act, body is not None, floors[act.sentence_id]))
+        if body is None or motion is None:
+            continue
+        first = act.character not in seen
+        seen.add(act.character)
+        until = stays_until(act, motion)
+        touching_until = stays_until(act, motion, through_standing_up=True)
+        contact, used = cc.contact(act, body, world, bodies)
+        if contact is not None:
+            checks.append(contact)
+        if act.clip is not None:
+            hold = np.zeros(body.frames, bool)
+            hold[act.start : touching_until] = True  # backing up to a seat touches it too
+            for oid, whole in used.items():
+                points = np.ones(len(body.radii), bool) if whole else ARMS[body.point_joint]
+                mask = exempt[act.character].setdefault(oid, np.zeros((body.frames, len(body.radii)), bool))
+                mask |= hold[:, None] & points[None, :]
+            clip = clip_needs(act.node.action)
+            if clip is not None and clip.object == "person":
+                other = cc.other_character(act, bodies)
+                if other:
+                    on = np.zeros(body.frames, bool)
+                    on[act.clip.start_frame : act.clip.end_frame] = True
+                    lo, hi = sorted((act.character, other))
+                    touching[(lo, hi)] = touching.get((lo, hi), np.zeros(body.frames, bool)) | on
+        for check in (ac.supported(act, body, world, until), ac.entrance(act, body, world, first)):
+            if check is not None:
+                checks.append(check)
+    _body_checks(out, acts, world, bodies, motions, exempt, touching)
+
+
+def _body_checks(
+    out: dict[str, list[Check]],
+    acts: list[Act],
+    world: World,
+    bodies: Mapping[str, Body],
+    motions: Mapping[str, Motion],
+    exempt: dict[str, dict[str, np.ndarray]],
+    touching: dict[tuple[str, str], np.ndarray],
+) -> None:
+    """penetration, overlap and continuity per (sentence, acting character), from one pass per motion."""
+    names = sorted(bodies)
+    apart: dict[str, list[bc.FrameFailures]] = {name: [] for name in names}
+    for i, a in enumerate(names):
+        for b in names[i + 1 :]:
+            fa, fb = bc.overlap(bodies[a], bodies[b], touching.get((a, b)))
+            apart[a].append(fa)
+            apart[b].append(fb)
+    for name in names:
+        body, motion = bodies[name], motions[name]
+        mine = [a for a in acts if a.character == name]
+        owned = owned_frames(mine, motion)
+        inside = bc.penetration(body, world, exempt.get(name, {}))
+        boundaries = sorted({s.start_frame for s in motion.segments if s.start_frame > 0})
+        fast, popped = bc.speeds(body, motion.fps), bc.pops(body, boundaries)
+        for sid, frames in owned.items():
+            f = np.arange(frames.start, min(frames.stop, body.frames))
+            checks = out.setdefault(sid, [])
+            checks.append(_penetration_check(name, inside, f))
+            if apart[name]:
+                checks.append(_overlap_check(name, apart[name], f))
+            checks.append(_continuity_check(name, fast, popped, f))
+
+
+def _joint_word(j: int) -> str:
+    name = JOINT_NAMES[j] if 0 <= j < len(JOINT_NAMES) else "body"
+    side = "left " if name.startswith("Left") else "right " if name.startswith("Right") else ""
+    part = name.removeprefix("Left").removeprefix("Right")
+    words = {
+        "HandMiddle1": "fingers",
+        "UpLeg": "thigh",
+        "Leg": "shin",
+        "ForeArm": "forearm",
+        "Arm": "upper arm",
+        "ToeBase": "toes",
+        "Spine": "belly",
+        "Spine1": "chest",
+        "Spine2": "chest",
+    }
+    return side + words.get(part, part.lower())
+
+
+def _frames_words(n: int) -> str:
+    return "1 frame" if n == 1 else f"{n} frames"
+
+
+def _verb(j: int, singular: str) -> str:
+    """ "is"/"moves" for a part, "are"/"move" for the parts named in the plural (fingers, toes)."""
+    if not _joint_word(j).endswith("s"):
+        return singular
+    return "are" if singular == "is" else singular.removesuffix("s")
+
+
+def _worst(fail: bc.FrameFailures, f: np.ndarray) -> tuple[np.ndarray, int]:
+    bad = f[fail.failing[f]]
+    worst = int(bad[np.argmax(fail.amount[bad])]) if len(bad) else -1
+    return bad, worst
+
+
+def _penetration_check(name: str, fail: bc.FrameFailures, f: np.ndarray) -> Check:
+    bad, w = _worst(fail, f)
+    if w < 0:
+        return Check(
+            name="penetration", character=name, ok=True, reason=f"no part of {name} goes into furniture"
+        )
+    return Check(
+        name="penetration",
+        character=name,
+        ok=False,
+        reason=f"{name}'s {_joint_word(int(fail.joint[w]))} {_verb(int(fail.joint[w]), 'is')} {fail.amount[w] * 100:.0f} cm inside the "
+        f"{display(str(fail.what[w]))} ({_frames_words(len(bad))}, worst at frame {w})",
+        frames=frame_list(bad),
+    )
+
+
+def _overlap_check(name: str, fails: list[bc.FrameFailures], f: np.ndarray) -> Check:
+    merged = bc.FrameFailures.none(len(fails[0].failing))
+    for x in fails:
+        worse = x.failing & (x.amount > merged.amount)
+        merged.failing[worse] = True
+        merged.amount[worse] = x.amount[worse]
+        merged.what[worse] = x.what[worse]
+        merged.joint[worse] = x.joint[worse]
+    bad, w = _worst(merged, f)
+    if w < 0:
+        return Check(
+            name="overlap", character=name, ok=True, reason=f"{name}'s body stays clear of the others"
+        )
+    return Check(
+        name="overlap",
+        character=name,
+        ok=False,
+        reason=f"{name}'s {_joint_word(int(merged.joint[w]))} {_verb(int(merged.joint[w]), 'is')} {merged.amount[w] * 100:.0f} cm inside "
+        f"{merged.what[w]}'s body ({_frames_words(len(bad))}, worst at frame {w})",
+        frames=frame_list(bad),
+    )
+
+
+def _continuity_check(name: str, fast: bc.FrameFailures, popped: bc.FrameFailures, f: np.ndarray) -> Check:
+    bad_fast, wf = _worst(fast, f)
+    bad_pop, wp = _worst(popped, f)
+    if wf < 0 and wp < 0:
+        return Check(name="continuity", character=name, ok=True, reason=f"{name} moves smoothly")
+    reasons = []
+    if wf >= 0:
+        limit = bc.HIPS_MAX_MS if JOINT_NAMES[int(fast.joint[wf])] == "Hips" else bc.HANDS_MAX_MS
+        reasons.append(
+            f"{name}'s {_joint_word(int(fast.joint[wf]))} {_verb(int(fast.joint[wf]), 'moves')} {fast.amount[wf]:.0f} m/s at frame {wf} "
+            f"(at most {limit:.0f} m/s)"
+        )
+    if wp >= 0:
+        reasons.append(
+            f"{name}'s pose jumps at frame {wp}: the {_joint_word(int(popped.joint[wp]))} {_verb(int(popped.joint[wp]), 'moves')} "
+            f"{popped.amount[wp]:.2f} m in one frame"
+        )
+    frames = sorted(set(bad_fast.tolist()) | set(bad_pop.tolist()))
+    return Check(
+        name="continuity", character=name, ok=False, reason="; ".join(reasons), frames=frame_list(frames)
+    )
+
+
+def verdicts(
+    checks_by_sentence: Mapping[str, list[Check]], extra: Mapping[str, list[Check]] | None = None
+) -> dict[str, SentenceVerdict]:
+    """Sentence id -> verdict over its own checks and any others (the render service's camera checks)."""
+    extra = extra or {}
+    out = {}
+    for sid in list(checks_by_sentence) + [s for s in extra if s not in checks_by_sentence]:
+        checks = list(checks_by_sentence.get(sid, [])) + list(extra.get(sid, []))
+        out[sid] = SentenceVerdict(sentence_id=sid, verdict=verdict_of(checks), checks=checks)
+    return out
+
+
+__all__ = ["story_checks", "verdicts"]
