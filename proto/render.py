@@ -13,6 +13,7 @@ from typing import Literal
 import msgspec
 
 from proto.common import Header, Status
+from proto.fidelity import Check
 from proto.motion_data import Motion
 from proto.scene import Scene
 from proto.ssg import Command
@@ -26,6 +27,7 @@ class TimedCommand(msgspec.Struct, frozen=True, kw_only=True):
 
     frame: int  # 0-based frame index (30 fps) from which the command applies
     command: Command
+    sentence_id: str = ""  # the sentence that gave the command ("" = unknown), for its command_visible check
 
 
 class Caption(msgspec.Struct, frozen=True, kw_only=True):
@@ -95,3 +97,5 @@ class ExportReply(msgspec.Struct, frozen=True, kw_only=True, tag="export_reply")
     filename: str  # suggested file name, e.g. "scene.glb", "Eve.bvh"
     media_type: str  # "video/mp4", "model/gltf-binary", "application/octet-stream"
     data: bytes
+    # mp4 only: the camera checks of the video (in_view, command_visible), sentence id -> checks
+    checks: dict[str, list[Check]] = {}

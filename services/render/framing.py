@@ -122,11 +122,14 @@ class Occluders:
 
     Args:
         groups: one (N_i, 2, 3) array of world boxes per object.
+        names: what each group is, in words ("bookshelf"), for the checks' reasons; default "object i".
     """
 
-    def __init__(self, groups: Sequence[np.ndarray]) -> None:
+    def __init__(self, groups: Sequence[np.ndarray], names: Sequence[str] | None = None) -> None:
         kept = [np.asarray(g, dtype=np.float64).reshape(-1, 2, 3) for g in groups]
+        labels = list(names) if names is not None else [f"object {i}" for i in range(len(kept))]
         self.groups = [g for g in kept if len(g)]
+        self.names = [n for n, g in zip(labels, kept, strict=True) if len(g)]
         self.bounds = (
             np.array([[g[:, 0].min(axis=0), g[:, 1].max(axis=0)] for g in self.groups])
             if self.groups
@@ -139,13 +142,14 @@ class Occluders:
         """Every placed object's world collision boxes (objects the catalog lacks are skipped)."""
         from wana.assets.catalog import world_collision_boxes
 
-        groups = []
+        groups, names = [], []
         for p in scene.objects:
             try:
                 groups.append(world_collision_boxes(p))
             except KeyError:
                 continue
-        return cls(groups)
+            names.append(p.category.replace("_", " "))
+        return cls(groups, names)
 
     def blocked(self, starts: np.ndarray, ends: np.ndarray) -> np.ndarray:
         """(S,) bool: which sight lines from starts (S, 3) to ends (S, 3) pass through a box.
