@@ -75,7 +75,7 @@ def staged_checks(
     track: CameraTrack | None = None,
 ) -> dict[str, list[Check]]:
     """The camera checks of a staged video (the renderer's own ``staging``); ``track`` when already planned."""
-    track = track if track is not None else stage.camera_track()
+    track = track if track is not None else stage.camera_track(width, height)
     out = in_view_checks(stage, track, sentences, width=width, height=height)
     for sid, checks in command_checks(stage.commands, stage.n_frames).items():
         out.setdefault(sid, []).extend(checks)
@@ -152,12 +152,14 @@ def _in_view_failure(who: str, what: str, view: BodyView, shown: np.ndarray, sha
     if hidden.any():
         covered = 1.0 - view.visible[hidden].mean()
         blockers = Counter(int(k) for k in view.hidden_by[hidden].reshape(-1) if k >= 0)
-        behind = view.occluders[blockers.most_common(1)[0][0]] if blockers else "something"
+        total = sum(blockers.values())
+        top = [view.occluders[k] for k, n in blockers.most_common(2) if n >= 0.25 * total]
+        behind = " and ".join(top) if top else "something"
         lead = f"{who} is" if not parts else "and"
         tail = "" if parts else f" of {what}"
         parts.append(f"{lead} {covered:.0%} hidden behind {behind} for {hidden.sum() / FPS:.1f} s{tail}")
     return (" ".join(parts) if len(parts) == 2 else parts[0]) + (
-        f" (shown on {share:.0%} of its frames, needs {FRAME_SHARE:.0%})"
+        f" (shown on {int(share * 100)}% of its frames, needs {FRAME_SHARE:.0%})"
     )
 
 

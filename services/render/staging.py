@@ -6,11 +6,15 @@ same one, so the camera a check judges is the camera the MP4 shows: there is one
 
     stage = Staging.build(scene, motions, timed_commands)
     track = stage.camera_track()  # eye, target, up, fov of every frame of the video
+    track = camera_track(scene, motions, commands, sentences, width=640, height=480)  # the same, from
+    # what write_outputs takes
 """
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -20,7 +24,13 @@ from proto.scene import Scene
 from services.render.camera import CameraKey, CameraPose, CharacterTrack, camera_at
 from services.render.framing import Occluders
 from services.render.skinning import Rig
-from services.render.timeline import camera_keys, video_frames, weather_keys
+from services.render.timeline import (
+    as_motion_list,
+    camera_keys,
+    place_commands,
+    video_frames,
+    weather_keys,
+)
 from services.render.weather import WeatherKey
 
 MAX_FRAMES = 30 * 60 * 20  # 20 minutes at 30 fps
@@ -35,12 +45,15 @@ class CameraTrack:
         target: (T, 3) world metres.
         up: (T, 3) up vectors.
         fov_deg: (T,) vertical field of view, degrees.
+        width, height: the picture's size in pixels.
     """
 
     eye: np.ndarray
     target: np.ndarray
     up: np.ndarray
     fov_deg: np.ndarray
+    width: int = 640
+    height: int = 480
 
     def __len__(self) -> int:
         return len(self.eye)
@@ -121,12 +134,36 @@ class Staging:
         """The camera of one frame: the commanded shot, moved until it sees its character."""
         return camera_at(frame, self.camera_keys, self.tracks, self.scene.room, self.occluders)
 
-    def camera_track(self) -> CameraTrack:
-        """Every frame's camera, (T, ...) arrays over the video's n_frames."""
+    def camera_track(self, width: int = 640, height: int = 480) -> CameraTrack:
+        """Every frame's camera, (T, ...) arrays over the video's n_frames, for a picture of that size."""
         poses = [self.camera(f) for f in range(self.n_frames)]
         return CameraTrack(
             eye=np.array([p.eye for p in poses], dtype=np.float64).reshape(-1, 3),
             target=np.array([p.target for p in poses], dtype=np.float64).reshape(-1, 3),
             up=np.array([p.up for p in poses], dtype=np.float64).reshape(-1, 3),
             fov_deg=np.array([p.fov_deg for p in poses], dtype=np.float64),
+            width=int(width),
+            height=int(height),
         )
+
+
+def camera_track(
+    scene: Scene,
+    motions: Iterable[Motion] | Mapping[str, Motion],
+    commands: Iterable[Any] | None,
+    sentences: Iterable[Any] | None,
+    *,
+    width: int = 640,
+    height: int = 480,
+) -> CameraTrack:
+    """The per-frame camera of the video ``write_outputs`` renders from these inputs, without rendering.
+
+    Args:
+        scene, motions, commands, sentences: as ``services.render.export.write_outputs`` takes them.
+        width, height: the video's size in pixels (the field of view is vertical, so the camera itself
+            does not change with them; they travel with the track for projecting points).
+    """
+    mlist = as_motion_list(motions)
+    sents = list(sentences or [])
+    stage = Staging.build(scene, mlist, place_commands(commands, sents, mlist))
+    return stage.camera_track(width=width, height=height)

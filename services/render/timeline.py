@@ -72,11 +72,8 @@ def video_frames(motions: list[Motion], commands: Iterable[TimedCommand] = ()) -
     command has been in force for COMMAND_HOLD_FRAMES (a command at the end of a story lands on the last
     motion frame and would otherwise never be seen)."""
     n = n_frames_of(motions)
-    last = max(
-        (tc.frame for tc in commands if tc.command.kind in ("camera", "weather")),
-        default=-COMMAND_HOLD_FRAMES,
-    )
-    return max(n, max(0, last) + COMMAND_HOLD_FRAMES)
+    starts = [max(0, tc.frame) for tc in commands if tc.command.kind in ("camera", "weather")]
+    return max(n, max(starts) + COMMAND_HOLD_FRAMES) if starts else n
 
 
 def _sentence_spans(motions: list[Motion]) -> dict[str, tuple[int, int, str]]:
