@@ -97,5 +97,4 @@ class ExportReply(msgspec.Struct, frozen=True, kw_only=True, tag="export_reply")
     filename: str  # suggested file name, e.g. "scene.glb", "Eve.bvh"
     media_type: str  # "video/mp4", "model/gltf-binary", "application/octet-stream"
     data: bytes
-    # mp4 only: the camera checks of the video (in_view, command_visible), sentence id -> checks
-    checks: dict[str, list[Check]] = {}
+    checks: dict[str, list[Check]] = {}  # mp4: the video's in_view/command_visible checks by sentence id
