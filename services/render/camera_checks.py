@@ -23,6 +23,7 @@ from proto.fidelity import Check
 from proto.motion_data import Motion
 from proto.render import TimedCommand
 from proto.scene import Scene
+from services.render.sightlines import Furniture
 from services.render.staging import CameraTrack, Staging
 from services.render.timeline import (
     COMMAND_HOLD_FRAMES,
@@ -113,11 +114,12 @@ def in_view_checks(
     """One ``in_view`` check per (action sentence, acting character), sentence id -> checks."""
     refs = {s.id: s for s in as_sentences(sentences)}
     joints = {name: rig.joint_positions for name, rig in stage.rigs.items()}
+    furniture = Furniture.from_scene(stage.scene)
     out: dict[str, list[Check]] = {}
     for sid, chars in action_frames(stage.motions.values(), stage.n_frames).items():
         for who in sorted(chars):
             frames = chars[who]
-            view = body_view(who, frames, joints, track, stage.occluders, stage.scene.room, width, height)
+            view = body_view(who, frames, joints, track, furniture, stage.scene.room, width, height)
             shown = view.visible.mean(axis=1) >= VISIBLE_SHARE
             share = float(shown.mean())
             what = _quote(refs.get(sid), f"its action in sentence {sid}")

@@ -1,9 +1,13 @@
 """How much of a character the video's camera shows: sample points on the body, in the picture and unhidden.
 
 A frame shows a character's body point when the point projects inside the image, lies in front of the
-lens, and the sight line from the eye to it passes through no furniture collision box, no wall seen from
-inside the room (walls are one-sided: from outside the camera sees through them, as the renderer draws
-them) and no other character's body (capsules around their bones). This is what the ``in_view`` check
+lens, and the sight line from the eye to it passes through no furniture (collision boxes, then the drawn
+triangles: services.render.sightlines), no wall seen from inside the room (walls are one-sided: from
+outside the camera sees through them, as the renderer draws them) and no other character's body
+(capsules around their bones). Each line stops STOP_SHORT before its joint, so the seat under the hips
+or the keyboard under the fingers does not hide them; a joint sunk into furniture (inside its collision
+boxes) is not hidden by the surface around it either, since no camera could show it (the penetration
+check reports it), only by a part of that object farther in front (a backrest before seated legs). This is what the ``in_view`` check
 (services.render.camera_checks) counts; it needs no pixels, only the camera track and the skeletons.
 """
 
@@ -15,7 +19,7 @@ import numpy as np
 
 from proto.scene import Room
 from services.render.camera import project
-from services.render.framing import Occluders, segments_hit_boxes
+from services.render.sightlines import Furniture
 from services.render.staging import CameraTrack
 from wana.skeleton import JOINT_INDEX
 
@@ -53,9 +57,8 @@ BODY_CAPSULES = (
 HEAD_TOP = 0.16  # metres from the Head joint, along the neck -> head direction
 STOP_SHORT = 0.1  # metres a sight line stops before its body point (the seat under the hips, the keyboard
 # under the fingers, the partner's hand in a handshake do not hide the joint they touch)
-TOUCH = 0.05  # metres: an object or body this close to a body point (or around it) cannot hide it. The
-# body's surface lies outside the joint (shins against the seat's front, a hand on a shoulder), and a part
-# sunk into furniture is the penetration check's finding, not the camera's: no camera could show it.
+TOUCH = 0.05  # metres beyond a capsule's radius: another body this close to a body point cannot hide it
+# (a hand on a shoulder, arms round a partner in a hug: the body's surface lies outside the joint)
 NEAR_CLIP = 0.05  # metres: the renderer's near plane
 
 
@@ -143,13 +146,6 @@ def wall_hits(starts: np.ndarray, ends: np.ndarray, room: Room) -> np.ndarray:
     return hit
 
 
-def point_box_distances(points: np.ndarray, boxes: np.ndarray) -> np.ndarray:
-    """(S, B) distance from each point (S, 3) to each box (B, 2, 3), 0 inside."""
-    below = boxes[None, :, 0, :] - points[:, None, :]
-    above = points[:, None, :] - boxes[None, :, 1, :]
-    return np.linalg.norm(np.maximum(np.maximum(below, above), 0.0), axis=-1)
-
-
 def _stop_short(starts: np.ndarray, ends: np.ndarray) -> np.ndarray:
     d = ends - starts
     length = np.linalg.norm(d, axis=-1, keepdims=True)
@@ -161,7 +157,7 @@ def body_view(
     frames: np.ndarray,
     joints: dict[str, np.ndarray],
     track: CameraTrack,
-    occluders: Occluders,
+    furniture: Furniture,
     room: Room,
     width: int,
     height: int,
@@ -173,7 +169,7 @@ def body_view(
         frames: (F,) story frames (each < len(track)); past a motion's end its final pose holds.
         joints: character -> (T, J, 3) world joint positions (the rigs' forward kinematics).
         track: the video's camera, frame by frame.
-        occluders: the scene's furniture boxes (with names).
+        furniture: the scene's objects (boxes, then triangles), with names.
         room: the room (its walls hide what is outside it).
         width, height: the video's size, pixels.
     """
@@ -195,17 +191,11 @@ def body_view(
     eyes = np.broadcast_to(track.eye[frames][:, None, :], pts.shape)
     starts, ends = eyes.reshape(-1, 3), _stop_short(eyes, pts).reshape(-1, 3)
     targets = pts.reshape(-1, 3)
-    hidden = np.full(len(starts), -1, dtype=np.int64)
-    names = [f"the {n}" for n in occluders.names]
-    if occluders.groups:
-        coarse = segments_hit_boxes(starts, ends, occluders.bounds)  # (S, K) broad phase
-        for k in np.nonzero(coarse.any(axis=0))[0]:
-            rows = np.nonzero(coarse[:, k] & (hidden < 0))[0]
-            if len(rows):
-                boxes = occluders.groups[k]
-                touching = (point_box_distances(targets[rows], boxes) < TOUCH).any(axis=1)
-                fine = segments_hit_boxes(starts[rows], ends[rows], boxes).any(axis=1) & ~touching
-                hidden[rows[fine]] = k
+    # A joint inside furniture (feet through a sofa's front, fingers in a keyboard) is the penetration
+    # check's finding; no camera could show it, so the surface it is buried under does not count against
+    # the camera (a backrest in front of it still does).
+    hidden = furniture.first_blocker(starts, ends, targets)
+    names = [f"the {n}" for n in furniture.names]
     names.append("the wall")
     hidden[(hidden < 0) & wall_hits(starts, targets, room)] = len(names) - 1
     for other in sorted(joints):

@@ -18,8 +18,8 @@ from proto.scene import PlacedObject, Room, Scene
 from proto.ssg import Command
 from services.render.camera_checks import camera_checks, command_checks, staged_checks
 from services.render.demo import demo_scene, walk_motion
-from services.render.framing import Occluders
 from services.render.renderer import FrameRenderer
+from services.render.sightlines import Furniture
 from services.render.staging import CameraTrack, Staging, camera_track
 from services.render.timeline import COMMAND_HOLD_FRAMES, n_frames_of, place_commands, video_frames
 from services.render.visibility import BODY_POINTS, body_view
@@ -93,20 +93,24 @@ def test_another_character_in_the_line_of_sight_hides_the_actor():
 
 
 def test_a_body_part_sunk_into_furniture_is_not_hidden_by_it_but_one_behind_it_is():
-    """Feet inside a crate are the penetration check's finding; a crate in front of the feet hides them."""
+    """Feet inside a low crate are the penetration check's finding (no camera could show them); a crate in
+    front of the feet hides them, and so does a far wall of the very crate they are in."""
     stage = Staging.build(Scene(room=ROOM, objects=[]), [standing("Eve", 0.0, 0.0)])
     joints = {n: r.joint_positions for n, r in stage.rigs.items()}
-    low_camera = fixed_camera((0.0, 0.3, 2.4), (0.0, 0.3, 0.0))
     feet = [BODY_POINTS.index("LeftFoot"), BODY_POINTS.index("RightFoot")]
 
-    def feet_hidden(z0: float, z1: float) -> np.ndarray:
-        crate = Occluders([np.array([[[-0.5, 0.0, z0], [0.5, 0.45, z1]]])], ["crate"])
-        view = body_view("Eve", np.arange(N), joints, low_camera, crate, ROOM, 320, 240)
-        assert view.in_frame.all()
+    def feet_hidden(box: list[list[float]], eye: tuple[float, float, float]) -> np.ndarray:
+        crate = Furniture.from_boxes([np.array([box])], ["crate"])
+        view = body_view(
+            "Eve", np.arange(N), joints, fixed_camera(eye, (0.0, 0.2, 0.0)), crate, ROOM, 320, 240
+        )
+        assert view.in_frame[:, feet].all()
         return view.hidden_by[:, feet] >= 0
 
-    assert not feet_hidden(-0.45, 0.45).any()  # the feet stand inside the crate
-    assert feet_hidden(0.6, 0.9).all()  # the crate stands in front of them
+    from_above, low = (0.0, 2.6, 1.0), (0.0, 0.3, 2.4)
+    assert not feet_hidden([[-0.5, 0.0, -0.45], [0.5, 0.2, 0.45]], from_above).any()  # sunk in its top
+    assert feet_hidden([[-0.5, 0.0, 0.6], [0.5, 0.45, 0.9]], low).all()  # a crate in front of them
+    assert feet_hidden([[-0.5, 0.0, -0.45], [0.5, 0.45, 1.5]], low).all()  # entered 1 m before the feet
 
 
 def test_a_commanded_close_up_of_tom_loses_eve_acting_elsewhere_end_to_end():
