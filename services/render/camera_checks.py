@@ -33,7 +33,7 @@ from services.render.timeline import (
     place_commands,
 )
 from services.render.video import FPS
-from services.render.visibility import BodyView, body_view
+from services.render.visibility import BodyView, body_view, capsule_radii
 
 VISIBLE_SHARE = 0.7  # of the body's sample points, for a frame to show the character
 FRAME_SHARE = 0.9  # of the action's frames that must show the character
@@ -115,11 +115,15 @@ def in_view_checks(
     refs = {s.id: s for s in as_sentences(sentences)}
     joints = {name: rig.joint_positions for name, rig in stage.rigs.items()}
     furniture = Furniture.from_scene(stage.scene)
+    radii = {
+        name: capsule_radii(rig.character.rest_joint_positions(), rig.character.vertices)
+        for name, rig in stage.rigs.items()
+    }
     out: dict[str, list[Check]] = {}
     for sid, chars in action_frames(stage.motions.values(), stage.n_frames).items():
         for who in sorted(chars):
             frames = chars[who]
-            view = body_view(who, frames, joints, track, furniture, stage.scene.room, width, height)
+            view = body_view(who, frames, joints, track, furniture, stage.scene.room, width, height, radii)
             shown = view.visible.mean(axis=1) >= VISIBLE_SHARE
             share = float(shown.mean())
             what = _quote(refs.get(sid), f"its action in sentence {sid}")
