@@ -1,10 +1,10 @@
-"""Sight lines against the furniture as the renderer draws it: collision boxes first, then the mesh.
+"""Sight lines against the furniture as the renderer draws it: the object's box first, then its mesh.
 
 The catalog's collision boxes are voxels of about a twelfth of an object's largest side, so a 4 cm desk
 leg blocks like an 11 cm post, and a ray that passes beside the leg in the picture counts as hidden.
-Boxes are a conservative broad phase (a ray that misses every voxel of an object misses its solid
-parts); the rays that hit one are then tested against that object's triangles (Möller-Trumbore), which
-are the pixels' own geometry.
+The rays that pass through an object's bounding box are tested against its triangles (Möller-Trumbore),
+the pixels' own geometry (the catalog's meshes are small: 36 to ~1000 triangles, often fewer than their
+voxels). The voxels still say which joints are buried inside an object (``first_blocker``).
 
     furniture = Furniture.from_scene(scene)
     blocker = furniture.first_blocker(starts, ends)  # (S,) object index, -1 where the line is clear
@@ -124,9 +124,6 @@ class Furniture:
         coarse = segments_hit_boxes(starts, ends, bounds)  # (S, K)
         for k in np.nonzero(coarse.any(axis=0))[0]:
             rows = np.nonzero(coarse[:, k] & (out < 0))[0]
-            if not len(rows):
-                continue
-            rows = rows[segments_hit_boxes(starts[rows], ends[rows], self.boxes[k]).any(axis=1)]
             if not len(rows):
                 continue
             t = first_crossings(starts[rows], ends[rows], self.triangles[k])

@@ -13,7 +13,7 @@ same one, so the camera a check judges is the camera the MP4 shows: there is one
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -92,6 +92,7 @@ class Staging:
     n_frames: int
     commands: list[TimedCommand]
     motions: dict[str, Motion]
+    _poses: dict[int, CameraPose] = field(default_factory=dict, repr=False)
 
     @classmethod
     def build(
@@ -131,8 +132,13 @@ class Staging:
         )
 
     def camera(self, frame: int) -> CameraPose:
-        """The camera of one frame: the commanded shot, moved until it sees its character."""
-        return camera_at(frame, self.camera_keys, self.tracks, self.scene.room, self.occluders)
+        """The camera of one frame: the commanded shot, moved until it sees its character (memoised: the
+        checks and the frames of one video ask for the same poses)."""
+        pose = self._poses.get(frame)
+        if pose is None:
+            pose = camera_at(frame, self.camera_keys, self.tracks, self.scene.room, self.occluders)
+            self._poses[frame] = pose
+        return pose
 
     def camera_track(self, width: int = 640, height: int = 480) -> CameraTrack:
         """Every frame's camera, (T, ...) arrays over the video's n_frames, for a picture of that size."""
