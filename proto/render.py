@@ -49,7 +49,7 @@ class RenderRequest(msgspec.Struct, frozen=True, kw_only=True, tag="render_reque
     captions: list[Caption] = []  # drawn into the frames when show_captions
     start_frame: int = 0
     end_frame: int = -1  # exclusive; -1 = the last frame of the animation
-    n_frames: int = 0  # length of the whole animation; 0 = the longest motion (1 s without motion)
+    n_frames: int = 0  # whole animation; 0 = longest motion (1 s without), held 1.5 s past the last command
     width: int = 640  # pixels
     height: int = 480  # pixels
     encoding: FrameEncoding = "png"  # per-frame png/jpeg/raw RGB bytes, or one H.264 MP4 chunk
