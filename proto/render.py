@@ -13,6 +13,7 @@ from typing import Literal
 import msgspec
 
 from proto.common import Header, Status
+from proto.fidelity import Check
 from proto.motion_data import Motion
 from proto.scene import Scene
 from proto.ssg import Command
@@ -26,6 +27,7 @@ class TimedCommand(msgspec.Struct, frozen=True, kw_only=True):
 
     frame: int  # 0-based frame index (30 fps) from which the command applies
     command: Command
+    sentence_id: str = ""  # the sentence that gave the command ("" = unknown), for its command_visible check
 
 
 class Caption(msgspec.Struct, frozen=True, kw_only=True):
@@ -47,7 +49,7 @@ class RenderRequest(msgspec.Struct, frozen=True, kw_only=True, tag="render_reque
     captions: list[Caption] = []  # drawn into the frames when show_captions
     start_frame: int = 0
     end_frame: int = -1  # exclusive; -1 = the last frame of the animation
-    n_frames: int = 0  # length of the whole animation; 0 = the longest motion (1 s without motion)
+    n_frames: int = 0  # whole animation; 0 = longest motion (1 s without), held 1.5 s past the last command
     width: int = 640  # pixels
     height: int = 480  # pixels
     encoding: FrameEncoding = "png"  # per-frame png/jpeg/raw RGB bytes, or one H.264 MP4 chunk
@@ -95,3 +97,4 @@ class ExportReply(msgspec.Struct, frozen=True, kw_only=True, tag="export_reply")
     filename: str  # suggested file name, e.g. "scene.glb", "Eve.bvh"
     media_type: str  # "video/mp4", "model/gltf-binary", "application/octet-stream"
     data: bytes
+    checks: dict[str, list[Check]] = {}  # mp4: the video's in_view/command_visible checks by sentence id

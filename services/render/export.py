@@ -3,6 +3,8 @@
 >>> paths = write_outputs("out", scene, motions, commands, sentences, report)
 >>> sorted(paths)  # file name -> path
 ['Eve.bvh', 'animation.mp4', 'report.json', 'scene.glb']
+>>> paths.checks["s8"]  # the video's camera checks (in_view, command_visible) by sentence id
+[Check(name='in_view', ok=True, ...)]
 """
 
 from __future__ import annotations
@@ -12,14 +14,24 @@ from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any
 
+from proto.fidelity import Check
 from proto.motion_data import Motion
 from proto.scene import Scene
 from services.render.bvh_export import write_character_bvh
+from services.render.camera_checks import staged_checks
 from services.render.gltf_export import write_glb
 from services.render.renderer import FrameRenderer
 from services.render.report import write_report
 from services.render.timeline import as_motion_list, make_captions, place_commands
 from services.render.video import FPS, encode_mp4
+
+
+class Outputs(dict[str, Path]):
+    """File name -> path of what was written, and the video's camera checks (sentence id -> checks)."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.checks: dict[str, list[Check]] = {}
 
 
 def write_outputs(
@@ -34,8 +46,8 @@ def write_outputs(
     height: int = 480,
     progress: bool = True,
     captions: bool = True,
-) -> dict[str, Path]:
-    """Render and export an animation.
+) -> Outputs:
+    """Render and export an animation, and check its camera (services.render.camera_checks).
 
     Args:
         out_dir: folder to write into (created).
@@ -52,7 +64,8 @@ def write_outputs(
 
     Returns:
         File name -> path: "animation.mp4", "scene.glb", "<character>.bvh" for each character,
-        "report.json".
+        "report.json"; its ``checks`` are the in_view and command_visible checks of the video, by
+        sentence id, also in the report's render section as "checks".
     """
     from tqdm import tqdm
 
@@ -62,10 +75,11 @@ def write_outputs(
     sentence_list = list(sentences or [])
     timed = place_commands(commands, sentence_list, mlist)
     caps = make_captions(sentence_list, mlist) if captions else []
-    paths: dict[str, Path] = {}
+    paths = Outputs()
     t0 = time.perf_counter()
     with FrameRenderer(scene, mlist, timed, caps, width=width, height=height) as renderer:
         n = renderer.n_frames
+        paths.checks = staged_checks(renderer.staging, sentence_list, width=width, height=height)
         with tqdm(total=n + 2 + len(mlist), desc="render", unit="frame", disable=not progress) as bar:
             video = out / "animation.mp4"
             encode_mp4(renderer.frames(0, n, progress=bar.update), video, fps=FPS)
@@ -103,6 +117,7 @@ def write_outputs(
                     for m in mlist
                 ],
                 "files": sorted([*paths, "report.json"]),
+                "checks": paths.checks,
             }
             paths["report.json"] = write_report(out / "report.json", report, render_info)
             bar.update(1)

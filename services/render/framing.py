@@ -95,21 +95,22 @@ def segments_hit_boxes(starts: np.ndarray, ends: np.ndarray, boxes: np.ndarray) 
 
     Args:
         starts, ends: (S, 3) segment end points.
-        boxes: (B, 2, 3) min/max corners.
+        boxes: (B, 2, 3) min/max corners, the same for every segment; or (S, B, 2, 3), each segment's own.
 
     Returns:
         (S, B) bool, True where the segment passes through the box.
     """
+    per = boxes if boxes.ndim == 4 else boxes[None]  # (S or 1, B, 2, 3)
     d = ends - starts  # (S, 3)
     safe = np.where(np.abs(d) < 1e-12, 1e-12, d)
     inv = 1.0 / safe
-    t0 = (boxes[None, :, 0, :] - starts[:, None, :]) * inv[:, None, :]  # (S, B, 3)
-    t1 = (boxes[None, :, 1, :] - starts[:, None, :]) * inv[:, None, :]
+    t0 = (per[:, :, 0, :] - starts[:, None, :]) * inv[:, None, :]  # (S, B, 3)
+    t1 = (per[:, :, 1, :] - starts[:, None, :]) * inv[:, None, :]
     lo = np.minimum(t0, t1)
     hi = np.maximum(t0, t1)
     # A segment parallel to a slab is inside it or misses the box.
     parallel = np.abs(d) < 1e-12
-    inside = (starts[:, None, :] >= boxes[None, :, 0, :]) & (starts[:, None, :] <= boxes[None, :, 1, :])
+    inside = (starts[:, None, :] >= per[:, :, 0, :]) & (starts[:, None, :] <= per[:, :, 1, :])
     lo = np.where(parallel[:, None, :], np.where(inside, -np.inf, np.inf), lo)
     hi = np.where(parallel[:, None, :], np.where(inside, np.inf, -np.inf), hi)
     enter = np.maximum(lo.max(axis=2), 0.0)
@@ -122,11 +123,14 @@ class Occluders:
 
     Args:
         groups: one (N_i, 2, 3) array of world boxes per object.
+        names: what each group is, in words ("bookshelf"), for the checks' reasons; default "object i".
     """
 
-    def __init__(self, groups: Sequence[np.ndarray]) -> None:
+    def __init__(self, groups: Sequence[np.ndarray], names: Sequence[str] | None = None) -> None:
         kept = [np.asarray(g, dtype=np.float64).reshape(-1, 2, 3) for g in groups]
+        labels = list(names) if names is not None else [f"object {i}" for i in range(len(kept))]
         self.groups = [g for g in kept if len(g)]
+        self.names = [n for n, g in zip(labels, kept, strict=True) if len(g)]
         self.bounds = (
             np.array([[g[:, 0].min(axis=0), g[:, 1].max(axis=0)] for g in self.groups])
             if self.groups
@@ -139,13 +143,14 @@ class Occluders:
         """Every placed object's world collision boxes (objects the catalog lacks are skipped)."""
         from wana.assets.catalog import world_collision_boxes
 
-        groups = []
+        groups, names = [], []
         for p in scene.objects:
             try:
                 groups.append(world_collision_boxes(p))
             except KeyError:
                 continue
-        return cls(groups)
+            names.append(p.category.replace("_", " "))
+        return cls(groups, names)
 
     def blocked(self, starts: np.ndarray, ends: np.ndarray) -> np.ndarray:
         """(S,) bool: which sight lines from starts (S, 3) to ends (S, 3) pass through a box.
@@ -205,9 +210,15 @@ class Occluders:
                 first += len(pts) + len(fan)
         who = np.concatenate(owner)
         hit = self.blocked(np.concatenate(starts), np.concatenate(ends))
-        for at, e, pts, boxes in people:
-            eyes = np.broadcast_to(e, pts.shape)
-            hit[at : at + len(pts)] |= segments_hit_boxes(eyes, _stop_short(eyes, pts), boxes).any(axis=1)
+        by_count: dict[int, list[tuple[int, np.ndarray, np.ndarray, np.ndarray]]] = {}
+        for item in people:  # one batched test per number of other characters
+            by_count.setdefault(len(item[3]), []).append(item)
+        for batch in by_count.values():
+            rows = np.concatenate([np.arange(at, at + len(pts)) for at, _, pts, _ in batch])
+            eyes = np.concatenate([np.broadcast_to(e, pts.shape) for _, e, pts, _ in batch])
+            targets = np.concatenate([pts for _, _, pts, _ in batch])
+            boxes = np.concatenate([np.broadcast_to(b, (len(pts), *b.shape)) for _, _, pts, b in batch])
+            hit[rows] |= segments_hit_boxes(eyes, _stop_short(eyes, targets), boxes).any(axis=1)
         hit = hit.astype(float)
         n = len(adjustments)
         per = np.bincount(who, weights=hit, minlength=2 * n)
@@ -271,21 +282,31 @@ def person_box(hips: np.ndarray, head: np.ndarray) -> np.ndarray:
     return np.stack([lo, hi])
 
 
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Cross product of two 3-vectors (np.cross is slow on single vectors, and this runs per candidate)."""
+    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
+
+
+_FAN_TAN = np.array([[math.tan(h), math.tan(v)] for h, v in NEAR_FAN])  # (len(NEAR_FAN), 2)
+_WORLD_UP = np.array([0.0, 1.0, 0.0])
+
+
 def near_fan(eye: np.ndarray, target: np.ndarray) -> np.ndarray:
     """(len(NEAR_FAN), 3) ends of the rays across the frame that must not hit a box (see the module doc)."""
     eye, target = np.asarray(eye, dtype=np.float64), np.asarray(target, dtype=np.float64)
     forward = target - eye
-    dist = float(np.linalg.norm(forward))
+    dist = float(np.sqrt(forward @ forward))
     if dist < 1e-6:
         return np.zeros((0, 3))
-    forward /= dist
-    right = np.cross(forward, [0.0, 1.0, 0.0])
-    if np.linalg.norm(right) < 1e-6:  # looking straight down: any horizontal axis will do
-        right = np.array([1.0, 0.0, 0.0])
-    right /= np.linalg.norm(right)
-    up = np.cross(right, forward)
-    ends = [eye + NEAR_SHARE * dist * (forward + math.tan(h) * right + math.tan(v) * up) for h, v in NEAR_FAN]
-    return np.array(ends)
+    forward = forward / dist
+    right = _cross(forward, _WORLD_UP)
+    norm = float(np.sqrt(right @ right))
+    if norm < 1e-6:  # looking straight down: any horizontal axis will do
+        right, norm = np.array([1.0, 0.0, 0.0]), 1.0
+    right = right / norm
+    up = _cross(right, forward)
+    dirs = forward + _FAN_TAN[:, :1] * right + _FAN_TAN[:, 1:] * up
+    return eye + NEAR_SHARE * dist * dirs
 
 
 def sight_points(hips: np.ndarray, head: np.ndarray) -> np.ndarray:

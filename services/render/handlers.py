@@ -19,6 +19,7 @@ from PIL import Image
 from proto.common import Header
 from proto.render import ExportReply, ExportRequest, RenderReply, RenderRequest
 from services.render.bvh_export import motion_bvh, safe_filename
+from services.render.camera_checks import staged_checks
 from services.render.gltf_export import scene_glb
 from services.render.renderer import FrameRenderer
 from services.render.video import FPS, encode_mp4
@@ -137,7 +138,7 @@ def handle_render(req: RenderRequest) -> RenderReply:
 
 
 def handle_export(req: ExportRequest) -> ExportReply:
-    """Produce the MP4, the GLB or one character's BVH."""
+    """Produce the MP4 (with its camera checks, services.render.camera_checks), the GLB or one character's BVH."""
     h = _reply_header(req)
     try:
         if req.format == "glb":
@@ -176,6 +177,8 @@ def handle_export(req: ExportRequest) -> ExportReply:
     _check_size(req.width, req.height)
     with _lock:
         r = _renderer_for(req)
+        # The captions name the action sentences; commands carry their sentence ids.
+        checks = staged_checks(r.staging, req.captions, width=req.width, height=req.height)
         buf = io.BytesIO()
         encode_mp4(r.frames(0, r.n_frames), buf, fps=FPS)
     if buf.tell() > MAX_REPLY_BYTES:
@@ -183,7 +186,12 @@ def handle_export(req: ExportRequest) -> ExportReply:
             "the video is larger than one reply may be; render it in chunks with RenderRequest"
         )
     return ExportReply(
-        header=h, format="mp4", filename="animation.mp4", media_type="video/mp4", data=buf.getvalue()
+        header=h,
+        format="mp4",
+        filename="animation.mp4",
+        media_type="video/mp4",
+        data=buf.getvalue(),
+        checks=checks,
     )
 
 

@@ -18,9 +18,8 @@ from proto.motion_data import Motion
 from proto.render import Caption, TimedCommand
 from proto.scene import Scene
 from services.render import captions as captions_mod
-from services.render.camera import CameraPose, camera_at
+from services.render.camera import CameraPose
 from services.render.canvas import Canvas
-from services.render.framing import Occluders
 from services.render.scene_geometry import (
     FLOOR_RGBA,
     merge,
@@ -29,16 +28,9 @@ from services.render.scene_geometry import (
     room_meshes,
     shadow_faces,
 )
-from services.render.skinning import Rig
-from services.render.timeline import (
-    camera_keys,
-    caption_at,
-    n_frames_of,
-    weather_keys,
-)
+from services.render.staging import Staging
+from services.render.timeline import caption_at
 from services.render.weather import background_for_render, grade, look_at, rain_segments, snow_points
-
-MAX_FRAMES = 30 * 60 * 20  # 20 minutes at 30 fps
 
 
 class FrameRenderer:
@@ -49,7 +41,8 @@ class FrameRenderer:
         motions: one Motion per character.
         commands: camera/weather commands placed on frames.
         captions: sentences to draw under the picture (empty: none).
-        n_frames: animation length; 0 = the longest motion (at least 1 s).
+        n_frames: animation length; 0 = the longest motion (at least 1 s), held until the last
+            command has been on screen 1.5 s (timeline.video_frames).
         width, height: image size in pixels.
     """
 
@@ -66,16 +59,14 @@ class FrameRenderer:
     ) -> None:
         self.scene = scene
         self.width, self.height = int(width), int(height)
-        self.rigs = {m.character: Rig.from_motion(m) for m in motions}
-        self.n_frames = int(n_frames) if n_frames > 0 else n_frames_of(motions)
-        if self.n_frames > MAX_FRAMES:
-            raise ValueError(f"{self.n_frames} frames is more than the {MAX_FRAMES} one render may have")
-        cmds = list(commands or [])
-        self.camera_keys = camera_keys(cmds)
-        self.weather_keys = weather_keys(cmds)
+        self.staging = Staging.build(scene, motions, commands, n_frames)
+        self.rigs = self.staging.rigs
+        self.n_frames = self.staging.n_frames
+        self.camera_keys = self.staging.camera_keys
+        self.weather_keys = self.staging.weather_keys
         self.captions = list(captions or [])
-        self.tracks = {name: rig.track() for name, rig in self.rigs.items()}
-        self.occluders = Occluders.from_scene(scene)
+        self.tracks = self.staging.tracks
+        self.occluders = self.staging.occluders
         room_parts = room_meshes(scene.room)
         objects = object_meshes(scene)
         self._static = merge(room_parts + objects)
@@ -117,7 +108,8 @@ class FrameRenderer:
 
     # ------------------------------------------------------------------ frames
     def camera(self, frame: int) -> CameraPose:
-        return camera_at(frame, self.camera_keys, self.tracks, self.scene.room, self.occluders)
+        """The frame's camera (the one services.render.staging plans for the checks too)."""
+        return self.staging.camera(frame)
 
     def _shadow_colour(self, strength: float) -> np.ndarray:
         floor = np.asarray(FLOOR_RGBA[:3], dtype=np.float64) / 255.0

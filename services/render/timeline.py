@@ -26,6 +26,7 @@ from services.render.camera import CAMERA_MODES, CameraKey
 from services.render.weather import WEATHERS, WeatherKey
 
 MIN_FRAMES = 30  # a scene without motion still gets one second of video
+COMMAND_HOLD_FRAMES = 45  # the last command stays on screen at least 1.5 s (the final pose is held)
 
 
 @dataclass(frozen=True)
@@ -64,6 +65,15 @@ def n_frames_of(motions: list[Motion]) -> int:
 
     longest = max((from_wire(m.root_position).shape[0] for m in motions), default=0)
     return longest if longest > 0 else MIN_FRAMES
+
+
+def video_frames(motions: list[Motion], commands: Iterable[TimedCommand] = ()) -> int:
+    """The video's length: the longest motion, held on its final pose until the last camera or weather
+    command has been in force for COMMAND_HOLD_FRAMES (a command at the end of a story lands on the last
+    motion frame and would otherwise never be seen)."""
+    n = n_frames_of(motions)
+    starts = [max(0, tc.frame) for tc in commands if tc.command.kind in ("camera", "weather")]
+    return max(n, max(starts) + COMMAND_HOLD_FRAMES) if starts else n
 
 
 def _sentence_spans(motions: list[Motion]) -> dict[str, tuple[int, int, str]]:
@@ -119,7 +129,7 @@ def place_commands(
                 current = later[0][2]
         if cmd.kind == "camera" and not cmd.target and current:
             cmd = Command(kind=cmd.kind, value=cmd.value, seconds=cmd.seconds, target=current, span=cmd.span)
-        out.append((frame, n, TimedCommand(frame=frame, command=cmd)))
+        out.append((frame, n, TimedCommand(frame=frame, command=cmd, sentence_id=sid)))
     out.sort(key=lambda t: (t[0], t[1]))
     return [t[2] for t in out]
 

@@ -73,3 +73,26 @@ def test_errors_are_contract_errors(render):
     exp = ExportRequest(header=Header(), format="glb", scene=demo_scene(), motions=[MOTION])
     glb = check_contract(CONTRACT, exp, render.request("render", msgspec.msgpack.encode(exp), deadline_s=120))
     assert glb.data[:4] == b"glTF"
+
+
+@pytest.mark.contract
+def test_mp4_export_carries_the_videos_camera_checks(render):
+    from proto.render import Caption, ExportReply, TimedCommand
+    from proto.ssg import Command
+    from services.render.timeline import COMMAND_HOLD_FRAMES
+
+    exp = ExportRequest(
+        header=Header(doc_id="doc"),
+        format="mp4",
+        scene=demo_scene(),
+        motions=[MOTION],
+        commands=[TimedCommand(frame=18, command=Command(kind="camera", value="top"), sentence_id="s2")],
+        captions=[Caption(start_frame=0, end_frame=18, text="Eve walks.", sentence_id="s1")],
+        width=80,
+        height=60,
+    )
+    raw = render.request("render", msgspec.msgpack.encode(exp), deadline_s=120)
+    reply = check_contract(CONTRACT, exp, raw)
+    assert isinstance(reply, ExportReply) and probe(reply.data)["frames"] == 18 + COMMAND_HOLD_FRAMES
+    assert [c.name for c in reply.checks["s2"]] == ["command_visible"] and reply.checks["s2"][0].ok
+    assert [(c.name, c.character) for c in reply.checks["s1"]] == [("in_view", "Eve")]

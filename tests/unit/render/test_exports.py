@@ -17,6 +17,7 @@ from services.render.bvh_export import write_character_bvh
 from services.render.demo import demo_scene, walk_motion
 from services.render.gltf_export import clean_skin, scene_glb
 from services.render.skinning import Rig
+from services.render.timeline import COMMAND_HOLD_FRAMES
 from services.render.video import probe
 from wana.assets.characters import EXPRESSIONS
 from wana.assets.gltf import read_glb
@@ -159,9 +160,11 @@ def test_write_outputs_writes_video_glb_one_bvh_per_character_and_report(tmp_pat
     )
     assert sorted(paths) == ["Eve.bvh", "Tom.bvh", "animation.mp4", "report.json", "scene.glb"]
     info = probe(paths["animation.mp4"])
-    assert info["frames"] == 20 and info["width"] == 160 and info["codec"] == "h264"
+    # "camera close" ends the story: the video holds the final pose until it has shown for 1.5 s
+    assert info["frames"] == 20 + COMMAND_HOLD_FRAMES and info["width"] == 160 and info["codec"] == "h264"
     report = json.loads(paths["report.json"].read_text())
     assert report["diagnostics"] == {"s1": []}
-    assert report["render"]["frames"] == 20 and report["render"]["commands"][0]["value"] == "close"
+    assert report["render"]["frames"] == 20 + COMMAND_HOLD_FRAMES
+    assert report["render"]["commands"][0]["value"] == "close"
     assert report["render"]["captions"][0]["text"] == "Eve and Tom walk."
     assert read_bvh(paths["Eve.bvh"]).n_frames == 20

@@ -1,0 +1,215 @@
+"""The story checks only the render service can make, because only it knows the camera (issue 13).
+
+- ``in_view``: for each action sentence, each acting character is inside the picture and at least
+  VISIBLE_SHARE unoccluded (services.render.visibility) on at least FRAME_SHARE of its action's frames.
+- ``command_visible``: each camera or light/weather command is in force for at least
+  MIN_COMMAND_FRAMES of the video (until a later command of the same kind replaces it, or the end).
+
+Both read the same ``Staging`` the renderer draws from, so they judge the camera the MP4 shows.
+
+    checks = camera_checks(scene, motions, commands, sentences, width=640, height=480)
+    checks["s8"]  # [Check(name="in_view", ok=False, reason="Tom is out of frame for 2.1 s of ...")]
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from collections.abc import Iterable, Mapping
+from typing import Any
+
+import numpy as np
+
+from proto.fidelity import Check
+from proto.motion_data import Motion
+from proto.render import TimedCommand
+from proto.scene import Scene
+from services.render.sightlines import Furniture
+from services.render.staging import CameraTrack, Staging
+from services.render.timeline import (
+    COMMAND_HOLD_FRAMES,
+    SentenceRef,
+    as_motion_list,
+    as_sentences,
+    place_commands,
+)
+from services.render.video import FPS
+from services.render.visibility import BodyView, body_view, capsule_radii
+
+VISIBLE_SHARE = 0.7  # of the body's sample points, for a frame to show the character
+FRAME_SHARE = 0.9  # of the action's frames that must show the character
+MIN_COMMAND_FRAMES = COMMAND_HOLD_FRAMES  # 1.5 s: what the render timeline holds the last command for
+
+
+def camera_checks(
+    scene: Scene,
+    motions: Iterable[Motion] | Mapping[str, Motion],
+    commands: Iterable[Any] | None,
+    sentences: Iterable[Any] | None,
+    *,
+    width: int = 640,
+    height: int = 480,
+) -> dict[str, list[Check]]:
+    """The in_view and command_visible checks of the video ``write_outputs`` would make.
+
+    Args:
+        scene: the composed scene.
+        motions: one Motion per character (list or name -> Motion).
+        commands: as ``write_outputs`` takes them (``Command``, ``(sentence_id, Command)`` or ``TimedCommand``).
+        sentences: the document's sentences in order (see services.render.timeline.as_sentences).
+        width, height: the video's size in pixels.
+
+    Returns:
+        Sentence id -> its checks (sentences with no action and no command have none).
+    """
+    mlist = as_motion_list(motions)
+    sents = list(sentences or [])
+    stage = Staging.build(scene, mlist, place_commands(commands, sents, mlist))
+    return staged_checks(stage, sents, width=width, height=height)
+
+
+def staged_checks(
+    stage: Staging,
+    sentences: Iterable[Any] | None,
+    *,
+    width: int,
+    height: int,
+    track: CameraTrack | None = None,
+) -> dict[str, list[Check]]:
+    """The camera checks of a staged video (the renderer's own ``staging``); ``track`` when already planned."""
+    track = track if track is not None else stage.camera_track(width, height)
+    out = in_view_checks(stage, track, sentences, width=width, height=height)
+    for sid, checks in command_checks(stage.commands, stage.n_frames).items():
+        out.setdefault(sid, []).extend(checks)
+    return out
+
+
+def action_frames(motions: Iterable[Motion], n_frames: int) -> dict[str, dict[str, np.ndarray]]:
+    """Sentence id -> character -> (F,) sorted frames of that character's segments for the sentence."""
+    spans: dict[str, dict[str, set[int]]] = {}
+    for m in motions:
+        for seg in m.segments:
+            if not seg.sentence_id:
+                continue
+            frames = range(max(0, seg.start_frame), min(seg.end_frame, n_frames))
+            spans.setdefault(seg.sentence_id, {}).setdefault(m.character, set()).update(frames)
+    return {
+        sid: {c: np.array(sorted(f), dtype=np.int64) for c, f in chars.items() if f}
+        for sid, chars in spans.items()
+    }
+
+
+def _quote(ref: SentenceRef | None, fallback: str) -> str:
+    text = ref.text.strip().rstrip(".!?;$ ") if ref is not None else ""
+    return f"'{text}'" if text else fallback
+
+
+def in_view_checks(
+    stage: Staging,
+    track: CameraTrack,
+    sentences: Iterable[Any] | None,
+    *,
+    width: int,
+    height: int,
+) -> dict[str, list[Check]]:
+    """One ``in_view`` check per (action sentence, acting character), sentence id -> checks."""
+    refs = {s.id: s for s in as_sentences(sentences)}
+    joints = {name: rig.joint_positions for name, rig in stage.rigs.items()}
+    furniture = Furniture.from_scene(stage.scene)
+    radii = {
+        name: capsule_radii(rig.character.rest_joint_positions(), rig.character.vertices)
+        for name, rig in stage.rigs.items()
+    }
+    out: dict[str, list[Check]] = {}
+    for sid, chars in action_frames(stage.motions.values(), stage.n_frames).items():
+        for who in sorted(chars):
+            frames = chars[who]
+            view = body_view(who, frames, joints, track, furniture, stage.scene.room, width, height, radii)
+            shown = view.visible.mean(axis=1) >= VISIBLE_SHARE
+            share = float(shown.mean())
+            what = _quote(refs.get(sid), f"its action in sentence {sid}")
+            ok = share >= FRAME_SHARE
+            if ok:
+                reason = (
+                    f"{who} is in view and at least {VISIBLE_SHARE:.0%} unoccluded for {share:.0%} of {what}"
+                )
+            else:
+                reason = _in_view_failure(who, what, view, shown, share)
+            out.setdefault(sid, []).append(
+                Check(
+                    name="in_view",
+                    ok=ok,
+                    reason=reason,
+                    frames=[int(f) for f in (frames if ok else frames[~shown])],
+                    character=who,
+                    essential=share < 0.25,
+                )
+            )
+    return out
+
+
+def _in_view_failure(who: str, what: str, view: BodyView, shown: np.ndarray, share: float) -> str:
+    """'Tom is out of frame for 2.1 s of ...; Tom is 60 % hidden behind the bookshelf for 0.5 s'."""
+    failing = ~shown
+    out_of_frame = failing & (view.in_frame.mean(axis=1) < VISIBLE_SHARE)
+    hidden = failing & ~out_of_frame
+    parts = []
+    if out_of_frame.any():
+        parts.append(f"{who} is out of frame for {out_of_frame.sum() / FPS:.1f} s of {what}")
+    if hidden.any():
+        covered = 1.0 - view.visible[hidden].mean()
+        blockers = Counter(int(k) for k in view.hidden_by[hidden].reshape(-1) if k >= 0)
+        total = sum(blockers.values())
+        top = [view.occluders[k] for k, n in blockers.most_common(2) if n >= 0.25 * total]
+        behind = " and ".join(top) if top else "something"
+        lead = f"{who} is" if not parts else "and"
+        tail = "" if parts else f" of {what}"
+        parts.append(f"{lead} {covered:.0%} hidden behind {behind} for {hidden.sum() / FPS:.1f} s{tail}")
+    return (" ".join(parts) if len(parts) == 2 else parts[0]) + (
+        f" (shown on {int(share * 100)}% of its frames, needs {FRAME_SHARE:.0%})"
+    )
+
+
+def command_word(tc: TimedCommand) -> str:
+    """'camera close', 'night'."""
+    c = tc.command
+    return f"camera {c.value}" if c.kind == "camera" else c.value
+
+
+def command_checks(commands: Iterable[TimedCommand], n_frames: int) -> dict[str, list[Check]]:
+    """One ``command_visible`` check per camera or weather command with a sentence id.
+
+    A command is in force from its frame until the next command of the same kind (camera; weather and
+    light) or the end of the video.
+
+    Args:
+        commands: timed commands in frame order (timeline.place_commands).
+        n_frames: the video's length.
+    """
+    timed = [tc for tc in commands if tc.command.kind in ("camera", "weather")]
+    out: dict[str, list[Check]] = {}
+    for i, tc in enumerate(timed):
+        if not tc.sentence_id:
+            continue
+        nxt = next((t for t in timed[i + 1 :] if t.command.kind == tc.command.kind), None)
+        start = min(max(0, tc.frame), n_frames)
+        end = min(nxt.frame, n_frames) if nxt is not None else n_frames
+        shown = max(0, end - start)
+        ok = shown >= MIN_COMMAND_FRAMES
+        word = command_word(tc)
+        if ok:
+            reason = f"{word} is in force for {shown / FPS:.1f} s from {start / FPS:.1f} s"
+        elif nxt is not None and nxt.frame < n_frames:
+            reason = (
+                f"{word} is in force for only {shown / FPS:.1f} s before {command_word(nxt)} replaces it "
+                f"(needs {MIN_COMMAND_FRAMES / FPS:.1f} s)"
+            )
+        else:
+            reason = (
+                f"{word} takes effect {shown / FPS:.1f} s before the end of the video "
+                f"(needs {MIN_COMMAND_FRAMES / FPS:.1f} s)"
+            )
+        frames = list(range(start, end)) if shown else [max(0, n_frames - 1)]
+        out.setdefault(tc.sentence_id, []).append(
+            Check(name="command_visible", ok=ok, reason=reason, frames=frames, essential=shown == 0)
+        )
+    return out
