@@ -21,7 +21,7 @@ from proto.scene import Room
 from services.render.camera import project
 from services.render.sightlines import Furniture
 from services.render.staging import CameraTrack
-from wana.skeleton import JOINT_INDEX
+from wana.domain.skeleton import JOINT_INDEX
 
 # What a camera must see of a character: head and trunk, shoulders, arms and hands, hips, knees, feet and
 # toes; 20 points, so that the share shown moves in steps of 5 % (13 points made 9 of 13 = 69 % fail a 70 %

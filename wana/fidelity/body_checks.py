@@ -10,9 +10,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from wana.domain.skeleton import JOINT_INDEX, JOINT_NAMES
 from wana.fidelity.bodies import Body
 from wana.fidelity.world import World, point_box_distance
-from wana.domain.skeleton import JOINT_INDEX, JOINT_NAMES
 
 PENETRATION_M = 0.03  # a body part may sink this far into furniture or another body (soft contact)
 HIPS_MAX_MS = 6.0  # metres per second between two frames

@@ -17,6 +17,7 @@ from proto.fidelity import Check, SentenceVerdict, verdict_of
 from proto.motion_data import Motion
 from proto.scene import Scene
 from proto.ssg import SentenceGraph
+from wana.domain.skeleton import JOINT_NAMES
 from wana.fidelity import action_checks as ac
 from wana.fidelity import body_checks as bc
 from wana.fidelity import contact_checks as cc
@@ -26,7 +27,6 @@ from wana.fidelity.clips import clip_needs
 from wana.fidelity.scene_checks import object_checks, relation_checks
 from wana.fidelity.words import frame_list
 from wana.fidelity.world import World, display
-from wana.domain.skeleton import JOINT_NAMES
 
 # Parser diagnostics that mean something the sentence asked for was dropped -> (check name, essential).
 DROPPED = {
