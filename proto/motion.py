@@ -9,7 +9,7 @@ from typing import Literal
 
 import msgspec
 
-from proto.common import Header, Status
+from proto.common import Header, Request, Status
 from proto.motion_data import Motion
 from proto.scene import Scene
 from proto.ssg import CharacterNode
@@ -26,7 +26,7 @@ class SegmentEndState(msgspec.Struct, frozen=True, kw_only=True):
     hips_dy: float = 0.0  # metres the hips sit above the posture's rest height (a seat's height); 0 standing
 
 
-class SynthesizeRequest(msgspec.Struct, frozen=True, kw_only=True, tag="synthesize_request"):
+class SynthesizeRequest(Request["SynthesizeReply"], frozen=True, kw_only=True, tag="synthesize_request"):
     """Synthesise one character's motion from its ordered actions in a scene."""
 
     header: Header
@@ -69,7 +69,7 @@ class ActionInfo(msgspec.Struct, frozen=True, kw_only=True):
     interaction: str = ""  # kind of object point needed: seat, keyboard, handheld, ...; "" = none
 
 
-class LibraryRequest(msgspec.Struct, frozen=True, kw_only=True, tag="library_request"):
+class LibraryRequest(Request["LibraryReply"], frozen=True, kw_only=True, tag="library_request"):
     """List the action library (for the NLP verb mapping and the editor)."""
 
     header: Header

@@ -9,7 +9,7 @@ from typing import Literal
 
 import msgspec
 
-from proto.common import Header, NDArray, Status
+from proto.common import Header, NDArray, Request, Status
 from proto.motion_data import Motion
 from proto.scene import Scene
 from proto.ssg import CharacterNode
@@ -67,7 +67,7 @@ class CostReport(msgspec.Struct, frozen=True, kw_only=True):
     contact_pairs: list[ContactPair] = []  # in the order of contact_distances
 
 
-class OptimiseRequest(msgspec.Struct, frozen=True, kw_only=True, tag="optimise_request"):
+class OptimiseRequest(Request["OptimiseReply"], frozen=True, kw_only=True, tag="optimise_request"):
     """Optimise the layout around one interaction; the motion is re-synthesised for every proposal."""
 
     header: Header
@@ -95,7 +95,7 @@ class OptimiseReply(msgspec.Struct, frozen=True, kw_only=True, tag="optimise_rep
     movable: list[str] = []  # ids of the objects the annealing moved (objects they support followed)
 
 
-class RouteRequest(msgspec.Struct, frozen=True, kw_only=True, tag="route_request"):
+class RouteRequest(Request["RouteReply"], frozen=True, kw_only=True, tag="route_request"):
     """A collision-free walking route by A* on the scene's occupancy grid."""
 
     header: Header
@@ -114,7 +114,7 @@ class RouteReply(msgspec.Struct, frozen=True, kw_only=True, tag="route_reply"):
     length: float = 0.0  # metres along the waypoints
 
 
-class CostRequest(msgspec.Struct, frozen=True, kw_only=True, tag="cost_request"):
+class CostRequest(Request["CostReply"], frozen=True, kw_only=True, tag="cost_request"):
     """Evaluate C_D and C_T of a scene and motion without optimising."""
 
     header: Header

@@ -12,7 +12,7 @@ from typing import Literal
 
 import msgspec
 
-from proto.common import Header, Status
+from proto.common import Header, Request, Status
 from proto.motion_data import Motion
 from proto.scene import Scene
 from proto.ssg import Command
@@ -37,7 +37,7 @@ class Caption(msgspec.Struct, frozen=True, kw_only=True):
     sentence_id: str = ""
 
 
-class RenderRequest(msgspec.Struct, frozen=True, kw_only=True, tag="render_request"):
+class RenderRequest(Request["RenderReply"], frozen=True, kw_only=True, tag="render_request"):
     """Render frames [start_frame, end_frame) of the animation."""
 
     header: Header
@@ -74,7 +74,7 @@ class RenderReply(msgspec.Struct, frozen=True, kw_only=True, tag="render_reply")
     video: bytes = b""
 
 
-class ExportRequest(msgspec.Struct, frozen=True, kw_only=True, tag="export_request"):
+class ExportRequest(Request["ExportReply"], frozen=True, kw_only=True, tag="export_request"):
     """Produce one whole file: the MP4 video, the animated GLB scene or one character's BVH."""
 
     header: Header

@@ -7,6 +7,7 @@ one `proto.render.ExportRequest`, through the same backend as the pipeline (embe
 
 from __future__ import annotations
 
+from proto.common import ErrorCode
 from services.orchestrator.backend import StageFailed, StageUnavailable
 from services.orchestrator.pipeline import PipelineResult
 from services.orchestrator.session import Session
@@ -75,7 +76,9 @@ def export_document(
     try:
         result = current_result(session)
     except Exception as exc:  # a failing stage must not take the request down with a bare 500
-        raise ExportFailed("E009", f"computing the animation failed: {type(exc).__name__}: {exc}") from exc
+        raise ExportFailed(
+            ErrorCode.HANDLER_FAILED, f"computing the animation failed: {type(exc).__name__}: {exc}"
+        ) from exc
     if result.scene is None:
         why = "; ".join(result.unavailable.values()) or "the text describes no scene yet"
         raise NothingToExport(f"nothing to export yet: {why}")

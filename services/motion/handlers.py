@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from proto.common import Header
+from proto.common import reply_header
 from proto.motion import (
     ActionInfo,
     LibraryReply,
@@ -21,10 +21,6 @@ from services.motion.planning import plan_actions
 from services.motion.routing import scene_route
 from services.motion.synthesis import SegmentState, assemble, synthesise_segment
 from wana.bus.service import Contract, InvalidInput
-
-
-def _reply_header(h: Header) -> Header:
-    return Header(parent_id=h.msg_id, doc_id=h.doc_id, revision=h.revision)
 
 
 def handle_synthesize(req: SynthesizeRequest) -> SynthesizeReply:
@@ -87,7 +83,7 @@ def handle_synthesize(req: SynthesizeRequest) -> SynthesizeReply:
         )
     motion = assemble(req.character.name, pieces, state)
     return SynthesizeReply(
-        header=_reply_header(req.header),
+        header=reply_header(req),
         motion=motion,
         end_states=ends,
         diagnostics=list(plan.diagnostics) + route_diags,
@@ -112,7 +108,7 @@ def handle_library(req: LibraryRequest) -> LibraryReply:
                 interaction=c.interaction.object if c.interaction else "",
             )
         )
-    return LibraryReply(header=_reply_header(req.header), actions=out)
+    return LibraryReply(header=reply_header(req), actions=out)
 
 
 CONTRACT: Contract = {SynthesizeRequest: handle_synthesize, LibraryRequest: handle_library}

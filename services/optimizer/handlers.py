@@ -7,7 +7,7 @@ from typing import Any
 
 import numpy as np
 
-from proto.common import ErrorReply, Header
+from proto.common import ErrorReply, reply_header
 from proto.motion_data import Motion
 from proto.optimizer import (
     CostReply,
@@ -29,12 +29,6 @@ from wana.bus.service import InvalidInput
 
 MAX_OBJECTS = 512
 MAX_FRAMES = 30 * 600  # ten minutes of motion
-
-
-def _reply_header(request: Any) -> Header:
-    return Header(
-        parent_id=request.header.msg_id, doc_id=request.header.doc_id, revision=request.header.revision
-    )
 
 
 def _check_scene(scene: Scene) -> None:
@@ -98,7 +92,7 @@ def optimise(request: OptimiseRequest) -> OptimiseReply:
     except CatalogUnavailable as exc:
         raise RuntimeError(str(exc)) from exc
     return OptimiseReply(
-        header=_reply_header(request),
+        header=reply_header(request),
         scene=scene,
         motion=motion,
         before=result.before,
@@ -132,7 +126,7 @@ def route(request: RouteRequest) -> RouteReply:
     except (NoRouteError, ValueError) as exc:
         raise InvalidInput(str(exc)) from exc
     length = float(np.linalg.norm(np.diff(wps, axis=0), axis=1).sum())
-    return RouteReply(header=_reply_header(request), waypoints=to_wire(wps.astype(np.float32)), length=length)
+    return RouteReply(header=reply_header(request), waypoints=to_wire(wps.astype(np.float32)), length=length)
 
 
 def cost(request: CostRequest) -> CostReply:
@@ -150,7 +144,7 @@ def cost(request: CostRequest) -> CostReply:
         report = scorer.score_scenes([request.scene], [request.motion]).report(0, scorer.pairs)
     except (ValueError, KeyError) as exc:
         raise InvalidInput(str(exc)) from exc
-    return CostReply(header=_reply_header(request), report=report)
+    return CostReply(header=reply_header(request), report=report)
 
 
 CONTRACT: dict[type, Callable[[Any], OptimiseReply | RouteReply | CostReply | ErrorReply]] = {

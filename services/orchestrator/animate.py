@@ -15,6 +15,7 @@ from typing import Any
 
 import msgspec
 
+from proto.common import ErrorCode
 from services.orchestrator.backend import InProcessBackend
 from services.orchestrator.pipeline import PipelineResult
 from services.orchestrator.session import Orchestrator
@@ -152,7 +153,7 @@ def main(argv: list[str]) -> int:
             )
     for sid, diags in result.diagnostics.items():
         for d in diags:
-            if d.code != "E011":
+            if d.code != ErrorCode.UNAVAILABLE:
                 print(f"{sid} [{d.span.start}:{d.span.end}] {d.severity}: {d.message}", file=sys.stderr)
     if result.unavailable:
         for why in result.unavailable.values():

@@ -22,7 +22,7 @@ from typing import Any
 import msgspec
 import numpy as np
 
-from proto.common import Header, Span
+from proto.common import ErrorCode, Header, Span
 from proto.motion_data import Motion
 from proto.scene import Room, Scene
 from proto.ssg import ActionNode, CharacterNode, Command, Diagnostic, ObjectNode, RelationNode, SentenceGraph
@@ -76,7 +76,10 @@ def _shift(span: Span, by: int) -> Span:
 
 def _stage_diag(stage: str, why: str, span: Span) -> Diagnostic:
     return Diagnostic(
-        code="E011", message=f"the {stage} stage is not available yet: {why}", span=span, severity="info"
+        code=ErrorCode.UNAVAILABLE,
+        message=f"the {stage} stage is not available yet: {why}",
+        span=span,
+        severity="info",
     )
 
 

@@ -16,7 +16,7 @@ import msgspec
 import numpy as np
 from PIL import Image
 
-from proto.common import Header
+from proto.common import reply_header
 from proto.render import ExportReply, ExportRequest, RenderReply, RenderRequest
 from services.render.bvh_export import motion_bvh, safe_filename
 from services.render.gltf_export import scene_glb
@@ -29,11 +29,6 @@ MAX_SIDE = 2048
 
 _lock = threading.Lock()
 _cache: dict[str, Any] = {"key": None, "renderer": None}
-
-
-def _reply_header(request: Any) -> Header:
-    h = request.header
-    return Header(parent_id=h.msg_id, doc_id=h.doc_id, revision=h.revision)
 
 
 def _renderer_for(req: RenderRequest | ExportRequest, n_frames: int = 0) -> FrameRenderer:
@@ -123,7 +118,7 @@ def handle_render(req: RenderRequest) -> RenderReply:
                         "ask for a shorter range"
                     )
         return RenderReply(
-            header=_reply_header(req),
+            header=reply_header(req),
             start_frame=start,
             end_frame=end,
             n_frames=r.n_frames,
@@ -138,7 +133,7 @@ def handle_render(req: RenderRequest) -> RenderReply:
 
 def handle_export(req: ExportRequest) -> ExportReply:
     """Produce the MP4, the GLB or one character's BVH."""
-    h = _reply_header(req)
+    h = reply_header(req)
     try:
         if req.format == "glb":
             return ExportReply(
