@@ -37,6 +37,14 @@ class Caption(msgspec.Struct, frozen=True, kw_only=True):
     sentence_id: str = ""
 
 
+class StorySentence(msgspec.Struct, frozen=True, kw_only=True):
+    """One sentence of the document as the render service needs it to place captions and commands itself."""
+
+    sentence_id: str
+    text: str  # as written (the caption)
+    commands: list[Command] = []  # camera / weather commands of this sentence, in order
+
+
 class RenderRequest(Request["RenderReply"], frozen=True, kw_only=True, tag="render_request"):
     """Render frames [start_frame, end_frame) of the animation."""
 
@@ -52,6 +60,10 @@ class RenderRequest(Request["RenderReply"], frozen=True, kw_only=True, tag="rend
     height: int = 480  # pixels
     encoding: FrameEncoding = "png"  # per-frame png/jpeg/raw RGB bytes, or one H.264 MP4 chunk
     show_captions: bool = True
+    # The document's sentences in order: when given, the render service places the commands and captions
+    # on frames from them and the motions' segments (services/render/timeline.py), and `commands` and
+    # `captions` must be empty.
+    story: list[StorySentence] = []
 
 
 class RenderReply(msgspec.Struct, frozen=True, kw_only=True, tag="render_reply"):
@@ -86,6 +98,7 @@ class ExportRequest(Request["ExportReply"], frozen=True, kw_only=True, tag="expo
     character: str = ""  # BVH: which character ("" = the first motion)
     width: int = 640
     height: int = 480
+    story: list[StorySentence] = []  # as RenderRequest.story
 
 
 class ExportReply(msgspec.Struct, frozen=True, kw_only=True, tag="export_reply"):
@@ -95,3 +108,6 @@ class ExportReply(msgspec.Struct, frozen=True, kw_only=True, tag="export_reply")
     filename: str  # suggested file name, e.g. "scene.glb", "Eve.bvh"
     media_type: str  # "video/mp4", "model/gltf-binary", "application/octet-stream"
     data: bytes
+    n_frames: int = 0  # MP4: frames in the video
+    commands: list[TimedCommand] = []  # MP4: the commands as placed on frames
+    captions: list[Caption] = []  # MP4: the captions as placed on frames

@@ -7,6 +7,7 @@ not in this build is named in a clear message and in the report; nothing is fake
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import sys
 import tempfile
@@ -16,9 +17,11 @@ from typing import Any
 import msgspec
 
 from proto.common import ErrorCode
-from services.orchestrator.backend import InProcessBackend
+from services.orchestrator.backend import Backend, InProcessBackend, StageFailed, StageUnavailable
+from services.orchestrator.exports import export
 from services.orchestrator.pipeline import PipelineResult
 from services.orchestrator.session import Orchestrator
+from services.orchestrator.timeline import FPS
 
 MAX_INPUT_BYTES = 1_000_000
 
@@ -113,44 +116,69 @@ def summary(result: PipelineResult) -> dict[str, Any]:
     }
 
 
+def write_exports(
+    backend: Backend,
+    result: PipelineResult,
+    report: dict[str, Any],
+    out: Path,
+    *,
+    width: int = 640,
+    height: int = 480,
+) -> dict[str, Path]:
+    """animation.mp4, scene.glb, one BVH per character (ExportRequests through the backend, as the gateway
+    sends them) and report.json with a "render" section; file name -> path."""
+    paths: dict[str, Path] = {}
+    video = export(backend, result, "mp4", width=width, height=height)
+    replies = [video, export(backend, result, "glb")]
+    replies += [export(backend, result, "bvh", character=name) for name in sorted(result.motions)]
+    for reply in replies:
+        paths[reply.filename] = out / reply.filename
+        paths[reply.filename].write_bytes(reply.data)
+    fps = next(iter(result.motions.values())).fps if result.motions else FPS
+    report["render"] = {
+        "frames": video.n_frames,
+        "fps": fps,
+        "width": width,
+        "height": height,
+        "duration_s": video.n_frames / fps,
+        "commands": [
+            {"frame": c.frame, "kind": c.command.kind, "value": c.command.value, "target": c.command.target}
+            for c in video.commands
+        ],
+        "captions": msgspec.to_builtins(video.captions),
+        "characters": sorted(result.motions),
+        "files": sorted([*paths, "report.json"]),
+    }
+    paths["report.json"] = out / "report.json"
+    paths["report.json"].write_text(json.dumps(report, indent=2, ensure_ascii=False))
+    return paths
+
+
 def main(argv: list[str]) -> int:
     args = build_parser().parse_args(argv)
     text = read_story(args.file)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     tick, close = _progress_bar(not args.no_progress and sys.stderr.isatty())
-    with tempfile.TemporaryDirectory(prefix="wana-") as tmp:
+    with tempfile.TemporaryDirectory(prefix="wana-") as tmp, contextlib.ExitStack() as stack:
         if args.in_process:
-            orchestrator = Orchestrator(Path(tmp) / "sessions.db", InProcessBackend(), seed=args.seed)
-            result = orchestrator.create(text, doc_id="story").compute(progress=tick)
-            orchestrator.close()
+            backend: Backend = InProcessBackend()
         else:
             from services.orchestrator.embedded import Embedded
 
-            with Embedded() as backend:
-                orchestrator = Orchestrator(Path(tmp) / "sessions.db", backend, seed=args.seed)
-                result = orchestrator.create(text, doc_id="story").compute(progress=tick)
-                orchestrator.close()
-    close()
-    report = summary(result)
-    (out / "report.json").write_text(json.dumps(report, indent=2))
-    if result.scene is not None and not result.unavailable:
-        try:
-            from services.render.export import write_outputs
-        except ImportError as exc:
-            result.unavailable["render"] = f"the render stage is not available yet: {exc}"
-        else:
-            paths = write_outputs(
-                out,
-                result.scene,
-                result.motions,
-                result.commands,
-                result.sentences,
-                report,
-                width=args.width,
-                height=args.height,
-                progress=not args.no_progress,
-            )
+            backend = stack.enter_context(Embedded())
+        orchestrator = Orchestrator(Path(tmp) / "sessions.db", backend, seed=args.seed)
+        result = orchestrator.create(text, doc_id="story").compute(progress=tick)
+        orchestrator.close()
+        close()
+        report = summary(result)
+        (out / "report.json").write_text(json.dumps(report, indent=2))
+        paths: dict[str, Path] = {}
+        if result.scene is not None and not result.unavailable:
+            try:
+                paths = write_exports(backend, result, report, out, width=args.width, height=args.height)
+            except (StageFailed, StageUnavailable) as exc:
+                result.unavailable["render"] = str(exc)
     for sid, diags in result.diagnostics.items():
         for d in diags:
             if d.code != ErrorCode.UNAVAILABLE:

@@ -17,10 +17,11 @@ import numpy as np
 from PIL import Image
 
 from proto.common import reply_header
-from proto.render import ExportReply, ExportRequest, RenderReply, RenderRequest
+from proto.render import Caption, ExportReply, ExportRequest, RenderReply, RenderRequest, TimedCommand
 from services.render.bvh_export import motion_bvh, safe_filename
 from services.render.gltf_export import scene_glb
 from services.render.renderer import FrameRenderer
+from services.render.timeline import make_captions, place_commands
 from services.render.video import FPS, encode_mp4
 from wana.bus.service import InvalidInput
 
@@ -31,6 +32,18 @@ _lock = threading.Lock()
 _cache: dict[str, Any] = {"key": None, "renderer": None}
 
 
+def placed(req: RenderRequest | ExportRequest) -> tuple[list[TimedCommand], list[Caption]]:
+    """The request's commands and captions on frames: as sent, or placed here from its story."""
+    if not req.story:
+        return list(req.commands), list(req.captions)
+    if req.commands or req.captions:
+        raise InvalidInput("send either a story or placed commands and captions, not both")
+    motions = list(req.motions)
+    sentences = [(s.sentence_id, s.text) for s in req.story]
+    commands = [(s.sentence_id, c) for s in req.story for c in s.commands]
+    return place_commands(commands, sentences, motions), make_captions(sentences, motions)
+
+
 def _renderer_for(req: RenderRequest | ExportRequest, n_frames: int = 0) -> FrameRenderer:
     """The cached renderer when the job is the same, else a new one (the old one is closed)."""
     key_src = msgspec.msgpack.encode(
@@ -39,6 +52,7 @@ def _renderer_for(req: RenderRequest | ExportRequest, n_frames: int = 0) -> Fram
             req.motions,
             req.commands,
             req.captions,
+            req.story,
             req.width,
             req.height,
             n_frames,
@@ -51,13 +65,15 @@ def _renderer_for(req: RenderRequest | ExportRequest, n_frames: int = 0) -> Fram
     if _cache["renderer"] is not None:
         _cache["renderer"].close()
         _cache["renderer"] = _cache["key"] = None
-    captions = req.captions if getattr(req, "show_captions", True) else []
+    commands, captions = placed(req)
+    if not getattr(req, "show_captions", True):
+        captions = []
     try:
         r = FrameRenderer(
             req.scene,
             list(req.motions),
-            list(req.commands),
-            list(captions),
+            commands,
+            captions,
             n_frames=n_frames,
             width=req.width,
             height=req.height,
@@ -169,6 +185,7 @@ def handle_export(req: ExportRequest) -> ExportReply:
             raise
         raise InvalidInput(str(exc)) from exc
     _check_size(req.width, req.height)
+    commands, captions = placed(req)
     with _lock:
         r = _renderer_for(req)
         buf = io.BytesIO()
@@ -178,7 +195,14 @@ def handle_export(req: ExportRequest) -> ExportReply:
             "the video is larger than one reply may be; render it in chunks with RenderRequest"
         )
     return ExportReply(
-        header=h, format="mp4", filename="animation.mp4", media_type="video/mp4", data=buf.getvalue()
+        header=h,
+        format="mp4",
+        filename="animation.mp4",
+        media_type="video/mp4",
+        data=buf.getvalue(),
+        n_frames=r.n_frames,
+        commands=commands,
+        captions=captions,
     )
 
 
