@@ -126,6 +126,6 @@ class ErrorReply(msgspec.Struct, frozen=True, kw_only=True, tag="error_reply"):
 
     header: Header
     status: Status = "error"
-    code: str  # key of ERROR_CODES (an ErrorCode)
+    code: str  # key of ERROR_CODES
     message: str  # human-readable detail
     retryable: bool = False

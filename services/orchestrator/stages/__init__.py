@@ -9,10 +9,25 @@ pipeline.py); what each node reads is cut down by services/orchestrator/views.py
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TypeVar
+
+import msgspec
 
 from proto.common import Header
 from services.orchestrator.backend import Backend
 from services.orchestrator.queries import QueryEngine
+
+
+R = TypeVar("R", bound=msgspec.Struct)
+
+NO_HEADER = Header(msg_id="")  # what a memoised reply carries instead of its (random) message ids
+
+
+def content_of(reply: R) -> R:
+    """A reply without its message header, as a query node keeps it: its hash is then a hash of its content,
+    so a node that re-runs to the same answer backdates (early cutoff) and an incremental run hashes the same
+    as a cold one."""
+    return msgspec.structs.replace(reply, header=NO_HEADER)  # type: ignore[type-var]
 
 
 @dataclass(frozen=True)

@@ -22,7 +22,7 @@ from proto.social import SocialPlan
 from proto.ssg import ActionNode, CharacterNode, Command, Diagnostic, SentenceGraph
 from services.orchestrator.backend import StageFailed
 from services.orchestrator.document import Sentence
-from services.orchestrator.stages import StageContext
+from services.orchestrator.stages import StageContext, content_of
 from services.orchestrator.stages.social import frame_count
 from services.orchestrator.timeline import Beat, assemble, schedule
 from services.orchestrator.views import characters_of, others, scene_view, social_distances, start_positions
@@ -59,7 +59,7 @@ def synthesise(
         others=others or {},
         distances=distances or {},
     )
-    return ctx.backend.call(request)
+    return content_of(ctx.backend.call(request))
 
 
 def optimise(
@@ -73,7 +73,7 @@ def optimise(
         interaction=Interaction(character=character, action=action.action, targets=targets),
         settings=OptimiseSettings(seed=ctx.seed),
     )
-    return ctx.backend.call(request)
+    return content_of(ctx.backend.call(request))
 
 
 def segments(

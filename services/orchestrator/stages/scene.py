@@ -7,7 +7,7 @@ from collections.abc import Sequence
 from proto.retrieval import ComposeReply, ComposeRequest
 from proto.scene import Room, Scene
 from proto.ssg import SentenceGraph
-from services.orchestrator.stages import StageContext
+from services.orchestrator.stages import StageContext, content_of
 from services.orchestrator.views import ScenePart, scene_part
 
 
@@ -25,7 +25,7 @@ def compose(ctx: StageContext, part: ScenePart) -> tuple[Scene, ComposeReply | N
             seed=ctx.seed,
         )
     )
-    return reply.scene, reply
+    return reply.scene, content_of(reply)
 
 
 def scene(ctx: StageContext, graphs: Sequence[SentenceGraph]) -> tuple[Scene, ComposeReply | None]:

@@ -10,7 +10,7 @@ import numpy as np
 from proto.motion_data import Motion, Segment
 from proto.social import ExpressionTrackReply, ExpressionTrackRequest, SocialPlan, SocialPlanRequest
 from proto.ssg import SentenceGraph
-from services.orchestrator.stages import StageContext
+from services.orchestrator.stages import StageContext, content_of
 from services.orchestrator.views import social_part
 from wana.arrays import from_wire, to_wire
 
@@ -65,7 +65,7 @@ def faces(ctx: StageContext, plan: SocialPlan, motions: dict[str, Motion]) -> di
         )
 
         def track(request: ExpressionTrackRequest = request) -> ExpressionTrackReply:
-            return ctx.backend.call(request)
+            return content_of(ctx.backend.call(request))
 
         reply = ctx.engine.query(
             f"face:{entry.name}",
