@@ -8,15 +8,11 @@ import numpy as np
 
 from proto.common import reply_header
 from proto.motion import (
-    ActionInfo,
-    LibraryReply,
-    LibraryRequest,
     SegmentEndState,
     SynthesizeReply,
     SynthesizeRequest,
 )
 from proto.scene import Scene
-from services.motion.library import load_library
 from services.motion.planning import plan_actions
 from services.motion.routing import scene_route
 from services.motion.synthesis import SegmentState, assemble, synthesise_segment
@@ -90,25 +86,4 @@ def handle_synthesize(req: SynthesizeRequest) -> SynthesizeReply:
     )
 
 
-def handle_library(req: LibraryRequest) -> LibraryReply:
-    """The action library, optionally filtered by tag."""
-    out = []
-    for name, c in sorted(load_library().items()):
-        if req.tag and req.tag not in c.tags:
-            continue
-        out.append(
-            ActionInfo(
-                name=name,
-                tags=list(c.tags),
-                synonyms=list(c.synonyms),
-                duration_s=c.duration_s,
-                looping=c.looping,
-                body_parts=list(c.body_parts),
-                contact_joints=list(c.contact_joints),
-                interaction=c.interaction.object if c.interaction else "",
-            )
-        )
-    return LibraryReply(header=reply_header(req), actions=out)
-
-
-CONTRACT: Contract = {SynthesizeRequest: handle_synthesize, LibraryRequest: handle_library}
+CONTRACT: Contract = {SynthesizeRequest: handle_synthesize}

@@ -17,7 +17,6 @@ from proto.common import Header
 from services.orchestrator.backend import Backend
 from services.orchestrator.queries import QueryEngine
 
-
 R = TypeVar("R", bound=msgspec.Struct)
 
 NO_HEADER = Header(msg_id="")  # what a memoised reply carries instead of its (random) message ids
