@@ -4,9 +4,11 @@ CONTRACT:
     RenderRequest (proto.render) -> RenderReply: frames [start_frame, end_frame) as PNG, JPEG or raw RGB
         bytes, or one H.264 MP4 chunk (chunks of one animation join with services.render.video.join_chunks).
     ExportRequest (proto.render) -> ExportReply: the whole MP4, the animated GLB, or one character's BVH.
+    Either may carry the document's sentences with their commands (`story`): the service then places the
+    captions and commands on frames itself (services.render.timeline), as `wana animate` and the gateway ask.
     Either may instead answer proto.common.ErrorReply (E010 invalid input, E009 handler failure).
 
-In-process API: services.render.export.write_outputs (what ``wana animate`` writes),
+In-process API: services.render.export.write_outputs (every output into a folder, without the bus),
 services.render.renderer.FrameRenderer, services.render.gltf_export.scene_glb,
 services.render.bvh_export.motion_bvh, services.render.video.encode_mp4 / join_chunks.
 """
