@@ -6,6 +6,8 @@ type; never reorder array-like fields.
 
 from __future__ import annotations
 
+import sys
+import typing
 import uuid
 from enum import StrEnum
 from typing import Any, Generic, Literal, TypeVar
@@ -97,16 +99,11 @@ def reply_type(request_type: type) -> type:
     Raises:
         TypeError: the type is not a ``Request[...]`` subclass.
     """
-    import sys
-    import typing
-
     for klass in request_type.__mro__:
         for base in getattr(klass, "__orig_bases__", ()):
             if typing.get_origin(base) is Request:
                 (arg,) = typing.get_args(base)
-                if isinstance(
-                    arg, typing.ForwardRef
-                ):  # Request["ParseReply"]: a name in the request's module
+                if isinstance(arg, typing.ForwardRef):  # Request["ParseReply"]: a name of its module
                     arg = getattr(sys.modules[klass.__module__], arg.__forward_arg__, None)
                 if isinstance(arg, type):
                     return arg
@@ -114,8 +111,9 @@ def reply_type(request_type: type) -> type:
 
 
 def reply_header(request: Any) -> Header:
-    """The header of a reply to ``request``: its msg_id as parent, the same document and revision."""
-    h = getattr(request, "header", request)
+    """The header of a reply to ``request``: its msg_id as parent, the same document and revision (a fresh
+    header when the request carries none)."""
+    h = getattr(request, "header", None)
     if isinstance(h, Header):
         return Header(parent_id=h.msg_id, doc_id=h.doc_id, revision=h.revision)
     return Header()

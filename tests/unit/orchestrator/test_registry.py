@@ -7,7 +7,7 @@ import typing
 import pytest
 
 from proto.bus import EchoRequest
-from proto.common import ErrorReply, reply_type
+from proto.common import ErrorReply, Header, reply_type
 from proto.nlp import ParseReply, ParseRequest
 from services.gateway.settings import SERVICES as GATEWAY_SERVICES
 from services.orchestrator.backend import InProcessBackend, ServiceSubset, StageUnavailable
@@ -46,7 +46,5 @@ def test_a_service_left_out_of_a_subset_is_unavailable_at_once():
         backend.call(ParseRequest(sentence_id="s1", text="Eve walks.", header=_header()))
 
 
-def _header():
-    from proto.common import Header
-
+def _header() -> Header:
     return Header(doc_id="d", revision=1)

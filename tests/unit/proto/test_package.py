@@ -8,7 +8,8 @@ import msgspec
 import pytest
 
 import proto
-from proto.common import Header, Request, reply_type
+from proto.bus import EchoRequest
+from proto.common import ERROR_CODES, ErrorCode, Header, Request, reply_header, reply_type
 
 REPO = Path(__file__).resolve().parents[3]
 
@@ -63,3 +64,18 @@ def test_every_request_of_a_service_declares_a_reply_type_with_a_status():
 def test_a_struct_that_declares_no_reply_is_refused():
     with pytest.raises(TypeError, match="does not declare its reply type"):
         reply_type(Header)
+
+
+def test_every_error_code_is_in_the_table_and_every_numbered_error_has_a_name():
+    assert {str(c) for c in ErrorCode} == {k for k in ERROR_CODES if k.startswith("E")}
+
+
+def test_a_reply_header_answers_its_request():
+    request = EchoRequest(header=Header(doc_id="d", revision=3), text="hi")
+    h = reply_header(request)
+    assert (h.parent_id, h.doc_id, h.revision) == (
+        request.header.msg_id,
+        "d",
+        3,
+    ) and h.msg_id != request.header.msg_id
+    assert reply_header(object()).parent_id == ""
