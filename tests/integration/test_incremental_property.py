@@ -43,6 +43,7 @@ STORY = [
     "camera left",
     "Tom walks to the window.",
     "Tom waves at Eve.",
+    "They are friends.",
 ]
 # Sentences an edit may insert or replace with: scene, action, command, social and pronoun sentences.
 EXTRA = [
@@ -52,12 +53,19 @@ EXTRA = [
     "She walks to the window.",
     "He sits on the sofa.",
     "Tom runs to the desk.",
-    "They are friends.",
+    "Mary is Tom's boss.",
     "camera top",
     "Eve waves at Tom.",
     "Tom walks slowly to the chair.",
 ]
-WORDS = [("walks", "runs"), ("chair", "sofa"), ("desk", "table"), ("window", "door"), ("waves", "claps")]
+WORDS = [
+    ("walks", "runs"),
+    ("chair", "sofa"),
+    ("desk", "table"),
+    ("window", "door"),
+    ("waves", "claps"),
+    ("friends", "colleagues"),
+]
 PRONOUNS = [("Eve", "She"), ("Tom", "He"), ("She", "Eve"), ("He", "Tom")]
 SPACES = [" ", "  ", "\n", "\n\n", "\t "]
 
@@ -83,12 +91,20 @@ def apply_op(sentences: list[str], op: tuple[str, int, int, int]) -> list[str]:
     elif kind == "reorder" and n > 1:
         a = i % (n - 1)
         out[a], out[a + 1] = out[a + 1], out[a]
-    elif kind in ("word", "pronoun") and n:
+    elif kind in ("word", "pronoun"):
+        # Every swap that applies somewhere in the story (either direction), one picked: an edit that does
+        # something, as often as the story allows.
         pairs = WORDS if kind == "word" else PRONOUNS
-        old, new = pairs[j % len(pairs)]
-        if j % 2:
-            old, new = new, old
-        out[i % n] = out[i % n].replace(old, new, 1)
+        swaps = [
+            (k, a, b)
+            for k, sentence in enumerate(out)
+            for old, new in pairs
+            for a, b in ((old, new), (new, old))
+            if a in sentence.split(" ") or f"{a}." in sentence.split(" ")
+        ]
+        if swaps:
+            k, a, b = swaps[(i * 31 + j) % len(swaps)]
+            out[k] = out[k].replace(a, b, 1)
     elif kind == "space" and n:
         k = i % n
         words = out[k].split(" ")
