@@ -106,17 +106,9 @@ def make_backend(settings: Settings, stack: contextlib.ExitStack) -> Any:
         stack.callback(remote.close)
         backend = remote
     elif settings.backend in ("auto", "embedded"):
-        try:
-            from services.orchestrator.embedded import Embedded
+        from services.orchestrator.embedded import Embedded
 
-            wanted = tuple(s for s in SERVICES if s not in missing)
-            embedded = Embedded(wanted)
-            backend = stack.enter_context(embedded)
-            missing.update(embedded.missing)
-        except ImportError as exc:
-            if settings.backend == "embedded":
-                raise
-            log.warning("the embedded bus is not available (%s); calling handlers in-process", exc)
+        backend = stack.enter_context(Embedded(tuple(s for s in SERVICES if s not in missing)))
     if backend is None:
         from services.orchestrator.backend import InProcessBackend
 

@@ -33,8 +33,6 @@ class Embedded:
         self.context: zmq.Context[zmq.Socket[bytes]] = zmq.Context.instance()
         self.stop = threading.Event()
         self.threads: list[threading.Thread] = []
-        self.available: list[str] = []
-        self.missing: dict[str, str] = {}  # kept for callers that limit a backend to the running services
         self._broker: Broker | None = None
         self._workers: list[Worker] = []
         self._client: Client | None = None
@@ -50,7 +48,6 @@ class Embedded:
             t.start()
             self._workers.append(worker)
             self.threads.append(t)
-            self.available.append(service)
         self._client = Client(self.url, context=self.context)
         return BusBackend(self._client, deadline_s=self.deadline_s)
 
