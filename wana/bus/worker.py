@@ -302,6 +302,10 @@ class Worker:
             finally:
                 self._lock.acquire()
                 self._in_handler = False
+                # The broker's heartbeats of the job's duration wait unread in the socket: silence is
+                # counted from now, or a job longer than the liveness window reconnects (and, with
+                # LINGER 0, may drop the reply it just queued).
+                self._broker_expiry = max(self._broker_expiry, time.monotonic() + self._broker_ttl)
             if not isinstance(reply, (bytes, bytearray, memoryview)):
                 reply = self._error(
                     job, ErrorCode.HANDLER_FAILED, f"handler returned {type(reply).__name__}, not bytes"
