@@ -10,7 +10,7 @@ from typing import Union
 
 import msgspec
 
-from proto.common import Header, Status
+from proto.common import Header, Request, Status
 
 PROTOCOL_VERSION = 2  # 2: BATCH messages
 
@@ -156,7 +156,7 @@ class BrokerStats(msgspec.Struct, frozen=True, kw_only=True, tag="broker_stats")
 # service of the contract-test harness.
 
 
-class EchoRequest(msgspec.Struct, frozen=True, kw_only=True, tag="echo_request"):
+class EchoRequest(Request["EchoReply"], frozen=True, kw_only=True, tag="echo_request"):
     header: Header
     text: str
     sleep_s: float = 0.0  # seconds to wait before answering, 0..60 (for tests of slow jobs)

@@ -6,8 +6,11 @@ type; never reorder array-like fields.
 
 from __future__ import annotations
 
+import sys
+import typing
 import uuid
-from typing import Literal
+from enum import StrEnum
+from typing import Any, Generic, Literal, TypeVar
 
 import msgspec
 
@@ -44,6 +47,23 @@ class Span(msgspec.Struct, frozen=True, array_like=True):
     end: int
 
 
+class ErrorCode(StrEnum):
+    """The bus and stage error codes; each is a key of ERROR_CODES (a str, so it goes on the wire as is)."""
+
+    MALFORMED = "E001"
+    TOO_LARGE = "E002"
+    UNKNOWN_SERVICE = "E003"
+    UNKNOWN_REQUEST = "E004"
+    BUSY = "E005"
+    DEADLINE = "E006"
+    WORKER_DIED = "E007"
+    STALE = "E008"
+    HANDLER_FAILED = "E009"
+    INVALID_INPUT = "E010"
+    UNAVAILABLE = "E011"
+    SCHEMA_VERSION = "E012"
+
+
 # One table of error codes for every service (spaCy-style numbered errors).
 ERROR_CODES: dict[str, str] = {
     "E001": "malformed frame: could not decode the message",
@@ -60,6 +80,44 @@ ERROR_CODES: dict[str, str] = {
     "E012": "schema version not supported",
     "W401": "the animation does not show this (a story check failed: wana.fidelity)",
 }
+
+
+ReplyT = TypeVar("ReplyT", covariant=True)
+
+
+class Request(msgspec.Struct, Generic[ReplyT], frozen=True, kw_only=True):
+    """Base of every request a service answers: ``ReplyT`` is the reply struct it gets when it succeeds.
+
+    ``class ParseRequest(Request["ParseReply"], ...)`` is how a request names its reply, once, so that a
+    typed caller (the orchestrator's ``Backend.call``) returns ``ParseReply`` for a ``ParseRequest``. The
+    type parameter adds nothing to the wire.
+    """
+
+
+def reply_type(request_type: type) -> type:
+    """The reply struct a request type declares through ``Request[ReplyT]``.
+
+    Raises:
+        TypeError: the type is not a ``Request[...]`` subclass.
+    """
+    for klass in request_type.__mro__:
+        for base in getattr(klass, "__orig_bases__", ()):
+            if typing.get_origin(base) is Request:
+                (arg,) = typing.get_args(base)
+                if isinstance(arg, typing.ForwardRef):  # Request["ParseReply"]: a name of its module
+                    arg = getattr(sys.modules[klass.__module__], arg.__forward_arg__, None)
+                if isinstance(arg, type):
+                    return arg
+    raise TypeError(f"{request_type.__name__} does not declare its reply type (subclass Request[Reply])")
+
+
+def reply_header(request: Any) -> Header:
+    """The header of a reply to ``request``: its msg_id as parent, the same document and revision (a fresh
+    header when the request carries none)."""
+    h = getattr(request, "header", None)
+    if isinstance(h, Header):
+        return Header(parent_id=h.msg_id, doc_id=h.doc_id, revision=h.revision)
+    return Header()
 
 
 class ErrorReply(msgspec.Struct, frozen=True, kw_only=True, tag="error_reply"):

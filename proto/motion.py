@@ -9,7 +9,7 @@ from typing import Literal
 
 import msgspec
 
-from proto.common import Header, Status
+from proto.common import Header, Request, Status
 from proto.motion_data import Motion
 from proto.scene import Scene
 from proto.ssg import CharacterNode
@@ -26,7 +26,7 @@ class SegmentEndState(msgspec.Struct, frozen=True, kw_only=True):
     hips_dy: float = 0.0  # metres the hips sit above the posture's rest height (a seat's height); 0 standing
 
 
-class SynthesizeRequest(msgspec.Struct, frozen=True, kw_only=True, tag="synthesize_request"):
+class SynthesizeRequest(Request["SynthesizeReply"], frozen=True, kw_only=True, tag="synthesize_request"):
     """Synthesise one character's motion from its ordered actions in a scene."""
 
     header: Header
@@ -58,35 +58,8 @@ class SynthesizeReply(msgspec.Struct, frozen=True, kw_only=True, tag="synthesize
     diagnostics: list[str] = []  # e.g. unknown actions replaced by a wait
 
 
-class ActionInfo(msgspec.Struct, frozen=True, kw_only=True):
-    name: str
-    tags: list[str] = []
-    synonyms: list[str] = []
-    duration_s: float = 0.0
-    looping: bool = False
-    body_parts: list[str] = []
-    contact_joints: list[str] = []
-    interaction: str = ""  # kind of object point needed: seat, keyboard, handheld, ...; "" = none
-
-
-class LibraryRequest(msgspec.Struct, frozen=True, kw_only=True, tag="library_request"):
-    """List the action library (for the NLP verb mapping and the editor)."""
-
-    header: Header
-    tag: str = ""  # only actions with this tag; "" = all
-
-
-class LibraryReply(msgspec.Struct, frozen=True, kw_only=True, tag="library_reply"):
-    header: Header
-    status: Status = "ok"
-    actions: list[ActionInfo] = []
-
-
-MotionRequest = SynthesizeRequest | LibraryRequest
+MotionRequest = SynthesizeRequest
 __all__ = [
-    "ActionInfo",
-    "LibraryReply",
-    "LibraryRequest",
     "Literal",
     "MotionRequest",
     "SegmentEndState",

@@ -10,13 +10,13 @@ from typing import Literal
 
 import msgspec
 
-from proto.common import Header, Status
+from proto.common import Header, Request, Status
 from proto.ssg import SentenceGraph
 
 KindHint = Literal["", "scene", "action", "command"]
 
 
-class ParseRequest(msgspec.Struct, frozen=True, kw_only=True, tag="parse_request"):
+class ParseRequest(Request["ParseReply"], frozen=True, kw_only=True, tag="parse_request"):
     """Parse one sentence (the orchestrator splits documents with services.nlp.segment.split_sentences)."""
 
     header: Header
@@ -40,7 +40,7 @@ class SentenceInput(msgspec.Struct, frozen=True, kw_only=True):
     kind_hint: KindHint = ""
 
 
-class ParseBatchRequest(msgspec.Struct, frozen=True, kw_only=True, tag="parse_batch_request"):
+class ParseBatchRequest(Request["ParseBatchReply"], frozen=True, kw_only=True, tag="parse_batch_request"):
     """Parse several sentences in one round trip (each as ParseRequest would)."""
 
     header: Header
@@ -54,7 +54,7 @@ class ParseBatchReply(msgspec.Struct, frozen=True, kw_only=True, tag="parse_batc
     model_version: str = ""
 
 
-class ResolveRequest(msgspec.Struct, frozen=True, kw_only=True, tag="resolve_request"):
+class ResolveRequest(Request["ResolveReply"], frozen=True, kw_only=True, tag="resolve_request"):
     """Resolve names and pronouns across a document's sentence graphs (cheap; rerun after any edit)."""
 
     header: Header
@@ -68,7 +68,9 @@ class ResolveReply(msgspec.Struct, frozen=True, kw_only=True, tag="resolve_reply
     graphs: list[SentenceGraph]  # same order; characters canonical, "they" expanded
 
 
-class ParseDocumentRequest(msgspec.Struct, frozen=True, kw_only=True, tag="parse_document_request"):
+class ParseDocumentRequest(
+    Request["ParseDocumentReply"], frozen=True, kw_only=True, tag="parse_document_request"
+):
     """Split + parse + resolve a whole text (what `wana parse` does)."""
 
     header: Header

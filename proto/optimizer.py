@@ -9,7 +9,7 @@ from typing import Literal
 
 import msgspec
 
-from proto.common import Header, NDArray, Status
+from proto.common import Header, Request, Status
 from proto.motion_data import Motion
 from proto.scene import Scene
 from proto.ssg import CharacterNode
@@ -67,7 +67,7 @@ class CostReport(msgspec.Struct, frozen=True, kw_only=True):
     contact_pairs: list[ContactPair] = []  # in the order of contact_distances
 
 
-class OptimiseRequest(msgspec.Struct, frozen=True, kw_only=True, tag="optimise_request"):
+class OptimiseRequest(Request["OptimiseReply"], frozen=True, kw_only=True, tag="optimise_request"):
     """Optimise the layout around one interaction; the motion is re-synthesised for every proposal."""
 
     header: Header
@@ -84,37 +84,19 @@ class OptimiseReply(msgspec.Struct, frozen=True, kw_only=True, tag="optimise_rep
     header: Header
     status: Status = "ok"
     scene: Scene  # the optimised layout
-    motion: Motion  # the motion re-synthesised in it
     before: CostReport
     after: CostReport
     cost_curve: list[float] = []  # cost of the current layout after each step (index 0 = before)
     best_curve: list[float] = []  # best cost so far after each step
     steps_run: int = 0
     elapsed_ms: float = 0.0
-    resynthesis: str = ""  # how the returned motion was made: "anchored", "motion_service" or "input"
+    resynthesis: str = (
+        ""  # how the motion that verified the layout was made: "anchored", "motion_service" or "input"
+    )
     movable: list[str] = []  # ids of the objects the annealing moved (objects they support followed)
 
 
-class RouteRequest(msgspec.Struct, frozen=True, kw_only=True, tag="route_request"):
-    """A collision-free walking route by A* on the scene's occupancy grid."""
-
-    header: Header
-    scene: Scene
-    start: tuple[float, float]  # x, z metres
-    goal: tuple[float, float]  # x, z metres
-    radius: float = 0.25  # character radius, metres
-    cell: float = 0.05  # grid cell, metres
-    ignore: list[str] = []  # object ids that do not block
-
-
-class RouteReply(msgspec.Struct, frozen=True, kw_only=True, tag="route_reply"):
-    header: Header
-    status: Status = "ok"
-    waypoints: NDArray  # (N, 2) float32 x, z metres, start first
-    length: float = 0.0  # metres along the waypoints
-
-
-class CostRequest(msgspec.Struct, frozen=True, kw_only=True, tag="cost_request"):
+class CostRequest(Request["CostReply"], frozen=True, kw_only=True, tag="cost_request"):
     """Evaluate C_D and C_T of a scene and motion without optimising."""
 
     header: Header
@@ -131,4 +113,4 @@ class CostReply(msgspec.Struct, frozen=True, kw_only=True, tag="cost_reply"):
     report: CostReport
 
 
-OptimizerRequest = OptimiseRequest | RouteRequest | CostRequest
+OptimizerRequest = OptimiseRequest | CostRequest

@@ -12,7 +12,7 @@ from typing import Literal
 
 import msgspec
 
-from proto.common import Header, Status
+from proto.common import Header, Request, Status
 from proto.fidelity import Check
 from proto.motion_data import Motion
 from proto.scene import Scene
@@ -39,7 +39,15 @@ class Caption(msgspec.Struct, frozen=True, kw_only=True):
     sentence_id: str = ""
 
 
-class RenderRequest(msgspec.Struct, frozen=True, kw_only=True, tag="render_request"):
+class StorySentence(msgspec.Struct, frozen=True, kw_only=True):
+    """One sentence of the document as the render service needs it to place captions and commands itself."""
+
+    sentence_id: str
+    text: str  # as written (the caption)
+    commands: list[Command] = []  # camera / weather commands of this sentence, in order
+
+
+class RenderRequest(Request["RenderReply"], frozen=True, kw_only=True, tag="render_request"):
     """Render frames [start_frame, end_frame) of the animation."""
 
     header: Header
@@ -54,6 +62,10 @@ class RenderRequest(msgspec.Struct, frozen=True, kw_only=True, tag="render_reque
     height: int = 480  # pixels
     encoding: FrameEncoding = "png"  # per-frame png/jpeg/raw RGB bytes, or one H.264 MP4 chunk
     show_captions: bool = True
+    # The document's sentences in order: when given, the render service places the commands and captions
+    # on frames from them and the motions' segments (services/render/timeline.py), and `commands` and
+    # `captions` must be empty.
+    story: list[StorySentence] = []
 
 
 class RenderReply(msgspec.Struct, frozen=True, kw_only=True, tag="render_reply"):
@@ -76,7 +88,7 @@ class RenderReply(msgspec.Struct, frozen=True, kw_only=True, tag="render_reply")
     video: bytes = b""
 
 
-class ExportRequest(msgspec.Struct, frozen=True, kw_only=True, tag="export_request"):
+class ExportRequest(Request["ExportReply"], frozen=True, kw_only=True, tag="export_request"):
     """Produce one whole file: the MP4 video, the animated GLB scene or one character's BVH."""
 
     header: Header
@@ -88,6 +100,7 @@ class ExportRequest(msgspec.Struct, frozen=True, kw_only=True, tag="export_reque
     character: str = ""  # BVH: which character ("" = the first motion)
     width: int = 640
     height: int = 480
+    story: list[StorySentence] = []  # as RenderRequest.story
 
 
 class ExportReply(msgspec.Struct, frozen=True, kw_only=True, tag="export_reply"):
@@ -97,4 +110,7 @@ class ExportReply(msgspec.Struct, frozen=True, kw_only=True, tag="export_reply")
     filename: str  # suggested file name, e.g. "scene.glb", "Eve.bvh"
     media_type: str  # "video/mp4", "model/gltf-binary", "application/octet-stream"
     data: bytes
-    checks: dict[str, list[Check]] = {}  # mp4: the video's in_view/command_visible checks by sentence id
+    n_frames: int = 0  # MP4: frames in the video
+    commands: list[TimedCommand] = []  # MP4: the commands as placed on frames
+    captions: list[Caption] = []  # MP4: the captions as placed on frames
+    checks: dict[str, list[Check]] = {}  # MP4: the video's in_view/command_visible checks by sentence id

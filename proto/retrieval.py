@@ -14,14 +14,14 @@ from typing import Literal
 
 import msgspec
 
-from proto.common import Header, Status
+from proto.common import Header, Request, Status
 from proto.scene import Scene
 from proto.ssg import Diagnostic, ObjectNode, RelationNode
 
 MatchKind = Literal["relation", "object", "none"]
 
 
-class ComposeRequest(msgspec.Struct, frozen=True, kw_only=True, tag="compose_request"):
+class ComposeRequest(Request["ComposeReply"], frozen=True, kw_only=True, tag="compose_request"):
     """Compose one room from the scene sentences' objects and relations."""
 
     header: Header
@@ -73,7 +73,7 @@ class ActionQuery(msgspec.Struct, frozen=True, kw_only=True):
     manner: str = ""  # e.g. "slowly"
 
 
-class ActionMatchRequest(msgspec.Struct, frozen=True, kw_only=True, tag="action_match_request"):
+class ActionMatchRequest(Request["ActionMatchReply"], frozen=True, kw_only=True, tag="action_match_request"):
     header: Header
     queries: list[ActionQuery] = []
     top_k: int = 3  # clips returned per query, best first

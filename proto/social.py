@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import msgspec
 
-from proto.common import Header, NDArray, Status
+from proto.common import Header, NDArray, Request, Status
 from proto.motion_data import Segment
 from proto.ssg import SentenceGraph
 
@@ -107,7 +107,7 @@ class SocialPlan(msgspec.Struct, frozen=True, kw_only=True, tag="social_plan"):
     notes: list[str] = []  # words the model could not score, relation labels it did not know
 
 
-class SocialPlanRequest(msgspec.Struct, frozen=True, kw_only=True, tag="social_plan_request"):
+class SocialPlanRequest(Request["SocialPlanReply"], frozen=True, kw_only=True, tag="social_plan_request"):
     """Plan faces, timing, distances and open reactions of the characters of a document."""
 
     header: Header
@@ -122,7 +122,9 @@ class SocialPlanReply(msgspec.Struct, frozen=True, kw_only=True, tag="social_pla
     plan: SocialPlan
 
 
-class ExpressionTrackRequest(msgspec.Struct, frozen=True, kw_only=True, tag="expression_track_request"):
+class ExpressionTrackRequest(
+    Request["ExpressionTrackReply"], frozen=True, kw_only=True, tag="expression_track_request"
+):
     """Fill Motion.expression of one character from a plan and the motion's segments."""
 
     header: Header

@@ -12,7 +12,7 @@ import logging
 import sys
 from collections.abc import Callable
 
-SERVICES = ("nlp", "retrieval", "motion", "optimizer", "social", "render")
+from services.orchestrator.registry import SERVICES  # the one service list (imports only proto and wana.bus)
 
 DESCRIPTION = """\
 wana (Write-An-Animation) turns a text you write into a 3D animation.

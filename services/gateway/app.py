@@ -19,11 +19,14 @@ from fastapi.responses import HTMLResponse, JSONResponse
 from fastapi.staticfiles import StaticFiles
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
+from proto.common import ErrorCode
 from services.gateway import deps
 from services.gateway.live import LiveHub
 from services.gateway.meshes import MeshCache
 from services.gateway.routers import documents, exports, live, meshes
-from services.gateway.settings import SERVICES, Settings, is_loopback, parse_services
+from services.gateway.settings import Settings, is_loopback, parse_services
+from services.orchestrator.backend import ServiceSubset
+from services.orchestrator.registry import SERVICES
 from services.orchestrator.session import Orchestrator
 
 log = logging.getLogger(__name__)
@@ -77,30 +80,14 @@ class BodyLimit:
 
     async def _too_large(self, send: Send) -> None:
         response = JSONResponse(
-            {"detail": {"code": "E002", "message": f"request body over {self.limit} bytes"}}, status_code=413
+            {"detail": {"code": ErrorCode.TOO_LARGE, "message": f"request body over {self.limit} bytes"}},
+            status_code=413,
         )
         await response({"type": "http"}, _no_receive, send)
 
 
 async def _no_receive() -> Message:  # pragma: no cover - JSONResponse never reads
     return {"type": "http.disconnect"}
-
-
-class ServiceSubset:
-    """A backend that reaches only some services and answers at once for the others ("not available"),
-    instead of waiting for a request deadline. Used for services with no worker in the embedded bus and
-    for `--services` (e.g. a diagnostics-only editor: `--services nlp`)."""
-
-    def __init__(self, backend: Any, missing: dict[str, str]) -> None:
-        self.backend = backend
-        self.missing = dict(missing)
-
-    def call(self, service: str, request: Any, reply_type: type) -> Any:
-        if service in self.missing:
-            from services.orchestrator.backend import StageUnavailable
-
-            raise StageUnavailable(service, self.missing[service])
-        return self.backend.call(service, request, reply_type)
 
 
 def make_backend(settings: Settings, stack: contextlib.ExitStack) -> Any:
@@ -119,17 +106,9 @@ def make_backend(settings: Settings, stack: contextlib.ExitStack) -> Any:
         stack.callback(remote.close)
         backend = remote
     elif settings.backend in ("auto", "embedded"):
-        try:
-            from services.orchestrator.embedded import Embedded
+        from services.orchestrator.embedded import Embedded
 
-            wanted = tuple(s for s in SERVICES if s not in missing)
-            embedded = Embedded(wanted)
-            backend = stack.enter_context(embedded)
-            missing.update(embedded.missing)
-        except ImportError as exc:
-            if settings.backend == "embedded":
-                raise
-            log.warning("the embedded bus is not available (%s); calling handlers in-process", exc)
+        backend = stack.enter_context(Embedded(tuple(s for s in SERVICES if s not in missing)))
     if backend is None:
         from services.orchestrator.backend import InProcessBackend
 

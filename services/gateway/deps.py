@@ -6,6 +6,7 @@ from typing import Annotated
 
 from fastapi import Depends, HTTPException, Request
 
+from proto.common import ErrorCode
 from services.gateway.live import LiveHub
 from services.gateway.meshes import MeshCache
 from services.gateway.security import STATE_CHANGING, origin_ok, token_ok
@@ -43,6 +44,14 @@ def error(status: int, code: str, message: str) -> HTTPException:
 def guard(request: Request, settings: SettingsDep) -> None:
     """Every API call: the token when one is configured; state-changing calls: the Origin."""
     if not token_ok(settings.token, request.headers, request.query_params):
-        raise error(401, "E010", "missing or wrong token: send 'Authorization: Bearer TOKEN' or ?token=TOKEN")
+        raise error(
+            401,
+            ErrorCode.INVALID_INPUT,
+            "missing or wrong token: send 'Authorization: Bearer TOKEN' or ?token=TOKEN",
+        )
     if request.method in STATE_CHANGING and not origin_ok(request.headers, settings.allowed_origins):
-        raise error(403, "E010", f"requests from origin {request.headers.get('origin')!r} are not allowed")
+        raise error(
+            403,
+            ErrorCode.INVALID_INPUT,
+            f"requests from origin {request.headers.get('origin')!r} are not allowed",
+        )

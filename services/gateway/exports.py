@@ -1,13 +1,16 @@
 """Exports of a document (MP4 video, animated GLB scene, BVH motion) through the render service.
 
 The document is brought up to date first (a no-op when the live session already computed the current
-version); the scene, motions, commands placed on frames and captions then go to the render service as
-one `proto.render.ExportRequest`, through the same backend as the pipeline (embedded bus or in-process).
+version); the scene, motions and sentences with their commands then go to the render service as one
+`proto.render.ExportRequest` (services/orchestrator/exports.py, as `wana animate` sends them), through the
+same backend as the pipeline; the render service places captions and commands on frames.
 """
 
 from __future__ import annotations
 
+from proto.common import ErrorCode
 from services.orchestrator.backend import StageFailed, StageUnavailable
+from services.orchestrator.exports import export_request
 from services.orchestrator.pipeline import PipelineResult
 from services.orchestrator.session import Session
 
@@ -61,41 +64,24 @@ def export_document(
     """
     if fmt not in FORMATS:
         raise ValueError(f"unknown export format {fmt!r}; choose one of {', '.join(FORMATS)}")
-    try:
-        from proto.common import Header
-        from proto.render import ExportReply, ExportRequest
-        from services.render.timeline import as_motion_list, make_captions, place_commands
-    except ImportError as exc:
-        raise ExportUnavailable(
-            f"the {fmt.upper()} export is not available yet: the render service is not in this build ({exc})"
-        ) from exc
     missing = getattr(session.pipeline.backend, "missing", {})  # services this gateway cannot reach
     if "render" in missing:
         raise ExportUnavailable(f"the {fmt.upper()} export is not available: {missing['render']}")
     try:
         result = current_result(session)
     except Exception as exc:  # a failing stage must not take the request down with a bare 500
-        raise ExportFailed("E009", f"computing the animation failed: {type(exc).__name__}: {exc}") from exc
+        raise ExportFailed(
+            ErrorCode.HANDLER_FAILED, f"computing the animation failed: {type(exc).__name__}: {exc}"
+        ) from exc
     if result.scene is None:
         why = "; ".join(result.unavailable.values()) or "the text describes no scene yet"
         raise NothingToExport(f"nothing to export yet: {why}")
-    motions = as_motion_list(result.motions)
-    if fmt == "bvh" and not motions:
+    if fmt == "bvh" and not result.motions:
         why = result.unavailable.get("motion", "the text makes no character move yet")
         raise NothingToExport(f"no character motion to export as BVH: {why}")
-    request = ExportRequest(
-        header=Header(doc_id=result.doc_id, revision=result.version),
-        format=fmt,  # type: ignore[arg-type]
-        scene=result.scene,
-        motions=motions,
-        commands=place_commands(result.commands, result.sentences, motions),
-        captions=make_captions(result.sentences, motions),
-        character=character,
-        width=width,
-        height=height,
-    )
+    request = export_request(result, fmt, character=character, width=width, height=height)  # type: ignore[arg-type]
     try:
-        reply = session.pipeline.backend.call("render", request, ExportReply)
+        reply = session.pipeline.backend.call(request)
     except StageUnavailable as exc:
         raise ExportUnavailable(f"the {fmt.upper()} export is not available: {exc}") from exc
     except StageFailed as exc:

@@ -19,6 +19,7 @@ from typing import Any
 from starlette.concurrency import run_in_threadpool
 from starlette.websockets import WebSocket, WebSocketState
 
+from proto.common import ErrorCode
 from services.gateway import messages
 from services.gateway.delta import CharacterCache, EncodedAnimation, Holdings, encode_animation, encode_json
 from services.orchestrator.document import BadEdit, StaleEdit, TextChange
@@ -145,7 +146,7 @@ class DocumentChannel:
                 "text": state["text"],
             }
         except BadEdit as exc:
-            return {"type": "error", "code": "E010", "message": str(exc)}
+            return {"type": "error", "code": ErrorCode.INVALID_INPUT, "message": str(exc)}
         changes_json = [{"start": c.start, "end": c.end, "text": c.text} for c in changes]
         await self.broadcast(
             {
@@ -184,7 +185,7 @@ class DocumentChannel:
                     await self.broadcast(
                         {
                             "type": "error",
-                            "code": "E009",
+                            "code": ErrorCode.HANDLER_FAILED,
                             "message": f"computing the animation failed: {type(exc).__name__}: {exc}",
                         }
                     )

@@ -8,6 +8,8 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
+from services.orchestrator.registry import SERVICES  # the one service list
+
 REPO = Path(__file__).resolve().parents[2]
 DEFAULT_DB = Path(os.path.expanduser("~")) / ".wana" / "sessions.sqlite"
 
@@ -41,9 +43,6 @@ def is_loopback(host: str) -> bool:
         return ipaddress.ip_address(host.strip("[]")).is_loopback
     except ValueError:
         return False
-
-
-SERVICES = ("nlp", "retrieval", "motion", "optimizer", "social", "render")
 
 
 def parse_services(raw: str) -> tuple[str, ...]:

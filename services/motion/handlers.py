@@ -6,11 +6,8 @@ import math
 
 import numpy as np
 
-from proto.common import Header
+from proto.common import reply_header
 from proto.motion import (
-    ActionInfo,
-    LibraryReply,
-    LibraryRequest,
     SegmentEndState,
     SynthesizeReply,
     SynthesizeRequest,
@@ -20,11 +17,6 @@ from services.motion.planning import plan_actions
 from services.motion.routing import scene_route
 from services.motion.synthesis import SegmentState, assemble, synthesise_segment
 from wana.bus.service import Contract, InvalidInput
-from wana.domain.actions import load_library
-
-
-def _reply_header(h: Header) -> Header:
-    return Header(parent_id=h.msg_id, doc_id=h.doc_id, revision=h.revision)
 
 
 def handle_synthesize(req: SynthesizeRequest) -> SynthesizeReply:
@@ -87,32 +79,11 @@ def handle_synthesize(req: SynthesizeRequest) -> SynthesizeReply:
         )
     motion = assemble(req.character.name, pieces, state)
     return SynthesizeReply(
-        header=_reply_header(req.header),
+        header=reply_header(req),
         motion=motion,
         end_states=ends,
         diagnostics=list(plan.diagnostics) + route_diags,
     )
 
 
-def handle_library(req: LibraryRequest) -> LibraryReply:
-    """The action library, optionally filtered by tag."""
-    out = []
-    for name, c in sorted(load_library().items()):
-        if req.tag and req.tag not in c.tags:
-            continue
-        out.append(
-            ActionInfo(
-                name=name,
-                tags=list(c.tags),
-                synonyms=list(c.synonyms),
-                duration_s=c.duration_s,
-                looping=c.looping,
-                body_parts=list(c.body_parts),
-                contact_joints=list(c.contact_joints),
-                interaction=c.interaction.object if c.interaction else "",
-            )
-        )
-    return LibraryReply(header=_reply_header(req.header), actions=out)
-
-
-CONTRACT: Contract = {SynthesizeRequest: handle_synthesize, LibraryRequest: handle_library}
+CONTRACT: Contract = {SynthesizeRequest: handle_synthesize}

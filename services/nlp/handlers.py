@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from proto.common import Header
+from proto.common import reply_header
 from proto.nlp import (
     ParseBatchReply,
     ParseBatchRequest,
@@ -24,10 +24,6 @@ MAX_DOCUMENT_CHARS = 1_000_000
 MAX_BATCH = 2_000
 
 
-def _reply_header(h: Header) -> Header:
-    return Header(parent_id=h.msg_id, doc_id=h.doc_id, revision=h.revision)
-
-
 def _check_sentence(text: str, offset: int) -> None:
     if offset < 0:
         raise InvalidInput(f"offset must be >= 0, got {offset}")
@@ -42,7 +38,7 @@ def handle_parse(req: ParseRequest) -> ParseReply:
     """One sentence -> its unresolved SentenceGraph."""
     _check_sentence(req.text, req.offset)
     graph = parse_sentence(req.text, req.sentence_id, req.offset, req.kind_hint)
-    return ParseReply(header=_reply_header(req.header), graph=graph, model_version=MODEL_VERSION)
+    return ParseReply(header=reply_header(req), graph=graph, model_version=MODEL_VERSION)
 
 
 def handle_parse_batch(req: ParseBatchRequest) -> ParseBatchReply:
@@ -52,16 +48,14 @@ def handle_parse_batch(req: ParseBatchRequest) -> ParseBatchReply:
     for s in req.sentences:
         _check_sentence(s.text, s.offset)
     graphs = parse_sentences([(s.text, s.sentence_id, s.offset, s.kind_hint) for s in req.sentences])
-    return ParseBatchReply(header=_reply_header(req.header), graphs=graphs, model_version=MODEL_VERSION)
+    return ParseBatchReply(header=reply_header(req), graphs=graphs, model_version=MODEL_VERSION)
 
 
 def handle_resolve(req: ResolveRequest) -> ResolveReply:
     """Resolve names and pronouns across the graphs of a document."""
     if req.offsets and len(req.offsets) != len(req.graphs):
         raise InvalidInput(f"{len(req.offsets)} offsets for {len(req.graphs)} graphs")
-    return ResolveReply(
-        header=_reply_header(req.header), graphs=resolve(list(req.graphs), list(req.offsets) or None)
-    )
+    return ResolveReply(header=reply_header(req), graphs=resolve(list(req.graphs), list(req.offsets) or None))
 
 
 def handle_parse_document(req: ParseDocumentRequest) -> ParseDocumentReply:
@@ -70,7 +64,7 @@ def handle_parse_document(req: ParseDocumentRequest) -> ParseDocumentReply:
         raise InvalidInput(f"document of {len(req.text)} characters (limit {MAX_DOCUMENT_CHARS})")
     pieces, graphs = parse_document_with_spans(req.text)
     return ParseDocumentReply(
-        header=_reply_header(req.header),
+        header=reply_header(req),
         sentences=[SentenceSpan(s, e, k) for s, e, k in pieces],
         graphs=graphs,
         model_version=MODEL_VERSION,

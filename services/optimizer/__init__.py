@@ -2,7 +2,6 @@
 
 CONTRACT:
     OptimiseRequest -> OptimiseReply | ErrorReply   simulated annealing of the layout around one interaction
-    RouteRequest    -> RouteReply | ErrorReply      A* walking route on the scene's occupancy grid
     CostRequest     -> CostReply | ErrorReply       C_D (eq. 1), C_T (eq. 2) and C of a scene and motion
 
 Python API (in-process, no bus):

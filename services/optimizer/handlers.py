@@ -7,35 +7,26 @@ from typing import Any
 
 import numpy as np
 
-from proto.common import ErrorReply, Header
+from proto.common import ErrorReply, reply_header
 from proto.motion_data import Motion
 from proto.optimizer import (
     CostReply,
     CostRequest,
     OptimiseReply,
     OptimiseRequest,
-    RouteReply,
-    RouteRequest,
 )
 from proto.scene import Scene
 from services.optimizer.annealing import optimise_interaction
 from services.optimizer.resynthesis import motion_service_fn
 from services.optimizer.scoring import InteractionScorer
 from services.optimizer.verify import optimise_and_verify
-from wana.arrays import to_wire
 from wana.bus.service import InvalidInput
 from wana.domain.object_geometry import CatalogUnavailable
-from wana.domain.routes import NoRouteError, plan_route
+from wana.domain.routes import NoRouteError
 from wana.domain.units import FPS
 
 MAX_OBJECTS = 512
 MAX_FRAMES = FPS * 600  # ten minutes of motion
-
-
-def _reply_header(request: Any) -> Header:
-    return Header(
-        parent_id=request.header.msg_id, doc_id=request.header.doc_id, revision=request.header.revision
-    )
 
 
 def _check_scene(scene: Scene) -> None:
@@ -82,7 +73,7 @@ def optimise(request: OptimiseRequest) -> OptimiseReply:
                 settings=st,
                 motion=request.motion,
             )
-            scene, motion, after, made = result.scene, result.motion, result.after, "motion_service"
+            scene, after, made = result.scene, result.after, "motion_service"
         else:
             verified = optimise_and_verify(
                 request.scene,
@@ -93,15 +84,14 @@ def optimise(request: OptimiseRequest) -> OptimiseReply:
                 settings=st,
             )
             result = verified.search
-            scene, motion, after, made = verified.scene, verified.motion, verified.after, verified.made
+            scene, after, made = verified.scene, verified.after, verified.made
     except (ValueError, KeyError, NoRouteError) as exc:
         raise InvalidInput(str(exc)) from exc
     except CatalogUnavailable as exc:
         raise RuntimeError(str(exc)) from exc
     return OptimiseReply(
-        header=_reply_header(request),
+        header=reply_header(request),
         scene=scene,
-        motion=motion,
         before=result.before,
         after=after,
         cost_curve=result.cost_curve,
@@ -111,29 +101,6 @@ def optimise(request: OptimiseRequest) -> OptimiseReply:
         resynthesis=made,
         movable=result.movable,
     )
-
-
-def route(request: RouteRequest) -> RouteReply:
-    """A* route on the scene's occupancy grid."""
-    _check_scene(request.scene)
-    if not (0 < request.cell <= 1.0) or not (0 <= request.radius <= 2.0):
-        raise InvalidInput("cell must be in (0, 1] m and radius in [0, 2] m")
-    cells = (request.scene.room.width / request.cell) * (request.scene.room.depth / request.cell)
-    if cells > 4_000_000:
-        raise InvalidInput(f"the grid would have {cells:.0f} cells; use a larger cell")
-    try:
-        wps = plan_route(
-            request.scene,
-            np.asarray(request.start),
-            np.asarray(request.goal),
-            radius=request.radius,
-            cell=request.cell,
-            ignore=frozenset(request.ignore),
-        )
-    except (NoRouteError, ValueError) as exc:
-        raise InvalidInput(str(exc)) from exc
-    length = float(np.linalg.norm(np.diff(wps, axis=0), axis=1).sum())
-    return RouteReply(header=_reply_header(request), waypoints=to_wire(wps.astype(np.float32)), length=length)
 
 
 def cost(request: CostRequest) -> CostReply:
@@ -151,11 +118,10 @@ def cost(request: CostRequest) -> CostReply:
         report = scorer.score_scenes([request.scene], [request.motion]).report(0, scorer.pairs)
     except (ValueError, KeyError) as exc:
         raise InvalidInput(str(exc)) from exc
-    return CostReply(header=_reply_header(request), report=report)
+    return CostReply(header=reply_header(request), report=report)
 
 
-CONTRACT: dict[type, Callable[[Any], OptimiseReply | RouteReply | CostReply | ErrorReply]] = {
+CONTRACT: dict[type, Callable[[Any], OptimiseReply | CostReply | ErrorReply]] = {
     OptimiseRequest: optimise,
-    RouteRequest: route,
     CostRequest: cost,
 }

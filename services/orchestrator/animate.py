@@ -7,6 +7,7 @@ not in this build is named in a clear message and in the report; nothing is fake
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import sys
 import tempfile
@@ -16,10 +17,13 @@ from typing import Any
 
 import msgspec
 
+from proto.common import ErrorCode
 from proto.fidelity import Check
-from services.orchestrator.backend import InProcessBackend
+from services.orchestrator.backend import Backend, InProcessBackend, StageFailed, StageUnavailable
+from services.orchestrator.exports import export
 from services.orchestrator.pipeline import PipelineResult
 from services.orchestrator.session import Orchestrator
+from services.orchestrator.timeline import FPS
 from wana.fidelity import story_checks, verdicts
 
 MAX_INPUT_BYTES = 1_000_000
@@ -165,6 +169,61 @@ def nothing_to_animate(result: PipelineResult) -> str:
     return ""
 
 
+def write_exports(
+    backend: Backend,
+    result: PipelineResult,
+    report: dict[str, Any],
+    out: Path,
+    *,
+    width: int = 640,
+    height: int = 480,
+) -> dict[str, Path]:
+    """animation.mp4, scene.glb, one BVH per character (ExportRequests through the backend, as the gateway
+    sends them) and report.json with a "render" section; file name -> path.
+
+    The video's camera and command checks (only the render service knows the camera) join the verdicts of
+    the report's sentences.
+    """
+    paths: dict[str, Path] = {}
+    video = export(backend, result, "mp4", width=width, height=height)
+    replies = [video, export(backend, result, "glb")]
+    replies += [export(backend, result, "bvh", character=name) for name in sorted(result.motions)]
+    for reply in replies:
+        paths[reply.filename] = out / reply.filename
+        paths[reply.filename].write_bytes(reply.data)
+    report.update(summary(result, extra_checks=video.checks))
+    fps = next(iter(result.motions.values())).fps if result.motions else FPS
+    report["render"] = {
+        "frames": video.n_frames,
+        "fps": fps,
+        "width": width,
+        "height": height,
+        "duration_s": video.n_frames / fps,
+        "commands": [
+            {"frame": c.frame, "kind": c.command.kind, "value": c.command.value, "target": c.command.target}
+            for c in video.commands
+        ],
+        "captions": msgspec.to_builtins(video.captions),
+        "characters": sorted(result.motions),
+        "files": sorted([*paths, "report.json"]),
+    }
+    paths["report.json"] = out / "report.json"
+    paths["report.json"].write_text(json.dumps(report, indent=2, ensure_ascii=False))
+    return paths
+
+
+def print_verdicts(report: dict[str, Any]) -> None:
+    """One line per sentence the animation does not fully show, and the share that it does."""
+    sentences = [s for s in report.get("sentences", []) if s.get("kind") != "empty"]
+    for s in sentences:
+        if s.get("verdict", "ok") == "ok":
+            continue
+        reasons = "; ".join(dict.fromkeys(c["reason"] for c in s.get("checks", []) if not c["ok"]))
+        print(f"{s['id']} {s['verdict']}: {s['text'].strip()!r}: {reasons}", file=sys.stderr)
+    shown = sum(1 for s in sentences if s.get("verdict", "ok") == "ok")
+    print(f"wana animate: the animation shows {shown} of {len(sentences)} sentences fully", file=sys.stderr)
+
+
 def main(argv: list[str]) -> int:
     args = build_parser().parse_args(argv)
     text = read_story(args.file)
@@ -173,49 +232,36 @@ def main(argv: list[str]) -> int:
         print("wana animate: the story is empty; wrote nothing", file=sys.stderr)
         return 2
     tick, close = _progress_bar(not args.no_progress and sys.stderr.isatty())
-    with tempfile.TemporaryDirectory(prefix="wana-") as tmp:
+    with tempfile.TemporaryDirectory(prefix="wana-") as tmp, contextlib.ExitStack() as stack:
         if args.in_process:
-            orchestrator = Orchestrator(Path(tmp) / "sessions.db", InProcessBackend(), seed=args.seed)
-            result = orchestrator.create(text, doc_id="story").compute(progress=tick)
-            orchestrator.close()
+            backend: Backend = InProcessBackend()
         else:
             from services.orchestrator.embedded import Embedded
 
-            with Embedded() as backend:
-                orchestrator = Orchestrator(Path(tmp) / "sessions.db", backend, seed=args.seed)
-                result = orchestrator.create(text, doc_id="story").compute(progress=tick)
-                orchestrator.close()
-    close()
-    empty = nothing_to_animate(result)
-    if empty:
-        for sid, diags in result.diagnostics.items():
-            for d in diags:
-                print(f"{sid} [{d.span.start}:{d.span.end}] {d.severity}: {d.message}", file=sys.stderr)
-        print(f"wana animate: {empty}; wrote nothing", file=sys.stderr)
-        return 2
-    out.mkdir(parents=True, exist_ok=True)
-    report = summary(result)
-    (out / "report.json").write_text(json.dumps(report, indent=2))
-    if result.scene is not None and not result.unavailable:
-        try:
-            from services.render.export import write_outputs
-        except ImportError as exc:
-            result.unavailable["render"] = f"the render stage is not available yet: {exc}"
-        else:
-            paths = write_outputs(
-                out,
-                result.scene,
-                result.motions,
-                result.commands,
-                result.sentences,
-                report,
-                width=args.width,
-                height=args.height,
-                progress=not args.no_progress,
-            )
+            backend = stack.enter_context(Embedded())
+        orchestrator = Orchestrator(Path(tmp) / "sessions.db", backend, seed=args.seed)
+        result = orchestrator.create(text, doc_id="story").compute(progress=tick)
+        orchestrator.close()
+        close()
+        empty = nothing_to_animate(result)
+        if empty:
+            for sid, diags in result.diagnostics.items():
+                for d in diags:
+                    print(f"{sid} [{d.span.start}:{d.span.end}] {d.severity}: {d.message}", file=sys.stderr)
+            print(f"wana animate: {empty}; wrote nothing", file=sys.stderr)
+            return 2
+        out.mkdir(parents=True, exist_ok=True)
+        report = summary(result)
+        (out / "report.json").write_text(json.dumps(report, indent=2, ensure_ascii=False))
+        paths: dict[str, Path] = {}
+        if result.scene is not None and not result.unavailable:
+            try:
+                paths = write_exports(backend, result, report, out, width=args.width, height=args.height)
+            except (StageFailed, StageUnavailable) as exc:
+                result.unavailable["render"] = str(exc)
     for sid, diags in result.diagnostics.items():
         for d in diags:
-            if d.code != "E011":
+            if d.code != ErrorCode.UNAVAILABLE:
                 print(f"{sid} [{d.span.start}:{d.span.end}] {d.severity}: {d.message}", file=sys.stderr)
     if result.unavailable:
         for why in result.unavailable.values():
@@ -225,6 +271,7 @@ def main(argv: list[str]) -> int:
             file=sys.stderr,
         )
         return 3
+    print_verdicts(report)
     for name in sorted(paths):
         print(f"wrote {paths[name]}")
     return 0

@@ -1,31 +1,38 @@
 """How the orchestrator reaches a service: in-process handler calls or requests over the bus.
 
-Both take a request struct and return the decoded reply struct, so the pipeline does not care which one
-it runs on. The embedded default (`wana animate`) uses the bus over inproc:// with a worker thread per
-service; unit tests may call handlers in-process.
+Every backend has one method, ``call(request) -> reply``: the service is found from the request's type and
+the reply type from its declaration (``proto.common.Request[Reply]``, see services/orchestrator/registry.py),
+so ``call(ParseRequest(...))`` is typed ``ParseReply``. An error reply or a failing handler raises
+StageFailed; a service this process is not allowed to reach raises StageUnavailable. The embedded default
+(`wana animate`) uses the bus over inproc:// with a worker thread per service; unit tests may call handlers
+in-process.
 """
 
 from __future__ import annotations
 
-import importlib
-from typing import Any, Protocol, Union
+import threading
+from typing import Any, Protocol, TypeVar, Union, cast
 
 import msgspec
 
-from proto.common import ErrorReply
-from wana.bus.service import call_in_process
+from proto.common import ErrorCode, ErrorReply, Request, reply_type
+from services.orchestrator.registry import contract, service_of
+from wana.bus.client import BusError, Client
+from wana.bus.service import InvalidInput, call_in_process
+
+R = TypeVar("R")
 
 
 class StageUnavailable(RuntimeError):
-    """A pipeline stage whose service logic is not in this build."""
+    """A pipeline stage whose service this process may not reach (e.g. not enabled in this gateway)."""
 
     def __init__(self, service: str, detail: str) -> None:
-        super().__init__(f"the {service} stage is not available yet: {detail}")
+        super().__init__(f"the {service} stage is not available: {detail}")
         self.service = service
 
 
 class StageFailed(RuntimeError):
-    """A service answered with an error reply."""
+    """A service answered with an error reply (or, in-process, its handler raised)."""
 
     def __init__(self, service: str, code: str, message: str) -> None:
         super().__init__(f"{service} failed with {code}: {message}")
@@ -33,64 +40,53 @@ class StageFailed(RuntimeError):
         self.code = code
 
 
-def load_contract(service: str) -> dict[type, Any]:
-    from wana.compose import compose
-
-    compose()  # what one service needs of another (the optimiser's motion) is wired in here
-    try:
-        handlers = importlib.import_module(f"services.{service}.handlers")
-    except ImportError as exc:
-        raise StageUnavailable(service, str(exc)) from exc
-    contract = getattr(handlers, "CONTRACT", None)
-    if not contract:
-        raise StageUnavailable(service, f"services.{service}.handlers has no CONTRACT")
-    return contract  # type: ignore[no-any-return]
-
-
 class Backend(Protocol):
-    def call(self, service: str, request: Any, reply_type: type) -> Any: ...
+    def call(self, request: Request[R]) -> R: ...
 
 
-def _check(service: str, reply: Any) -> Any:
+def _checked(service: str, request: Request[R], reply: object) -> R:
     if isinstance(reply, ErrorReply):
         raise StageFailed(service, reply.code, reply.message)
-    return reply
+    expected = reply_type(type(request))
+    if not isinstance(reply, expected):
+        raise StageFailed(
+            service,
+            ErrorCode.HANDLER_FAILED,
+            f"{type(request).__name__} was answered with {type(reply).__name__}, not {expected.__name__}",
+        )
+    return cast(R, reply)
 
 
 class InProcessBackend:
     """Calls each service's pure handlers directly (no sockets)."""
 
-    def __init__(self) -> None:
-        self._contracts: dict[str, dict[type, Any]] = {}
-
-    def call(self, service: str, request: Any, reply_type: type) -> Any:
-        if service not in self._contracts:
-            self._contracts[service] = load_contract(service)
-        contract = self._contracts[service]
+    def call(self, request: Request[R]) -> R:
+        service = service_of(type(request))
         try:
-            reply = call_in_process(contract, request)
+            reply = call_in_process(contract(service), request)
+        except InvalidInput as exc:  # as the bus's frame handler answers: E010 for refused input
+            raise StageFailed(service, ErrorCode.INVALID_INPUT, f"{type(exc).__name__}: {exc}") from exc
         except Exception as exc:  # a handler bug is that stage's failure, as over the bus (E009)
-            code = "E010" if type(exc).__name__ == "InvalidInput" else "E009"
-            raise StageFailed(service, code, f"{type(exc).__name__}: {exc}") from exc
-        return _check(service, reply)
+            raise StageFailed(service, ErrorCode.HANDLER_FAILED, f"{type(exc).__name__}: {exc}") from exc
+        return _checked(service, request, reply)
 
 
 class BusBackend:
     """Sends requests through a broker with a bus Client."""
 
-    def __init__(self, client: Any, *, deadline_s: float = 120.0) -> None:
+    def __init__(self, client: Client, *, deadline_s: float = 120.0) -> None:
         self.client = client
         self.deadline_s = deadline_s
         self._encoder = msgspec.msgpack.Encoder()
         self._decoders: dict[type, msgspec.msgpack.Decoder[Any]] = {}
 
-    def call(self, service: str, request: Any, reply_type: type) -> Any:
-        from wana.bus.client import BusError
-
-        decoder = self._decoders.get(reply_type)
+    def call(self, request: Request[R]) -> R:
+        service = service_of(type(request))
+        decoder = self._decoders.get(type(request))
         if decoder is None:
-            decoder = msgspec.msgpack.Decoder(Union[reply_type, ErrorReply])  # noqa: UP007
-            self._decoders[reply_type] = decoder
+            wanted = reply_type(type(request))
+            decoder = msgspec.msgpack.Decoder(Union[wanted, ErrorReply])  # noqa: UP007 - runtime union
+            self._decoders[type(request)] = decoder
         header = getattr(request, "header", None)
         try:
             payload = self.client.request(
@@ -101,38 +97,48 @@ class BusBackend:
                 revision=getattr(header, "revision", 0),
             )
         except BusError as exc:
-            raise StageFailed(service, getattr(exc, "code", "E000"), str(exc)) from exc
-        return _check(service, decoder.decode(payload))
+            raise StageFailed(service, exc.code, str(exc)) from exc
+        return _checked(service, request, decoder.decode(payload))
 
 
 class RemoteBusBackend:
     """Reaches the services through a broker at a URL (scale-out), with one bus Client per thread."""
 
     def __init__(self, url: str, *, deadline_s: float = 120.0) -> None:
-        import threading
-
         self.url = url
         self.deadline_s = deadline_s
         self._local = threading.local()
-        self._clients: list[Any] = []
+        self._clients: list[Client] = []
         self._lock = threading.Lock()
 
     def _backend(self) -> BusBackend:
-        backend = getattr(self._local, "backend", None)
+        backend: BusBackend | None = getattr(self._local, "backend", None)
         if backend is None:
-            from wana.bus.client import Client
-
             client = Client(self.url)
             with self._lock:
                 self._clients.append(client)
             backend = self._local.backend = BusBackend(client, deadline_s=self.deadline_s)
         return backend
 
-    def call(self, service: str, request: Any, reply_type: type) -> Any:
-        return self._backend().call(service, request, reply_type)
+    def call(self, request: Request[R]) -> R:
+        return self._backend().call(request)
 
     def close(self) -> None:
         with self._lock:
             for client in self._clients:
                 client.close()
             self._clients.clear()
+
+
+class ServiceSubset:
+    """A backend limited to some services: a call to any other raises StageUnavailable with the reason."""
+
+    def __init__(self, backend: Backend, missing: dict[str, str]) -> None:
+        self.backend = backend
+        self.missing = dict(missing)
+
+    def call(self, request: Request[R]) -> R:
+        service = service_of(type(request))
+        if service in self.missing:
+            raise StageUnavailable(service, self.missing[service])
+        return self.backend.call(request)

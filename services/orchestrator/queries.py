@@ -46,8 +46,6 @@ class Memo:
     input_hash: str
     result_hash: str
     value: Any
-    changed_at: int  # revision at which the result last changed (backdated when equal)
-    verified_at: int  # revision at which the memo was last checked
 
 
 @dataclass(frozen=True)
@@ -77,22 +75,28 @@ class QueryEngine:
         with self._lock:
             memo = self.memos.get(key)
             if memo is not None and memo.input_hash == input_hash:
-                memo.verified_at = self.revision
                 self.log.append(LogEntry(self.revision, key, "reused", False))
                 return memo.value  # type: ignore[no-any-return]
         value = compute()
         result_hash = content_hash(value)
         with self._lock:
             changed = memo is None or memo.result_hash != result_hash
-            changed_at = self.revision if changed or memo is None else memo.changed_at
             if not changed and memo is not None:
                 value = memo.value  # backdate: keep the identical old value
-            self.memos[key] = Memo(input_hash, result_hash, value, changed_at, self.revision)
+            self.memos[key] = Memo(input_hash, result_hash, value)
             self.log.append(LogEntry(self.revision, key, "ran", changed))
         return value
 
     def result_hash(self, key: str) -> str:
         return self.memos[key].result_hash
+
+    def hash_of(self, key: str, value: object) -> str:
+        """The content hash of a query's value: its memo's when the value is the memoised one (hashed once,
+        when it was computed), else hashed now (a value that was not memoised, e.g. a failed parse)."""
+        memo = self.memos.get(key)
+        if memo is not None and memo.value is value:
+            return memo.result_hash
+        return content_hash(value)
 
     def ran(self, revision: int | None = None) -> list[str]:
         """Keys of the queries that ran at a revision (default: the current one), in order."""

@@ -16,12 +16,13 @@ import msgspec
 import numpy as np
 from PIL import Image
 
-from proto.common import Header
-from proto.render import ExportReply, ExportRequest, RenderReply, RenderRequest
+from proto.common import reply_header
+from proto.render import Caption, ExportReply, ExportRequest, RenderReply, RenderRequest, TimedCommand
 from services.render.bvh_export import motion_bvh, safe_filename
 from services.render.camera_checks import staged_checks
 from services.render.gltf_export import scene_glb
 from services.render.renderer import FrameRenderer
+from services.render.timeline import make_captions, place_commands
 from services.render.video import FPS, encode_mp4
 from wana.bus.service import InvalidInput
 
@@ -32,9 +33,16 @@ _lock = threading.Lock()
 _cache: dict[str, Any] = {"key": None, "renderer": None}
 
 
-def _reply_header(request: Any) -> Header:
-    h = request.header
-    return Header(parent_id=h.msg_id, doc_id=h.doc_id, revision=h.revision)
+def placed(req: RenderRequest | ExportRequest) -> tuple[list[TimedCommand], list[Caption]]:
+    """The request's commands and captions on frames: as sent, or placed here from its story."""
+    if not req.story:
+        return list(req.commands), list(req.captions)
+    if req.commands or req.captions:
+        raise InvalidInput("send either a story or placed commands and captions, not both")
+    motions = list(req.motions)
+    sentences = [(s.sentence_id, s.text) for s in req.story]
+    commands = [(s.sentence_id, c) for s in req.story for c in s.commands]
+    return place_commands(commands, sentences, motions), make_captions(sentences, motions)
 
 
 def _renderer_for(req: RenderRequest | ExportRequest, n_frames: int = 0) -> FrameRenderer:
@@ -45,6 +53,7 @@ def _renderer_for(req: RenderRequest | ExportRequest, n_frames: int = 0) -> Fram
             req.motions,
             req.commands,
             req.captions,
+            req.story,
             req.width,
             req.height,
             n_frames,
@@ -57,13 +66,15 @@ def _renderer_for(req: RenderRequest | ExportRequest, n_frames: int = 0) -> Fram
     if _cache["renderer"] is not None:
         _cache["renderer"].close()
         _cache["renderer"] = _cache["key"] = None
-    captions = req.captions if getattr(req, "show_captions", True) else []
+    commands, captions = placed(req)
+    if not getattr(req, "show_captions", True):
+        captions = []
     try:
         r = FrameRenderer(
             req.scene,
             list(req.motions),
-            list(req.commands),
-            list(captions),
+            commands,
+            captions,
             n_frames=n_frames,
             width=req.width,
             height=req.height,
@@ -124,7 +135,7 @@ def handle_render(req: RenderRequest) -> RenderReply:
                         "ask for a shorter range"
                     )
         return RenderReply(
-            header=_reply_header(req),
+            header=reply_header(req),
             start_frame=start,
             end_frame=end,
             n_frames=r.n_frames,
@@ -139,7 +150,7 @@ def handle_render(req: RenderRequest) -> RenderReply:
 
 def handle_export(req: ExportRequest) -> ExportReply:
     """Produce the MP4 (with its camera checks, services.render.camera_checks), the GLB or one character's BVH."""
-    h = _reply_header(req)
+    h = reply_header(req)
     try:
         if req.format == "glb":
             return ExportReply(
@@ -175,10 +186,11 @@ def handle_export(req: ExportRequest) -> ExportReply:
             raise
         raise InvalidInput(str(exc)) from exc
     _check_size(req.width, req.height)
+    commands, captions = placed(req)
     with _lock:
         r = _renderer_for(req)
         # The captions name the action sentences; commands carry their sentence ids.
-        checks = staged_checks(r.staging, req.captions, width=req.width, height=req.height)
+        checks = staged_checks(r.staging, captions, width=req.width, height=req.height)
         buf = io.BytesIO()
         encode_mp4(r.frames(0, r.n_frames), buf, fps=FPS)
     if buf.tell() > MAX_REPLY_BYTES:
@@ -191,6 +203,9 @@ def handle_export(req: ExportRequest) -> ExportReply:
         filename="animation.mp4",
         media_type="video/mp4",
         data=buf.getvalue(),
+        n_frames=r.n_frames,
+        commands=commands,
+        captions=captions,
         checks=checks,
     )
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from functools import lru_cache
 
-from proto.common import Header
+from proto.common import reply_header
 from proto.retrieval import (
     ActionMatchReply,
     ActionMatchRequest,
@@ -21,10 +21,6 @@ MAX_OBJECTS = 200  # a scene description with more objects than this is refused 
 MAX_QUERIES = 500
 
 
-def _reply_header(h: Header) -> Header:
-    return Header(parent_id=h.msg_id, doc_id=h.doc_id, revision=h.revision)
-
-
 def handle_compose(req: ComposeRequest) -> ComposeReply:
     """Compose one room from the scene objects and relations (see services.retrieval.compose)."""
     if len(req.objects) > MAX_OBJECTS:
@@ -33,7 +29,7 @@ def handle_compose(req: ComposeRequest) -> ComposeReply:
         list(req.objects), list(req.relations), room_type=req.room_type, seed=req.seed, previous=req.previous
     )
     return ComposeReply(
-        header=_reply_header(req.header),
+        header=reply_header(req),
         scene=scene,
         matches=report.matches,
         relations=report.relations,
@@ -63,7 +59,7 @@ def handle_action_match(req: ActionMatchRequest) -> ActionMatchReply:
         raise InvalidInput(f"top_k must be at least 1, got {req.top_k}")
     clips = list(_clips())
     results: list[ActionMatchResult] = [match_action(q, clips, top_k=req.top_k) for q in req.queries]
-    return ActionMatchReply(header=_reply_header(req.header), results=results)
+    return ActionMatchReply(header=reply_header(req), results=results)
 
 
 CONTRACT: Contract = {

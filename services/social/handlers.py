@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
-from proto.common import ErrorReply, Header
+from proto.common import ErrorReply, reply_header
 from proto.social import (
     ExpressionTrackReply,
     ExpressionTrackRequest,
@@ -22,11 +22,6 @@ MAX_GRAPHS = 2000
 MAX_FRAMES = FPS * 600  # ten minutes
 
 
-def _reply_header(request: Any) -> Header:
-    h = request.header
-    return Header(parent_id=h.msg_id, doc_id=h.doc_id, revision=h.revision)
-
-
 def social_plan(request: SocialPlanRequest) -> SocialPlanReply:
     """Sample the document's faces, response timing, distances and open reactions."""
     if len(request.graphs) > MAX_GRAPHS:
@@ -37,7 +32,7 @@ def social_plan(request: SocialPlanRequest) -> SocialPlanReply:
         plan = plan_social(request.graphs, seed=request.seed, steps=request.steps)
     except StoryError as exc:
         raise InvalidInput(str(exc)) from exc
-    return SocialPlanReply(header=_reply_header(request), plan=plan)
+    return SocialPlanReply(header=reply_header(request), plan=plan)
 
 
 def expression(request: ExpressionTrackRequest) -> ExpressionTrackReply:
@@ -60,7 +55,7 @@ def expression(request: ExpressionTrackRequest) -> ExpressionTrackReply:
         )
     except ValueError as exc:
         raise InvalidInput(str(exc)) from exc
-    return ExpressionTrackReply(header=_reply_header(request), expression=to_wire(track))
+    return ExpressionTrackReply(header=reply_header(request), expression=to_wire(track))
 
 
 CONTRACT: dict[type, Callable[[Any], SocialPlanReply | ExpressionTrackReply | ErrorReply]] = {

@@ -56,7 +56,7 @@ from proto.bus import (
     RequestFrame,
     StatsFrame,
 )
-from proto.common import ERROR_CODES, ErrorReply, Header
+from proto.common import ERROR_CODES, ErrorCode, ErrorReply, Header
 from wana.bus import wire
 from wana.bus.broker_state import Job, Service, WorkerEntry, broker_stats
 
@@ -231,13 +231,16 @@ class Broker:
         try:
             msg = wire.envelope_decoder.decode(frames[1])
         except (msgspec.DecodeError, msgspec.ValidationError) as exc:
-            self._client_error(sender, "", "E001", f"undecodable envelope: {exc}")
+            self._client_error(sender, "", ErrorCode.MALFORMED, f"undecodable envelope: {exc}")
             return
         kind = type(msg)
         if kind is RequestFrame:
             if len(frames) != 3:
                 self._client_error(
-                    sender, msg.job_id, "E001", f"REQUEST needs 1 body frame, got {len(frames) - 2}"
+                    sender,
+                    msg.job_id,
+                    ErrorCode.MALFORMED,
+                    f"REQUEST needs 1 body frame, got {len(frames) - 2}",
                 )
                 return
             self._on_request(sender, msg, frames[2])
@@ -274,7 +277,7 @@ class Broker:
         """A BATCH of REQUESTs (from a client) or REPLYs (from a worker): each handled as if alone."""
         if not 1 <= count <= MAX_BATCH or len(frames) != 2 + 2 * count:
             why = f"BATCH of {count} needs {2 * count} frames after it (at most {2 * MAX_BATCH}), got {len(frames) - 2}"
-            self._client_error(sender, "", "E001", why)
+            self._client_error(sender, "", ErrorCode.MALFORMED, why)
             return
         worker = self._workers.get(sender)
         if worker is not None:
@@ -284,7 +287,7 @@ class Broker:
             try:
                 msg = decode(frames[i])
             except (msgspec.DecodeError, msgspec.ValidationError) as exc:
-                self._client_error(sender, "", "E001", f"undecodable envelope in a BATCH: {exc}")
+                self._client_error(sender, "", ErrorCode.MALFORMED, f"undecodable envelope in a BATCH: {exc}")
                 continue
             kind = type(msg)
             if kind is RequestFrame:
@@ -309,22 +312,26 @@ class Broker:
             return
         if len(payload) > self.max_frame:
             why = f"payload of {len(payload)} bytes exceeds the {self.max_frame}-byte cap"
-            self._client_error(client, job_id, "E002", why, request.doc_id, request.revision)
+            self._client_error(client, job_id, ErrorCode.TOO_LARGE, why, request.doc_id, request.revision)
             return
         if request.deadline_ms <= 0:
             why = "the request arrived after its deadline"
-            self._client_error(client, job_id, "E006", why, request.doc_id, request.revision)
+            self._client_error(client, job_id, ErrorCode.DEADLINE, why, request.doc_id, request.revision)
             return
         svc = self._services.get(request.service)
         if svc is None:
             if len(self._services) >= _MAX_SERVICES:
                 why = f"unknown service {request.service!r}"
-                self._client_error(client, job_id, "E003", why, request.doc_id, request.revision)
+                self._client_error(
+                    client, job_id, ErrorCode.UNKNOWN_SERVICE, why, request.doc_id, request.revision
+                )
                 return
             svc = self._services[request.service] = Service(request.service)
         if len(svc.queue) >= self.queue_limit:
             why = f"service {request.service!r} has {len(svc.queue)} jobs waiting"
-            self._client_error(client, job_id, "E005", why, request.doc_id, request.revision, retryable=True)
+            self._client_error(
+                client, job_id, ErrorCode.BUSY, why, request.doc_id, request.revision, retryable=True
+            )
             return
         self._jobs[job_id] = Job(client, request, payload, self._now)
         svc.queue.append(job_id)
@@ -367,7 +374,9 @@ class Broker:
             body = frames[at + 1]
             if len(body) > self.max_frame:
                 why = f"reply of {len(body)} bytes exceeds the {self.max_frame}-byte cap"
-                self._client_error(job.client, job_id, "E002", why, job.request.doc_id, job.request.revision)
+                self._client_error(
+                    job.client, job_id, ErrorCode.TOO_LARGE, why, job.request.doc_id, job.request.revision
+                )
             else:
                 self.completed += 1
                 self._post(job.client, job_id, frames[at], body)  # the envelope is forwarded as it came
@@ -477,7 +486,12 @@ class Broker:
                 self._remember_done(job_id)
                 message = f"the worker died during each of {job.attempt} attempts (last: {why})"
                 self._client_error(
-                    job.client, job_id, "E007", message, job.request.doc_id, job.request.revision
+                    job.client,
+                    job_id,
+                    ErrorCode.WORKER_DIED,
+                    message,
+                    job.request.doc_id,
+                    job.request.revision,
                 )
                 continue
             if delivered:
@@ -508,10 +522,13 @@ class Broker:
                 except ValueError:
                     pass
             if svc is None or not svc.workers:
-                code, why = "E003", f"no worker for service {job.service!r} registered before the deadline"
+                code, why = (
+                    ErrorCode.UNKNOWN_SERVICE,
+                    f"no worker for service {job.service!r} registered before the deadline",
+                )
             else:
                 where = "in the queue" if job.worker is None else f"on a worker (attempt {job.attempt})"
-                code, why = "E006", f"deadline passed while the job was {where}"
+                code, why = ErrorCode.DEADLINE, f"deadline passed while the job was {where}"
             self._client_error(job.client, job.job_id, code, why, job.request.doc_id, job.request.revision)
 
     # ------------------------------------------------------------------------------------ outbound

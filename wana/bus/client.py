@@ -34,7 +34,7 @@ from proto.bus import (
     RequestFrame,
     StatsFrame,
 )
-from proto.common import ERROR_CODES, ErrorReply
+from proto.common import ERROR_CODES, ErrorCode, ErrorReply
 from wana.bus import wire
 
 _TICK_S = 0.05
@@ -401,7 +401,7 @@ class Client:
             for j in expired:
                 del self._pending[j]
                 self._results[j] = BusError(
-                    "E006", f"no answer from the broker at {self.connect} before the deadline"
+                    ErrorCode.DEADLINE, f"no answer from the broker at {self.connect} before the deadline"
                 )
 
     def _on_message(self, msg: Any, body: Any) -> None:
@@ -417,7 +417,7 @@ class Client:
                     self._results[msg.job_id] = BusError(err.code, err.message, err.retryable)
                 except (msgspec.DecodeError, msgspec.ValidationError) as exc:
                     self._results[msg.job_id] = BusError(
-                        "E001", f"undecodable error reply from the broker: {exc}"
+                        ErrorCode.MALFORMED, f"undecodable error reply from the broker: {exc}"
                     )
         elif kind is BatchFrame:
             for item, item_body in body:

@@ -14,7 +14,7 @@ from typing import Any, Union
 
 import msgspec
 
-from proto.common import ErrorReply, Header
+from proto.common import ErrorCode, ErrorReply, Header, reply_header
 
 log = logging.getLogger(__name__)
 
@@ -23,13 +23,6 @@ Contract = dict[type, Callable[[Any], Any]]
 
 class InvalidInput(ValueError):
     """Raised by a handler for input it refuses; becomes an E010 error reply."""
-
-
-def _reply_header(request: Any) -> Header:
-    h = getattr(request, "header", None)
-    if isinstance(h, Header):
-        return Header(parent_id=h.msg_id, doc_id=h.doc_id, revision=h.revision)
-    return Header()
 
 
 def make_frame_handler(contract: Contract) -> Callable[[bytes], bytes]:
@@ -45,15 +38,21 @@ def make_frame_handler(contract: Contract) -> Callable[[bytes], bytes]:
         try:
             request = decoder.decode(payload)
         except (msgspec.DecodeError, msgspec.ValidationError) as exc:
-            return encoder.encode(ErrorReply(header=Header(), code="E001", message=str(exc)))
+            return encoder.encode(ErrorReply(header=Header(), code=ErrorCode.MALFORMED, message=str(exc)))
         try:
             reply = contract[type(request)](request)
         except InvalidInput as exc:
-            return encoder.encode(ErrorReply(header=_reply_header(request), code="E010", message=str(exc)))
+            return encoder.encode(
+                ErrorReply(header=reply_header(request), code=ErrorCode.INVALID_INPUT, message=str(exc))
+            )
         except Exception as exc:  # a handler bug must not take the worker down
             log.error("handler failed: %s", traceback.format_exc())
             return encoder.encode(
-                ErrorReply(header=_reply_header(request), code="E009", message=f"{type(exc).__name__}: {exc}")
+                ErrorReply(
+                    header=reply_header(request),
+                    code=ErrorCode.HANDLER_FAILED,
+                    message=f"{type(exc).__name__}: {exc}",
+                )
             )
         return encoder.encode(reply)
 

@@ -22,7 +22,7 @@ from typing import cast
 import zmq
 
 from proto.bus import BatchFrame, DisconnectFrame, HeartbeatFrame, JobFrame, ReadyFrame
-from proto.common import ErrorReply, Header
+from proto.common import ErrorCode, ErrorReply, Header
 from wana.bus import wire
 
 log = logging.getLogger(__name__)
@@ -285,10 +285,12 @@ class Worker:
         """The reply payload for one job: the handler's, or an ErrorReply (size, deadline, failure)."""
         if len(payload) > self.max_frame:
             reply = self._error(
-                job, "E002", f"request of {len(payload)} bytes exceeds the {self.max_frame}-byte cap"
+                job,
+                ErrorCode.TOO_LARGE,
+                f"request of {len(payload)} bytes exceeds the {self.max_frame}-byte cap",
             )
         elif job.deadline_ms <= 0:
-            reply = self._error(job, "E006", "the job reached the worker after its deadline")
+            reply = self._error(job, ErrorCode.DEADLINE, "the job reached the worker after its deadline")
         else:
             self._in_handler = True
             self._lock.release()  # the heartbeat thread may use the socket while the handler runs
@@ -296,15 +298,23 @@ class Worker:
                 reply = self.handler(payload)
             except Exception as exc:  # the frame handler already catches; a raw handler might not
                 log.exception("%s worker: handler raised", self.service)
-                reply = self._error(job, "E009", f"{type(exc).__name__}: {exc}")
+                reply = self._error(job, ErrorCode.HANDLER_FAILED, f"{type(exc).__name__}: {exc}")
             finally:
                 self._lock.acquire()
                 self._in_handler = False
+                # The broker's heartbeats of the job's duration wait unread in the socket: silence is
+                # counted from now, or a job longer than the liveness window reconnects (and, with
+                # LINGER 0, may drop the reply it just queued).
+                self._broker_expiry = max(self._broker_expiry, time.monotonic() + self._broker_ttl)
             if not isinstance(reply, (bytes, bytearray, memoryview)):
-                reply = self._error(job, "E009", f"handler returned {type(reply).__name__}, not bytes")
+                reply = self._error(
+                    job, ErrorCode.HANDLER_FAILED, f"handler returned {type(reply).__name__}, not bytes"
+                )
             elif len(reply) > self.max_frame:
                 reply = self._error(
-                    job, "E002", f"reply of {len(reply)} bytes exceeds the {self.max_frame}-byte cap"
+                    job,
+                    ErrorCode.TOO_LARGE,
+                    f"reply of {len(reply)} bytes exceeds the {self.max_frame}-byte cap",
                 )
         return reply
 

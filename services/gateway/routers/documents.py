@@ -8,6 +8,7 @@ from fastapi import APIRouter, Response
 from pydantic import BaseModel, Field
 from starlette.concurrency import run_in_threadpool
 
+from proto.common import ErrorCode
 from services.gateway.deps import HubDep, OrchestratorDep, error
 from services.gateway.exports import FORMATS
 from services.orchestrator.document import MAX_DOCUMENT_CHARS, BadEdit, StaleEdit, TextChange
@@ -64,7 +65,7 @@ def _out(orch: Any, doc_id: str) -> DocumentOut:
     try:
         session = orch.open(doc_id)
     except DocumentNotFound:
-        raise error(404, "E010", f"no document {doc_id!r}") from None
+        raise error(404, ErrorCode.INVALID_INPUT, f"no document {doc_id!r}") from None
     with session.lock:
         doc = session.doc
         sentences = [SentenceOut(id=s.id, start=s.start, end=s.end, kind="unknown") for s in doc.sentences]
@@ -89,7 +90,7 @@ async def create_document(body: DocumentCreate, orch: OrchestratorDep) -> Docume
     try:
         session = await run_in_threadpool(orch.create, body.text, doc_id=body.doc_id, title=body.title)
     except ValueError as exc:
-        raise error(409, "E010", str(exc)) from None
+        raise error(409, ErrorCode.INVALID_INPUT, str(exc)) from None
     return await run_in_threadpool(_out, orch, session.doc_id)
 
 
@@ -114,16 +115,18 @@ async def replace_text(doc_id: str, body: TextReplace, orch: OrchestratorDep, hu
     try:
         channel = hub.channel(doc_id)
     except DocumentNotFound:
-        raise error(404, "E010", f"no document {doc_id!r}") from None
+        raise error(404, ErrorCode.INVALID_INPUT, f"no document {doc_id!r}") from None
     current = channel.session.doc
     base = current.version if body.base_version is None else body.base_version
     change = TextChange(start=0, end=len(current.text), text=body.text)
     try:
         reply = await channel.edit(base, [change])
     except (StaleEdit, BadEdit) as exc:  # pragma: no cover - channel.edit turns these into replies
-        raise error(409, "E008", str(exc)) from None
+        raise error(409, ErrorCode.STALE, str(exc)) from None
     if reply["type"] == "stale":
-        raise error(409, "E008", f"the document is at version {reply['current_version']}, not {base}")
+        raise error(
+            409, ErrorCode.STALE, f"the document is at version {reply['current_version']}, not {base}"
+        )
     if reply["type"] == "error":
         raise error(422, reply["code"], reply["message"])
     return await run_in_threadpool(_out, orch, doc_id)
@@ -133,7 +136,7 @@ async def replace_text(doc_id: str, body: TextReplace, orch: OrchestratorDep, hu
 async def delete_document(doc_id: str, orch: OrchestratorDep, hub: HubDep) -> Response:
     rows = await run_in_threadpool(orch.list)
     if not any(r["doc_id"] == doc_id for r in rows):
-        raise error(404, "E010", f"no document {doc_id!r}")
+        raise error(404, ErrorCode.INVALID_INPUT, f"no document {doc_id!r}")
     await hub.drop(doc_id)
     delete = getattr(orch, "delete", None)
     if delete is not None:

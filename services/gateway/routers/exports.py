@@ -7,6 +7,7 @@ from typing import Literal
 from fastapi import APIRouter, Query, Response
 from starlette.concurrency import run_in_threadpool
 
+from proto.common import ErrorCode
 from services.gateway.deps import OrchestratorDep, error
 from services.gateway.exports import (
     FORMATS,
@@ -42,15 +43,15 @@ async def export(
     try:
         session = await run_in_threadpool(orch.open, doc_id)
     except DocumentNotFound:
-        raise error(404, "E010", f"no document {doc_id!r}") from None
+        raise error(404, ErrorCode.INVALID_INPUT, f"no document {doc_id!r}") from None
     try:
         data, media_type, filename = await run_in_threadpool(
             export_document, session, fmt, character=character, width=width, height=height
         )
     except ExportUnavailable as exc:
-        raise error(503, "E011", str(exc)) from None
+        raise error(503, ErrorCode.UNAVAILABLE, str(exc)) from None
     except NothingToExport as exc:
-        raise error(409, "E010", str(exc)) from None
+        raise error(409, ErrorCode.INVALID_INPUT, str(exc)) from None
     except ExportFailed as exc:
         raise error(422, exc.code, str(exc)) from None
     return Response(

@@ -5,6 +5,7 @@ from __future__ import annotations
 import msgspec
 from fastapi import APIRouter, WebSocket, WebSocketDisconnect
 
+from proto.common import ErrorCode
 from services.gateway.live import Client, LiveHub
 from services.gateway.protocol import Edit, Ping, Resume, decoder
 from services.gateway.security import origin_ok, token_ok
@@ -33,7 +34,9 @@ async def live(websocket: WebSocket, doc_id: str, version: int | None = None) ->
     try:
         channel = hub.channel(doc_id)
     except DocumentNotFound:
-        await websocket.send_json({"type": "error", "code": "E010", "message": f"no document {doc_id!r}"})
+        await websocket.send_json(
+            {"type": "error", "code": ErrorCode.INVALID_INPUT, "message": f"no document {doc_id!r}"}
+        )
         await websocket.close(code=CLOSE_NOT_FOUND, reason="no such document")
         return
     client = Client(websocket)
@@ -50,7 +53,7 @@ async def live(websocket: WebSocket, doc_id: str, version: int | None = None) ->
                 await client.send(
                     {
                         "type": "error",
-                        "code": "E002",
+                        "code": ErrorCode.TOO_LARGE,
                         "message": f"message larger than {settings.max_message_bytes} bytes",
                     }
                 )
@@ -58,7 +61,9 @@ async def live(websocket: WebSocket, doc_id: str, version: int | None = None) ->
             try:
                 message = decoder.decode(text)
             except (msgspec.DecodeError, msgspec.ValidationError) as exc:
-                await client.send({"type": "error", "code": "E001", "message": f"bad message: {exc}"})
+                await client.send(
+                    {"type": "error", "code": ErrorCode.MALFORMED, "message": f"bad message: {exc}"}
+                )
                 continue
             if hub.channels.get(doc_id) is not channel:  # deleted meanwhile
                 break
@@ -68,7 +73,7 @@ async def live(websocket: WebSocket, doc_id: str, version: int | None = None) ->
                         await client.send(
                             {
                                 "type": "error",
-                                "code": "E010",
+                                "code": ErrorCode.INVALID_INPUT,
                                 "client_seq": message.client_seq,
                                 "message": f"an edit may carry at most {settings.max_changes} changes",
                             }

@@ -5,6 +5,7 @@ from __future__ import annotations
 from fastapi import APIRouter, Query, Response
 from starlette.concurrency import run_in_threadpool
 
+from proto.common import ErrorCode
 from services.gateway.deps import MeshesDep, error
 from services.gateway.meshes import MeshUnavailable, UnknownObject, parse_attributes
 
@@ -31,7 +32,7 @@ async def object_mesh(
         attrs = parse_attributes(attributes)
         data = await run_in_threadpool(meshes.glb, category, attrs, seed)
     except UnknownObject as exc:
-        raise error(404, "E010", str(exc)) from None
+        raise error(404, ErrorCode.INVALID_INPUT, str(exc)) from None
     except MeshUnavailable as exc:
-        raise error(503, "E011", str(exc)) from None
+        raise error(503, ErrorCode.UNAVAILABLE, str(exc)) from None
     return Response(data, media_type="model/gltf-binary", headers={"Cache-Control": "public, max-age=86400"})

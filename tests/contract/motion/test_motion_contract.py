@@ -7,22 +7,13 @@ import msgspec
 import pytest
 
 from proto.common import Header
-from proto.motion import LibraryRequest, SynthesizeRequest
+from proto.motion import SynthesizeRequest
 from proto.scene import Room, Scene
 from proto.ssg import ActionNode, CharacterNode
 from services.motion.handlers import CONTRACT
 from tests.contract.harness import check_contract, service_fixture
 
 motion = service_fixture("motion")
-
-
-@pytest.mark.contract
-def test_library_request_gets_the_library(motion):
-    req = LibraryRequest(header=Header())
-    raw = motion.request("motion", msgspec.msgpack.encode(req))
-    reply = check_contract(CONTRACT, req, raw)
-    assert len(reply.actions) >= 150
-    assert msgpack.unpackb(raw)["type"] == "library_reply"
 
 
 @pytest.mark.contract
@@ -45,5 +36,10 @@ def test_synthesize_request_gets_a_motion(motion):
 def test_garbage_gets_an_error_reply_and_the_worker_keeps_serving(motion):
     raw = motion.request("motion", b"\x92garbage")
     assert msgpack.unpackb(raw)["code"] == "E001"
-    ok = motion.request("motion", msgspec.msgpack.encode(LibraryRequest(header=Header(), tag="music")))
+    idle = SynthesizeRequest(
+        header=Header(),
+        scene=Scene(room=Room(room_type="office", width=5, depth=5, height=3)),
+        character=CharacterNode(name="Tom"),
+    )
+    ok = motion.request("motion", msgspec.msgpack.encode(idle))
     assert msgpack.unpackb(ok)["status"] == "ok"

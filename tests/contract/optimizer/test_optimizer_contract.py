@@ -15,13 +15,12 @@ from proto.optimizer import (
     Interaction,
     OptimiseRequest,
     OptimiseSettings,
-    RouteRequest,
 )
 from proto.scene import PlacedObject, Room, Scene
 from proto.ssg import ActionNode, CharacterNode
 from services.optimizer.handlers import CONTRACT
 from tests.contract.harness import check_contract, service_fixture
-from wana.arrays import from_wire, to_wire
+from wana.arrays import to_wire
 from wana.domain.skeleton import JOINT_NAMES, N_JOINTS
 
 optimizer = service_fixture("optimizer", "wana.compose:optimizer_worker")  # as `wana worker optimizer`
@@ -41,50 +40,6 @@ def _standing(x: float, z: float, frames: int = 20) -> Motion:
         rotations=to_wire(rot),
         segments=[Segment(index=0, action="idle", start_frame=0, end_frame=frames)],
     )
-
-
-@pytest.mark.contract
-def test_route_request_gets_a_route_around_the_desk(optimizer):
-    req = RouteRequest(
-        header=Header(doc_id="doc", revision=2), scene=DESK_SCENE, start=(0.0, -1.5), goal=(0.0, 1.5)
-    )
-    raw = optimizer.request("optimizer", msgspec.msgpack.encode(req))
-    reply = check_contract(CONTRACT, req, raw)
-    wps = from_wire(reply.waypoints)
-    assert wps.shape[1] == 2 and len(wps) >= 3  # the straight line crosses the desk
-    np.testing.assert_allclose(wps[[0, -1]], [[0.0, -1.5], [0.0, 1.5]], atol=1e-5)
-    assert reply.length > 3.0 and reply.header.revision == 2
-    assert msgpack.unpackb(raw)["type"] == "route_reply"
-
-
-@pytest.mark.contract
-def test_an_enclosed_goal_gets_an_invalid_input_error(optimizer):
-    walls = [
-        PlacedObject(id=f"w{i}", category="bookshelf", position=p, yaw=y, scale=(3.0, 1.0, 1.0))
-        for i, (p, y) in enumerate(
-            [
-                ((0.0, 0.0, 1.0), 0.0),
-                ((0.0, 0.0, -1.0), 0.0),
-                ((1.0, 0.0, 0.0), np.pi / 2),
-                ((-1.0, 0.0, 0.0), np.pi / 2),
-            ]
-        )
-    ]
-    req = RouteRequest(
-        header=Header(),
-        scene=Scene(room=Room(room_type="office", width=6, depth=6, height=3), objects=walls),
-        start=(2.5, 2.5),
-        goal=(0.0, 0.0),
-        radius=0.3,
-    )
-    reply = check_contract(
-        CONTRACT,
-        req,
-        optimizer.request("optimizer", msgspec.msgpack.encode(req)),
-        expect="error",
-        code="E010",
-    )
-    assert "no route" in reply.message
 
 
 @pytest.mark.contract
@@ -180,7 +135,12 @@ def test_bad_requests_get_error_replies_and_the_worker_keeps_serving(optimizer):
         expect="error",
         code="E010",
     )
-    ok = RouteRequest(header=Header(), scene=DESK_SCENE, start=(-2.0, -2.0), goal=(2.0, -2.0))
+    ok = CostRequest(
+        header=Header(),
+        scene=DESK_SCENE,
+        motion=_standing(2.0, 2.0),
+        interaction=Interaction(character="Eve", action="idle"),
+    )
     check_contract(CONTRACT, ok, optimizer.request("optimizer", msgspec.msgpack.encode(ok)))
 
 

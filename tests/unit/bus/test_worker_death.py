@@ -150,3 +150,21 @@ def test_a_dead_worker_holding_two_jobs_has_both_completed_elsewhere_exactly_onc
     assert client.wait(jobs, timeout=10) == jobs
     stats = broker.stats()
     assert (stats.requeued, stats.completed, stats.duplicate_replies) == (2, 3, 0)  # 3: the warm-up too
+
+
+def test_a_job_longer_than_the_liveness_window_does_not_make_its_worker_reconnect(
+    ipc_url, make_broker, make_client, thread_worker, wait_workers
+):
+    make_broker(ipc_url)  # liveness 3 x 0.1 s; the job takes 0.6 s without reading the broker's heartbeats
+
+    def slow(payload: bytes) -> bytes:
+        time.sleep(0.6)
+        return payload
+
+    worker = thread_worker("echo", slow, ipc_url)
+    client = make_client(ipc_url)
+    wait_workers(client, "echo", 1)
+    assert client.request("echo", b"first", deadline_s=10) == b"first"
+    assert client.request("echo", b"second", deadline_s=10) == b"second"
+    time.sleep(0.2)
+    assert worker.reconnects == 0

@@ -4,7 +4,8 @@ from pathlib import Path
 
 import yaml
 
-from wana.cli import SERVICES, build_parser
+from services.orchestrator.registry import SERVICES
+from wana.cli import build_parser
 
 DEPLOY = Path(__file__).resolve().parents[3] / "deploy"
 
@@ -48,3 +49,11 @@ def test_the_compose_gateway_uses_the_broker_through_options_wana_serve_accepts(
     assert command[0] == "serve"
     args = serve_parser().parse_args(command[1:])
     assert args.broker == "tcp://broker:5555" and args.host == "0.0.0.0"
+
+
+def test_the_deployment_has_a_worker_for_exactly_the_registered_services():
+    compose = yaml.safe_load((DEPLOY / "compose.yaml").read_text())["services"]
+    workers = {name for name, spec in compose.items() if spec.get("command", [""])[0] == "worker"}
+    assert workers == set(SERVICES)
+    manifests = {p.stem.removeprefix("worker-") for p in (DEPLOY / "k8s").glob("worker-*.yaml")}
+    assert manifests == set(SERVICES)

@@ -158,9 +158,9 @@ class SlowBackend(ServiceSubset):
     def __init__(self) -> None:
         super().__init__(InProcessBackend(), {s: "disabled in this test" for s in SERVICES})
 
-    def call(self, service: str, request: Any, reply_type: type) -> Any:
+    def call(self, request: Any) -> Any:
         time.sleep(0.15)
-        return super().call(service, request, reply_type)
+        return super().call(request)
 
 
 def test_edits_during_a_compute_are_coalesced_and_only_the_newest_version_is_pushed(

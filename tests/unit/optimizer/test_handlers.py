@@ -7,7 +7,7 @@ import pytest
 
 from proto.common import Header
 from proto.motion_data import Motion, Segment
-from proto.optimizer import CostRequest, Interaction, OptimiseRequest, OptimiseSettings, RouteRequest
+from proto.optimizer import CostRequest, Interaction, OptimiseRequest, OptimiseSettings
 from proto.scene import PlacedObject, Room, Scene
 from services.optimizer.handlers import CONTRACT
 from wana.arrays import to_wire
@@ -33,14 +33,19 @@ def _standing(x: float, z: float) -> Motion:
 
 
 def test_reply_headers_answer_the_request():
-    req = RouteRequest(header=Header(doc_id="d", revision=4), scene=SCENE, start=(-2.0, 2.0), goal=(2.0, 2.0))
+    req = CostRequest(
+        header=Header(doc_id="d", revision=4),
+        scene=SCENE,
+        motion=_standing(2.0, 2.0),
+        interaction=Interaction(character="Eve", action="idle"),
+    )
     reply = call_in_process(CONTRACT, req)
     assert (
         reply.header.parent_id == req.header.msg_id
         and reply.header.doc_id == "d"
         and reply.header.revision == 4
     )
-    assert reply.length == pytest.approx(4.0, abs=1e-3)
+    assert reply.report.collided_boxes == 0  # standing 2.8 m from the desk
 
 
 def test_bad_input_is_refused_with_a_reason():
@@ -57,11 +62,11 @@ def test_bad_input_is_refused_with_a_reason():
     with pytest.raises(InvalidInput, match="positive"):
         call_in_process(
             CONTRACT,
-            RouteRequest(
+            CostRequest(
                 header=Header(),
                 scene=Scene(room=Room(room_type="x", width=0, depth=1, height=1)),
-                start=(0, 0),
-                goal=(0, 0),
+                motion=_standing(0, 0),
+                interaction=Interaction(character="Eve", action="idle"),
             ),
         )
     with pytest.raises(InvalidInput, match="proposals"):

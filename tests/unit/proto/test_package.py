@@ -5,8 +5,11 @@ import pkgutil
 from pathlib import Path
 
 import msgspec
+import pytest
 
 import proto
+from proto.bus import EchoRequest
+from proto.common import ERROR_CODES, ErrorCode, Header, Request, reply_header, reply_type
 
 REPO = Path(__file__).resolve().parents[3]
 
@@ -38,8 +41,41 @@ def test_every_request_and_reply_carries_a_header_first():
                 isinstance(obj, type)
                 and issubclass(obj, msgspec.Struct)
                 and name.endswith(("Request", "Reply"))
+                and obj is not Request  # the generic base every request derives from
             ):
                 fields = obj.__struct_fields__
                 assert fields and fields[0] == "header", f"{info.name}.{name} must start with header"
                 if name.endswith("Reply"):
                     assert "status" in fields, f"{info.name}.{name} needs a status"
+
+
+def test_every_request_of_a_service_declares_a_reply_type_with_a_status():
+    for info in pkgutil.iter_modules([str(REPO / "proto")]):
+        module = importlib.import_module(f"proto.{info.name}")
+        for name, obj in vars(module).items():
+            if isinstance(obj, type) and issubclass(obj, Request) and obj is not Request:
+                reply = reply_type(obj)
+                assert reply.__module__ == module.__name__, (
+                    f"{name} is answered by {reply.__name__} of another module"
+                )
+                assert "status" in reply.__struct_fields__, f"{reply.__name__} needs a status"
+
+
+def test_a_struct_that_declares_no_reply_is_refused():
+    with pytest.raises(TypeError, match="does not declare its reply type"):
+        reply_type(Header)
+
+
+def test_every_error_code_is_in_the_table_and_every_numbered_error_has_a_name():
+    assert {str(c) for c in ErrorCode} == {k for k in ERROR_CODES if k.startswith("E")}
+
+
+def test_a_reply_header_answers_its_request():
+    request = EchoRequest(header=Header(doc_id="d", revision=3), text="hi")
+    h = reply_header(request)
+    assert (h.parent_id, h.doc_id, h.revision) == (
+        request.header.msg_id,
+        "d",
+        3,
+    ) and h.msg_id != request.header.msg_id
+    assert reply_header(object()).parent_id == ""
