@@ -12,7 +12,7 @@ from proto.fidelity import Check
 from proto.ssg import SentenceGraph
 from wana.assets import vocabulary
 from wana.assets.catalog import world_bounds
-from wana.assets.relations import footprint_gap, relation_holds
+from wana.assets.relations import AROUND_M, NEAR_M, NEXT_TO_M, footprint_gap, relation_holds
 from wana.fidelity.world import World, display
 
 RELATION_WORDS = {
@@ -81,6 +81,22 @@ def object_checks(graph: SentenceGraph, world: World) -> list[Check]:
     return checks
 
 
+# How much further apart than the composer's own thresholds two objects may be and still look "near" /
+# "next to" one another: judged on contact sheets (a stool 0.45 m from a drum kit reads as next to it).
+PERCEIVED_SLACK_M = 0.1
+_DISTANCE_LIMITS = {"near": NEAR_M, "next_to": NEXT_TO_M, "around": AROUND_M}
+
+
+def _looks_true(relation: str, subject, anchor) -> bool:  # noqa: ANN001 - PlacedObjects
+    """The relation as a viewer judges it: the geometric predicate, with a little slack on distances."""
+    if relation_holds(relation, subject, anchor):
+        return True
+    limit = _DISTANCE_LIMITS.get(relation)
+    if limit is None or relation == "around":
+        return False
+    return footprint_gap(subject, anchor) <= limit + PERCEIVED_SLACK_M
+
+
 def _why_not(relation: str, subject, anchor) -> str:  # noqa: ANN001 - PlacedObjects
     if relation == "on":
         top = float(world_bounds(anchor)[1, 1])
@@ -91,7 +107,7 @@ def _why_not(relation: str, subject, anchor) -> str:  # noqa: ANN001 - PlacedObj
         return f"it is beside the {display(anchor.id)}, not over it"
     gap = footprint_gap(subject, anchor)
     if relation in ("near", "next_to", "around"):
-        return f"they are {gap:.1f} m apart"
+        return f"they are {gap:.2f} m apart"
     d = np.subtract(subject.position, anchor.position)
     return f"it stands {float(np.hypot(d[0], d[2])):.1f} m from the {display(anchor.id)} in another direction"
 
@@ -110,7 +126,7 @@ def relation_checks(graph: SentenceGraph, world: World) -> list[Check]:
             )
             continue
         anchor = anchors[0]
-        failing = [s for s in subjects if not relation_holds(rel.relation, s, anchor)]
+        failing = [s for s in subjects if not _looks_true(rel.relation, s, anchor)]
         if failing:
             checks.append(
                 Check(

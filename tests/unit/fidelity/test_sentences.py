@@ -145,3 +145,24 @@ def test_verdicts_join_extra_checks_by_sentence_id():
     ]
     assert joined["s9"].verdict == "ok"
     assert verdicts(mine)["s1"].verdict == "ok"
+
+
+def test_a_stool_a_hand_apart_from_the_drums_is_next_to_them_and_one_a_stride_away_is_not(make):
+    """Judged on contact sheets: 0.45 m reads as "next to"; 0.8 m does not."""
+    graphs = scene_graph(
+        ObjectNode(id="stool", category="stool", word="stool"),
+        ObjectNode(id="drum_kit", category="drum_kit", word="drum kit"),
+        relations=[RelationNode(subject="stool", relation="next_to", object="drum_kit")],
+    )
+    drums = PlacedObject(id="drum_kit", category="drum_kit", position=(0.0, 0.0, 0.0))
+    edge = float(world_bounds(drums)[1, 0])
+
+    def stool_at(gap: float) -> PlacedObject:
+        probe = PlacedObject(id="stool", category="stool", position=(0.0, 0.0, 0.0))
+        half = float(world_bounds(probe)[1, 0])
+        return PlacedObject(id="stool", category="stool", position=(edge + gap + half, 0.0, 0.0))
+
+    close = story_checks([("s1", "scene")], graphs, make.scene(drums, stool_at(0.45)), {})["s1"][-1]
+    far = story_checks([("s1", "scene")], graphs, make.scene(drums, stool_at(0.8)), {})["s1"][-1]
+    assert close.ok
+    assert not far.ok and "0.80 m apart" in far.reason
