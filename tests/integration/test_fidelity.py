@@ -145,3 +145,10 @@ def test_sitting_again_while_seated_pops_and_sitting_with_no_free_seat_is_on_air
     assert not failing(checks[again], "supported")  # the replayed sit still ends on the seat
     (air,) = failing(checks[tom], "supported")
     assert air.essential and "Tom sits on air" in air.reason
+
+
+def test_walking_into_the_room_asks_for_no_object_called_room(orchestrator):
+    result = orchestrator.create("A table is near a window$.\nAnna and Tom walk into the room.\n").compute()
+    checks = [c for items in checks_of(result).values() for c in items]
+    assert not [c for c in checks if "no room in the room" in c.reason]
+    assert not [c for c in checks if c.name == "contact" and not c.ok and "room" in c.reason]

@@ -17,6 +17,7 @@ import numpy as np
 from proto.fidelity import Check
 from proto.scene import PlacedObject
 from wana.assets.catalog import world_bounds
+from wana.assets.vocabulary import lookup_room
 from wana.fidelity.acts import Act, is_locomotion, window_frames
 from wana.fidelity.bodies import Body
 from wana.fidelity.clips import ClipNeeds, clip_needs
@@ -256,6 +257,12 @@ def _touch_person(act: Act, body: Body, bodies: Mapping[str, Body], frames: rang
     )
 
 
+def _is_room_word(word: str) -> bool:
+    """Whether a destination names the room (or a kind of room) rather than an object in it."""
+    base = word.split("/")[0].split("#")[0].replace("_", " ")
+    return base in ("room", "house", "home", "inside", "outside") or lookup_room(base) is not None
+
+
 def _arrival(act: Act, body: Body, world: World, bodies: Mapping[str, Body]) -> Check | None:
     """A walk to something ends next to it."""
     dest = act.node.destination or act.node.target
@@ -278,6 +285,8 @@ def _arrival(act: Act, body: Body, world: World, bodies: Mapping[str, Body]) -> 
             frames=[] if ok else [end],
         )
     found = world.find(dest)
+    if not found and _is_room_word(dest):
+        return None  # "walks into the room", "goes to the kitchen": the room itself, no object to reach
     if not found:
         return Check(
             name="contact",
