@@ -14,6 +14,7 @@ Not thread-safe: use one Client per thread (ZeroMQ sockets must not be shared be
 from __future__ import annotations
 
 import hashlib
+import logging
 import time
 import uuid
 from collections.abc import Iterable, Sequence
@@ -36,6 +37,8 @@ from proto.bus import (
 )
 from proto.common import ERROR_CODES, ErrorReply
 from wana.bus import wire
+
+log = logging.getLogger(__name__)
 
 _TICK_S = 0.05
 _STATS = wire.encoder.encode(StatsFrame())
@@ -136,12 +139,14 @@ class Client:
         self._error_decoder: Any = msgspec.msgpack.Decoder(ErrorReply)
         self._stats_decoder: Any = msgspec.msgpack.Decoder(BrokerStats)
         self.broker_instance: str | None = None
+        self.broker_max_frame = 0  # the broker's payload cap, from its PONG (0: not known yet)
         self._unanswered_since: float | None = None  # first PING sent since the last PONG
         self._last_ping = 0.0
         self._next_check = 0.0  # pings and local deadlines are checked at most every _TICK_S
         self._broker_lost = False
         self._ping_seq = 0
         self.resent = 0
+        self._failures = 0
         self._ping()
 
     # -------------------------------------------------------------------------------- public API
@@ -168,6 +173,7 @@ class Client:
         """
         if deadline_s <= 0:
             raise ValueError("deadline_s must be positive")
+        self._check_size(payload)
         pending = self._pending_job(service, payload, idempotency_key, deadline_s, doc_id, revision)
         if not self._send((wire.encoder.encode(pending.request), pending.payload)):
             pending.sent_to = ""  # not delivered: the next PONG from any broker re-sends it
@@ -194,6 +200,8 @@ class Client:
         bad = [i for i, p in enumerate(payloads) if not isinstance(p, (bytes, bytearray, memoryview))]
         if bad:  # checked before any job is registered: nothing half-sent
             raise TypeError(f"payloads must be bytes; item {bad[0]} is {type(payloads[bad[0]]).__name__}")
+        for p in payloads:
+            self._check_size(p)
         jobs = [self._pending_job(service, p, None, deadline_s, doc_id, revision) for p in payloads]
         encode = wire.encoder.encode
         for start in range(0, len(jobs), MAX_BATCH):
@@ -208,6 +216,16 @@ class Client:
                 for pending in chunk:
                     pending.sent_to = ""
         return [pending.request.job_id for pending in jobs]
+
+    def _check_size(self, payload: object) -> None:
+        """Refuse a payload over the broker's cap here: ZeroMQ would cut the connection, unanswered.
+
+        Raises:
+            BusError: E002 when the broker's PONG announced a cap and the payload exceeds it.
+        """
+        cap = self.broker_max_frame
+        if cap and isinstance(payload, (bytes, bytearray, memoryview)) and len(payload) > cap:
+            raise BusError("E002", f"payload of {len(payload)} bytes exceeds the broker's {cap}-byte cap")
 
     def _pending_job(
         self,
@@ -380,7 +398,12 @@ class Client:
             draining = monotonic() - before < wire.BACKLOG_S
             got = recv(sock)
             while got is not None:
-                on_message(got[0], got[1])
+                try:
+                    on_message(got[0], got[1])
+                except Exception as exc:  # the per-message guard: a bad message never breaks the client
+                    self._failures += 1
+                    if self._failures == 1:
+                        log.error("bus client: a message from the broker failed (logged once)", exc_info=exc)
                 if until is not None and until in results:
                     break
                 got = recv(sock) if draining else None
@@ -415,7 +438,7 @@ class Client:
                 try:
                     err = self._error_decoder.decode(body)
                     self._results[msg.job_id] = BusError(err.code, err.message, err.retryable)
-                except (msgspec.DecodeError, msgspec.ValidationError) as exc:
+                except wire.DECODE_ERRORS as exc:
                     self._results[msg.job_id] = BusError(
                         "E001", f"undecodable error reply from the broker: {exc}"
                     )
@@ -424,6 +447,7 @@ class Client:
                 if type(item) is not BatchFrame:  # a BATCH holds single messages only
                     self._on_message(item, item_body)
         elif kind is PongFrame:
+            self.broker_max_frame = msg.max_frame
             self._on_pong(msg.instance, msg.seq)
         elif kind is StatsFrame:
             self._stats = self._stats_decoder.decode(body)

@@ -55,6 +55,10 @@ _MAX_PARTS = 2 + 2 * MAX_BATCH  # no bus message has more; the rest of a longer 
 BACKLOG_S = 20e-6  # a poll answering faster than this found a message already waiting
 
 encoder = msgspec.msgpack.Encoder()
+# Every way decoding a frame can fail: msgspec's errors, and UnicodeDecodeError (a ValueError),
+# which msgspec raises as itself for a msgpack string that is not UTF-8 (b"\x91\xa1\xff" once
+# killed the broker). Every decode on the bus catches exactly this tuple.
+DECODE_ERRORS = (msgspec.DecodeError, msgspec.ValidationError, ValueError)
 # Typed as Any because zmq.Frame (buffer protocol) is not declared a Buffer in pyzmq's stubs.
 envelope_decoder: Any = msgspec.msgpack.Decoder(Envelope)
 
@@ -155,7 +159,7 @@ def recv_from_broker(sock: zmq.Socket) -> tuple[Any, bytes | None] | None:
         return None
     try:
         msg = envelope_decoder.decode(head)
-    except (msgspec.DecodeError, msgspec.ValidationError) as exc:
+    except DECODE_ERRORS as exc:
         _drop_rest(sock)
         return Undecodable(str(exc)), None
     if type(msg) is BatchFrame:
@@ -176,7 +180,7 @@ def _recv_batch(sock: zmq.Socket, batch: BatchFrame) -> tuple[Any, Any]:
         for _ in range(batch.count):
             msg = decode(_recv(sock, NOBLOCK, True))
             pairs.append((msg, _recv(sock, NOBLOCK, True)))
-    except (msgspec.DecodeError, msgspec.ValidationError) as exc:
+    except DECODE_ERRORS as exc:
         _drop_rest(sock)
         return Undecodable(f"in a BATCH: {exc}"), None
     except zmq.Again:

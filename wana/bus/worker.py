@@ -19,9 +19,10 @@ import uuid
 from collections.abc import Callable
 from typing import cast
 
+import msgspec
 import zmq
 
-from proto.bus import BatchFrame, DisconnectFrame, HeartbeatFrame, JobFrame, ReadyFrame
+from proto.bus import BatchFrame, DisconnectFrame, ErrorFrame, HeartbeatFrame, JobFrame, ReadyFrame
 from proto.common import ErrorReply, Header
 from wana.bus import wire
 
@@ -116,6 +117,7 @@ class Worker:
         )
         self.jobs_done = 0
         self.reconnects = 0
+        self._failures: dict[str, int] = {}
 
     @property
     def backoff_s(self) -> float:
@@ -182,6 +184,8 @@ class Worker:
                 except zmq.ZMQError as exc:  # a socket-level failure: start over with a fresh socket
                     log.warning("%s worker: socket error %s; reconnecting", self.service, exc)
                     self._reconnect(stop)
+                except Exception as exc:  # the per-message guard: log once per kind, keep serving
+                    self._log_failure(exc)
         finally:
             try:
                 if self._socket is not None:
@@ -228,6 +232,8 @@ class Worker:
             self._backoff = self.heartbeat_s
         elif kind is DisconnectFrame:
             self._reconnect(stop)  # the broker does not know us (it restarted): register again
+        elif kind is ErrorFrame:  # e.g. E012: the broker refused our READY
+            log.error("%s worker: the broker answered an error: %s", self.service, _error_text(body))
         elif kind is wire.Undecodable:
             log.warning(
                 "%s worker: dropped a message with an undecodable envelope: %s", self.service, msg.reason
@@ -235,6 +241,12 @@ class Worker:
         else:
             self._backoff = self.heartbeat_s
             log.warning("%s worker: dropped a %s envelope", self.service, kind.__name__)
+
+    def _log_failure(self, exc: Exception) -> None:
+        kind = type(exc).__name__
+        self._failures[kind] = self._failures.get(kind, 0) + 1
+        if self._failures[kind] == 1:
+            log.error("%s worker: a message failed (logged once per kind)", self.service, exc_info=exc)
 
     def _on_job(self, job: JobFrame, payload: bytes) -> None:
         reply = self._run(job, payload)
@@ -324,6 +336,14 @@ class Worker:
                         self._send(_HEARTBEAT)
                 finally:
                     self._lock.release()
+
+
+def _error_text(body: object) -> str:
+    try:
+        err = msgspec.msgpack.decode(cast(bytes, body), type=ErrorReply)
+    except wire.DECODE_ERRORS as exc:
+        return f"(undecodable: {exc})"
+    return f"{err.code} {err.message}"
 
 
 def serve(
