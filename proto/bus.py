@@ -42,7 +42,8 @@ class ReadyFrame(msgspec.Struct, frozen=True, array_like=True, tag="READY"):
     pid: Count = 0
     host: Short = ""
     max_frame: Count = 0  # bytes the worker accepts; 0 = unknown
-    capacity: Annotated[int, msgspec.Meta(ge=1, le=1024)] = 1  # jobs the broker may hand it at once (it runs them one after another)
+    # jobs the broker may hand it at once (it runs them one after another)
+    capacity: Annotated[int, msgspec.Meta(ge=1, le=1024)] = 1
 
 
 class RequestFrame(msgspec.Struct, frozen=True, array_like=True, tag="REQUEST"):

@@ -283,7 +283,7 @@ class Broker:
         try:
             msg = wire.envelope_decoder.decode(frames[1])
         except wire.DECODE_ERRORS as exc:
-            self._client_error(sender, "", "E001", f"undecodable envelope: {exc}")
+            self._client_error(sender, _job_id_of(frames[1]), "E001", f"undecodable envelope: {exc}")
             return
         kind = type(msg)
         if kind is RequestFrame:
@@ -335,7 +335,8 @@ class Broker:
             try:
                 msg = decode(frames[i])
             except wire.DECODE_ERRORS as exc:
-                self._client_error(sender, "", "E001", f"undecodable envelope in a BATCH: {exc}")
+                why = f"undecodable envelope in a BATCH: {exc}"
+                self._client_error(sender, _job_id_of(frames[i]), "E001", why)
                 continue
             kind = type(msg)
             if kind is RequestFrame:
@@ -618,7 +619,7 @@ class Broker:
                 where = "in the queue" if job.worker is None else f"on a worker (attempt {job.attempt})"
                 code, why = "E006", f"deadline passed while the job was {where}"
             self._client_error(job.client, job.job_id, code, why, job.request.doc_id, job.request.revision)
-    
+
     # ------------------------------------------------------------------------------------ outbound
 
     def _send(self, identity: bytes, *frames: object) -> bool:
@@ -721,6 +722,19 @@ class Broker:
         return broker_stats(
             self.instance, self._services, self._workers, self._jobs, counters, self.errors, shown
         )
+
+
+def _job_id_of(envelope: object) -> str:
+    """The job id of a REQUEST envelope that failed validation, so its sender can match the E001."""
+    try:
+        fields = msgspec.msgpack.decode(envelope)  # type: ignore[call-overload]
+    except wire.DECODE_ERRORS:
+        return ""
+    if isinstance(fields, list) and len(fields) > 2 and fields[0] == "REQUEST":
+        job_id = fields[2]
+        if isinstance(job_id, str) and len(job_id) <= 128:
+            return job_id
+    return ""
 
 
 def _job_digest(job_id: str) -> str:

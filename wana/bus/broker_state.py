@@ -15,7 +15,17 @@ from proto.bus import BrokerStats, ReadyFrame, RequestFrame, ServiceStats, Worke
 
 
 class Job:
-    __slots__ = ("job_id", "client", "service", "request", "attempt", "deadline", "payload", "worker", "holders")
+    __slots__ = (
+        "job_id",
+        "client",
+        "service",
+        "request",
+        "attempt",
+        "deadline",
+        "payload",
+        "worker",
+        "holders",
+    )
 
     def __init__(self, client: bytes, request: RequestFrame, payload: zmq.Frame, now: float):
         self.job_id = request.job_id
