@@ -100,7 +100,7 @@ class Broker:
         max_frame: largest request or reply payload in bytes; larger ones get E002.
         max_attempts: dispatches of one job before its worker's death turns into E007.
         max_queued_bytes: payload bytes of all jobs the broker holds (queued or in flight) before
-            new ones get E005 busy.
+            new ones get E005 busy; jobs for services without a worker may hold a quarter of it.
         max_client_jobs: jobs one client may have in the broker at once before new ones get E005.
         max_unserved: services without a registered worker that requests may create (more: E003).
         context: ZeroMQ context; pass the shared one to use ``inproc://``.
@@ -391,12 +391,18 @@ class Broker:
             busy = f"service {request.service!r} has {len(svc.queue)} jobs waiting"
         elif self.queued_bytes + len(payload) > self.max_queued_bytes:
             busy = f"the broker holds {self.queued_bytes} payload bytes (budget {self.max_queued_bytes})"
+        elif not svc.workers and (
+            sum(known.held_bytes for known in self._services.values() if not known.workers) + len(payload)
+            > self.max_queued_bytes // 4
+        ):  # jobs nobody can run yet may not crowd out those of served services
+            busy = f"jobs for services without a worker hold a quarter of the {self.max_queued_bytes}-byte budget"
         elif self._client_jobs[client] >= self.max_client_jobs:
             busy = f"this client has {self._client_jobs[client]} jobs in the broker (limit {self.max_client_jobs})"
         if busy is not None:
             self._client_error(client, job_id, "E005", busy, request.doc_id, request.revision, retryable=True)
             return
         self.queued_bytes += len(payload)
+        svc.held_bytes += len(payload)
         self._client_jobs[client] += 1
         self._jobs[job_id] = Job(client, request, payload, self._now)
         svc.queue.append(job_id)
@@ -466,6 +472,9 @@ class Broker:
     def _release(self, job: Job) -> None:
         """Give back the budget a job held (it has left ``self._jobs``)."""
         self.queued_bytes -= len(job.payload)
+        svc = self._services.get(job.service)
+        if svc is not None:
+            svc.held_bytes -= len(job.payload)
         left = self._client_jobs[job.client] - 1
         if left > 0:
             self._client_jobs[job.client] = left

@@ -56,7 +56,7 @@ class WorkerEntry:
 
 
 class Service:
-    __slots__ = ("name", "idle", "queue", "workers", "prefetching", "empty_since")
+    __slots__ = ("name", "idle", "queue", "workers", "prefetching", "empty_since", "held_bytes")
 
     def __init__(self, name: str):
         self.name = name
@@ -67,6 +67,7 @@ class Service:
         self.workers: set[bytes] = set()
         self.prefetching = 0  # registered workers with capacity > 1
         self.empty_since: float | None = None  # when it last had neither workers nor jobs
+        self.held_bytes = 0  # payload bytes of its jobs, queued or in flight
 
 
 def broker_stats(

@@ -271,15 +271,29 @@ def test_stats_shows_no_job_ids(ipc_url, make_broker, raw_peer, wait_workers, ma
     assert shown and shown[0] and job_id not in shown[0]
 
 
-def test_the_payload_byte_budget_answers_busy(ipc_url, make_broker, make_client):
+def test_the_payload_byte_budget_answers_busy(ipc_url, make_broker, make_client, raw_peer, wait_workers):
     broker = make_broker(ipc_url, max_queued_bytes=10_000)
     client = make_client(ipc_url)
-    held = [client.submit(f"nobody-{i}", b"x" * 4000, deadline_s=5) for i in range(2)]
+    slow_worker = raw_peer(ipc_url)  # registered, never answers: jobs pile up in the broker
+    slow_worker.send(ReadyFrame("echo"))
+    wait_workers(client, "echo", 1)
+    held = [client.submit("echo", b"x" * 4000, deadline_s=5) for _ in range(2)]
     with pytest.raises(BusError) as err:
-        client.request("nobody-2", b"x" * 4000, deadline_s=5)
-    assert err.value.code == "E005" and err.value.retryable
+        client.request("echo", b"x" * 4000, deadline_s=5)
+    assert err.value.code == "E005" and err.value.retryable and "budget" in err.value.message
     assert broker.queued_bytes == 8000
     client.cancel(held)
+
+
+def test_jobs_for_services_nobody_serves_get_a_quarter_of_the_budget(ipc_url, make_broker, make_client):
+    broker = make_broker(ipc_url, max_queued_bytes=10_000)
+    client = make_client(ipc_url)
+    held = client.submit("nobody", b"x" * 2000, deadline_s=5)
+    with pytest.raises(BusError) as err:
+        client.request("nobody-else", b"x" * 1000, deadline_s=5)
+    assert err.value.code == "E005" and "without a worker" in err.value.message
+    assert broker.queued_bytes == 2000
+    client.cancel([held])
 
 
 def test_one_client_may_hold_only_its_share_of_jobs(ipc_url, make_broker, make_client):
