@@ -179,7 +179,7 @@ def recv_from_broker(sock: zmq.Socket) -> tuple[Any, bytes | None] | None:
 
 def _recv_batch(sock: zmq.Socket, batch: BatchFrame) -> tuple[Any, Any]:
     """The ``(envelope, body)`` pairs after a BATCH envelope (see ``recv_from_broker``)."""
-    pairs = []
+    pairs: list[tuple[Any, bytes]] = []
     decode = envelope_decoder.decode
     try:
         for _ in range(batch.count):
