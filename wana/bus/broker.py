@@ -48,6 +48,7 @@ import threading
 import time
 import uuid
 from collections.abc import Iterable
+from pathlib import Path
 
 import msgspec
 import zmq
@@ -70,7 +71,7 @@ from proto.bus import (
     StatsFrame,
 )
 from proto.common import ERROR_CODES, ErrorReply, Header
-from wana.bus import wire
+from wana.bus import curve, wire
 from wana.bus.broker_state import Job, Service, WorkerEntry, broker_stats
 
 log = logging.getLogger(__name__)
@@ -103,7 +104,13 @@ class Broker:
             new ones get E005 busy; jobs for services without a worker may hold a quarter of it.
         max_client_jobs: jobs one client may have in the broker at once before new ones get E005.
         max_unserved: services without a registered worker that requests may create (more: E003).
-        context: ZeroMQ context; pass the shared one to use ``inproc://``.
+        keys: key directory (``wana keys new DIR``, see wana/bus/curve.py): the socket becomes a
+            CURVE server admitting only the allow lists' keys, and each command is checked against
+            the sender's role. Without keys, binding a non-loopback TCP endpoint raises
+            ``curve.InsecureBind``.
+        insecure: bind a non-loopback endpoint without keys anyway (logs a warning).
+        context: ZeroMQ context; pass the shared one to use ``inproc://``. With keys and no context
+            the broker uses a context of its own (ZAP handlers are one per context).
 
     Not thread-safe: after ``start_thread()`` only ``close()`` (and ``endpoints``) may be used from
     other threads.
@@ -121,6 +128,8 @@ class Broker:
         max_queued_bytes: int = 128 * 1024 * 1024,
         max_client_jobs: int = 4096,
         max_unserved: int = 64,
+        keys: str | Path | None = None,
+        insecure: bool = False,
         context: zmq.Context | None = None,
     ):
         if heartbeat_s <= 0 or liveness < 1 or queue_limit < 1 or max_frame < 1 or max_attempts < 1:
@@ -140,8 +149,18 @@ class Broker:
         self._failures: collections.Counter[str] = collections.Counter()  # guard catches, by kind
         self._undelivered_bytes = 0
         self.instance = uuid.uuid4().hex[:16]
-        self._context = context or zmq.Context.instance()
+        root = None if keys is None else Path(keys)
+        urls = [bind] if isinstance(bind, str) else list(bind)
+        for url in urls:
+            curve.check_bind(url, secure=root is not None, insecure=insecure)
+        self._own_context = context is None and root is not None
+        self._context = context or (zmq.Context() if root is not None else zmq.Context.instance())
         self._socket = self._context.socket(zmq.ROUTER)
+        self._auth = None
+        self._allow: curve.AllowList | None = None
+        self._sender_key = ""  # the current message's sender public key (Z85), with keys
+        if root is not None:
+            self._auth, self._allow = curve.serve_curve(self._socket, self._context, root)
         self._socket.setsockopt(zmq.LINGER, 0)
         self._socket.setsockopt(zmq.ROUTER_MANDATORY, 1)  # learn at once when a peer is gone
         self._socket.setsockopt(zmq.ROUTER_HANDOVER, 1)  # a reconnecting client keeps its routing id
@@ -149,7 +168,6 @@ class Broker:
         self._socket.setsockopt(zmq.RCVHWM, 0)
         self._socket.setsockopt(zmq.MAXMSGSIZE, 2 * self.max_frame + 4096)
         self.endpoints: list[str] = []
-        urls = [bind] if isinstance(bind, str) else list(bind)
         if not urls:
             raise ValueError("Broker needs at least one URL to bind")
         try:
@@ -158,6 +176,7 @@ class Broker:
                 self.endpoints.append(self._socket.getsockopt_string(zmq.LAST_ENDPOINT))
         except zmq.ZMQError:
             self._socket.close(0)
+            self._stop_auth()
             raise
         self._services: dict[str, Service] = {}
         self._workers: dict[bytes, WorkerEntry] = {}
@@ -252,6 +271,15 @@ class Broker:
 
         self._closed = True
         self._socket.close(0)
+        self._stop_auth()
+
+    def _stop_auth(self) -> None:
+        if self._auth is not None:
+            self._auth.stop()
+            self._auth = None
+        if self._own_context:
+            self._context.term()
+            self._own_context = False
 
     def __enter__(self) -> Broker:
         return self
@@ -286,6 +314,8 @@ class Broker:
             self._client_error(sender, _job_id_of(frames[1]), "E001", f"undecodable envelope: {exc}")
             return
         kind = type(msg)
+        if self._allow is not None:  # ZAP put the sender's public key on each frame
+            self._sender_key = frames[1].get("User-Id") or ""
         if kind is RequestFrame:
             if len(frames) != 3:
                 self._client_error(
@@ -316,6 +346,9 @@ class Broker:
             if worker is not None:
                 self._remove_worker(worker, "it disconnected")
         elif kind is StatsFrame:
+            if self._allow is not None and not self._allow.is_client(self._sender_key):
+                self._client_error(sender, "", "E010", "STATS is for authorised clients only")
+                return
             self._send(sender, _STATS, wire.encoder.encode(self.stats(job_ids=False)))
         else:
             why = f"{kind.__name__} is not a command the broker answers"
@@ -349,6 +382,10 @@ class Broker:
 
     def _on_request(self, client: bytes, request: RequestFrame, payload: zmq.Frame) -> None:
         job_id = request.job_id
+        if self._allow is not None and not self._allow.is_client(self._sender_key):
+            why = "this peer's key is not in the clients' allow list"
+            self._client_error(client, job_id, "E010", why, request.doc_id, request.revision)
+            return
         job = self._jobs.get(job_id)
         owner = job.client if job is not None else self._done.get(job_id)
         if owner is not None and owner != client:  # never re-point a job to another peer
@@ -413,6 +450,10 @@ class Broker:
         if ready.protocol != PROTOCOL_VERSION:
             why = f"bus protocol {ready.protocol} is not supported (this broker speaks {PROTOCOL_VERSION})"
             self._client_error(sender, "", "E012", why)
+            return
+        if self._allow is not None and not self._allow.may_serve(self._sender_key, ready.service):
+            log.warning("refused worker %r: its key may not serve %r", sender, ready.service)
+            self._client_error(sender, "", "E010", f"this peer's key may not serve {ready.service!r}")
             return
         if worker is not None:  # re-registration: whatever it held is abandoned
             self._remove_worker(worker, "it registered again")

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import hashlib
 import logging
+import os
 import time
 import uuid
 from collections.abc import Iterable, Sequence
@@ -36,7 +37,7 @@ from proto.bus import (
     StatsFrame,
 )
 from proto.common import ERROR_CODES, ErrorReply
-from wana.bus import wire
+from wana.bus import curve, wire
 
 log = logging.getLogger(__name__)
 
@@ -109,6 +110,8 @@ class Client:
         connect: broker URL (``inproc://`` needs the broker's context, passed as ``context``).
         heartbeat_s: ping interval while jobs are pending; should match the broker's heartbeat.
         liveness: missed pongs after which the broker is presumed gone (jobs re-sent when it answers).
+        keys: key directory (see wana/bus/curve.py) for a ``tcp://`` broker; default
+            ``$WANA_BUS_KEYS``. The client then talks CURVE with its ``client`` pair.
         context: ZeroMQ context; defaults to the process-wide one.
     """
 
@@ -118,6 +121,7 @@ class Client:
         *,
         heartbeat_s: float = 1.0,
         liveness: int = 3,
+        keys: str | os.PathLike[str] | None = None,
         context: zmq.Context | None = None,
     ):
         self.connect = connect
@@ -129,6 +133,9 @@ class Client:
         self._socket.setsockopt(zmq.ROUTING_ID, b"C" + uuid.uuid4().hex.encode())
         self._socket.setsockopt(zmq.SNDHWM, 0)
         self._socket.setsockopt(zmq.RCVHWM, 0)
+        root = curve.keys_dir(keys) if connect.startswith("tcp://") else None
+        if root is not None:
+            curve.connect_curve(self._socket, root, "client")
         self._socket.connect(connect)
         self._prefix = uuid.uuid4().hex[:12]
         self._counter = 0

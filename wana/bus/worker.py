@@ -24,7 +24,7 @@ import zmq
 
 from proto.bus import BatchFrame, DisconnectFrame, ErrorFrame, HeartbeatFrame, JobFrame, ReadyFrame
 from proto.common import ErrorReply, Header
-from wana.bus import wire
+from wana.bus import curve, wire
 
 log = logging.getLogger(__name__)
 
@@ -65,6 +65,8 @@ class Worker:
             first, and prefetches only while this worker's jobs are short (its last one took, and
             its current one has run, under 50 ms, and the jobs it holds would take under 50 ms at
             that pace), so no job is parked behind long ones.
+        keys: key directory (see wana/bus/curve.py) for a ``tcp://`` broker; default
+            ``$WANA_BUS_KEYS``. The worker then talks CURVE with its ``worker`` pair.
         context: ZeroMQ context; pass the broker's to use ``inproc://``.
 
     ``run`` blocks; it may be called from any one thread. ``stop`` (an Event) ends it after the
@@ -82,6 +84,7 @@ class Worker:
         max_frame: int = 32 * 1024 * 1024,
         reconnect_max_s: float = 30.0,
         capacity: int = DEFAULT_CAPACITY,
+        keys: str | os.PathLike[str] | None = None,
         context: zmq.Context | None = None,
     ):
         if not service:
@@ -97,6 +100,7 @@ class Worker:
         self.capacity = int(capacity)
         self.reconnect_max_s = float(reconnect_max_s)
         self._context = context or zmq.Context.instance()
+        self._keys = curve.keys_dir(keys) if connect.startswith("tcp://") else None
         self._socket: zmq.Socket | None = None
         self._lock = threading.Lock()  # owns the socket: the loop, or the heartbeat thread during a job
         self._in_handler = False
@@ -131,6 +135,8 @@ class Worker:
         sock.setsockopt(zmq.LINGER, 0)
         sock.setsockopt(zmq.ROUTING_ID, b"W" + uuid.uuid4().hex.encode())
         sock.setsockopt(zmq.MAXMSGSIZE, 2 * self.max_frame + 4096)
+        if self._keys is not None:
+            curve.connect_curve(sock, self._keys, "worker")
         sock.connect(self.connect)
         self._socket = sock
         now = time.monotonic()
