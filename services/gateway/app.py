@@ -284,7 +284,7 @@ def main(argv: list[str] | None = None) -> int:
         host=settings.host,
         port=settings.port,
         log_level=args.log_level,
-        ws_max_size=settings.max_message_bytes,
+        ws_max_size=settings.ws_max_size,
         ws_per_message_deflate=settings.ws_compression,
         timeout_graceful_shutdown=2,
     )

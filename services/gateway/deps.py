@@ -8,7 +8,7 @@ from fastapi import Depends, HTTPException, Request
 
 from services.gateway.live import LiveHub
 from services.gateway.meshes import MeshCache
-from services.gateway.security import STATE_CHANGING, origin_ok, token_ok
+from services.gateway.security import STATE_CHANGING, origin_ok, server_port, token_ok
 from services.gateway.settings import Settings
 from services.orchestrator.session import Orchestrator
 
@@ -44,5 +44,7 @@ def guard(request: Request, settings: SettingsDep) -> None:
     """Every API call: the token when one is configured; state-changing calls: the Origin."""
     if not token_ok(settings.token, request.headers, request.query_params):
         raise error(401, "E010", "missing or wrong token: send 'Authorization: Bearer TOKEN' or ?token=TOKEN")
-    if request.method in STATE_CHANGING and not origin_ok(request.headers, settings.allowed_origins):
+    if request.method in STATE_CHANGING and not origin_ok(
+        request.headers, settings.allowed_origins, server_port(request.scope)
+    ):
         raise error(403, "E010", f"requests from origin {request.headers.get('origin')!r} are not allowed")

@@ -83,6 +83,12 @@ class Settings:
     # costs ~50-70 ms of the event loop and saves only ~25% (base64 of float32 compresses poorly).
     ws_compression: bool = False
 
+    @property
+    def ws_max_size(self) -> int:
+        """uvicorn's hard WebSocket frame cap: well above max_message_bytes, so that the app itself
+        answers an oversize message with E002 instead of the connection closing (1009) unanswered."""
+        return 4 * self.max_message_bytes + 4096
+
     @classmethod
     def from_env(cls, **overrides: object) -> Settings:
         """Settings from WANA_* environment variables; keyword overrides (not None) win."""

@@ -7,7 +7,7 @@ from fastapi import APIRouter, WebSocket, WebSocketDisconnect
 
 from services.gateway.live import Client, LiveHub
 from services.gateway.protocol import Edit, Ping, Resume, decoder
-from services.gateway.security import origin_ok, token_ok
+from services.gateway.security import origin_ok, server_port, token_ok
 from services.gateway.settings import Settings
 from services.orchestrator.document import TextChange
 from services.orchestrator.store import DocumentNotFound
@@ -26,7 +26,7 @@ async def live(websocket: WebSocket, doc_id: str, version: int | None = None) ->
     if not token_ok(settings.token, websocket.headers, websocket.query_params):
         await websocket.close(code=CLOSE_POLICY, reason="missing or wrong token")
         return
-    if not origin_ok(websocket.headers, settings.allowed_origins):
+    if not origin_ok(websocket.headers, settings.allowed_origins, server_port(websocket.scope)):
         await websocket.close(code=CLOSE_POLICY, reason="origin not allowed")
         return
     await websocket.accept()
@@ -57,7 +57,7 @@ async def live(websocket: WebSocket, doc_id: str, version: int | None = None) ->
                 continue
             try:
                 message = decoder.decode(text)
-            except (msgspec.DecodeError, msgspec.ValidationError) as exc:
+            except (msgspec.DecodeError, ValueError) as exc:  # ValueError: e.g. text that is not UTF-8
                 await client.send({"type": "error", "code": "E001", "message": f"bad message: {exc}"})
                 continue
             if hub.channels.get(doc_id) is not channel:  # deleted meanwhile

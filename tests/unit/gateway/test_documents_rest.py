@@ -83,6 +83,12 @@ def test_state_changing_requests_from_another_origin_are_refused(gateway) -> Non
     assert gateway.http.get("/api/documents", headers=evil).status_code == 200  # reads are not state-changing
 
 
+def test_a_dns_rebinding_page_whose_origin_equals_the_host_is_refused(gateway) -> None:
+    port = gateway.base.rsplit(":", 1)[1]
+    rebound = {"Host": f"evil.example:{port}", "Origin": f"http://evil.example:{port}"}
+    assert gateway.http.post("/api/documents", json={}, headers=rebound).status_code == 403
+
+
 def test_a_body_over_the_size_cap_is_refused_with_413(gateway_factory) -> None:
     gw = gateway_factory(max_message_bytes=4096)
     r = gw.http.post(

@@ -102,8 +102,13 @@ def test_too_many_changes_or_a_too_large_message_are_refused(gateway_factory) ->
         changes = [{"start": i, "end": i, "text": "a"} for i in range(3)]
         ws.send(json.dumps({"type": "edit", "base_version": 0, "changes": changes}))
         assert "at most 2 changes" in receive_until(ws, lambda m: m["type"] == "error")[-1]["message"]
-        edit(ws, 0, 0, 0, "y" * 5000)
-        with pytest.raises(ConnectionClosed):  # over uvicorn's ws_max_size: closed with 1009
+        edit(ws, 0, 0, 0, "y" * 5000)  # over max_message_bytes: the app answers E002 and keeps serving
+        error = receive_until(ws, lambda m: m["type"] == "error")[-1]
+        assert error["code"] == "E002" and "2048" in error["message"]
+        ws.send(json.dumps({"type": "ping", "nonce": "still"}))
+        assert receive_until(ws, lambda m: m["type"] == "pong")[-1]["nonce"] == "still"
+        edit(ws, 0, 0, 0, "y" * 20000)
+        with pytest.raises(ConnectionClosed):  # over uvicorn's hard cap (4x): closed with 1009
             receive_until(ws, lambda m: False, timeout=5)
     assert gw.http.get(f"/api/documents/{doc_id}").json()["version"] == 0
 

@@ -54,13 +54,20 @@ def test_token_is_accepted_as_bearer_header_or_query_parameter() -> None:
     assert not token_ok("abc", Headers({"authorization": "Bearer abd"}), QueryParams("token=abx"))
 
 
-def test_origin_must_be_the_page_host_or_explicitly_allowed() -> None:
+def test_origin_must_be_the_gateways_own_loopback_origin_or_explicitly_allowed() -> None:
     host = {"host": "127.0.0.1:8765"}
-    assert origin_ok(Headers(host), ())  # no Origin: not a browser
-    assert origin_ok(Headers({**host, "origin": "http://127.0.0.1:8765"}), ())
-    assert not origin_ok(Headers({**host, "origin": "http://evil.example"}), ())
-    assert not origin_ok(Headers({**host, "origin": "null"}), ())
-    assert origin_ok(Headers({**host, "origin": "http://localhost:5173"}), ("http://localhost:5173",))
+    assert origin_ok(Headers(host), (), 8765)  # no Origin: not a browser
+    assert origin_ok(Headers({**host, "origin": "http://127.0.0.1:8765"}), (), 8765)
+    assert origin_ok(Headers({"host": "localhost:8765", "origin": "http://localhost:8765"}), (), 8765)
+    assert not origin_ok(Headers({**host, "origin": "http://127.0.0.1:9999"}), (), 8765)  # another port
+    assert not origin_ok(Headers({**host, "origin": "http://evil.example"}), (), 8765)
+    assert not origin_ok(Headers({**host, "origin": "null"}), (), 8765)
+    assert origin_ok(Headers({**host, "origin": "http://localhost:5173"}), ("http://localhost:5173",), 8765)
+
+
+def test_origin_equal_to_host_is_not_enough_against_dns_rebinding() -> None:
+    rebound = {"host": "evil.example:8765", "origin": "http://evil.example:8765"}  # resolves to 127.0.0.1
+    assert not origin_ok(Headers(rebound), (), 8765)
 
 
 def test_services_are_a_checked_comma_list(monkeypatch: pytest.MonkeyPatch) -> None:
