@@ -198,3 +198,39 @@ def test_with_only_the_parser_enabled_sentences_get_kinds_and_the_rest_is_report
     assert [s["kind"] for s in diags["sentences"]] == ["scene", "action"]
     assert "parse" not in diags["unavailable"] and "scene" in diags["unavailable"]
     assert "not enabled" in diags["unavailable"]["scene"]
+
+
+class BlockedBackend(ServiceSubset):
+    """A backend whose first call waits until the test releases it: a compute that runs as long as needed."""
+
+    def __init__(self) -> None:
+        super().__init__(InProcessBackend(), {s: "disabled in this test" for s in SERVICES})
+        import threading
+
+        self.entered = threading.Event()
+        self.release = threading.Event()
+
+    def call(self, service: str, request: Any, reply_type: type) -> Any:
+        self.entered.set()
+        assert self.release.wait(60), "the test never released the compute"
+        return super().call(service, request, reply_type)
+
+
+def test_edits_and_reads_are_answered_while_a_compute_runs(gateway_factory, tmp_path) -> None:
+    backend = BlockedBackend()
+    orch = Orchestrator(tmp_path / "blocked.sqlite", backend)
+    gw = gateway_factory(orchestrator=orch)
+    doc_id = orch.create("Eve walks.").doc_id
+    try:
+        with connect(f"{gw.ws_base}/api/documents/{doc_id}/live") as ws:
+            assert backend.entered.wait(20)  # the compute runs, and stays inside the pipeline
+            assert gw.http.get(f"/api/documents/{doc_id}", timeout=5).json()["version"] == 0
+            edit(ws, 0, 10, 10, "!")
+            acks = receive_until(ws, lambda m: m["type"] == "ack", timeout=5)
+            assert acks[-1]["version"] == 1 and not backend.release.is_set()
+            assert gw.http.get(f"/api/documents/{doc_id}", timeout=5).json()["text"] == "Eve walks.!"
+            backend.release.set()
+            receive_until(ws, lambda m: m["type"] == "animation" and m["version"] == 1, timeout=30)
+    finally:
+        backend.release.set()
+        orch.close()
