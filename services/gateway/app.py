@@ -22,7 +22,7 @@ from starlette.types import ASGIApp, Message, Receive, Scope, Send
 from services.gateway import deps
 from services.gateway.live import LiveHub
 from services.gateway.meshes import MeshCache
-from services.gateway.routers import documents, exports, live, meshes
+from services.gateway.routers import documents, exports, live, meshes, session
 from services.gateway.settings import SERVICES, Settings, is_loopback, parse_services
 from services.orchestrator.session import Orchestrator
 
@@ -172,6 +172,7 @@ def create_app(settings: Settings | None = None, orchestrator: Orchestrator | No
     app.include_router(exports.router, dependencies=guarded)
     app.include_router(meshes.router, dependencies=guarded)
     app.include_router(live.router)
+    app.include_router(session.router)
 
     @app.get("/api/health", tags=["health"], summary="Liveness and which pipeline stages this build has")
     async def health() -> dict[str, Any]:
@@ -267,9 +268,9 @@ def main(argv: list[str] | None = None) -> int:
 
     logging.basicConfig(level=args.log_level.upper(), format="%(asctime)s %(name)s %(levelname)s %(message)s")
     shown = settings.host if is_loopback(settings.host) or settings.host not in ("0.0.0.0", "::") else "HOST"
-    query = f"/?token={settings.token}" if settings.token else "/"
-    print(
-        f"wana editor: http://{shown}:{settings.port}{query}  (database {settings.db})",
+    login = "  (log in at /login with the token from --token / WANA_TOKEN)" if settings.token else ""
+    print(  # the token itself is never printed, nor put in a URL
+        f"wana editor: http://{shown}:{settings.port}/{login}  (database {settings.db})",
         file=sys.stderr,
         flush=True,
     )

@@ -42,8 +42,10 @@ def error(status: int, code: str, message: str) -> HTTPException:
 
 def guard(request: Request, settings: SettingsDep) -> None:
     """Every API call: the token when one is configured; state-changing calls: the Origin."""
-    if not token_ok(settings.token, request.headers, request.query_params):
-        raise error(401, "E010", "missing or wrong token: send 'Authorization: Bearer TOKEN' or ?token=TOKEN")
+    if not token_ok(settings.token, request.headers, request.cookies):
+        raise error(
+            401, "E010", "missing or wrong token: send 'Authorization: Bearer TOKEN' or log in at /login"
+        )
     if request.method in STATE_CHANGING and not origin_ok(
         request.headers, settings.allowed_origins, server_port(request.scope)
     ):

@@ -23,7 +23,7 @@ async def live(websocket: WebSocket, doc_id: str, version: int | None = None) ->
     """One editor connection to one document. `?version=N` resumes from the last version the client saw."""
     settings: Settings = websocket.app.state.settings
     hub: LiveHub = websocket.app.state.hub
-    if not token_ok(settings.token, websocket.headers, websocket.query_params):
+    if not token_ok(settings.token, websocket.headers, websocket.cookies):
         await websocket.close(code=CLOSE_POLICY, reason="missing or wrong token")
         return
     if not origin_ok(websocket.headers, settings.allowed_origins, server_port(websocket.scope)):

@@ -147,9 +147,18 @@ def test_unknown_document_and_foreign_origin_are_closed(gateway_factory) -> None
         gw.http.post("/api/documents", json={}, headers={"Authorization": "Bearer tok"}).json()["doc_id"]
     )
     with pytest.raises(InvalidStatus):
-        with connect(f"{gw.ws_base}/api/documents/{doc_id}/live?token=tok", origin="http://evil.example"):
+        with connect(
+            f"{gw.ws_base}/api/documents/{doc_id}/live",
+            origin="http://evil.example",
+            additional_headers={"Authorization": "Bearer tok"},
+        ):
             pass
-    with connect(f"{gw.ws_base}/api/documents/nope/live?token=tok") as ws:
+    with pytest.raises(InvalidStatus):  # the token in the URL is no longer accepted
+        with connect(f"{gw.ws_base}/api/documents/{doc_id}/live?token=tok"):
+            pass
+    login = gw.http.post("/api/session", headers={"Authorization": "Bearer tok"})
+    cookie = f"wana_session={login.cookies['wana_session']}"
+    with connect(f"{gw.ws_base}/api/documents/nope/live", additional_headers={"Cookie": cookie}) as ws:
         assert json.loads(ws.recv(timeout=10))["code"] == "E010"
         with pytest.raises(ConnectionClosed) as closed:
             ws.recv(timeout=10)
