@@ -5,6 +5,7 @@ Each test plays the hostile peer on a real socket and then checks that the compo
 
 from __future__ import annotations
 
+import logging
 import threading
 
 import msgspec
@@ -27,6 +28,7 @@ from proto.bus import (
     StatsFrame,
 )
 from proto.common import ErrorReply, Header
+from wana.bus.broker import Broker
 from wana.bus.client import BusError, Client
 from wana.bus.echo import CONTRACT
 from wana.bus.service import make_frame_handler
@@ -318,3 +320,30 @@ def test_made_up_service_names_cannot_keep_a_real_worker_out(
     thread_worker("echo", _echo, ipc_url)
     wait_workers(client, "echo", 1)
     assert client.request("echo", b"real") == b"echo:real"
+
+
+class _BrokerWithABug(Broker):
+    """A broker whose READY handling has a bug: the per-message guard must contain it."""
+
+    def _on_ready(self, sender, worker, ready):  # noqa: ANN001 - the overridden signature
+        raise RuntimeError("a bug in the READY handling")
+
+
+def test_a_bug_while_handling_one_message_is_answered_e009_logged_once_and_the_loop_goes_on(
+    ipc_url, raw_peer, caplog
+):
+    broker = _BrokerWithABug(ipc_url, heartbeat_s=0.1)
+    broker.start_thread()
+    try:
+        peer = raw_peer(ipc_url)
+        with caplog.at_level(logging.DEBUG, logger="wana.bus.broker"):
+            for _ in range(3):
+                peer.send(ReadyFrame("echo"))
+                error = _error_of(_next_not_heartbeat(peer))
+                assert error.code == "E009" and "RuntimeError" in error.message
+            _still_serves(peer)
+        tracebacks = [r for r in caplog.records if r.levelno >= logging.ERROR]
+        assert len(tracebacks) == 1 and tracebacks[0].exc_info is not None
+        assert sum(broker._failures.values()) == 3
+    finally:
+        broker.close()
