@@ -159,11 +159,16 @@ class Broker:
         self._auth = None
         self._allow: curve.AllowList | None = None
         self._sender_key = ""  # the current message's sender public key (Z85), with keys
+        self._peer_keys: collections.OrderedDict[bytes, str] = collections.OrderedDict()  # with keys
         if root is not None:
             self._auth, self._allow = curve.serve_curve(self._socket, self._context, root)
         self._socket.setsockopt(zmq.LINGER, 0)
         self._socket.setsockopt(zmq.ROUTER_MANDATORY, 1)  # learn at once when a peer is gone
-        self._socket.setsockopt(zmq.ROUTER_HANDOVER, 1)  # a reconnecting client keeps its routing id
+        # A reconnecting client keeps its routing id. With keys, an id stays with the connection that
+        # first used it instead: a second peer presenting it (to take over another's replies) is
+        # refused by ZeroMQ, not handed over; a client that really reconnected gets its id back once
+        # its old connection is gone, and re-sends its jobs (PONG).
+        self._socket.setsockopt(zmq.ROUTER_HANDOVER, 0 if root is not None else 1)
         self._socket.setsockopt(zmq.SNDHWM, 0)  # queues are bounded by queue_limit, not by dropping
         self._socket.setsockopt(zmq.RCVHWM, 0)
         self._socket.setsockopt(zmq.MAXMSGSIZE, 2 * self.max_frame + 4096)
@@ -316,6 +321,9 @@ class Broker:
         kind = type(msg)
         if self._allow is not None:  # ZAP put the sender's public key on each frame
             self._sender_key = frames[1].get("User-Id") or ""
+            if not self._key_matches(sender, self._sender_key):
+                self._client_error(sender, "", "E010", "this routing id belongs to another key")
+                return
         if kind is RequestFrame:
             if len(frames) != 3:
                 self._client_error(
@@ -353,6 +361,19 @@ class Broker:
         else:
             why = f"{kind.__name__} is not a command the broker answers"
             self._client_error(sender, getattr(msg, "job_id", ""), "E001", why)
+
+    def _key_matches(self, sender: bytes, key: str) -> bool:
+        """With keys: a routing id is bound to the key that first used it (the last 65,536 ids)."""
+        known = self._peer_keys.get(sender)
+        if known is None:
+            self._peer_keys[sender] = key
+            if len(self._peer_keys) > _DONE_MEMORY:
+                self._peer_keys.popitem(last=False)
+            return True
+        if known != key:
+            log.warning("refused a message from %r: its routing id belongs to another key", sender)
+            return False
+        return True
 
     def _on_batch(self, sender: bytes, count: int, frames: list) -> None:
         """A BATCH of REQUESTs (from a client) or REPLYs (from a worker): each handled as if alone."""

@@ -171,3 +171,26 @@ def test_deployments_take_the_bus_keys_from_secrets_and_the_image_never_holds_th
     assert all(Path(s["file"]).parts[:2] == ("..", "keys") for s in compose["secrets"].values())
     ignored = (deploy / "Dockerfile.dockerignore").read_text().split()
     assert "keys/" in ignored and "**/*.key_secret" in ignored
+
+
+def test_a_peer_re_using_another_clients_routing_id_never_gets_its_reply(secure_broker, keys, keyed_worker):
+    url = secure_broker.endpoints[0]
+    victim = Client(url, keys=keys, heartbeat_s=HEARTBEAT_S)
+    try:
+        victim_id = victim._socket.getsockopt(zmq.ROUTING_ID)
+        job_id = victim.submit("echo", b"for the victim", deadline_s=10)
+        thief = zmq.Context.instance().socket(zmq.DEALER)
+        thief.setsockopt(zmq.LINGER, 0)
+        thief.setsockopt(zmq.ROUTING_ID, victim_id)
+        server, _ = zmq.auth.load_certificate(str(keys / "broker.key"))
+        public, secret = zmq.auth.load_certificate(str(keys / "client.key_secret"))
+        thief.curve_serverkey, thief.curve_publickey, thief.curve_secretkey = server, public, secret
+        thief.connect(url)
+        try:
+            assert victim.result(job_id, timeout=10) == b"echo:for the victim"
+            assert victim.request("echo", b"again", deadline_s=10) == b"echo:again"
+            assert not thief.poll(300)  # nothing of the victim's reached the thief
+        finally:
+            thief.close(0)
+    finally:
+        victim.close()
