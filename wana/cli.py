@@ -9,6 +9,7 @@ from __future__ import annotations
 import argparse
 import importlib
 import logging
+import os
 import sys
 from collections.abc import Callable
 
@@ -24,8 +25,9 @@ examples:
   wana animate examples/office.txt -o out/      # the whole pipeline, embedded, writes out/animation.mp4 ...
   wana parse "Eve sits on the chair."           # the semantic scene graph as JSON
   wana serve                                    # the web editor on http://127.0.0.1:8765
-  wana broker --bind tcp://0.0.0.0:5555         # scale out: a broker here ...
-  wana worker motion --connect tcp://HOST:5555  # ... and workers anywhere
+  wana keys new keys/                           # CURVE key pairs and allow lists for a bus across hosts
+  wana broker --bind tcp://0.0.0.0:5555 --keys keys/         # scale out: a broker here ...
+  wana worker motion --connect tcp://HOST:5555 --keys keys/  # ... and workers anywhere
 """
 
 
@@ -41,8 +43,15 @@ def _delegate(module: str, argv: list[str], what: str) -> int:
 
 def _cmd_broker(args: argparse.Namespace) -> int:
     from wana.bus.broker import Broker
+    from wana.bus.curve import InsecureBind, keys_dir
 
-    broker = Broker(args.bind, queue_limit=args.queue_limit)
+    try:
+        broker = Broker(
+            args.bind, queue_limit=args.queue_limit, keys=keys_dir(args.keys), insecure=args.insecure
+        )
+    except InsecureBind as exc:
+        print(f"wana broker: {exc}", file=sys.stderr)
+        return 2
     print(f"wana broker listening on {', '.join(args.bind)}", file=sys.stderr, flush=True)
     try:
         broker.run()
@@ -59,6 +68,8 @@ def _cmd_worker(args: argparse.Namespace) -> int:
     except ImportError as exc:
         print(f"wana: the {args.service} worker is not available in this build ({exc})", file=sys.stderr)
         return 3
+    if args.keys:  # the worker (deep inside the service's main) reads the key directory from here
+        os.environ["WANA_BUS_KEYS"] = args.keys
     print(f"wana worker {args.service} connecting to {args.connect}", file=sys.stderr, flush=True)
     from wana.compose import serve_worker  # wires what the service needs of others (the optimiser's motion)
 
@@ -67,6 +78,23 @@ def _cmd_worker(args: argparse.Namespace) -> int:
     except KeyboardInterrupt:
         pass
     return 0
+
+
+def _cmd_keys(args: argparse.Namespace) -> int:
+    from wana.bus.curve import new_keys
+
+    written = new_keys(args.directory, tuple(args.service or ()))
+    for path in written:
+        print(path)
+    print(
+        f"wana keys: {len(written)} files in {args.directory}; keep the *_secret files secret "
+        "(mount them from a Secret, never bake them into an image)",
+        file=sys.stderr,
+    )
+    return 0
+
+
+_KEYS_HELP = "CURVE key directory from `wana keys new` (default: $WANA_BUS_KEYS)"
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -102,6 +130,12 @@ def build_parser() -> argparse.ArgumentParser:
         help="endpoint to bind, e.g. tcp://0.0.0.0:5555 or ipc:///tmp/wana.sock (repeatable)",
     )
     p.add_argument("--queue-limit", type=int, default=256, help="pending requests per service before 'busy'")
+    p.add_argument("--keys", metavar="DIR", help=_KEYS_HELP)
+    p.add_argument(
+        "--insecure",
+        action="store_true",
+        help="bind a non-loopback endpoint without keys (anyone who reaches it can forge jobs)",
+    )
     p.set_defaults(func=_cmd_broker)
 
     p = sub.add_parser(
@@ -111,7 +145,17 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("service", choices=SERVICES, help="which service this worker serves")
     p.add_argument("--connect", required=True, metavar="URL", help="broker endpoint, e.g. tcp://HOST:5555")
+    p.add_argument("--keys", metavar="DIR", help=_KEYS_HELP)
     p.set_defaults(func=_cmd_worker)
+
+    p = sub.add_parser("keys", help="make CURVE keys for a bus across hosts")
+    keys_sub = p.add_subparsers(dest="keys_command", metavar="ACTION", required=True)
+    k = keys_sub.add_parser("new", help="broker, client and worker key pairs plus allow lists in DIR")
+    k.add_argument("directory", metavar="DIR")
+    k.add_argument(
+        "--service", action="append", help="allow the worker key for this service only (repeatable)"
+    )
+    k.set_defaults(func=_cmd_keys)
     return parser
 
 

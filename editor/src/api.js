@@ -1,4 +1,5 @@
-// REST calls to the gateway, with the token (when the page was opened with ?token=...) on every request.
+// REST calls to the gateway, with the token (when the page was opened with ?token=...) on every request;
+// the WebSocket and downloads use the session cookie the token is traded for (see `loggedIn`).
 
 const TOKEN_KEY = "wana.token";
 
@@ -16,6 +17,12 @@ function readToken() {
 
 export const token = readToken();
 
+// The WebSocket and download links cannot send the header: trade the token for the gateway's
+// short-lived HttpOnly session cookie once (it never goes into a URL, so never into a log).
+export const loggedIn = token
+  ? fetch(apiUrl("/api/session"), { method: "POST", headers: { Authorization: `Bearer ${token}` } })
+  : Promise.resolve();
+
 export function authHeaders() {
   return token ? { Authorization: `Bearer ${token}` } : {};
 }
@@ -30,7 +37,6 @@ export function liveUrl(docId, version) {
   const url = new URL(apiUrl(`/api/documents/${encodeURIComponent(docId)}/live`));
   url.protocol = url.protocol === "https:" ? "wss:" : "ws:";
   if (version !== null && version !== undefined) url.searchParams.set("version", String(version));
-  if (token) url.searchParams.set("token", token);
   return url.toString();
 }
 

@@ -23,7 +23,7 @@ from proto.common import ErrorCode
 from services.gateway import deps
 from services.gateway.live import LiveHub
 from services.gateway.meshes import MeshCache
-from services.gateway.routers import documents, exports, live, meshes
+from services.gateway.routers import documents, exports, live, meshes, session
 from services.gateway.settings import Settings, is_loopback, parse_services
 from services.orchestrator.backend import ServiceSubset
 from services.orchestrator.registry import SERVICES
@@ -151,6 +151,7 @@ def create_app(settings: Settings | None = None, orchestrator: Orchestrator | No
     app.include_router(exports.router, dependencies=guarded)
     app.include_router(meshes.router, dependencies=guarded)
     app.include_router(live.router)
+    app.include_router(session.router)
 
     @app.get("/api/health", tags=["health"], summary="Liveness and which pipeline stages this build has")
     async def health() -> dict[str, Any]:
@@ -246,9 +247,9 @@ def main(argv: list[str] | None = None) -> int:
 
     logging.basicConfig(level=args.log_level.upper(), format="%(asctime)s %(name)s %(levelname)s %(message)s")
     shown = settings.host if is_loopback(settings.host) or settings.host not in ("0.0.0.0", "::") else "HOST"
-    query = f"/?token={settings.token}" if settings.token else "/"
-    print(
-        f"wana editor: http://{shown}:{settings.port}{query}  (database {settings.db})",
+    login = "  (log in at /login with the token from --token / WANA_TOKEN)" if settings.token else ""
+    print(  # the token itself is never printed, nor put in a URL
+        f"wana editor: http://{shown}:{settings.port}/{login}  (database {settings.db})",
         file=sys.stderr,
         flush=True,
     )
@@ -263,7 +264,7 @@ def main(argv: list[str] | None = None) -> int:
         host=settings.host,
         port=settings.port,
         log_level=args.log_level,
-        ws_max_size=settings.max_message_bytes,
+        ws_max_size=settings.ws_max_size,
         ws_per_message_deflate=settings.ws_compression,
         timeout_graceful_shutdown=2,
     )

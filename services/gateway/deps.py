@@ -9,7 +9,7 @@ from fastapi import Depends, HTTPException, Request
 from proto.common import ErrorCode
 from services.gateway.live import LiveHub
 from services.gateway.meshes import MeshCache
-from services.gateway.security import STATE_CHANGING, origin_ok, token_ok
+from services.gateway.security import STATE_CHANGING, origin_ok, server_port, token_ok
 from services.gateway.settings import Settings
 from services.orchestrator.session import Orchestrator
 
@@ -43,13 +43,15 @@ def error(status: int, code: str, message: str) -> HTTPException:
 
 def guard(request: Request, settings: SettingsDep) -> None:
     """Every API call: the token when one is configured; state-changing calls: the Origin."""
-    if not token_ok(settings.token, request.headers, request.query_params):
+    if not token_ok(settings.token, request.headers, request.cookies):
         raise error(
             401,
             ErrorCode.INVALID_INPUT,
-            "missing or wrong token: send 'Authorization: Bearer TOKEN' or ?token=TOKEN",
+            "missing or wrong token: send 'Authorization: Bearer TOKEN' or log in at /login",
         )
-    if request.method in STATE_CHANGING and not origin_ok(request.headers, settings.allowed_origins):
+    if request.method in STATE_CHANGING and not origin_ok(
+        request.headers, settings.allowed_origins, server_port(request.scope)
+    ):
         raise error(
             403,
             ErrorCode.INVALID_INPUT,

@@ -39,7 +39,7 @@ def current_result(session: Session) -> PipelineResult:
         last = session.last
         if last is not None and last.version == session.doc.version:
             return last
-        return session.compute()
+    return session.compute()  # on its own snapshot: edits are not blocked meanwhile
 
 
 def export_document(

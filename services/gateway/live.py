@@ -2,7 +2,7 @@
 
 One `DocumentChannel` per open document. Edits are applied (and persisted: acknowledged) in the order a
 client sends them; every edit marks the channel dirty. One compute loop per channel runs
-`Session.compute` in a thread pool, off the event loop; edits that arrive while it runs are coalesced into
+`Session.compute` (on a snapshot, without the document lock) in a thread pool, off the event loop; edits that arrive while it runs are coalesced into
 the next run, and results are pushed only when they belong to the newest version, so a fast typist never
 waits for intermediate versions.
 """
@@ -10,6 +10,7 @@ waits for intermediate versions.
 from __future__ import annotations
 
 import asyncio
+import dataclasses
 import logging
 import time
 from concurrent.futures import Executor
@@ -215,10 +216,13 @@ class DocumentChannel:
             asyncio.run_coroutine_threadsafe(self.broadcast(message), loop)
 
         started = time.perf_counter()
-        with self.session.lock:
-            result = self.session.compute(progress=progress)
-            compute_ms = (time.perf_counter() - started) * 1000.0
-            diag = messages.diagnostics_message(result, self.session.doc)
+        # Session.compute works on its own snapshot of the document, so the document lock is not held
+        # while it runs: edits are acknowledged and REST reads answered during a long compute.
+        result = self.session.compute(progress=progress)
+        compute_ms = (time.perf_counter() - started) * 1000.0
+        with self.session.lock:  # a consistent copy of the sentences, for as long as that takes
+            doc = dataclasses.replace(self.session.doc, sentences=list(self.session.doc.sentences))
+        diag = messages.diagnostics_message(result, doc)
         anim = encode_animation(result, self._characters, compute_ms=compute_ms)
         return diag, anim
 

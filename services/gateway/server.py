@@ -30,7 +30,7 @@ class GatewayThread:
             port=0,
             log_level="warning",
             lifespan="on",
-            ws_max_size=settings.max_message_bytes,
+            ws_max_size=settings.ws_max_size,
             ws_per_message_deflate=settings.ws_compression,
         )
         self.server = uvicorn.Server(config)

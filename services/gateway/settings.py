@@ -81,6 +81,13 @@ class Settings:
     # WANA_WS_COMPRESSION: permessage-deflate on the WebSocket. Off by default: deflating a 1 MB animation
     # costs ~50-70 ms of the event loop and saves only ~25% (base64 of float32 compresses poorly).
     ws_compression: bool = False
+    session_ttl_s: int = 12 * 3600  # WANA_SESSION_TTL_S: lifetime of the login cookie (seconds)
+
+    @property
+    def ws_max_size(self) -> int:
+        """uvicorn's hard WebSocket frame cap: well above max_message_bytes, so that the app itself
+        answers an oversize message with E002 instead of the connection closing (1009) unanswered."""
+        return 4 * self.max_message_bytes + 4096
 
     @classmethod
     def from_env(cls, **overrides: object) -> Settings:
@@ -105,6 +112,7 @@ class Settings:
             compute_threads=_env_int("WANA_COMPUTE_THREADS", cls.compute_threads),
             mesh_cache=_env_int("WANA_MESH_CACHE", cls.mesh_cache),
             ws_compression=_env_bool("WANA_WS_COMPRESSION", cls.ws_compression),
+            session_ttl_s=_env_int("WANA_SESSION_TTL_S", cls.session_ttl_s),
         )
         return base.replace(**{k: v for k, v in overrides.items() if v is not None})
 
@@ -122,7 +130,7 @@ class Settings:
         if not is_loopback(self.host) and not self.token:
             raise ValueError(
                 f"binding to {self.host} exposes the editor to the network; set a token with --token or "
-                "WANA_TOKEN (clients then pass it as 'Authorization: Bearer TOKEN' or ?token=TOKEN)"
+                "WANA_TOKEN (clients then pass it as 'Authorization: Bearer TOKEN'; browsers log in at /login)"
             )
         if self.backend not in ("auto", "inprocess", "embedded", "remote"):
             raise ValueError(f"backend must be auto, inprocess, embedded or remote, not {self.backend!r}")

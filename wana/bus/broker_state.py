@@ -7,6 +7,7 @@ on their own.
 from __future__ import annotations
 
 import collections
+from collections.abc import Callable
 
 import zmq
 
@@ -14,7 +15,17 @@ from proto.bus import BrokerStats, ReadyFrame, RequestFrame, ServiceStats, Worke
 
 
 class Job:
-    __slots__ = ("job_id", "client", "service", "request", "attempt", "deadline", "payload", "worker")
+    __slots__ = (
+        "job_id",
+        "client",
+        "service",
+        "request",
+        "attempt",
+        "deadline",
+        "payload",
+        "worker",
+        "holders",
+    )
 
     def __init__(self, client: bytes, request: RequestFrame, payload: zmq.Frame, now: float):
         self.job_id = request.job_id
@@ -25,6 +36,7 @@ class Job:
         self.deadline = now + request.deadline_ms / 1000.0
         self.payload = payload
         self.worker: bytes | None = None
+        self.holders: set[bytes] = set()  # workers it was dispatched to: only they may answer it
 
 
 class WorkerEntry:
@@ -44,7 +56,7 @@ class WorkerEntry:
 
 
 class Service:
-    __slots__ = ("name", "idle", "queue", "workers", "prefetching")
+    __slots__ = ("name", "idle", "queue", "workers", "prefetching", "empty_since", "held_bytes")
 
     def __init__(self, name: str):
         self.name = name
@@ -54,6 +66,8 @@ class Service:
         self.queue: collections.deque[str] = collections.deque()  # job ids waiting for a worker
         self.workers: set[bytes] = set()
         self.prefetching = 0  # registered workers with capacity > 1
+        self.empty_since: float | None = None  # when it last had neither workers nor jobs
+        self.held_bytes = 0  # payload bytes of its jobs, queued or in flight
 
 
 def broker_stats(
@@ -63,8 +77,12 @@ def broker_stats(
     jobs: dict[str, Job],
     counters: dict[str, int],
     errors: dict[str, int],
+    show_job: Callable[[str], str] | None = None,
 ) -> BrokerStats:
-    """Queue depths per service, registered workers and counters, as answered to STATS."""
+    """Queue depths per service, registered workers and counters, as answered to STATS.
+
+    ``show_job`` maps a held job id to what the statistics show (None: the id itself).
+    """
     service_stats = {}
     for name, svc in services.items():
         in_flight = sum(len(workers[wid].jobs) for wid in svc.workers)
@@ -81,7 +99,7 @@ def broker_stats(
                 service=w.service,
                 pid=w.ready.pid,
                 host=w.ready.host,
-                job_id=first,
+                job_id=first if show_job is None or not first else show_job(first),
                 attempt=job.attempt if job is not None else 0,
                 jobs=len(w.jobs),
                 capacity=w.capacity,

@@ -14,6 +14,8 @@ Not thread-safe: use one Client per thread (ZeroMQ sockets must not be shared be
 from __future__ import annotations
 
 import hashlib
+import logging
+import os
 import time
 import uuid
 from collections.abc import Iterable, Sequence
@@ -35,7 +37,9 @@ from proto.bus import (
     StatsFrame,
 )
 from proto.common import ERROR_CODES, ErrorCode, ErrorReply
-from wana.bus import wire
+from wana.bus import curve, wire
+
+log = logging.getLogger(__name__)
 
 _TICK_S = 0.05
 _STATS = wire.encoder.encode(StatsFrame())
@@ -106,6 +110,8 @@ class Client:
         connect: broker URL (``inproc://`` needs the broker's context, passed as ``context``).
         heartbeat_s: ping interval while jobs are pending; should match the broker's heartbeat.
         liveness: missed pongs after which the broker is presumed gone (jobs re-sent when it answers).
+        keys: key directory (see wana/bus/curve.py) for a ``tcp://`` broker; default
+            ``$WANA_BUS_KEYS``. The client then talks CURVE with its ``client`` pair.
         context: ZeroMQ context; defaults to the process-wide one.
     """
 
@@ -115,6 +121,7 @@ class Client:
         *,
         heartbeat_s: float = 1.0,
         liveness: int = 3,
+        keys: str | os.PathLike[str] | None = None,
         context: zmq.Context | None = None,
     ):
         self.connect = connect
@@ -126,6 +133,9 @@ class Client:
         self._socket.setsockopt(zmq.ROUTING_ID, b"C" + uuid.uuid4().hex.encode())
         self._socket.setsockopt(zmq.SNDHWM, 0)
         self._socket.setsockopt(zmq.RCVHWM, 0)
+        root = curve.keys_dir(keys) if connect.startswith("tcp://") else None
+        if root is not None:
+            curve.connect_curve(self._socket, root, "client")
         self._socket.connect(connect)
         self._prefix = uuid.uuid4().hex[:12]
         self._counter = 0
@@ -136,12 +146,14 @@ class Client:
         self._error_decoder: Any = msgspec.msgpack.Decoder(ErrorReply)
         self._stats_decoder: Any = msgspec.msgpack.Decoder(BrokerStats)
         self.broker_instance: str | None = None
+        self.broker_max_frame = 0  # the broker's payload cap, from its PONG (0: not known yet)
         self._unanswered_since: float | None = None  # first PING sent since the last PONG
         self._last_ping = 0.0
         self._next_check = 0.0  # pings and local deadlines are checked at most every _TICK_S
         self._broker_lost = False
         self._ping_seq = 0
         self.resent = 0
+        self._failures = 0
         self._ping()
 
     # -------------------------------------------------------------------------------- public API
@@ -168,6 +180,7 @@ class Client:
         """
         if deadline_s <= 0:
             raise ValueError("deadline_s must be positive")
+        self._check_size(payload)
         pending = self._pending_job(service, payload, idempotency_key, deadline_s, doc_id, revision)
         if not self._send((wire.encoder.encode(pending.request), pending.payload)):
             pending.sent_to = ""  # not delivered: the next PONG from any broker re-sends it
@@ -194,6 +207,8 @@ class Client:
         bad = [i for i, p in enumerate(payloads) if not isinstance(p, (bytes, bytearray, memoryview))]
         if bad:  # checked before any job is registered: nothing half-sent
             raise TypeError(f"payloads must be bytes; item {bad[0]} is {type(payloads[bad[0]]).__name__}")
+        for p in payloads:
+            self._check_size(p)
         jobs = [self._pending_job(service, p, None, deadline_s, doc_id, revision) for p in payloads]
         encode = wire.encoder.encode
         for start in range(0, len(jobs), MAX_BATCH):
@@ -208,6 +223,18 @@ class Client:
                 for pending in chunk:
                     pending.sent_to = ""
         return [pending.request.job_id for pending in jobs]
+
+    def _check_size(self, payload: object) -> None:
+        """Refuse a payload over the broker's cap here: ZeroMQ would cut the connection, unanswered.
+
+        Raises:
+            BusError: E002 when the broker's PONG announced a cap and the payload exceeds it.
+        """
+        cap = self.broker_max_frame
+        if cap and isinstance(payload, (bytes, bytearray, memoryview)) and len(payload) > cap:
+            raise BusError(
+                ErrorCode.TOO_LARGE, f"payload of {len(payload)} bytes exceeds the broker's {cap}-byte cap"
+            )
 
     def _pending_job(
         self,
@@ -380,7 +407,12 @@ class Client:
             draining = monotonic() - before < wire.BACKLOG_S
             got = recv(sock)
             while got is not None:
-                on_message(got[0], got[1])
+                try:
+                    on_message(got[0], got[1])
+                except Exception as exc:  # the per-message guard: a bad message never breaks the client
+                    self._failures += 1
+                    if self._failures == 1:
+                        log.error("bus client: a message from the broker failed (logged once)", exc_info=exc)
                 if until is not None and until in results:
                     break
                 got = recv(sock) if draining else None
@@ -415,7 +447,7 @@ class Client:
                 try:
                     err = self._error_decoder.decode(body)
                     self._results[msg.job_id] = BusError(err.code, err.message, err.retryable)
-                except (msgspec.DecodeError, msgspec.ValidationError) as exc:
+                except wire.DECODE_ERRORS as exc:
                     self._results[msg.job_id] = BusError(
                         ErrorCode.MALFORMED, f"undecodable error reply from the broker: {exc}"
                     )
@@ -424,6 +456,7 @@ class Client:
                 if type(item) is not BatchFrame:  # a BATCH holds single messages only
                     self._on_message(item, item_body)
         elif kind is PongFrame:
+            self.broker_max_frame = msg.max_frame
             self._on_pong(msg.instance, msg.seq)
         elif kind is StatsFrame:
             self._stats = self._stats_decoder.decode(body)

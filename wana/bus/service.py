@@ -14,6 +14,7 @@ from typing import Any, Union
 
 import msgspec
 
+from proto import SCHEMA_VERSION
 from proto.common import ErrorCode, ErrorReply, Header, reply_header
 
 log = logging.getLogger(__name__)
@@ -37,8 +38,14 @@ def make_frame_handler(contract: Contract) -> Callable[[bytes], bytes]:
     def handle_frame(payload: bytes) -> bytes:
         try:
             request = decoder.decode(payload)
-        except (msgspec.DecodeError, msgspec.ValidationError) as exc:
+        except (msgspec.DecodeError, ValueError) as exc:  # ValueError: e.g. a string that is not UTF-8
             return encoder.encode(ErrorReply(header=Header(), code=ErrorCode.MALFORMED, message=str(exc)))
+        header = getattr(request, "header", None)
+        if isinstance(header, Header) and header.version != SCHEMA_VERSION:
+            why = f"schema version {header.version} is not supported (this worker speaks {SCHEMA_VERSION})"
+            return encoder.encode(
+                ErrorReply(header=reply_header(request), code=ErrorCode.SCHEMA_VERSION, message=why)
+            )
         try:
             reply = contract[type(request)](request)
         except InvalidInput as exc:

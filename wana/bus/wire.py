@@ -55,6 +55,10 @@ _MAX_PARTS = 2 + 2 * MAX_BATCH  # no bus message has more; the rest of a longer 
 BACKLOG_S = 20e-6  # a poll answering faster than this found a message already waiting
 
 encoder = msgspec.msgpack.Encoder()
+# Every way decoding a frame can fail: msgspec's errors, and UnicodeDecodeError (a ValueError),
+# which msgspec raises as itself for a msgpack string that is not UTF-8 (b"\x91\xa1\xff" once
+# killed the broker). Every decode on the bus catches exactly this tuple.
+DECODE_ERRORS = (msgspec.DecodeError, msgspec.ValidationError, ValueError)
 # Typed as Any because zmq.Frame (buffer protocol) is not declared a Buffer in pyzmq's stubs.
 envelope_decoder: Any = msgspec.msgpack.Decoder(Envelope)
 
@@ -155,32 +159,39 @@ def recv_from_broker(sock: zmq.Socket) -> tuple[Any, bytes | None] | None:
         return None
     try:
         msg = envelope_decoder.decode(head)
-    except (msgspec.DecodeError, msgspec.ValidationError) as exc:
+    except DECODE_ERRORS as exc:
         _drop_rest(sock)
         return Undecodable(str(exc)), None
     if type(msg) is BatchFrame:
         return _recv_batch(sock, msg)
+    # Frame counts are checked against RCVMORE, never by trying a receive: that would take the
+    # first frame of the next message as this one's body.
+    body = None
     if type(msg) in _FROM_BROKER_WITH_BODY:
-        try:
-            return msg, _recv(sock, NOBLOCK, True)
-        except zmq.Again:  # a body-less message where a body belongs: not from a wana broker
+        if not _get(sock, _RCVMORE):  # a body-less message where a body belongs: not from a wana broker
             return Undecodable(f"{type(msg).__name__} without its body frame"), None
-    return msg, None
+        body = _recv(sock, NOBLOCK, True)
+    if _get(sock, _RCVMORE):  # more frames than the command has: never read them as the next message
+        _drop_rest(sock)
+        return Undecodable(f"{type(msg).__name__} with more frames than it carries"), None
+    return msg, body
 
 
 def _recv_batch(sock: zmq.Socket, batch: BatchFrame) -> tuple[Any, Any]:
     """The ``(envelope, body)`` pairs after a BATCH envelope (see ``recv_from_broker``)."""
-    pairs = []
+    pairs: list[tuple[Any, bytes]] = []
     decode = envelope_decoder.decode
     try:
         for _ in range(batch.count):
+            if not _get(sock, _RCVMORE):
+                return Undecodable(f"a BATCH of {batch.count} ended after {len(pairs)} pairs"), None
             msg = decode(_recv(sock, NOBLOCK, True))
+            if not _get(sock, _RCVMORE):
+                return Undecodable(f"a BATCH of {batch.count} ended inside pair {len(pairs) + 1}"), None
             pairs.append((msg, _recv(sock, NOBLOCK, True)))
-    except (msgspec.DecodeError, msgspec.ValidationError) as exc:
+    except DECODE_ERRORS as exc:
         _drop_rest(sock)
         return Undecodable(f"in a BATCH: {exc}"), None
-    except zmq.Again:
-        return Undecodable(f"a BATCH of {batch.count} ended after {len(pairs)} pairs"), None
     if _get(sock, _RCVMORE):
         _drop_rest(sock)
         return Undecodable(f"a BATCH of {batch.count} has more frames"), None

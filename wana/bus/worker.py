@@ -19,11 +19,12 @@ import uuid
 from collections.abc import Callable
 from typing import cast
 
+import msgspec
 import zmq
 
-from proto.bus import BatchFrame, DisconnectFrame, HeartbeatFrame, JobFrame, ReadyFrame
+from proto.bus import BatchFrame, DisconnectFrame, ErrorFrame, HeartbeatFrame, JobFrame, ReadyFrame
 from proto.common import ErrorCode, ErrorReply, Header
-from wana.bus import wire
+from wana.bus import curve, wire
 
 log = logging.getLogger(__name__)
 
@@ -64,6 +65,8 @@ class Worker:
             first, and prefetches only while this worker's jobs are short (its last one took, and
             its current one has run, under 50 ms, and the jobs it holds would take under 50 ms at
             that pace), so no job is parked behind long ones.
+        keys: key directory (see wana/bus/curve.py) for a ``tcp://`` broker; default
+            ``$WANA_BUS_KEYS``. The worker then talks CURVE with its ``worker`` pair.
         context: ZeroMQ context; pass the broker's to use ``inproc://``.
 
     ``run`` blocks; it may be called from any one thread. ``stop`` (an Event) ends it after the
@@ -81,6 +84,7 @@ class Worker:
         max_frame: int = 32 * 1024 * 1024,
         reconnect_max_s: float = 30.0,
         capacity: int = DEFAULT_CAPACITY,
+        keys: str | os.PathLike[str] | None = None,
         context: zmq.Context | None = None,
     ):
         if not service:
@@ -96,6 +100,7 @@ class Worker:
         self.capacity = int(capacity)
         self.reconnect_max_s = float(reconnect_max_s)
         self._context = context or zmq.Context.instance()
+        self._keys = curve.keys_dir(keys) if connect.startswith("tcp://") else None
         self._socket: zmq.Socket | None = None
         self._lock = threading.Lock()  # owns the socket: the loop, or the heartbeat thread during a job
         self._in_handler = False
@@ -116,6 +121,7 @@ class Worker:
         )
         self.jobs_done = 0
         self.reconnects = 0
+        self._failures: dict[str, int] = {}
 
     @property
     def backoff_s(self) -> float:
@@ -129,6 +135,8 @@ class Worker:
         sock.setsockopt(zmq.LINGER, 0)
         sock.setsockopt(zmq.ROUTING_ID, b"W" + uuid.uuid4().hex.encode())
         sock.setsockopt(zmq.MAXMSGSIZE, 2 * self.max_frame + 4096)
+        if self._keys is not None:
+            curve.connect_curve(sock, self._keys, "worker")
         sock.connect(self.connect)
         self._socket = sock
         now = time.monotonic()
@@ -182,6 +190,8 @@ class Worker:
                 except zmq.ZMQError as exc:  # a socket-level failure: start over with a fresh socket
                     log.warning("%s worker: socket error %s; reconnecting", self.service, exc)
                     self._reconnect(stop)
+                except Exception as exc:  # the per-message guard: log once per kind, keep serving
+                    self._log_failure(exc)
         finally:
             try:
                 if self._socket is not None:
@@ -228,6 +238,8 @@ class Worker:
             self._backoff = self.heartbeat_s
         elif kind is DisconnectFrame:
             self._reconnect(stop)  # the broker does not know us (it restarted): register again
+        elif kind is ErrorFrame:  # e.g. E012: the broker refused our READY
+            log.error("%s worker: the broker answered an error: %s", self.service, _error_text(body))
         elif kind is wire.Undecodable:
             log.warning(
                 "%s worker: dropped a message with an undecodable envelope: %s", self.service, msg.reason
@@ -235,6 +247,12 @@ class Worker:
         else:
             self._backoff = self.heartbeat_s
             log.warning("%s worker: dropped a %s envelope", self.service, kind.__name__)
+
+    def _log_failure(self, exc: Exception) -> None:
+        kind = type(exc).__name__
+        self._failures[kind] = self._failures.get(kind, 0) + 1
+        if self._failures[kind] == 1:
+            log.error("%s worker: a message failed (logged once per kind)", self.service, exc_info=exc)
 
     def _on_job(self, job: JobFrame, payload: bytes) -> None:
         reply = self._run(job, payload)
@@ -334,6 +352,14 @@ class Worker:
                         self._send(_HEARTBEAT)
                 finally:
                     self._lock.release()
+
+
+def _error_text(body: object) -> str:
+    try:
+        err = msgspec.msgpack.decode(cast(bytes, body), type=ErrorReply)
+    except wire.DECODE_ERRORS as exc:
+        return f"(undecodable: {exc})"
+    return f"{err.code} {err.message}"
 
 
 def serve(

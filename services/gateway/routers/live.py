@@ -8,7 +8,7 @@ from fastapi import APIRouter, WebSocket, WebSocketDisconnect
 from proto.common import ErrorCode
 from services.gateway.live import Client, LiveHub
 from services.gateway.protocol import Edit, Ping, Resume, decoder
-from services.gateway.security import origin_ok, token_ok
+from services.gateway.security import origin_ok, server_port, token_ok
 from services.gateway.settings import Settings
 from services.orchestrator.document import TextChange
 from services.orchestrator.store import DocumentNotFound
@@ -24,10 +24,10 @@ async def live(websocket: WebSocket, doc_id: str, version: int | None = None) ->
     """One editor connection to one document. `?version=N` resumes from the last version the client saw."""
     settings: Settings = websocket.app.state.settings
     hub: LiveHub = websocket.app.state.hub
-    if not token_ok(settings.token, websocket.headers, websocket.query_params):
+    if not token_ok(settings.token, websocket.headers, websocket.cookies):
         await websocket.close(code=CLOSE_POLICY, reason="missing or wrong token")
         return
-    if not origin_ok(websocket.headers, settings.allowed_origins):
+    if not origin_ok(websocket.headers, settings.allowed_origins, server_port(websocket.scope)):
         await websocket.close(code=CLOSE_POLICY, reason="origin not allowed")
         return
     await websocket.accept()
@@ -60,7 +60,7 @@ async def live(websocket: WebSocket, doc_id: str, version: int | None = None) ->
                 continue
             try:
                 message = decoder.decode(text)
-            except (msgspec.DecodeError, msgspec.ValidationError) as exc:
+            except (msgspec.DecodeError, ValueError) as exc:  # ValueError: e.g. text that is not UTF-8
                 await client.send(
                     {"type": "error", "code": ErrorCode.MALFORMED, "message": f"bad message: {exc}"}
                 )

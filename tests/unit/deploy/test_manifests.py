@@ -37,6 +37,8 @@ def test_the_broker_is_a_statefulset_behind_a_service_on_the_bus_port():
         "broker",
         "--bind",
         "tcp://0.0.0.0:5555",
+        "--keys",
+        "/etc/wana/bus-keys",
     ]
     assert docs["Service"]["spec"]["ports"][0]["port"] == 5555
 

@@ -83,6 +83,12 @@ def test_state_changing_requests_from_another_origin_are_refused(gateway) -> Non
     assert gateway.http.get("/api/documents", headers=evil).status_code == 200  # reads are not state-changing
 
 
+def test_a_dns_rebinding_page_whose_origin_equals_the_host_is_refused(gateway) -> None:
+    port = gateway.base.rsplit(":", 1)[1]
+    rebound = {"Host": f"evil.example:{port}", "Origin": f"http://evil.example:{port}"}
+    assert gateway.http.post("/api/documents", json={}, headers=rebound).status_code == 403
+
+
 def test_a_body_over_the_size_cap_is_refused_with_413(gateway_factory) -> None:
     gw = gateway_factory(max_message_bytes=4096)
     r = gw.http.post(
@@ -98,8 +104,25 @@ def test_with_a_token_every_api_call_needs_it(gateway_factory) -> None:
     assert gw.http.get("/api/documents").status_code == 401
     assert gw.http.get("/api/documents", headers={"Authorization": "Bearer wrong"}).status_code == 401
     assert gw.http.get("/api/documents", headers={"Authorization": "Bearer s3cret"}).status_code == 200
-    assert gw.http.get("/api/documents?token=s3cret").status_code == 200
+    assert gw.http.get("/api/documents?token=s3cret").status_code == 401  # never in a URL (logs)
     assert gw.http.get("/api/health").status_code == 200
+
+
+def test_a_browser_logs_in_with_the_token_and_then_uses_a_short_lived_cookie(gateway_factory) -> None:
+    gw = gateway_factory(token="s3cret")
+    form = {"Content-Type": "application/x-www-form-urlencoded"}
+    assert gw.http.post("/api/session", content="token=wrong", headers=form).status_code == 401
+    r = gw.http.post("/api/session", content="token=s3cret", headers=form)
+    assert r.status_code == 303 and r.headers["location"] == "/"
+    cookie = r.headers["set-cookie"]
+    assert "HttpOnly" in cookie and "SameSite=strict" in cookie and "Max-Age=43200" in cookie
+    assert "s3cret" not in cookie
+    assert gw.http.get("/api/documents").status_code == 200  # the client kept the cookie
+    assert gw.http.delete("/api/session").status_code == 204
+    gw.http.cookies.clear()
+    assert gw.http.get("/api/documents").status_code == 401
+    evil = {**form, "Origin": "http://evil.example"}
+    assert gw.http.post("/api/session", content="token=s3cret", headers=evil).status_code == 403
 
 
 def test_meshes_of_unknown_categories_are_not_found_or_unavailable(gateway) -> None:

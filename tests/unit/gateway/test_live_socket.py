@@ -102,8 +102,13 @@ def test_too_many_changes_or_a_too_large_message_are_refused(gateway_factory) ->
         changes = [{"start": i, "end": i, "text": "a"} for i in range(3)]
         ws.send(json.dumps({"type": "edit", "base_version": 0, "changes": changes}))
         assert "at most 2 changes" in receive_until(ws, lambda m: m["type"] == "error")[-1]["message"]
-        edit(ws, 0, 0, 0, "y" * 5000)
-        with pytest.raises(ConnectionClosed):  # over uvicorn's ws_max_size: closed with 1009
+        edit(ws, 0, 0, 0, "y" * 5000)  # over max_message_bytes: the app answers E002 and keeps serving
+        error = receive_until(ws, lambda m: m["type"] == "error")[-1]
+        assert error["code"] == "E002" and "2048" in error["message"]
+        ws.send(json.dumps({"type": "ping", "nonce": "still"}))
+        assert receive_until(ws, lambda m: m["type"] == "pong")[-1]["nonce"] == "still"
+        edit(ws, 0, 0, 0, "y" * 20000)
+        with pytest.raises(ConnectionClosed):  # over uvicorn's hard cap (4x): closed with 1009
             receive_until(ws, lambda m: False, timeout=5)
     assert gw.http.get(f"/api/documents/{doc_id}").json()["version"] == 0
 
@@ -142,9 +147,18 @@ def test_unknown_document_and_foreign_origin_are_closed(gateway_factory) -> None
         gw.http.post("/api/documents", json={}, headers={"Authorization": "Bearer tok"}).json()["doc_id"]
     )
     with pytest.raises(InvalidStatus):
-        with connect(f"{gw.ws_base}/api/documents/{doc_id}/live?token=tok", origin="http://evil.example"):
+        with connect(
+            f"{gw.ws_base}/api/documents/{doc_id}/live",
+            origin="http://evil.example",
+            additional_headers={"Authorization": "Bearer tok"},
+        ):
             pass
-    with connect(f"{gw.ws_base}/api/documents/nope/live?token=tok") as ws:
+    with pytest.raises(InvalidStatus):  # the token in the URL is no longer accepted
+        with connect(f"{gw.ws_base}/api/documents/{doc_id}/live?token=tok"):
+            pass
+    login = gw.http.post("/api/session", headers={"Authorization": "Bearer tok"})
+    cookie = f"wana_session={login.cookies['wana_session']}"
+    with connect(f"{gw.ws_base}/api/documents/nope/live", additional_headers={"Cookie": cookie}) as ws:
         assert json.loads(ws.recv(timeout=10))["code"] == "E010"
         with pytest.raises(ConnectionClosed) as closed:
             ws.recv(timeout=10)
@@ -193,3 +207,39 @@ def test_with_only_the_parser_enabled_sentences_get_kinds_and_the_rest_is_report
     assert [s["kind"] for s in diags["sentences"]] == ["scene", "action"]
     assert "parse" not in diags["unavailable"] and "scene" in diags["unavailable"]
     assert "not enabled" in diags["unavailable"]["scene"]
+
+
+class BlockedBackend(ServiceSubset):
+    """A backend whose first call waits until the test releases it: a compute that runs as long as needed."""
+
+    def __init__(self) -> None:
+        super().__init__(InProcessBackend(), {s: "disabled in this test" for s in SERVICES})
+        import threading
+
+        self.entered = threading.Event()
+        self.release = threading.Event()
+
+    def call(self, service: str, request: Any, reply_type: type) -> Any:
+        self.entered.set()
+        assert self.release.wait(60), "the test never released the compute"
+        return super().call(service, request, reply_type)
+
+
+def test_edits_and_reads_are_answered_while_a_compute_runs(gateway_factory, tmp_path) -> None:
+    backend = BlockedBackend()
+    orch = Orchestrator(tmp_path / "blocked.sqlite", backend)
+    gw = gateway_factory(orchestrator=orch)
+    doc_id = orch.create("Eve walks.").doc_id
+    try:
+        with connect(f"{gw.ws_base}/api/documents/{doc_id}/live") as ws:
+            assert backend.entered.wait(20)  # the compute runs, and stays inside the pipeline
+            assert gw.http.get(f"/api/documents/{doc_id}", timeout=5).json()["version"] == 0
+            edit(ws, 0, 10, 10, "!")
+            acks = receive_until(ws, lambda m: m["type"] == "ack", timeout=5)
+            assert acks[-1]["version"] == 1 and not backend.release.is_set()
+            assert gw.http.get(f"/api/documents/{doc_id}", timeout=5).json()["text"] == "Eve walks.!"
+            backend.release.set()
+            receive_until(ws, lambda m: m["type"] == "animation" and m["version"] == 1, timeout=30)
+    finally:
+        backend.release.set()
+        orch.close()

@@ -5,9 +5,9 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from starlette.datastructures import Headers, QueryParams
+from starlette.datastructures import Headers
 
-from services.gateway.security import origin_ok, token_ok
+from services.gateway.security import SESSION_COOKIE, cookie_ok, origin_ok, session_cookie, token_ok
 from services.gateway.settings import Settings, is_loopback, parse_services
 
 
@@ -46,21 +46,36 @@ def test_binding_off_loopback_without_a_token_is_refused(host: str) -> None:
     Settings(host=host, token="t").check()
 
 
-def test_token_is_accepted_as_bearer_header_or_query_parameter() -> None:
-    assert token_ok("", Headers({}), QueryParams(""))
-    assert token_ok("abc", Headers({"authorization": "Bearer abc"}), QueryParams(""))
-    assert token_ok("abc", Headers({}), QueryParams("token=abc"))
-    assert not token_ok("abc", Headers({}), QueryParams(""))
-    assert not token_ok("abc", Headers({"authorization": "Bearer abd"}), QueryParams("token=abx"))
+def test_token_is_accepted_as_bearer_header_or_a_valid_session_cookie_never_from_the_url() -> None:
+    assert token_ok("", Headers({}))
+    assert token_ok("abc", Headers({"authorization": "Bearer abc"}))
+    assert not token_ok("abc", Headers({}))
+    assert not token_ok("abc", Headers({"authorization": "Bearer abd"}))
+    fresh = session_cookie("abc", ttl_s=60)
+    assert token_ok("abc", Headers({}), {SESSION_COOKIE: fresh})
+    assert not token_ok("other", Headers({}), {SESSION_COOKIE: fresh})  # signed with another token
+    assert not token_ok(
+        "abc", Headers({}), {SESSION_COOKIE: session_cookie("abc", ttl_s=60, now=0)}
+    )  # expired
+    expiry, signature = fresh.split(".")
+    assert not cookie_ok("abc", f"{int(expiry) + 3600}.{signature}")  # a forged longer life
+    assert not cookie_ok("abc", "garbage")
 
 
-def test_origin_must_be_the_page_host_or_explicitly_allowed() -> None:
+def test_origin_must_be_the_gateways_own_loopback_origin_or_explicitly_allowed() -> None:
     host = {"host": "127.0.0.1:8765"}
-    assert origin_ok(Headers(host), ())  # no Origin: not a browser
-    assert origin_ok(Headers({**host, "origin": "http://127.0.0.1:8765"}), ())
-    assert not origin_ok(Headers({**host, "origin": "http://evil.example"}), ())
-    assert not origin_ok(Headers({**host, "origin": "null"}), ())
-    assert origin_ok(Headers({**host, "origin": "http://localhost:5173"}), ("http://localhost:5173",))
+    assert origin_ok(Headers(host), (), 8765)  # no Origin: not a browser
+    assert origin_ok(Headers({**host, "origin": "http://127.0.0.1:8765"}), (), 8765)
+    assert origin_ok(Headers({"host": "localhost:8765", "origin": "http://localhost:8765"}), (), 8765)
+    assert not origin_ok(Headers({**host, "origin": "http://127.0.0.1:9999"}), (), 8765)  # another port
+    assert not origin_ok(Headers({**host, "origin": "http://evil.example"}), (), 8765)
+    assert not origin_ok(Headers({**host, "origin": "null"}), (), 8765)
+    assert origin_ok(Headers({**host, "origin": "http://localhost:5173"}), ("http://localhost:5173",), 8765)
+
+
+def test_origin_equal_to_host_is_not_enough_against_dns_rebinding() -> None:
+    rebound = {"host": "evil.example:8765", "origin": "http://evil.example:8765"}  # resolves to 127.0.0.1
+    assert not origin_ok(Headers(rebound), (), 8765)
 
 
 def test_services_are_a_checked_comma_list(monkeypatch: pytest.MonkeyPatch) -> None:
