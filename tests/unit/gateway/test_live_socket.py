@@ -219,10 +219,10 @@ class BlockedBackend(ServiceSubset):
         self.entered = threading.Event()
         self.release = threading.Event()
 
-    def call(self, service: str, request: Any, reply_type: type) -> Any:
+    def call(self, request: Any) -> Any:
         self.entered.set()
         assert self.release.wait(60), "the test never released the compute"
-        return super().call(service, request, reply_type)
+        return super().call(request)
 
 
 def test_edits_and_reads_are_answered_while_a_compute_runs(gateway_factory, tmp_path) -> None:
