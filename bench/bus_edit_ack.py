@@ -45,12 +45,12 @@ def measure(compute_s: float, edits: int) -> dict[str, Any]:
             self.held_until = 0.0
             self.first = threading.Event()
 
-        def call(self, service: str, request: Any, reply_type: type) -> Any:
+        def call(self, request: Any) -> Any:
             if not self.first.is_set():
                 self.first.set()
                 self.held_until = time.monotonic() + compute_s
                 time.sleep(compute_s)
-            return super().call(service, request, reply_type)
+            return super().call(request)
 
     with tempfile.TemporaryDirectory(prefix="wana-ack-") as tmp:
         backend = HeldBackend()
