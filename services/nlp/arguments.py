@@ -16,7 +16,13 @@ from services.nlp import lexicon
 from services.nlp.builder import GraphBuilder
 from services.nlp.commands import NUMBER_WORDS, UNIT_SECONDS
 from services.nlp.lemmatizer import rule_lemma
-from services.nlp.mentions import CharacterMention, character_mention, is_unknown_object_word, object_mention
+from services.nlp.mentions import (
+    CharacterMention,
+    character_mention,
+    is_title,
+    is_unknown_object_word,
+    object_mention,
+)
 from services.nlp.scene import _mention
 
 TIME_UNITS = frozenset(UNIT_SECONDS)
@@ -58,7 +64,7 @@ def duration_of(tok: Token) -> float | None:
 
 def character_of(tok: Token, builder: GraphBuilder) -> CharacterMention | None:
     cm = character_mention(tok)
-    if cm is None and tok.pos_ == "PROPN" and object_mention(tok) is None:
+    if cm is None and tok.pos_ == "PROPN" and object_mention(tok) is None and not is_title(tok):
         cm = CharacterMention(head=tok, name=tok.text, mention=tok.text)
     return cm
 

@@ -177,8 +177,21 @@ MALE_NAMES = frozenset(
     "tom john bob peter sam david jack mike ben paul james michael mark luke adam alex max leo tim chris dan "
     "daniel joe george harry henry nick oscar ryan steve will bill fred frank ken carl eric jim".split()
 )
-FEMALE_NOUNS = frozenset("woman girl lady mother mom sister daughter grandma wife waitress".split())
-MALE_NOUNS = frozenset("man boy guy gentleman father dad brother son grandpa husband policeman".split())
+FEMALE_NOUNS = frozenset(
+    "woman girl lady mother mom sister daughter grandma granny wife waitress aunt auntie ms mrs miss "
+    "madam madame queen princess nana".split()
+)
+MALE_NOUNS = frozenset(
+    "man boy guy gentleman father dad brother son grandpa husband policeman uncle mr mister sir king "
+    "prince lord".split()
+)
+# Words written before a name that make one character with it ("Dr. Jones", "Uncle Bob", "Ms Lee").
+TITLES = frozenset(
+    "mr mrs ms miss mx dr doctor prof professor uncle aunt auntie grandma granny grandpa grandad nana "
+    "sir madam madame lady lord captain capt officer detective det inspector sergeant sgt coach nurse "
+    "mister master king queen prince princess father brother sister mother saint st judge mayor "
+    "agent general colonel major lieutenant lt chef".split()
+)
 
 MANNER_STOP = frozenset(
     "then now first finally again also still just later soon already next there here away back home in out "

@@ -16,6 +16,7 @@ import unicodedata
 from collections import OrderedDict
 
 import msgspec
+from spacy.language import Language
 from spacy.tokens import Doc
 
 from proto.common import Span
@@ -24,6 +25,7 @@ from services.nlp.actions import extract_actions
 from services.nlp.builder import GraphBuilder
 from services.nlp.commands import looks_like_command, parse_command
 from services.nlp.errors import MAX_SENTENCE_CHARS, diagnostic
+from services.nlp.lexicon import TITLES
 from services.nlp.repair import repair_character_sentence
 from services.nlp.scene import extract_scene, is_scene_like
 from services.nlp.segment import kind_hint as _kind_hint
@@ -161,7 +163,7 @@ def parse_sentences(items: list[tuple[str, str, int, str]]) -> list[SentenceGrap
         from services.nlp.pipeline import get_nlp
 
         nlp = get_nlp()
-        docs = nlp.pipe([parser_text for _, parser_text, _, _ in todo], batch_size=64)
+        docs = nlp.pipe([_titled_doc(nlp, parser_text) for _, parser_text, _, _ in todo], batch_size=64)
         for (key, _, kind, diagnostics), doc in zip(todo, docs, strict=True):
             try:
                 graph = _extract(doc, key[0], kind, diagnostics)
@@ -174,6 +176,16 @@ def parse_sentences(items: list[tuple[str, str, int, str]]) -> list[SentenceGrap
         msgspec.structs.replace(shift_spans(base[key], offset), sentence_id=sid)
         for key, (_, sid, offset, _) in zip(keys, items, strict=True)
     ]
+
+
+def _titled_doc(nlp: Language, text: str) -> Doc:
+    """The tokenized sentence with no sentence break inside a titled name: the parser would otherwise end
+    a sentence at the abbreviation's period ("Prof. | Kim waves")."""
+    doc = nlp.make_doc(text)
+    for tok in doc[:-1]:
+        if tok.text[:1].isupper() and tok.lower_.rstrip(".") in TITLES and doc[tok.i + 1].text[:1].isupper():
+            doc[tok.i + 1].is_sent_start = False
+    return doc
 
 
 def _failed(text: str, exc: Exception) -> SentenceGraph:

@@ -59,7 +59,10 @@ class _State:
                 self.characters.remove(canonical)
             self.characters.append(canonical)
         if key not in self.gender:
-            first = key.split()[0]
+            words = [w.rstrip(".") for w in key.split()]
+            first = words[0]
+            if first in lexicon.TITLES and first not in lexicon.FEMALE_NOUNS | lexicon.MALE_NOUNS:
+                first = words[-1]  # "Dr. Ada": the name says it
             if first in lexicon.FEMALE_NAMES or first in lexicon.FEMALE_NOUNS:
                 self.gender[key] = "she"
             elif first in lexicon.MALE_NAMES or first in lexicon.MALE_NOUNS:
