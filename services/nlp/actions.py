@@ -16,7 +16,7 @@ from spacy.tokens import Span as SpacySpan
 from spacy.tokens import Token
 
 from proto.ssg import ActionNode
-from services.nlp import lexicon
+from services.nlp import lexicon, verbs
 from services.nlp.arguments import (
     Argument,
     arguments,
@@ -30,6 +30,7 @@ from services.nlp.arguments import (
 from services.nlp.builder import GraphBuilder
 from services.nlp.mentions import CharacterMention, character_mention
 from services.nlp.scene import SUBJECT_DEPS
+from services.nlp.suggest import did_you_mean
 
 CLAUSE_DEPS = frozenset({"ROOT", "conj", "advcl", "xcomp", "ccomp", "parataxis"})
 LINKING_VERBS = frozenset(
@@ -214,9 +215,18 @@ def _action(verb: Token, builder: GraphBuilder) -> tuple[ActionNode, str]:
     span_end = end_tok.idx + len(end_tok.text)
     if not action:
         shown = verb.text + (f" {particle}" if particle else "")
-        builder.diagnose(
-            "W102", f"'{shown}' is not an action in the motion library", verb.idx, verb.idx + len(verb.text)
-        )
+        reason = verbs.not_animatable_reason(lemma)
+        if reason:
+            builder.diagnose(
+                "W113", f"'{shown}' is {reason}, not a movement", verb.idx, verb.idx + len(verb.text)
+            )
+        else:
+            builder.diagnose(
+                "W102",
+                f"'{shown}' is not an action in the motion library{did_you_mean(verb.text, 'action')}",
+                verb.idx,
+                verb.idx + len(verb.text),
+            )
     node = ActionNode(
         verb=lemma + (f" {particle}" if particle else ""),
         action=action,
@@ -292,6 +302,8 @@ def extract_actions(sent: SpacySpan, builder: GraphBuilder) -> int:
     for verb in _clause_verbs(sent):
         subjects = _subject_tokens(verb)
         chars = [c for c in (character_of(s, builder) for s in subjects) if c is not None]
+        seen: set[str] = set()
+        chars = [c for c in chars if not (c.name and (c.name in seen or seen.add(c.name)))]  # "Mr"+"Smith"
         if subjects and not chars:
             continue  # an object does something ("the lamp hangs"): not a character action
         action, social_verb = _action(verb, builder)
@@ -302,7 +314,8 @@ def extract_actions(sent: SpacySpan, builder: GraphBuilder) -> int:
     if count == 0 and not social:
         verbless = not any(t.pos_ in ("VERB", "AUX") for t in sent)
         if verbless:
-            builder.diagnose("W103", f"'{sent.text}'", sent.start_char, sent.end_char)
+            hint = did_you_mean(sent.text.strip(" .!?$"), "command")
+            builder.diagnose("W103", f"'{sent.text}'{hint}", sent.start_char, sent.end_char)
     return count
 
 

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from spacy.tokens import Token
 
 from services.nlp import lexicon
+from services.nlp.suggest import did_you_mean
 from services.nlp.builder import GraphBuilder
 from services.nlp.commands import NUMBER_WORDS, UNIT_SECONDS
 from services.nlp.lemmatizer import rule_lemma
@@ -113,7 +114,9 @@ def _argument(tok: Token, prep: str, builder: GraphBuilder, report_unknown: bool
     arg.word = tok.lemma_.lower()
     if report_unknown and is_unknown_object_word(tok):
         builder.diagnose(
-            "W101", f"'{tok.text}' is not in the object catalog", tok.idx, tok.idx + len(tok.text)
+            "W101",
+                f"'{tok.text}' is not in the object catalog{did_you_mean(tok.text, 'object')}",
+                tok.idx, tok.idx + len(tok.text)
         )
     return arg
 

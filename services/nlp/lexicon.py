@@ -11,6 +11,7 @@ from __future__ import annotations
 import functools
 import re
 
+from services.nlp import verbs
 from wana.assets import vocabulary
 
 # --- objects ---------------------------------------------------------------------------------------
@@ -491,6 +492,7 @@ def verb_words() -> frozenset[str]:
     words = {n.split("_")[0] for n in names} | {p.split()[0] for p in synonyms if p.split()}
     words |= {v for v, _ in ACTION_OVERRIDES} | set(VERB_OVERRIDES) | SOCIAL_VERBS | RECIPROCAL_VERBS
     words |= set(RELATION_VERBS) | LIGHT_VERBS | ASPECT_VERBS
+    words |= {p.split()[0] for p in verbs.VERB_ACTIONS} | set(verbs.NOT_ANIMATABLE)
     return frozenset(w for w in words if w.isalpha() or "-" in w)
 
 
@@ -541,6 +543,7 @@ def action_for(
         specific += [known(f"{verb}_{particle}"), synonyms.get(f"{verb} {particle}")]
     for o in objs:
         specific.append(ACTION_OVERRIDES.get((verb, o)))
+        specific.append(verbs.BODY_PART_ACTIONS.get((verb, o)))
         specific += [
             known(f"{verb}_{o}"),
             known(f"{verb}_{o}s"),
@@ -555,6 +558,10 @@ def action_for(
         ]
     if prep:
         specific += [known(f"{verb}_{prep}"), synonyms.get(f"{verb} {prep}")]
+    if particle:
+        specific.append(verbs.VERB_ACTIONS.get(f"{verb} {particle}"))
+    if prep:
+        specific.append(verbs.VERB_ACTIONS.get(f"{verb} {prep}"))
     for c in specific:
         if c:
             return c
@@ -567,7 +574,7 @@ def action_for(
                 return hit
     if verb in VERB_OVERRIDES:
         return VERB_OVERRIDES[verb]
-    return known(verb) or synonyms.get(verb) or ""
+    return known(verb) or synonyms.get(verb) or verbs.VERB_ACTIONS.get(verb, "")
 
 
 def is_known_verb(verb: str) -> bool:

@@ -30,6 +30,7 @@ from services.nlp.repair import repair_character_sentence
 from services.nlp.scene import extract_scene, is_scene_like
 from services.nlp.segment import kind_hint as _kind_hint
 from services.nlp.segment import split_sentences
+from services.nlp.suggest import did_you_mean
 
 log = logging.getLogger(__name__)
 _WORD = re.compile(r"[^\W\d_]+", re.UNICODE)
@@ -206,7 +207,14 @@ def _prepare(text: str, kind_hint: str) -> SentenceGraph | tuple[str, str, list[
         return _graph("", text, "command", [], commands=[command])
     if kind == "command" or looks_like_command(stripped):
         return _graph(
-            "", text, "command", [diagnostic("W104", f"'{stripped[:60]}'", lead, lead + len(stripped))]
+            "", text, "command", [
+                diagnostic(
+                    "W104",
+                    f"'{stripped[:60]}'{did_you_mean(stripped[:60], 'command')}",
+                    lead,
+                    lead + len(stripped),
+                )
+            ]
         )
     diagnostics: list[Diagnostic] = []
     body = text

@@ -15,6 +15,7 @@ from spacy.tokens import Span as SpacySpan
 from spacy.tokens import Token
 
 from services.nlp import lexicon
+from services.nlp.suggest import did_you_mean
 from services.nlp.builder import GraphBuilder
 from services.nlp.mentions import (
     ObjectMention,
@@ -234,7 +235,9 @@ def _mention(tok: Token, builder: GraphBuilder, report_unknown: bool) -> str | N
     if m is None:
         if report_unknown and is_unknown_object_word(tok):
             builder.diagnose(
-                "W101", f"'{tok.text}' is not in the object catalog", tok.idx, tok.idx + len(tok.text)
+                "W101",
+                f"'{tok.text}' is not in the object catalog{did_you_mean(tok.text, 'object')}",
+                tok.idx, tok.idx + len(tok.text)
             )
         return None
     return builder.object_id(m)
