@@ -26,7 +26,9 @@ PERSON_NOUNS = frozenset(
 NON_OBJECT_NOUNS = frozenset(
     "room floor wall ceiling corner middle center centre side left right front back top bottom end time "
     "second seconds minute minutes moment hour hours day night way place area space home house building "
-    "street garden yard outside inside ground music song".split()
+    "street garden yard outside inside ground music song morning evening afternoon noon midnight dawn "
+    "dusk sunrise sunset twilight while week weekend month year today tomorrow yesterday meantime "
+    "instant daytime nighttime".split()
 )
 COUNT_WORDS = {
     "one": 1,

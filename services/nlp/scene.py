@@ -16,6 +16,7 @@ from spacy.tokens import Token
 
 from services.nlp import lexicon
 from services.nlp.suggest import did_you_mean
+from wana.assets import vocabulary
 from services.nlp.builder import GraphBuilder
 from services.nlp.mentions import (
     ObjectMention,
@@ -320,6 +321,7 @@ def extract_scene(sent: SpacySpan, builder: GraphBuilder) -> None:
         if _verb_lemma(verb) == "hang" and relation == "above":
             relation = "hanging_above"
         for anchor in anchors:
+            anchor = relative_antecedent(anchor)  # "a bed under which a box lies": under the bed
             anchor_room = _room(anchor)
             if anchor_room:
                 builder.room_type = builder.room_type or anchor_room
@@ -332,6 +334,7 @@ def extract_scene(sent: SpacySpan, builder: GraphBuilder) -> None:
                 if sid is not None:
                     end = anchor.idx + len(anchor.text)
                     builder.add_relation(sid, relation, anchor_id, min(start, s.idx), end)
+    _with_relations(sent, builder)
     # Verbs that are relations: "The sofa faces the TV", "a chair facing the window".
     for tok in sent:
         rel = lexicon.RELATION_VERBS.get(tok.lemma_.lower())
@@ -343,7 +346,7 @@ def extract_scene(sent: SpacySpan, builder: GraphBuilder) -> None:
         if tok.dep_ in ("acl", "amod") and tok.head.pos_ in ("NOUN", "PROPN"):
             subjects = _with_conj(tok.head)
         else:
-            subj = [c for c in tok.children if c.dep_ in SUBJECT_DEPS]
+            subj = [relative_antecedent(c) for c in tok.children if c.dep_ in SUBJECT_DEPS]
             subjects = _expand_subject(subj[0]) if subj else []
         for anchor in _with_conj(objs[0]):
             anchor_id = _mention(anchor, builder, report_unknown=False)
@@ -355,6 +358,51 @@ def extract_scene(sent: SpacySpan, builder: GraphBuilder) -> None:
                     builder.add_relation(
                         sid, rel, anchor_id, min(tok.idx, s.idx), anchor.idx + len(anchor.text)
                     )
+
+
+RELATIVE_PRONOUNS = frozenset({"which", "that", "whom", "where"})
+
+
+def relative_antecedent(tok: Token) -> Token:
+    """The noun a relative pronoun stands for ("which" in "a bed under which a box lies" -> bed)."""
+    if tok.lower_ not in RELATIVE_PRONOUNS or tok.pos_ not in ("PRON", "DET", "ADV", "SCONJ"):
+        return tok
+    clause = tok.head
+    for _ in range(4):
+        if clause.dep_ == "acl:relcl" and clause.head.i != clause.i:
+            return clause.head
+        if clause.head.i == clause.i:
+            break
+        clause = clause.head
+    return tok
+
+
+def _with_relations(sent: SpacySpan, builder: GraphBuilder) -> None:
+    """ "a desk with a lamp" -> lamp on desk; "three desks with chairs" -> chair next_to desk: a thing
+    that stands on surfaces is on its holder, anything else stands beside it."""
+    for tok in sent:
+        if not any(c.dep_ == "case" and c.lower_ == "with" for c in tok.children):
+            continue
+        if tok.dep_ == "nmod" and tok.head.pos_ in ("NOUN", "PROPN"):
+            holders = [tok.head]
+        elif tok.dep_ == "obl" and any(c.dep_ == "expl" for c in tok.head.children):
+            holders = [c for c in tok.head.children if c.dep_ in SUBJECT_DEPS]
+        else:
+            continue
+        for holder in holders[:1]:
+            hid = _mention(holder, builder, report_unknown=False)
+            if hid is None:
+                continue
+            for thing in _with_conj(tok):
+                tid = _mention(thing, builder, report_unknown=False)
+                if tid is None:
+                    continue
+                category = next(o.category for o in builder.objects if o.id == tid)
+                info = vocabulary.CATEGORIES.get(category)
+                relation = "on" if info is not None and info.mount == "surface" else "next_to"
+                builder.add_relation(
+                    tid, relation, hid, min(holder.idx, thing.idx), max(holder.idx, thing.idx) + len(thing.text)
+                )
 
 
 def is_scene_like(sent: SpacySpan) -> bool:
