@@ -204,7 +204,7 @@ def _action(verb: Token, builder: GraphBuilder) -> tuple[ActionNode, str]:
         # the character (if any) its target
         from_event = event_action(primary.tok)
         if from_event:
-            action = action or from_event
+            action = from_event
             social_verb = primary.word
             people = [a for a in objects + obliques if a.character]
             target = people[0].character if people else ""

@@ -153,9 +153,9 @@ def arguments(verb: Token, builder: GraphBuilder) -> tuple[list[Argument], list[
     for c in verb.children:
         if c.pos_ == "ADV" and c.lower_.endswith("ly"):
             continue  # a manner the parser attached as an argument
-        if c.dep_ != "nsubj" and duration_of(c) is None and (light := time_light(c)) is not None:
-            if light:  # "that night": the light of the scene, as the "night" command would set it
-                builder.add_command("weather", light, c.idx, c.idx + len(c.text))
+        if c.dep_ != "nsubj" and duration_of(c) is None and (lit := time_light(c)) is not None:
+            if lit:  # "that night": the light of the scene, as the "night" command would set it
+                builder.add_command("weather", lit, c.idx, c.idx + len(c.text))
             continue  # "the next morning", "after a while": when, not what
         if c.lower_ in lexicon.DIRECTION_ADVERBS and not any(g.dep_ in ("det", "case") for g in c.children):
             continue  # "turns right": a direction, read by _manner_and_direction
