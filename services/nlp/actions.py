@@ -42,6 +42,15 @@ def _subject_tokens(verb: Token) -> list[Token]:
     glued = _glued_subject(verb)
     if glued is not None:
         return [glued]
+    if verb.pos_ == "VERB" and not any(c.dep_ in SUBJECT_DEPS for c in verb.children):
+        # "Ada/compound crosses her arms": a name the parser hung on the verb as a compound
+        lead = [
+            c
+            for c in verb.children
+            if c.dep_ in ("compound", "flat", "nmod:desc", "dep") and c.i < verb.i and c.pos_ == "PROPN"
+        ]
+        if lead and character_mention(lead[0]) is not None:
+            return _with_conj_people(lead[0])
     v = verb
     climbed_from_conj = False
     for _ in range(6):

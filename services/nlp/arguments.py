@@ -21,6 +21,7 @@ from services.nlp.lemmatizer import rule_lemma
 from services.nlp.mentions import (
     CharacterMention,
     character_mention,
+    is_speech,
     is_title,
     is_unknown_object_word,
     object_mention,
@@ -161,6 +162,15 @@ def arguments(verb: Token, builder: GraphBuilder) -> tuple[list[Argument], list[
             continue  # "turns right": a direction, read by _manner_and_direction
         if c.lower_ in lexicon.REFLEXIVE_PRONOUNS:
             continue  # "introduces himself to Mary": the subject, not a target
+        if is_speech(c) or any(is_speech(g) for g in c.children if g.dep_ in ("compound", "amod")):
+            # 'says "Sorry." to Ada': the words said are the caption, not a target; "to Ada" may hang
+            # under them
+            obliques += [
+                _argument(g, case_of(g), builder, report_unknown=True)
+                for g in c.children
+                if g.dep_ in ("nmod", "obl", "compound") and any(h.dep_ == "case" for h in g.children)
+            ]
+            continue
         if (
             c.dep_ in ("obj", "iobj", "dobj")
             or (c.dep_ == "advmod" and c.pos_ in ("NOUN", "PROPN"))

@@ -174,11 +174,15 @@ PRONOUNS = {
 OBJECT_PRONOUNS = frozenset({"it", "this", "that", "them"})
 FEMALE_NAMES = frozenset(
     "eve mary alice anna lucy kate emma lily sara sarah nina julia jane emily olivia sophia mia amy laura "
-    "linda susan lisa maria anne ann helen grace chloe zoe ella ava rose ruth clara lena".split()
+    "linda susan lisa maria anne ann helen grace chloe zoe ella ava rose ruth clara lena ada eva ivy iris "
+    "nora maya leah hannah sophie amelia isla freya priya aisha fatima mei yuki elena marta ines wendy "
+    "alice dorothy gretel goldilocks cinderella belle jasmine elsa anna wanda may kim".split()
 )
 MALE_NAMES = frozenset(
     "tom john bob peter sam david jack mike ben paul james michael mark luke adam alex max leo tim chris dan "
-    "daniel joe george harry henry nick oscar ryan steve will bill fred frank ken carl eric jim".split()
+    "daniel joe george harry henry nick oscar ryan steve will bill fred frank ken carl eric jim finn "
+    "hugo theo noah liam ethan owen kai omar raj ivan jamal jose luis carlos pedro hans hansel jack "
+    "aladdin peter arthur merlin robin rick walter hank".split()
 )
 FEMALE_NOUNS = frozenset(
     "woman girl lady mother mom sister daughter grandma granny wife waitress aunt auntie ms mrs miss "

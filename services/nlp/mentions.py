@@ -177,6 +177,8 @@ def _glued_attributes(parts: list[str], attributes: dict[str, str]) -> None:
 
 def object_mention(head: Token) -> ObjectMention | None:
     """The object a noun token names, with its attributes and count, or None."""
+    if is_speech(head):
+        return None
     if head.text[:1].isupper() and (head.lower_ in lexicon.FEMALE_NAMES or head.lower_ in lexicon.MALE_NAMES):
         return None  # "Mike" is a person here, not a microphone
     if head.lower_ in lexicon.PERSON_NOUNS or head.lemma_.lower() in lexicon.PERSON_NOUNS:
@@ -255,7 +257,7 @@ def quantity_target(head: Token) -> tuple[Token, int] | None:
 
 def is_unknown_object_word(head: Token) -> bool:
     """A common noun in an object slot that names no category, person, room or place (W101)."""
-    if head.pos_ not in ("NOUN", "X") or head.lower_ in lexicon.OBJECT_PRONOUNS:
+    if head.pos_ not in ("NOUN", "X") or head.lower_ in lexicon.OBJECT_PRONOUNS or is_speech(head):
         return False
     lemma = head.lemma_.lower()
     if (
@@ -269,6 +271,14 @@ def is_unknown_object_word(head: Token) -> bool:
     if lexicon.room_of(head.lower_) or lexicon.room_of(lemma):
         return False
     return object_mention(head) is None
+
+
+def is_speech(tok: Token) -> bool:
+    """The stand-in of quoted speech (services.nlp.parse masks what characters say)."""
+    text = tok.text
+    return (text.startswith("hello") and set(text[5:]) <= {"-"}) or (
+        text.startswith("hi") and set(text[2:]) <= {"-"}
+    )
 
 
 def is_title(tok: Token) -> bool:

@@ -29,7 +29,7 @@ from services.nlp.lexicon import TITLES
 from services.nlp.repair import repair_character_sentence
 from services.nlp.scene import extract_scene, is_scene_like
 from services.nlp.segment import kind_hint as _kind_hint
-from services.nlp.segment import split_sentences
+from services.nlp.segment import quote_spans, split_sentences
 from services.nlp.suggest import did_you_mean
 
 log = logging.getLogger(__name__)
@@ -78,9 +78,23 @@ def _inflected_verb(word: str) -> bool:
     return any(c in known for c in verb_lemma_candidates(word))
 
 
+def _masked_speech(text: str) -> str:
+    """Quoted speech replaced by a same-length stand-in ("hello" and dashes): what a character says is
+    the caption, not objects or actions of the story ('Tom says "I drank it."' is one talking action)."""
+    out = text
+    for start, end in quote_spans(text):
+        n = end - start - 2
+        if n >= 5:
+            out = out[: start + 1] + "hello" + "-" * (n - 5) + out[end - 1 :]
+        elif n > 0:
+            out = out[: start + 1] + "hi".ljust(n, "-")[:n] + out[end - 1 :]
+    return out
+
+
 def _parser_text(text: str) -> str:
-    """The sentence as the parser reads it: a terminal "$" becomes "." (same length, same offsets)."""
-    chars = list(text)
+    """The sentence as the parser reads it: a terminal "$" becomes "." and quoted speech is masked
+    (same length, same offsets)."""
+    chars = list(_masked_speech(text))
     i = len(chars) - 1
     while i >= 0 and (chars[i] in ".!?$ " or chars[i] in "\"')"):
         if chars[i] == "$":
