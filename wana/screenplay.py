@@ -39,7 +39,8 @@ _LIGHT = {
     "NOON": "sunny",
 }
 _CUTS = ("camera left", "camera right", "camera front")
-_SENTENCE = re.compile(r"[^.!?]+[.!?]*")
+# A sentence ends at . ! ? (with closing quotes) unless the period ends a title ("Dr. Jones").
+_SENTENCE = re.compile(r"(?:\b(?:Mr|Mrs|Ms|Dr|Prof|St|Jr|Sr|Capt|Sgt|Lt|Det)\.|[^.!?])+[.!?]*[\"')]*")
 
 
 def looks_like_fountain(text: str, path: str = "") -> bool:

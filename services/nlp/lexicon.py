@@ -176,7 +176,7 @@ FEMALE_NAMES = frozenset(
     "eve mary alice anna lucy kate emma lily sara sarah nina julia jane emily olivia sophia mia amy laura "
     "linda susan lisa maria anne ann helen grace chloe zoe ella ava rose ruth clara lena ada eva ivy iris "
     "nora maya leah hannah sophie amelia isla freya priya aisha fatima mei yuki elena marta ines wendy "
-    "alice dorothy gretel goldilocks cinderella belle jasmine elsa anna wanda may kim".split()
+    "alice dorothy gretel goldilocks cinderella belle jasmine elsa anna wanda may".split()
 )
 MALE_NAMES = frozenset(
     "tom john bob peter sam david jack mike ben paul james michael mark luke adam alex max leo tim chris dan "

@@ -200,6 +200,10 @@ def _titled_doc(nlp: Language, text: str) -> Doc:
     for tok in doc[:-1]:
         if tok.text[:1].isupper() and tok.lower_.rstrip(".") in TITLES and doc[tok.i + 1].text[:1].isupper():
             doc[tok.i + 1].is_sent_start = False
+    for start, end in quote_spans(text):  # nor inside (or at) quoted speech
+        for tok in doc:
+            if start <= tok.idx < end and tok.i > 0:
+                tok.is_sent_start = False
     return doc
 
 
