@@ -547,6 +547,8 @@ def action_for(
         specific += [known(f"{verb}_{direction}"), synonyms.get(f"{verb} {direction}")]
     if particle:
         specific += [known(f"{verb}_{particle}"), synonyms.get(f"{verb} {particle}")]
+    # "raises both hands" is not "raises a hand": the plural body part as written first
+    specific += [verbs.BODY_PART_ACTIONS.get((verb, o)) for o in objs if o.endswith("s")]
     for o in objs:
         specific.append(ACTION_OVERRIDES.get((verb, o)))
         specific.append(verbs.BODY_PART_ACTIONS.get((verb, o)))
