@@ -39,6 +39,7 @@ _LIGHT = {
     "NOON": "sunny",
 }
 _CUTS = ("camera left", "camera right", "camera front")
+_TITLE_DOT = re.compile(r"\b(Mr|Mrs|Ms|Dr|Prof|St|Jr|Sr|Capt|Sgt|Lt|Det)\.", re.IGNORECASE)
 # A sentence ends at . ! ? (with closing quotes) unless the period ends a title ("Dr. Jones").
 _SENTENCE = re.compile(r"(?:\b(?:Mr|Mrs|Ms|Dr|Prof|St|Jr|Sr|Capt|Sgt|Lt|Det)\.|[^.!?])+[.!?]*[\"')]*")
 
@@ -61,7 +62,7 @@ def looks_like_fountain(text: str, path: str = "") -> bool:
 
 
 def _cue_name(cue: str) -> str:
-    name = re.sub(r"\([^)]*\)", "", cue).replace("^", "").strip()
+    name = _no_title_dots(re.sub(r"\([^)]*\)", "", cue).replace("^", "").strip())
     return " ".join(w.capitalize() for w in name.split())
 
 
@@ -74,9 +75,9 @@ def _room_sentence(heading: str) -> tuple[str, str]:
     words = re.sub(r"[^a-z' ]", " ", place.lower()).split()
     room = ""
     for k in range(len(words)):  # the longest known ending: "ADA'S SMALL KITCHEN" -> kitchen
-        phrase = " ".join(words[k:])
-        if vocabulary.lookup_room(phrase):
-            room = phrase
+        found = vocabulary.lookup_room(" ".join(words[k:]))
+        if found:
+            room = found.replace("_", " ")
             break
     return (f"In the {room}$." if room else ""), light
 
@@ -87,10 +88,16 @@ def _spoken(name: str, text: str, manner: str, listener: str) -> list[str]:
     verb = f"{manner} says" if manner else "says"
     to = f" to {listener}" if listener else ""
     for m in _SENTENCE.finditer(text.replace('"', "'")):
-        line = m.group(0).strip()
+        line = _no_title_dots(m.group(0).strip()).rstrip(".!?").strip()
         if line:
+            # one line each, no terminator inside the quotes: every splitter keeps the line whole
             out.append(f'{name} {verb}{to} "{line}"')
     return out
+
+
+def _no_title_dots(text: str) -> str:
+    """ "Dr. Jones" -> "Dr Jones": a period after a title would end the sentence for a plain splitter."""
+    return _TITLE_DOT.sub(r"\1", text)
 
 
 def to_story(text: str) -> str:
@@ -143,7 +150,7 @@ def to_story(text: str) -> str:
             if caps_re is not None:
                 body = caps_re.sub(lambda m: caps[m.group(1)], body)
             if body:
-                lines += [s.strip() for s in _SENTENCE.findall(body) if s.strip()]
+                lines += [_no_title_dots(s.strip()) for s in _SENTENCE.findall(body) if s.strip()]
         elif isinstance(p, Dialog):
             dialog(p)
         elif isinstance(p, DualDialog):
