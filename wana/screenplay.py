@@ -68,7 +68,9 @@ def _cue_name(cue: str) -> str:
 
 def _room_sentence(heading: str) -> tuple[str, str]:
     """("In the kitchen$.", "night") of a scene heading; "" for what it does not say."""
-    body = re.sub(r"^\s*(?:\.|INT\.?/EXT\.?|I/E\.?|INT\.?|EXT\.?|EST\.?)\s*", "", heading, flags=re.IGNORECASE)
+    body = re.sub(
+        r"^\s*(?:\.|INT\.?/EXT\.?|I/E\.?|INT\.?|EXT\.?|EST\.?)\s*", "", heading, flags=re.IGNORECASE
+    )
     body = re.sub(r"#[^#]*#\s*$", "", body).strip()  # a scene number
     place, _, when = body.rpartition(" - ") if " - " in body else (body, "", "")
     light = _LIGHT.get(when.strip().upper(), "")

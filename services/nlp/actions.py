@@ -311,8 +311,7 @@ def extract_actions(sent: SpacySpan, builder: GraphBuilder) -> int:
     for verb in _clause_verbs(sent):
         subjects = _subject_tokens(verb)
         chars = [c for c in (character_of(s, builder) for s in subjects) if c is not None]
-        seen: set[str] = set()
-        chars = [c for c in chars if not (c.name and (c.name in seen or seen.add(c.name)))]  # "Mr"+"Smith"
+        chars = _distinct_names(chars)  # "Mr" and "Smith" both read as the subject "Mr Smith"
         if subjects and not chars:
             continue  # an object does something ("the lamp hangs"): not a character action
         action, social_verb = _action(verb, builder)
@@ -326,6 +325,14 @@ def extract_actions(sent: SpacySpan, builder: GraphBuilder) -> int:
             hint = did_you_mean(sent.text.strip(" .!?$"), "command")
             builder.diagnose("W103", f"'{sent.text}'{hint}", sent.start_char, sent.end_char)
     return count
+
+
+def _distinct_names(chars: list[CharacterMention]) -> list[CharacterMention]:
+    out: list[CharacterMention] = []
+    for c in chars:
+        if not c.name or all(o.name != c.name for o in out):
+            out.append(c)
+    return out
 
 
 def _is_plural(cm: CharacterMention) -> bool:

@@ -13,8 +13,6 @@ from dataclasses import dataclass
 from spacy.tokens import Token
 
 from services.nlp import lexicon
-from services.nlp.suggest import did_you_mean
-from services.nlp.timephrase import time_light
 from services.nlp.builder import GraphBuilder
 from services.nlp.commands import NUMBER_WORDS, UNIT_SECONDS
 from services.nlp.lemmatizer import rule_lemma
@@ -27,6 +25,8 @@ from services.nlp.mentions import (
     object_mention,
 )
 from services.nlp.scene import _mention
+from services.nlp.suggest import did_you_mean
+from services.nlp.timephrase import time_light
 
 TIME_UNITS = frozenset(UNIT_SECONDS)
 
@@ -117,8 +117,9 @@ def _argument(tok: Token, prep: str, builder: GraphBuilder, report_unknown: bool
     if report_unknown and is_unknown_object_word(tok):
         builder.diagnose(
             "W101",
-                f"'{tok.text}' is not in the object catalog{did_you_mean(tok.text, 'object')}",
-                tok.idx, tok.idx + len(tok.text)
+            f"'{tok.text}' is not in the object catalog{did_you_mean(tok.text, 'object')}",
+            tok.idx,
+            tok.idx + len(tok.text),
         )
     return arg
 

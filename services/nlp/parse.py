@@ -225,14 +225,17 @@ def _prepare(text: str, kind_hint: str) -> SentenceGraph | tuple[str, str, list[
         return _graph("", text, "command", [], commands=[command])
     if kind == "command" or looks_like_command(stripped):
         return _graph(
-            "", text, "command", [
+            "",
+            text,
+            "command",
+            [
                 diagnostic(
                     "W104",
                     f"'{stripped[:60]}'{did_you_mean(stripped[:60], 'command')}",
                     lead,
                     lead + len(stripped),
                 )
-            ]
+            ],
         )
     diagnostics: list[Diagnostic] = []
     body = text

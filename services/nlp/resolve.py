@@ -21,7 +21,7 @@ import re
 import msgspec
 
 from proto.common import Span
-from proto.ssg import ActionNode, CharacterNode, Diagnostic, SentenceGraph, SocialNode
+from proto.ssg import ActionNode, CharacterNode, Diagnostic, ObjectNode, SentenceGraph, SocialNode
 from services.nlp import lexicon
 from services.nlp.errors import diagnostic
 
@@ -259,7 +259,7 @@ def distinct_objects(graphs: list[SentenceGraph], offsets: list[int] | None = No
             continue
         base = offsets[gi] if offsets is not None and gi < len(offsets) else graph.objects[0].span.start
         renames: dict[str, str] = {}
-        kept = []
+        kept: list[ObjectNode] = []
         for o in graph.objects:
             if o.id not in used:
                 used.add(o.id)

@@ -15,8 +15,6 @@ from spacy.tokens import Span as SpacySpan
 from spacy.tokens import Token
 
 from services.nlp import lexicon
-from services.nlp.suggest import did_you_mean
-from wana.assets import vocabulary
 from services.nlp.builder import GraphBuilder
 from services.nlp.mentions import (
     ObjectMention,
@@ -25,6 +23,8 @@ from services.nlp.mentions import (
     object_mention,
     quantity_target,
 )
+from services.nlp.suggest import did_you_mean
+from wana.assets import vocabulary
 
 MULTIWORD_RELATIONS = {
     "next to": "next_to",
@@ -238,7 +238,8 @@ def _mention(tok: Token, builder: GraphBuilder, report_unknown: bool) -> str | N
             builder.diagnose(
                 "W101",
                 f"'{tok.text}' is not in the object catalog{did_you_mean(tok.text, 'object')}",
-                tok.idx, tok.idx + len(tok.text)
+                tok.idx,
+                tok.idx + len(tok.text),
             )
         return None
     return builder.object_id(m)
@@ -401,7 +402,11 @@ def _with_relations(sent: SpacySpan, builder: GraphBuilder) -> None:
                 info = vocabulary.CATEGORIES.get(category)
                 relation = "on" if info is not None and info.mount == "surface" else "next_to"
                 builder.add_relation(
-                    tid, relation, hid, min(holder.idx, thing.idx), max(holder.idx, thing.idx) + len(thing.text)
+                    tid,
+                    relation,
+                    hid,
+                    min(holder.idx, thing.idx),
+                    max(holder.idx, thing.idx) + len(thing.text),
                 )
 
 

@@ -66,7 +66,9 @@ def test_fountain_is_detected_by_extension_or_by_content():
     assert looks_like_fountain("anything", "play.fountain")
     assert looks_like_fountain(SCRIPT)
     assert looks_like_fountain("INT. OFFICE - DAY\n\nEve sits.\n")
-    assert not looks_like_fountain("A chair is near a desk$.\nEve walks to the chair. Eve sits.\ncamera top\n")
+    assert not looks_like_fountain(
+        "A chair is near a desk$.\nEve walks to the chair. Eve sits.\ncamera top\n"
+    )
     assert not looks_like_fountain("EVE\nwalks to the chair.\n")
 
 
@@ -78,7 +80,9 @@ def test_the_converted_screenplay_parses_without_a_diagnostic():
     assert {g.room_type for g in graphs} >= {"kitchen"}
 
 
-@pytest.mark.parametrize("name", ["kitchen_night.fountain", "office_morning.fountain", "classroom_day.fountain"])
+@pytest.mark.parametrize(
+    "name", ["kitchen_night.fountain", "office_morning.fountain", "classroom_day.fountain"]
+)
 def test_every_example_screenplay_parses_cleanly(name):
     graphs = parse_document(to_story((EXAMPLES / name).read_text()))
     assert [d.message for g in graphs for d in g.diagnostics] == []

@@ -14,7 +14,9 @@ from services.nlp.parse import parse_document
 
 
 def acts(graphs):
-    return [(c.name, a.action, a.target or a.destination) for g in graphs for c in g.characters for a in c.actions]
+    return [
+        (c.name, a.action, a.target or a.destination) for g in graphs for c in g.characters for a in c.actions
+    ]
 
 
 def codes(graphs):
