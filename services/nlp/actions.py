@@ -367,7 +367,9 @@ def _add_action(
             continue
         node.actions.append(action)
         target = action.target
-        target_is_person = bool(target) and (target[0].isupper() or target.lower() in lexicon.PRONOUNS)
+        target_is_person = bool(target) and (
+            target[0].isupper() or target.lower() in lexicon.PRONOUNS or target in lexicon.PERSON_NOUNS
+        )
         if social and target_is_person:
             builder.add_social("emotion", [name, target], label, start, end)
     if reciprocal and social:

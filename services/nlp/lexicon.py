@@ -21,7 +21,11 @@ PERSON_NOUNS = frozenset(
     "worker carpenter boxer singer dancer musician pianist guitarist drummer artist painter player waiter "
     "waitress officer policeman driver friend mother father mom dad brother sister son daughter grandma "
     "grandpa wife husband boss manager colleague customer visitor guest stranger athlete coach people men "
-    "women children kids girls boys someone somebody everyone everybody".split()
+    "women children kids girls boys someone somebody everyone everybody hero heroine knight wizard witch "
+    "king queen prince princess soldier guard detective villain thief farmer sailor pirate priest monk "
+    "servant maid butler clerk receptionist librarian scientist professor janitor cleaner mayor judge "
+    "lawyer shopkeeper baker grandmother grandfather granny uncle aunt parent parents teenager "
+    "traveller traveler stranger giant dwarf elf merchant innkeeper bartender".split()
 )
 NON_OBJECT_NOUNS = frozenset(
     "room floor wall ceiling corner middle center centre side left right front back top bottom end time "
@@ -186,11 +190,11 @@ MALE_NAMES = frozenset(
 )
 FEMALE_NOUNS = frozenset(
     "woman girl lady mother mom sister daughter grandma granny wife waitress aunt auntie ms mrs miss "
-    "madam madame queen princess nana".split()
+    "madam madame queen princess nana witch heroine grandmother maid".split()
 )
 MALE_NOUNS = frozenset(
     "man boy guy gentleman father dad brother son grandpa husband policeman uncle mr mister sir king "
-    "prince lord".split()
+    "prince lord knight wizard grandfather butler".split()
 )
 # Words written before a name that make one character with it ("Dr. Jones", "Uncle Bob", "Ms Lee").
 TITLES = frozenset(
@@ -347,6 +351,17 @@ ACTION_OVERRIDES: dict[tuple[str, str], str] = {
     ("open", "door"): "open_door",
     ("close", "door"): "close_door",
     ("open", "drawer"): "open_drawer",
+    ("open", "chest"): "open_drawer",
+    ("open", "cabinet"): "open_drawer",
+    ("open", "kitchen_cabinet"): "open_drawer",
+    ("open", "wardrobe"): "open_drawer",
+    ("open", "dresser"): "open_drawer",
+    ("open", "box"): "open_drawer",
+    ("open", "locker"): "open_drawer",
+    ("open", "filing_cabinet"): "open_drawer",
+    ("close", "window"): "close_door",
+    ("open", "window"): "open_door",
+    ("pull", "chair"): "pull",
     ("write", "blackboard"): "write_on_blackboard",
     ("write", "whiteboard"): "write_on_blackboard",
     ("draw", "whiteboard"): "write_on_blackboard",
