@@ -18,6 +18,7 @@ from spacy.tokens import Token
 from proto.ssg import ActionNode
 from services.nlp import lexicon, verbs
 from services.nlp.arguments import (
+    STATE_PARTICLES,
     Argument,
     arguments,
     case_of,
@@ -28,7 +29,7 @@ from services.nlp.arguments import (
     verb_lemma,
 )
 from services.nlp.builder import GraphBuilder
-from services.nlp.mentions import CharacterMention, character_mention
+from services.nlp.mentions import CharacterMention, character_mention, is_title
 from services.nlp.scene import SUBJECT_DEPS
 from services.nlp.suggest import did_you_mean
 
@@ -43,11 +44,13 @@ def _subject_tokens(verb: Token) -> list[Token]:
     if glued is not None:
         return [glued]
     if verb.pos_ == "VERB" and not any(c.dep_ in SUBJECT_DEPS for c in verb.children):
-        # "Ada/compound crosses her arms": a name the parser hung on the verb as a compound
+        # "Ada/compound crosses her arms", "The hero/compound nods": who acts, hung on the verb
         lead = [
             c
             for c in verb.children
-            if c.dep_ in ("compound", "flat", "nmod:desc", "dep") and c.i < verb.i and c.pos_ == "PROPN"
+            if c.dep_ in ("compound", "flat", "nmod:desc", "dep")
+            and c.i < verb.i
+            and c.pos_ in ("PROPN", "NOUN")
         ]
         if lead and character_mention(lead[0]) is not None:
             return _with_conj_people(lead[0])
@@ -105,8 +108,8 @@ def _manner_and_direction(verb: Token) -> tuple[str, str]:
 def _clause_verbs(sent: SpacySpan) -> list[Token]:
     verbs: list[Token] = []
     for tok in sent:
-        if tok.dep_ not in CLAUSE_DEPS:
-            continue
+        if tok.dep_ not in CLAUSE_DEPS and not (tok.dep_ == "appos" and is_title(tok.head)):
+            continue  # "Prof./ROOT Kim nods/appos": the verb the parser hung under a title
         if tok.pos_ != "VERB" and not _verb_by_position(tok):
             continue
         if tok.dep_ == "xcomp" and tok.head.lemma_.lower() not in lexicon.ASPECT_VERBS:
@@ -151,7 +154,9 @@ def _action(verb: Token, builder: GraphBuilder) -> tuple[ActionNode, str]:
     """The ActionNode of a verb clause and the verb its social meaning is read from ("hug" of "gives
     Mary a hug"; the verb's lemma otherwise)."""
     lemma = verb_lemma(verb)
-    particle = next((c.lower_ for c in verb.children if c.dep_ == "compound:prt"), "")
+    particle = next(
+        (c.lower_ for c in verb.children if c.dep_ == "compound:prt" or c.lower_ in STATE_PARTICLES), ""
+    )
     manner, direction = _manner_and_direction(verb)
     if particle in lexicon.DIRECTION_ADVERBS and particle in ("left", "right", "around", "back"):
         direction = direction or lexicon.DIRECTION_ADVERBS[particle]
@@ -336,7 +341,9 @@ def _distinct_names(chars: list[CharacterMention]) -> list[CharacterMention]:
 
 
 def _is_plural(cm: CharacterMention) -> bool:
-    return cm.pronoun == "they" or (not cm.name and cm.head.tag_ in ("NNS", "NNPS"))
+    if cm.pronoun == "they" or (not cm.name and cm.head.tag_ in ("NNS", "NNPS")):
+        return True
+    return cm.name in lexicon.PERSON_NOUNS and cm.head.lower_ != cm.name  # "the children" (name "child")
 
 
 def _add_action(

@@ -48,6 +48,9 @@ def verb_lemma(tok: Token) -> str:
     return rule_lemma(tok.text, "VERB", lexicon.verb_words()).lower()
 
 
+STATE_PARTICLES = frozenset({"asleep", "awake"})  # "falls asleep", "stays awake": read as particles
+
+
 def duration_of(tok: Token) -> float | None:
     """Seconds of "for 5 seconds" / "2 minutes" / "a second" headed by the unit noun ``tok``."""
     unit = tok.lower_
@@ -127,7 +130,12 @@ def _argument(tok: Token, prep: str, builder: GraphBuilder, report_unknown: bool
 def reciprocal_phrase(tok: Token) -> bool:
     """ "each other" / "one another" headed by ``tok``."""
     words = [tok.lower_, *(c.lower_ for c in tok.children if c.dep_ in ("fixed", "amod", "det", "nummod"))]
-    return f"{words[0]} {words[1]}" in lexicon.RECIPROCAL_PHRASES if len(words) >= 2 else False
+    if len(words) < 2:
+        return False
+    # "each other" is headed by "each" (fixed "other") or by "other" (det "each")
+    return f"{words[0]} {words[1]}" in lexicon.RECIPROCAL_PHRASES or f"{words[1]} {words[0]}" in (
+        lexicon.RECIPROCAL_PHRASES
+    )
 
 
 def event_phrase(tok: Token) -> str:
@@ -163,6 +171,8 @@ def arguments(verb: Token, builder: GraphBuilder) -> tuple[list[Argument], list[
             continue  # "turns right": a direction, read by _manner_and_direction
         if c.lower_ in lexicon.REFLEXIVE_PRONOUNS:
             continue  # "introduces himself to Mary": the subject, not a target
+        if c.lower_ in STATE_PARTICLES:
+            continue  # "falls asleep": part of the verb (see actions._action)
         if is_speech(c) or any(is_speech(g) for g in c.children if g.dep_ in ("compound", "amod")):
             # 'says "Sorry." to Ada': the words said are the caption, not a target; "to Ada" may hang
             # under them

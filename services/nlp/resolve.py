@@ -59,7 +59,7 @@ class _State:
                 self.characters.remove(canonical)
             self.characters.append(canonical)
         if key not in self.gender:
-            words = [w.rstrip(".") for w in key.split()]
+            words = [w.rstrip(".") for w in key.split()] or [""]
             first = words[0]
             if first in lexicon.TITLES and first not in lexicon.FEMALE_NOUNS | lexicon.MALE_NOUNS:
                 first = words[-1]  # "Dr. Ada": the name says it
@@ -114,7 +114,9 @@ def _resolve_ref(
     lower = value.lower()
     if lower in lexicon.RECIPROCAL_PHRASES:
         others = [n for n in group if n != actor]
-        return others[0] if len(others) == 1 else ""
+        if len(others) == 1:
+            return others[0]
+        return "each other" if not others else ""  # "the children whisper to each other": among them
     if lower in lexicon.OBJECT_PRONOUNS and lower != "them":
         ids = [o.id for o in graph.objects if before < 0 or o.span.end <= before]
         return ids[-1] if ids else state.last_object

@@ -346,6 +346,10 @@ def extract_scene(sent: SpacySpan, builder: GraphBuilder) -> None:
             continue
         if tok.dep_ in ("acl", "amod") and tok.head.pos_ in ("NOUN", "PROPN"):
             subjects = _with_conj(tok.head)
+        elif tok.dep_ == "advcl" and any(c.dep_ == "expl" for c in tok.head.children):
+            # "There is a table facing the door": the table faces it
+            subj = [c for c in tok.head.children if c.dep_ in SUBJECT_DEPS]
+            subjects = _expand_subject(subj[0]) if subj else []
         else:
             subj = [relative_antecedent(c) for c in tok.children if c.dep_ in SUBJECT_DEPS]
             subjects = _expand_subject(subj[0]) if subj else []
