@@ -26,7 +26,7 @@ PERSON_NOUNS = frozenset(
     "servant maid butler clerk receptionist librarian scientist professor janitor cleaner mayor judge "
     "lawyer shopkeeper baker grandmother grandfather granny uncle aunt parent parents teenager "
     "traveller traveler stranger giant dwarf elf merchant innkeeper bartender actor actress audience "
-    "crowd duke duchess lord lady servant messenger".split()
+    "crowd duke duchess lord lady servant messenger twin twins".split()
 )
 NON_OBJECT_NOUNS = frozenset(
     "room floor wall ceiling corner middle center centre side left right front back top bottom end time "

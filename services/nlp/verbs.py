@@ -57,7 +57,7 @@ stand: stand up, get up, rise, arise, straighten up, jump to one's feet, spring 
 lie_down: lie, lay down, lie back, stretch out, sprawl, recline on, go to bed, sleep, nap, doze, snooze,
     doze off, fall asleep, drift off, slumber, rest on
 kneel: kneel down, get down, genuflect, drop to one's knees
-squat: crouch, stoop down, hunker down, duck, bend down, huddle
+squat: dodge, crouch, stoop down, hunker down, duck, bend down, huddle
 hide: cower, take cover, duck behind, hide behind, lurk, conceal oneself
 lean_on_wall: lean, lean against, lean back, lean on, rest against, prop oneself
 idle: wait around, stand around, linger, loiter, pause, stay, remain, freeze, hesitate, stop, halt,
@@ -284,6 +284,8 @@ BODY_PART_ACTIONS: dict[tuple[str, str], str] = {
     ("comb", "hair"): "comb_hair",
     ("wash", "hands"): "wash_hands",
     ("wash", "face"): "wash_hands",
+    ("wipe", "hands"): "rub_hands",
+    ("wipe", "hand"): "rub_hands",
     ("touch", "toes"): "touch_toes",
     ("point", "finger"): "point",
     ("hold", "hands"): "hold_hands",
