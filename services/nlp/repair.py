@@ -61,7 +61,11 @@ def _subject_group(sent: SpacySpan) -> list[Token]:
     """Leading tokens that name who acts: "Tom and Mary", "The man and the woman", "They"."""
     group: list[Token] = []
     for tok in sent:
-        if _is_person(tok) or _unknown_name(tok) or (group and tok.pos_ in ("CCONJ", "PUNCT") and tok.text in ("and", ",", "&")):
+        if (
+            _is_person(tok)
+            or _unknown_name(tok)
+            or (group and tok.pos_ in ("CCONJ", "PUNCT") and tok.text in ("and", ",", "&"))
+        ):
             group.append(tok)
         elif tok.pos_ == "DET" and tok.lower_ in ("the", "a", "an", "both"):
             group.append(tok)

@@ -215,3 +215,19 @@ def test_a_diagnostic_quotes_the_exact_words_it_is_about():
 def test_a_room_word_is_never_an_unknown_object():
     graphs = parse_document("Tom walks into the kitchen. The lamp is at the back of the room$.")
     assert "W101" not in codes(graphs)
+
+
+def test_the_no_verb_diagnostic_quotes_its_own_sentence():
+    text = "Tom sits. Prof. Kim waves. A lovely day."
+    graphs = parse_document(text)
+    (d,) = [d for g in graphs for d in g.diagnostics if d.code == "W103"]
+    assert text[d.span.start : d.span.end] == "A lovely day."
+    assert "'A lovely day.'" in d.message
+
+
+def test_coreference_never_warns():
+    text = (
+        "Tom and Mary walk in. They sit down. He smiles at her. She waves at him. "
+        "Tom picks up the cup. He drinks from it. The teacher enters. She looks at them."
+    )
+    assert codes(parse_document(text)) == []
