@@ -78,6 +78,7 @@ def attribute_of(word: str) -> tuple[str, str] | None:
     return vocabulary.normalize_attribute(word.lower())
 
 
+@functools.lru_cache(maxsize=65536)
 def room_of(phrase: str) -> str | None:
     """Room type of a phrase ("working shop" -> "workshop"), or None."""
     phrase = phrase.strip().lower()
