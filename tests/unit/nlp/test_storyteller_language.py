@@ -231,3 +231,27 @@ def test_coreference_never_warns():
         "Tom picks up the cup. He drinks from it. The teacher enters. She looks at them."
     )
     assert codes(parse_document(text)) == []
+
+
+def _third_person(verb: str) -> str:
+    if verb.endswith(("s", "sh", "ch", "x", "z", "o")):
+        return verb + "es"
+    if verb.endswith("y") and verb[-2:-1] not in "aeiou":
+        return verb[:-1] + "ies"
+    return verb + "s"
+
+
+def test_at_least_400_distinct_verbs_animate_in_a_sentence():
+    from wana.domain.actions import synonym_index
+
+    words = sorted(
+        {w for w in [*verbs.VERB_ACTIONS, *synonym_index()] if " " not in w and w.isalpha()} - {"be", "get"}
+    )
+    animated = []
+    for w in words:
+        graphs = parse_document(f"Tom {_third_person(w)}.")
+        actions = [a.action for g in graphs for c in g.characters for a in c.actions]
+        if actions and all(actions):
+            animated.append(w)
+    assert len(animated) >= 400
+    assert len(animated) >= 0.98 * len(words), sorted(set(words) - set(animated))
