@@ -1,4 +1,4 @@
-"""Repairs of two parser errors on character sentences, made on the parsed Doc before extraction.
+"""Repairs of parser errors on character sentences, made on the parsed Doc before extraction.
 
 The pipeline is trained mostly on web text, where verbs such as "quarrel", "high-five" or "shake
 hands" after a coordinated subject are rare; it then reads the verb as a noun and hangs the whole
@@ -171,6 +171,32 @@ def _repair_conjoined_verb(sent: SpacySpan) -> bool:
     return changed
 
 
+def _repair_verb_as_subject(sent: SpacySpan) -> bool:
+    """ "The teacher/compound sighs/NOUN/nsubj and shakes/ROOT her head" -> sighs/VERB the root with
+    the teacher as subject and "shakes" its conjunct."""
+    for tok in sent:
+        head = tok.head
+        if tok.dep_ != "nsubj" or tok.pos_ != "NOUN" or head.pos_ != "VERB" or not tok.lower_.endswith("s"):
+            continue
+        people = [c for c in tok.children if c.dep_ == "compound" and c.i < tok.i and _is_person(c)]
+        if not people or not any(c.dep_ == "cc" and tok.i < c.i < head.i for c in head.children):
+            continue
+        lemma = action_reading(tok.lower_)
+        if not lemma:
+            continue
+        tok.pos_, tok.lemma_ = "VERB", lemma
+        tok.dep_, tok.head = head.dep_, (tok if head.dep_ == "ROOT" else head.head)
+        head.dep_, head.head = "conj", tok
+        people[0].dep_, people[0].head = "nsubj", tok
+        return True
+    return False
+
+
 def repair_character_sentence(sent: SpacySpan) -> bool:
     """Repair the tree of one character sentence in place; True when something changed."""
-    return _repair_progressive(sent) | _repair_verbless(sent) | _repair_conjoined_verb(sent)
+    return (
+        _repair_progressive(sent)
+        | _repair_verbless(sent)
+        | _repair_conjoined_verb(sent)
+        | _repair_verb_as_subject(sent)
+    )

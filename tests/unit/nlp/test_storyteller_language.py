@@ -255,3 +255,26 @@ def test_at_least_400_distinct_verbs_animate_in_a_sentence():
             animated.append(w)
     assert len(animated) >= 400
     assert len(animated) >= 0.98 * len(words), sorted(set(words) - set(animated))
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        ("The old man hobbles to the door.", [("man", "limp", "door")]),
+        (
+            "The teacher sighs and shakes her head.",
+            [("teacher", "facepalm", ""), ("teacher", "shake_head", "head")],
+        ),
+        ("The hero sprints to the door and kicks it.", [("hero", "run", "door"), ("hero", "kick", "door")]),
+        ("He stops and stares at his hands.", [("", "idle", ""), ("", "look_at", "hand")]),
+        ("Lear stumbles and falls.", [("Lear", "stumble", ""), ("Lear", "fall_down", "")]),
+        ("Prof. Kim nods.", [("Prof. Kim", "nod", "")]),
+    ],
+)
+def test_a_verb_the_tagger_read_as_a_noun_is_still_the_action(text, expected):
+    from services.nlp.parse import parse_sentence
+
+    graph = parse_sentence(text)
+    assert [
+        (c.name, a.action, a.target or a.destination) for c in graph.characters for a in c.actions
+    ] == expected
