@@ -10,7 +10,8 @@ each element becomes what wana already understands:
   of their cue ("Ada enters"), notes in parentheses dropped;
 - a character cue with dialogue -> one ``Ada says "..."`` sentence per spoken sentence: a talking
   action, and the line itself is the sentence's caption in the render; a parenthetical adverb
-  ``(angrily)`` is the manner ("Ada angrily says ..."), ``(to Tom)`` the one spoken to;
+  ``(angrily)`` is the manner ("Ada angrily says ..."), ``(to Tom)`` the one spoken to, ``(beat)`` a
+  one-second wait;
 - a transition (``CUT TO:``, ``DISSOLVE TO:``) -> a camera command, the next of front/left/right.
 
 It lives in the domain library because both the NLP service (``wana parse``) and the orchestrator
@@ -139,6 +140,8 @@ def to_story(text: str) -> str:
                     listener = _cue_name(m.group(1))
                 elif re.fullmatch(r"[a-z]+ly", inner.lower()):
                     manner = inner.lower()
+                elif inner.lower() in ("beat", "pause", "a beat", "long pause"):
+                    lines.append("wait 2 seconds" if "long" in inner.lower() else "wait 1 second")
                 continue
             lines.extend(_spoken(name, said, manner, listener))
 

@@ -203,6 +203,9 @@ def _action(verb: Token, builder: GraphBuilder) -> tuple[ActionNode, str]:
             obj_words = (event_phrase(primary.tok), *obj_words)
         prep = primary.prep.split()[-1] if primary.prep else ""
         person = bool(primary.character)
+        if primary.body_part and any(c.lower_ == "their" for c in primary.tok.children):
+            # "The students raise their hands": each raises one
+            obj_words = tuple(w for w in obj_words if w == primary.tok.lemma_.lower()) or obj_words
     if instrument and primary is not None and (primary.object_id or primary.word) != instrument:
         inst_arg = next(a for a in obliques if (a.object_id or a.word) == instrument)
         action = lexicon.action_for(

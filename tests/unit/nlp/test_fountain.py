@@ -29,6 +29,8 @@ Where is the milk? I bought it.
 TOM (V.O.)
 (to Ada)
 Dr. Jones drank it.
+(beat)
+Sorry.
 
 CUT TO:
 
@@ -57,9 +59,10 @@ def test_dialogue_is_one_said_line_per_sentence_with_manner_and_listener():
     assert 'Tom says to Ada "Dr Jones drank it"' in lines  # (V.O.) is no part of the name
 
 
-def test_a_transition_is_a_camera_cut():
+def test_a_beat_is_a_wait_and_a_transition_is_a_camera_cut():
     lines = to_story(SCRIPT).splitlines()
-    assert lines[lines.index('Tom says to Ada "Dr Jones drank it"') + 1] == "camera left"
+    at = lines.index('Tom says to Ada "Dr Jones drank it"')
+    assert lines[at + 1 : at + 4] == ["wait 1 second", 'Tom says to Ada "Sorry"', "camera left"]
 
 
 def test_fountain_is_detected_by_extension_or_by_content():
@@ -76,7 +79,13 @@ def test_the_converted_screenplay_parses_without_a_diagnostic():
     graphs = parse_document(to_story(SCRIPT))
     assert [d.message for g in graphs for d in g.diagnostics] == []
     said = [a for g in graphs for c in g.characters for a in c.actions if a.action == "talk"]
-    assert [(a.manner, a.target) for a in said] == [("angrily", ""), ("angrily", ""), ("", "Ada")]
+    assert [(a.manner, a.target) for a in said] == [
+        ("angrily", ""),
+        ("angrily", ""),
+        ("", "Ada"),
+        ("", "Ada"),
+    ]
+    assert [c.seconds for g in graphs for c in g.commands if c.kind == "wait"] == [1.0]
     assert {g.room_type for g in graphs} >= {"kitchen"}
 
 
