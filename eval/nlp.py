@@ -1,9 +1,11 @@
 """Evaluate the NLP stage: SSG extraction against hand-written gold, and the parser on UD English-EWT.
 
 Usage:
-    .venv/bin/python eval/nlp.py [--split test|dev|all] [--quick] [--json PATH] [--verbose]
+    .venv/bin/python eval/nlp.py [--split test|dev|styles|all] [--quick] [--json PATH] [--verbose]
 
-Gold: eval/data/nlp/{dev,test}.txt (format in eval/data/nlp/README.md). Each item (a one- to
+Gold: eval/data/nlp/{dev,test}.txt, and styles.txt (other people's writing: children's stories,
+screenplays, quest text, stage directions; items tagged "K <construction>", scored per construction
+as well). Format in eval/data/nlp/README.md. Each item (a one- to
 five-sentence text) goes through the real pipeline: split -> parse -> resolve. Predictions and gold
 are pooled per item and compared as multisets:
   objects    (category, count)                      attributes (category, knob, value)
@@ -39,11 +41,33 @@ ARG_FIELDS = {"m": "manner", "i": "instrument", "s": "duration_s"}
 KINDS = ("objects", "attributes", "relations", "actions", "action_args", "commands", "social", "rooms")
 
 
+CONSTRUCTIONS = (
+    "relative_clause",
+    "facing",
+    "titled_name",
+    "phrasal_verb",
+    "time_phrase",
+    "quoted_speech",
+    "plural",
+    "new_object",
+    "with_phrase",
+    "common_verb",
+    "body_part",
+)
+
+
 @dataclass
 class Item:
     text: str
     line: int
     gold: dict[str, Counter] = field(default_factory=lambda: {k: Counter() for k in KINDS})
+    constructions: tuple[str, ...] = ()
+    source: str = ""
+
+
+def _name(value: str) -> str:
+    """A name in a gold line: "Aunt_May" -> "Aunt May", "each_other" -> "each other"."""
+    return value.replace("_", " ") if value[:1].isupper() or value == "each_other" else value
 
 
 def _num(value: str) -> str:
@@ -59,7 +83,7 @@ def load_items(path: Path) -> list[Item]:
             continue
         tag, _, rest = line.partition(" ")
         if tag == "T":
-            items.append(Item(text=rest.replace("\\n", "\n"), line=lineno))
+            items.append(Item(text=rest.replace("\\n", "\n"), line=lineno, source=path.stem))
             continue
         if not items:
             raise ValueError(f"{path}:{lineno}: gold line before any 'T' line")
@@ -76,9 +100,14 @@ def load_items(path: Path) -> list[Item]:
             gold["objects"][(category, count)] += 1
         elif tag == "R":
             gold["relations"][tuple(parts[:3])] += 1
+        elif tag == "K":
+            unknown = [c for c in parts if c not in CONSTRUCTIONS]
+            if unknown:
+                raise ValueError(f"{path}:{lineno}: unknown construction {unknown}")
+            items[-1].constructions = tuple(parts)
         elif tag == "A":
-            character, action = parts[0], parts[1]
-            kv = dict(p.split("=", 1) for p in parts[2:])
+            character, action = _name(parts[0]), parts[1]
+            kv = {k: _name(v) for k, v in (p.split("=", 1) for p in parts[2:])}
             gold["actions"][(character, action, kv.get("t") or kv.get("d", ""))] += 1
             for key, name in ARG_FIELDS.items():
                 if key in kv:
@@ -88,7 +117,7 @@ def load_items(path: Path) -> list[Item]:
             seconds = _num(parts[2]) if len(parts) > 2 else "0"
             gold["commands"][(parts[0], "" if parts[1] == "-" else parts[1], seconds)] += 1
         elif tag == "S":
-            gold["social"][(parts[0], parts[1], tuple(sorted(parts[2].split(","))))] += 1
+            gold["social"][(parts[0], parts[1], tuple(sorted(_name(n) for n in parts[2].split(","))))] += 1
         elif tag == "room":
             gold["rooms"][parts[0]] += 1
         else:
@@ -162,6 +191,7 @@ def evaluate_ssg(
     for item in items:
         n_sentences += len(split_sentences(item.text))
         pred = predicted(parse_document(item.text))
+        item_pred[item.line, item.source] = pred
         for k in KINDS:
             # keep multisets per item apart so that equal tuples of two items never cross-match
             gold_all[k].update({(item.line, *_astuple(t)): n for t, n in item.gold[k].items()})
@@ -179,6 +209,31 @@ def evaluate_ssg(
     return table, n_sentences
 
 
+item_pred: dict[tuple[int, str], dict[str, Counter]] = {}  # filled by evaluate_ssg
+
+
+def construction_scores(items: list[Item]) -> dict[str, tuple[int, float, float]]:
+    """Per construction: (items, F1 over every kind pooled, share of items entirely right).
+
+    Run after evaluate_ssg (which keeps each item's prediction)."""
+    out: dict[str, tuple[int, float, float]] = {}
+    for name in CONSTRUCTIONS:
+        chosen = [it for it in items if name in it.constructions]
+        if not chosen:
+            continue
+        gold: Counter = Counter()
+        pred: Counter = Counter()
+        exact = 0
+        for it in chosen:
+            p = item_pred[it.line, it.source]
+            for k in KINDS:
+                gold.update({(it.line, k, *_astuple(t)): n for t, n in it.gold[k].items()})
+                pred.update({(it.line, k, *_astuple(t)): n for t, n in p[k].items()})
+            exact += all(it.gold[k] == p[k] for k in KINDS)
+        out[name] = (len(chosen), prf(gold, pred)[2], exact / len(chosen))
+    return out
+
+
 def _astuple(t: object) -> tuple:
     return t if isinstance(t, tuple) else (t,)
 
@@ -194,7 +249,10 @@ def evaluate_parser(quick: bool) -> dict[str, float] | None:
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument(
-        "--split", choices=("test", "dev", "all"), default="test", help="gold split (default test)"
+        "--split",
+        choices=("test", "dev", "styles", "all"),
+        default="test",
+        help="gold split (default test; styles: other people's writing; all: the three)",
     )
     ap.add_argument("--quick", action="store_true", help="first 300 EWT test sentences only (< 30 s)")
     ap.add_argument(
@@ -202,7 +260,7 @@ def main(argv: list[str] | None = None) -> int:
     )
     ap.add_argument("--verbose", action="store_true", help="print each item's misses and extras")
     args = ap.parse_args(argv)
-    splits = ("dev", "test") if args.split == "all" else (args.split,)
+    splits = ("dev", "test", "styles") if args.split == "all" else (args.split,)
     items = [it for s in splits for it in load_items(DATA / f"{s}.txt")]
     t0 = time.perf_counter()
     table, n_sentences = evaluate_ssg(items, args.verbose)
@@ -212,6 +270,12 @@ def main(argv: list[str] | None = None) -> int:
     for k in KINDS:
         p, r, f, g, n = table[k]
         print(f"{k:<12} {p:6.3f} {r:6.3f} {f:6.3f} {g:5d} {n:5d}")
+    constructions = construction_scores(items)
+    if constructions:
+        print(f"per construction ({args.split}): F1 over all kinds, share of items entirely right")
+        print(f"{'construction':<16} {'items':>5} {'F1':>6} {'exact':>6}")
+        for name, (n, f1, exact) in constructions.items():
+            print(f"{name:<16} {n:5d} {f1:6.3f} {exact:6.3f}")
     parser = evaluate_parser(args.quick)
     if parser is None:
         print(f"parser: {EWT_TEST} absent, POS/UAS/LAS not measured")
@@ -230,6 +294,7 @@ def main(argv: list[str] | None = None) -> int:
             "objects_f1": table["objects"][2],
             "relations_f1": table["relations"][2],
             "actions_f1": table["actions"][2],
+            "constructions_f1": {name: v[1] for name, v in constructions.items()},
             "uas": parser["uas"] if parser else None,
             "las": parser["las"] if parser else None,
             "pos": parser["pos"] if parser else None,

@@ -14,10 +14,13 @@ Python API (in-process, pure, cached):
     services.nlp.resolve.resolve(graphs, offsets=None) -> list[SentenceGraph]
     services.nlp.parse.parse_document(text) -> list[SentenceGraph]
 
-Modules: segment (sentence splitting), commands (camera/weather/wait/speed lines), pipeline (the
+Modules: segment (sentence splitting, quoted speech kept whole), commands (camera/weather/wait/speed lines), pipeline (the
 trained spaCy pipeline, lazily loaded), lemmatizer, lexicon (words -> catalog categories and action
 names), compounds (glued words), mentions (noun phrases -> objects/characters), scene (relations),
 repair (two parser errors on character sentences), arguments (a verb's objects and obliques),
-actions (characters, actions, social), builder, parse, resolve, errors (diagnostic codes), cli.
+actions (characters, actions, social), verbs (the verbs people write -> clips, and the verbs no clip
+can show), timephrase ("the next morning", "after a while"), suggest ("did you mean ..."), builder,
+parse, resolve (names, pronouns, one object node per object), errors (diagnostic codes), cli (which
+also reads Fountain screenplays through wana.screenplay).
 The pipeline is rebuilt by ``scripts/train_nlp.py``.
 """

@@ -16,8 +16,9 @@ from spacy.tokens import Span as SpacySpan
 from spacy.tokens import Token
 
 from proto.ssg import ActionNode
-from services.nlp import lexicon
+from services.nlp import lexicon, verbs
 from services.nlp.arguments import (
+    STATE_PARTICLES,
     Argument,
     arguments,
     case_of,
@@ -28,8 +29,9 @@ from services.nlp.arguments import (
     verb_lemma,
 )
 from services.nlp.builder import GraphBuilder
-from services.nlp.mentions import CharacterMention, character_mention
+from services.nlp.mentions import CharacterMention, character_mention, is_title
 from services.nlp.scene import SUBJECT_DEPS
+from services.nlp.suggest import did_you_mean
 
 CLAUSE_DEPS = frozenset({"ROOT", "conj", "advcl", "xcomp", "ccomp", "parataxis"})
 LINKING_VERBS = frozenset(
@@ -41,6 +43,17 @@ def _subject_tokens(verb: Token) -> list[Token]:
     glued = _glued_subject(verb)
     if glued is not None:
         return [glued]
+    if verb.pos_ == "VERB" and not any(c.dep_ in SUBJECT_DEPS for c in verb.children):
+        # "Ada/compound crosses her arms", "The hero/compound nods": who acts, hung on the verb
+        lead = [
+            c
+            for c in verb.children
+            if c.dep_ in ("compound", "flat", "nmod:desc", "dep")
+            and c.i < verb.i
+            and c.pos_ in ("PROPN", "NOUN")
+        ]
+        if lead and character_mention(lead[0]) is not None:
+            return _with_conj_people(lead[0])
     v = verb
     climbed_from_conj = False
     for _ in range(6):
@@ -95,8 +108,8 @@ def _manner_and_direction(verb: Token) -> tuple[str, str]:
 def _clause_verbs(sent: SpacySpan) -> list[Token]:
     verbs: list[Token] = []
     for tok in sent:
-        if tok.dep_ not in CLAUSE_DEPS:
-            continue
+        if tok.dep_ not in CLAUSE_DEPS and not (tok.dep_ == "appos" and is_title(tok.head)):
+            continue  # "Prof./ROOT Kim nods/appos": the verb the parser hung under a title
         if tok.pos_ != "VERB" and not _verb_by_position(tok):
             continue
         if tok.dep_ == "xcomp" and tok.head.lemma_.lower() not in lexicon.ASPECT_VERBS:
@@ -141,7 +154,9 @@ def _action(verb: Token, builder: GraphBuilder) -> tuple[ActionNode, str]:
     """The ActionNode of a verb clause and the verb its social meaning is read from ("hug" of "gives
     Mary a hug"; the verb's lemma otherwise)."""
     lemma = verb_lemma(verb)
-    particle = next((c.lower_ for c in verb.children if c.dep_ == "compound:prt"), "")
+    particle = next(
+        (c.lower_ for c in verb.children if c.dep_ == "compound:prt" or c.lower_ in STATE_PARTICLES), ""
+    )
     manner, direction = _manner_and_direction(verb)
     if particle in lexicon.DIRECTION_ADVERBS and particle in ("left", "right", "around", "back"):
         direction = direction or lexicon.DIRECTION_ADVERBS[particle]
@@ -188,6 +203,9 @@ def _action(verb: Token, builder: GraphBuilder) -> tuple[ActionNode, str]:
             obj_words = (event_phrase(primary.tok), *obj_words)
         prep = primary.prep.split()[-1] if primary.prep else ""
         person = bool(primary.character)
+        if primary.body_part and any(c.lower_ == "their" for c in primary.tok.children):
+            # "The students raise their hands": each raises one
+            obj_words = tuple(w for w in obj_words if w == primary.tok.lemma_.lower()) or obj_words
     if instrument and primary is not None and (primary.object_id or primary.word) != instrument:
         inst_arg = next(a for a in obliques if (a.object_id or a.word) == instrument)
         action = lexicon.action_for(
@@ -203,7 +221,7 @@ def _action(verb: Token, builder: GraphBuilder) -> tuple[ActionNode, str]:
         # the character (if any) its target
         from_event = event_action(primary.tok)
         if from_event:
-            action = action or from_event
+            action = from_event
             social_verb = primary.word
             people = [a for a in objects + obliques if a.character]
             target = people[0].character if people else ""
@@ -214,9 +232,18 @@ def _action(verb: Token, builder: GraphBuilder) -> tuple[ActionNode, str]:
     span_end = end_tok.idx + len(end_tok.text)
     if not action:
         shown = verb.text + (f" {particle}" if particle else "")
-        builder.diagnose(
-            "W102", f"'{shown}' is not an action in the motion library", verb.idx, verb.idx + len(verb.text)
-        )
+        reason = verbs.not_animatable_reason(lemma)
+        if reason:
+            builder.diagnose(
+                "W113", f"'{shown}' is {reason}, not a movement", verb.idx, verb.idx + len(verb.text)
+            )
+        else:
+            builder.diagnose(
+                "W102",
+                f"'{shown}' is not an action in the motion library{did_you_mean(verb.text, 'action')}",
+                verb.idx,
+                verb.idx + len(verb.text),
+            )
     node = ActionNode(
         verb=lemma + (f" {particle}" if particle else ""),
         action=action,
@@ -292,6 +319,7 @@ def extract_actions(sent: SpacySpan, builder: GraphBuilder) -> int:
     for verb in _clause_verbs(sent):
         subjects = _subject_tokens(verb)
         chars = [c for c in (character_of(s, builder) for s in subjects) if c is not None]
+        chars = _distinct_names(chars)  # "Mr" and "Smith" both read as the subject "Mr Smith"
         if subjects and not chars:
             continue  # an object does something ("the lamp hangs"): not a character action
         action, social_verb = _action(verb, builder)
@@ -302,12 +330,23 @@ def extract_actions(sent: SpacySpan, builder: GraphBuilder) -> int:
     if count == 0 and not social:
         verbless = not any(t.pos_ in ("VERB", "AUX") for t in sent)
         if verbless:
-            builder.diagnose("W103", f"'{sent.text}'", sent.start_char, sent.end_char)
+            hint = did_you_mean(sent.text.strip(" .!?$"), "command")
+            builder.diagnose("W103", f"'{sent.text}'{hint}", sent.start_char, sent.end_char)
     return count
 
 
+def _distinct_names(chars: list[CharacterMention]) -> list[CharacterMention]:
+    out: list[CharacterMention] = []
+    for c in chars:
+        if not c.name or all(o.name != c.name for o in out):
+            out.append(c)
+    return out
+
+
 def _is_plural(cm: CharacterMention) -> bool:
-    return cm.pronoun == "they" or (not cm.name and cm.head.tag_ in ("NNS", "NNPS"))
+    if cm.pronoun == "they" or (not cm.name and cm.head.tag_ in ("NNS", "NNPS")):
+        return True
+    return cm.name in lexicon.PERSON_NOUNS and cm.head.lower_ != cm.name  # "the children" (name "child")
 
 
 def _add_action(
@@ -338,7 +377,9 @@ def _add_action(
             continue
         node.actions.append(action)
         target = action.target
-        target_is_person = bool(target) and (target[0].isupper() or target.lower() in lexicon.PRONOUNS)
+        target_is_person = bool(target) and (
+            target[0].isupper() or target.lower() in lexicon.PRONOUNS or target in lexicon.PERSON_NOUNS
+        )
         if social and target_is_person:
             builder.add_social("emotion", [name, target], label, start, end)
     if reciprocal and social:

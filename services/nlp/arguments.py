@@ -16,8 +16,17 @@ from services.nlp import lexicon
 from services.nlp.builder import GraphBuilder
 from services.nlp.commands import NUMBER_WORDS, UNIT_SECONDS
 from services.nlp.lemmatizer import rule_lemma
-from services.nlp.mentions import CharacterMention, character_mention, is_unknown_object_word, object_mention
+from services.nlp.mentions import (
+    CharacterMention,
+    character_mention,
+    is_speech,
+    is_title,
+    is_unknown_object_word,
+    object_mention,
+)
 from services.nlp.scene import _mention
+from services.nlp.suggest import did_you_mean
+from services.nlp.timephrase import time_light
 
 TIME_UNITS = frozenset(UNIT_SECONDS)
 
@@ -39,6 +48,9 @@ def verb_lemma(tok: Token) -> str:
     return rule_lemma(tok.text, "VERB", lexicon.verb_words()).lower()
 
 
+STATE_PARTICLES = frozenset({"asleep", "awake"})  # "falls asleep", "stays awake": read as particles
+
+
 def duration_of(tok: Token) -> float | None:
     """Seconds of "for 5 seconds" / "2 minutes" / "a second" headed by the unit noun ``tok``."""
     unit = tok.lower_
@@ -58,7 +70,7 @@ def duration_of(tok: Token) -> float | None:
 
 def character_of(tok: Token, builder: GraphBuilder) -> CharacterMention | None:
     cm = character_mention(tok)
-    if cm is None and tok.pos_ == "PROPN" and object_mention(tok) is None:
+    if cm is None and tok.pos_ == "PROPN" and object_mention(tok) is None and not is_title(tok):
         cm = CharacterMention(head=tok, name=tok.text, mention=tok.text)
     return cm
 
@@ -107,7 +119,10 @@ def _argument(tok: Token, prep: str, builder: GraphBuilder, report_unknown: bool
     arg.word = tok.lemma_.lower()
     if report_unknown and is_unknown_object_word(tok):
         builder.diagnose(
-            "W101", f"'{tok.text}' is not in the object catalog", tok.idx, tok.idx + len(tok.text)
+            "W101",
+            f"'{tok.text}' is not in the object catalog{did_you_mean(tok.text, 'object')}",
+            tok.idx,
+            tok.idx + len(tok.text),
         )
     return arg
 
@@ -115,7 +130,12 @@ def _argument(tok: Token, prep: str, builder: GraphBuilder, report_unknown: bool
 def reciprocal_phrase(tok: Token) -> bool:
     """ "each other" / "one another" headed by ``tok``."""
     words = [tok.lower_, *(c.lower_ for c in tok.children if c.dep_ in ("fixed", "amod", "det", "nummod"))]
-    return f"{words[0]} {words[1]}" in lexicon.RECIPROCAL_PHRASES if len(words) >= 2 else False
+    if len(words) < 2:
+        return False
+    # "each other" is headed by "each" (fixed "other") or by "other" (det "each")
+    return f"{words[0]} {words[1]}" in lexicon.RECIPROCAL_PHRASES or f"{words[1]} {words[0]}" in (
+        lexicon.RECIPROCAL_PHRASES
+    )
 
 
 def event_phrase(tok: Token) -> str:
@@ -143,10 +163,25 @@ def arguments(verb: Token, builder: GraphBuilder) -> tuple[list[Argument], list[
     for c in verb.children:
         if c.pos_ == "ADV" and c.lower_.endswith("ly"):
             continue  # a manner the parser attached as an argument
+        if c.dep_ != "nsubj" and duration_of(c) is None and (lit := time_light(c)) is not None:
+            if lit:  # "that night": the light of the scene, as the "night" command would set it
+                builder.add_command("weather", lit, c.idx, c.idx + len(c.text))
+            continue  # "the next morning", "after a while": when, not what
         if c.lower_ in lexicon.DIRECTION_ADVERBS and not any(g.dep_ in ("det", "case") for g in c.children):
             continue  # "turns right": a direction, read by _manner_and_direction
         if c.lower_ in lexicon.REFLEXIVE_PRONOUNS:
             continue  # "introduces himself to Mary": the subject, not a target
+        if c.lower_ in STATE_PARTICLES:
+            continue  # "falls asleep": part of the verb (see actions._action)
+        if is_speech(c) or any(is_speech(g) for g in c.children if g.dep_ in ("compound", "amod")):
+            # 'says "Sorry." to Ada': the words said are the caption, not a target; "to Ada" may hang
+            # under them
+            obliques += [
+                _argument(g, case_of(g), builder, report_unknown=True)
+                for g in c.children
+                if g.dep_ in ("nmod", "obl", "compound") and any(h.dep_ == "case" for h in g.children)
+            ]
+            continue
         if (
             c.dep_ in ("obj", "iobj", "dobj")
             or (c.dep_ == "advmod" and c.pos_ in ("NOUN", "PROPN"))

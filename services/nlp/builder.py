@@ -125,6 +125,11 @@ class GraphBuilder:
         if node not in self.social:
             self.social.append(node)
 
+    def add_command(self, kind: str, value: str, start: int, end: int) -> None:
+        """A command a sentence implies ("that night" -> weather night); one of each kind."""
+        if not any(c.kind == kind for c in self.commands):
+            self.commands.append(Command(kind=kind, value=value, span=self.span(start, end)))  # type: ignore[arg-type]
+
     # --- diagnostics -------------------------------------------------------------------------------------
 
     def diagnose(self, code: str, detail: str, start: int, end: int) -> None:

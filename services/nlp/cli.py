@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+from pathlib import Path
 
 import msgspec
 
@@ -26,7 +27,16 @@ def main(argv: list[str] | None = None) -> int:
         "in the input text). Sentences ending in '$' describe the scene.",
         epilog="example: wana parse 'A laptop is on the desk$. Eve sits on the chair.'",
     )
-    ap.add_argument("text", help="the text to parse, or '-' to read it from standard input")
+    ap.add_argument(
+        "text",
+        help="the text to parse, '-' to read it from standard input, or a file (a .fountain screenplay "
+        "or a story)",
+    )
+    ap.add_argument(
+        "--show-story",
+        action="store_true",
+        help="print the story a Fountain screenplay becomes instead of its scene graphs",
+    )
     ap.add_argument("--compact", action="store_true", help="one line of JSON instead of indented output")
     ap.add_argument(
         "--strict", action="store_true", help="exit with status 1 when any diagnostic is an error"
@@ -37,6 +47,17 @@ def main(argv: list[str] | None = None) -> int:
         text = raw.decode("utf-8", errors="replace")
     else:
         text = args.text
+    path = ""
+    if args.text != "-" and "\n" not in args.text and len(args.text) < 4096 and Path(args.text).is_file():
+        path = args.text
+        text = Path(path).read_text(encoding="utf-8", errors="replace")
+    from wana.screenplay import looks_like_fountain, to_story
+
+    if looks_like_fountain(text, path):
+        text = to_story(text)  # spans are in the converted story (see --show-story)
+        if args.show_story:
+            sys.stdout.write(text)
+            return 0
     entries = _entries(text)
     out = msgspec.json.encode(entries)
     if not args.compact:

@@ -22,6 +22,7 @@ DIAGNOSTICS: dict[str, tuple[Severity, str]] = {
     "E110": ("error", "binary or control characters: the sentence was skipped"),
     "I111": ("info", "empty sentence"),
     "E112": ("error", "the sentence could not be parsed"),
+    "W113": ("warning", "verb with nothing to animate"),
 }
 
 MAX_SENTENCE_CHARS = 1000  # longer sentences are cut here before parsing (W108)

@@ -11,6 +11,7 @@ from __future__ import annotations
 import functools
 import re
 
+from services.nlp import verbs
 from wana.assets import vocabulary
 
 # --- objects ---------------------------------------------------------------------------------------
@@ -20,12 +21,19 @@ PERSON_NOUNS = frozenset(
     "worker carpenter boxer singer dancer musician pianist guitarist drummer artist painter player waiter "
     "waitress officer policeman driver friend mother father mom dad brother sister son daughter grandma "
     "grandpa wife husband boss manager colleague customer visitor guest stranger athlete coach people men "
-    "women children kids girls boys someone somebody everyone everybody".split()
+    "women children kids girls boys someone somebody everyone everybody hero heroine knight wizard witch "
+    "king queen prince princess soldier guard detective villain thief farmer sailor pirate priest monk "
+    "servant maid butler clerk receptionist librarian scientist professor janitor cleaner mayor judge "
+    "lawyer shopkeeper baker grandmother grandfather granny uncle aunt parent parents teenager "
+    "traveller traveler stranger giant dwarf elf merchant innkeeper bartender actor actress audience "
+    "crowd duke duchess lord lady servant messenger twin twins".split()
 )
 NON_OBJECT_NOUNS = frozenset(
     "room floor wall ceiling corner middle center centre side left right front back top bottom end time "
     "second seconds minute minutes moment hour hours day night way place area space home house building "
-    "street garden yard outside inside ground music song".split()
+    "street garden yard outside inside ground music song morning evening afternoon noon midnight dawn "
+    "dusk sunrise sunset twilight while week weekend month year today tomorrow yesterday meantime "
+    "instant daytime nighttime".split()
 )
 COUNT_WORDS = {
     "one": 1,
@@ -70,6 +78,7 @@ def attribute_of(word: str) -> tuple[str, str] | None:
     return vocabulary.normalize_attribute(word.lower())
 
 
+@functools.lru_cache(maxsize=65536)
 def room_of(phrase: str) -> str | None:
     """Room type of a phrase ("working shop" -> "workshop"), or None."""
     phrase = phrase.strip().lower()
@@ -171,14 +180,31 @@ PRONOUNS = {
 OBJECT_PRONOUNS = frozenset({"it", "this", "that", "them"})
 FEMALE_NAMES = frozenset(
     "eve mary alice anna lucy kate emma lily sara sarah nina julia jane emily olivia sophia mia amy laura "
-    "linda susan lisa maria anne ann helen grace chloe zoe ella ava rose ruth clara lena".split()
+    "linda susan lisa maria anne ann helen grace chloe zoe ella ava rose ruth clara lena ada eva ivy iris "
+    "nora maya leah hannah sophie amelia isla freya priya aisha fatima mei yuki elena marta ines wendy "
+    "alice dorothy gretel goldilocks cinderella belle jasmine elsa anna wanda may".split()
 )
 MALE_NAMES = frozenset(
     "tom john bob peter sam david jack mike ben paul james michael mark luke adam alex max leo tim chris dan "
-    "daniel joe george harry henry nick oscar ryan steve will bill fred frank ken carl eric jim".split()
+    "daniel joe george harry henry nick oscar ryan steve will bill fred frank ken carl eric jim finn "
+    "hugo theo noah liam ethan owen kai omar raj ivan jamal jose luis carlos pedro hans hansel jack "
+    "aladdin peter arthur merlin robin rick walter hank".split()
 )
-FEMALE_NOUNS = frozenset("woman girl lady mother mom sister daughter grandma wife waitress".split())
-MALE_NOUNS = frozenset("man boy guy gentleman father dad brother son grandpa husband policeman".split())
+FEMALE_NOUNS = frozenset(
+    "woman girl lady mother mom sister daughter grandma granny wife waitress aunt auntie ms mrs miss "
+    "madam madame queen princess nana witch heroine grandmother maid".split()
+)
+MALE_NOUNS = frozenset(
+    "man boy guy gentleman father dad brother son grandpa husband policeman uncle mr mister sir king "
+    "prince lord knight wizard grandfather butler".split()
+)
+# Words written before a name that make one character with it ("Dr. Jones", "Uncle Bob", "Ms Lee").
+TITLES = frozenset(
+    "mr mrs ms miss mx dr doctor prof professor uncle aunt auntie grandma granny grandpa grandad nana "
+    "sir madam madame lady lord captain capt officer detective det inspector sergeant sgt coach nurse "
+    "mister master king queen prince princess father brother sister mother saint st judge mayor "
+    "agent general colonel major lieutenant lt chef".split()
+)
 
 MANNER_STOP = frozenset(
     "then now first finally again also still just later soon already next there here away back home in out "
@@ -327,6 +353,17 @@ ACTION_OVERRIDES: dict[tuple[str, str], str] = {
     ("open", "door"): "open_door",
     ("close", "door"): "close_door",
     ("open", "drawer"): "open_drawer",
+    ("open", "chest"): "open_drawer",
+    ("open", "cabinet"): "open_drawer",
+    ("open", "kitchen_cabinet"): "open_drawer",
+    ("open", "wardrobe"): "open_drawer",
+    ("open", "dresser"): "open_drawer",
+    ("open", "box"): "open_drawer",
+    ("open", "locker"): "open_drawer",
+    ("open", "filing_cabinet"): "open_drawer",
+    ("close", "window"): "close_door",
+    ("open", "window"): "open_door",
+    ("pull", "chair"): "pull",
     ("write", "blackboard"): "write_on_blackboard",
     ("write", "whiteboard"): "write_on_blackboard",
     ("draw", "whiteboard"): "write_on_blackboard",
@@ -478,6 +515,7 @@ def verb_words() -> frozenset[str]:
     words = {n.split("_")[0] for n in names} | {p.split()[0] for p in synonyms if p.split()}
     words |= {v for v, _ in ACTION_OVERRIDES} | set(VERB_OVERRIDES) | SOCIAL_VERBS | RECIPROCAL_VERBS
     words |= set(RELATION_VERBS) | LIGHT_VERBS | ASPECT_VERBS
+    words |= {p.split()[0] for p in verbs.VERB_ACTIONS} | set(verbs.NOT_ANIMATABLE)
     return frozenset(w for w in words if w.isalpha() or "-" in w)
 
 
@@ -526,8 +564,11 @@ def action_for(
         specific += [known(f"{verb}_{direction}"), synonyms.get(f"{verb} {direction}")]
     if particle:
         specific += [known(f"{verb}_{particle}"), synonyms.get(f"{verb} {particle}")]
+    # "raises both hands" is not "raises a hand": the plural body part as written first
+    specific += [verbs.BODY_PART_ACTIONS.get((verb, o)) for o in objs if o.endswith("s")]
     for o in objs:
         specific.append(ACTION_OVERRIDES.get((verb, o)))
+        specific.append(verbs.BODY_PART_ACTIONS.get((verb, o)))
         specific += [
             known(f"{verb}_{o}"),
             known(f"{verb}_{o}s"),
@@ -542,6 +583,10 @@ def action_for(
         ]
     if prep:
         specific += [known(f"{verb}_{prep}"), synonyms.get(f"{verb} {prep}")]
+    if particle:
+        specific.append(verbs.VERB_ACTIONS.get(f"{verb} {particle}"))
+    if prep:
+        specific.append(verbs.VERB_ACTIONS.get(f"{verb} {prep}"))
     for c in specific:
         if c:
             return c
@@ -554,7 +599,7 @@ def action_for(
                 return hit
     if verb in VERB_OVERRIDES:
         return VERB_OVERRIDES[verb]
-    return known(verb) or synonyms.get(verb) or ""
+    return known(verb) or synonyms.get(verb) or verbs.VERB_ACTIONS.get(verb, "")
 
 
 def is_known_verb(verb: str) -> bool:

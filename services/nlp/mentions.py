@@ -177,6 +177,8 @@ def _glued_attributes(parts: list[str], attributes: dict[str, str]) -> None:
 
 def object_mention(head: Token) -> ObjectMention | None:
     """The object a noun token names, with its attributes and count, or None."""
+    if is_speech(head):
+        return None
     if head.text[:1].isupper() and (head.lower_ in lexicon.FEMALE_NAMES or head.lower_ in lexicon.MALE_NAMES):
         return None  # "Mike" is a person here, not a microphone
     if head.lower_ in lexicon.PERSON_NOUNS or head.lemma_.lower() in lexicon.PERSON_NOUNS:
@@ -255,7 +257,7 @@ def quantity_target(head: Token) -> tuple[Token, int] | None:
 
 def is_unknown_object_word(head: Token) -> bool:
     """A common noun in an object slot that names no category, person, room or place (W101)."""
-    if head.pos_ not in ("NOUN", "X") or head.lower_ in lexicon.OBJECT_PRONOUNS:
+    if head.pos_ not in ("NOUN", "X") or head.lower_ in lexicon.OBJECT_PRONOUNS or is_speech(head):
         return False
     lemma = head.lemma_.lower()
     if (
@@ -271,9 +273,56 @@ def is_unknown_object_word(head: Token) -> bool:
     return object_mention(head) is None
 
 
+def is_speech(tok: Token) -> bool:
+    """The stand-in of quoted speech (services.nlp.parse masks what characters say)."""
+    text = tok.text
+    return (text.startswith("hello") and set(text[5:]) <= {"-"}) or (
+        text.startswith("hi") and set(text[2:]) <= {"-"}
+    )
+
+
+def is_title(tok: Token) -> bool:
+    """A capitalised title right before a capitalised name ("Dr." of "Dr. Jones", "Uncle" of "Uncle
+    Bob"): part of that name, never a character, verb or sentence of its own."""
+    if not tok.text[:1].isupper() or tok.lower_.rstrip(".") not in lexicon.TITLES:
+        return False
+    doc = tok.doc
+    nxt = doc[tok.i + 1] if tok.i + 1 < len(doc) else None
+    if nxt is None or not nxt.text[:1].isupper() or not nxt.is_alpha:
+        return False
+    return is_title(nxt) or exact_category([nxt.lower_]) is None
+
+
+def title_start(tok: Token) -> int:
+    """Index of the first title token written right before ``tok`` ("Dr." in "Dr. Jones"), or tok.i."""
+    i = tok.i
+    while i > 0 and is_title(tok.doc[i - 1]):
+        i -= 1
+    return i
+
+
+def _titled_name(tok: Token) -> CharacterMention | None:
+    """ "Dr. Jones" as one character, whichever of its tokens the parser made the head; None for a title
+    that only modifies its name ("Aunt" beside "May": the name's token carries the character)."""
+    doc = tok.doc
+    first = title_start(tok)
+    name_tok = tok
+    while is_title(name_tok):
+        name_tok = doc[name_tok.i + 1]
+    if name_tok.i != tok.i and name_tok.head.i != tok.i:
+        return None
+    last = name_tok.i
+    while last + 1 < len(doc) and doc[last + 1].dep_ == "flat" and doc[last + 1].text[:1].isupper():
+        last += 1
+    name = doc[first : last + 1].text
+    return CharacterMention(head=tok, name=name, mention=name)
+
+
 def character_mention(tok: Token) -> CharacterMention | None:
     """A character named by a token: a proper name, a person noun or a personal pronoun."""
     lower = tok.lower_
+    if is_title(tok) or title_start(tok) < tok.i:
+        return _titled_name(tok)
     if tok.pos_ == "PRON" or lower in lexicon.PRONOUNS:
         pron = lexicon.PRONOUNS.get(lower)
         if pron is None:

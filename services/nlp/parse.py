@@ -16,6 +16,7 @@ import unicodedata
 from collections import OrderedDict
 
 import msgspec
+from spacy.language import Language
 from spacy.tokens import Doc
 
 from proto.common import Span
@@ -24,10 +25,12 @@ from services.nlp.actions import extract_actions
 from services.nlp.builder import GraphBuilder
 from services.nlp.commands import looks_like_command, parse_command
 from services.nlp.errors import MAX_SENTENCE_CHARS, diagnostic
+from services.nlp.lexicon import TITLES
 from services.nlp.repair import repair_character_sentence
 from services.nlp.scene import extract_scene, is_scene_like
 from services.nlp.segment import kind_hint as _kind_hint
-from services.nlp.segment import split_sentences
+from services.nlp.segment import quote_spans, split_sentences
+from services.nlp.suggest import did_you_mean
 
 log = logging.getLogger(__name__)
 _WORD = re.compile(r"[^\W\d_]+", re.UNICODE)
@@ -75,9 +78,23 @@ def _inflected_verb(word: str) -> bool:
     return any(c in known for c in verb_lemma_candidates(word))
 
 
+def _masked_speech(text: str) -> str:
+    """Quoted speech replaced by a same-length stand-in ("hello" and dashes): what a character says is
+    the caption, not objects or actions of the story ('Tom says "I drank it."' is one talking action)."""
+    out = text
+    for start, end in quote_spans(text):
+        n = end - start - 2
+        if n >= 5:
+            out = out[: start + 1] + "hello" + "-" * (n - 5) + out[end - 1 :]
+        elif n > 0:
+            out = out[: start + 1] + "hi".ljust(n, "-")[:n] + out[end - 1 :]
+    return out
+
+
 def _parser_text(text: str) -> str:
-    """The sentence as the parser reads it: a terminal "$" becomes "." (same length, same offsets)."""
-    chars = list(text)
+    """The sentence as the parser reads it: a terminal "$" becomes "." and quoted speech is masked
+    (same length, same offsets)."""
+    chars = list(_masked_speech(text))
     i = len(chars) - 1
     while i >= 0 and (chars[i] in ".!?$ " or chars[i] in "\"')"):
         if chars[i] == "$":
@@ -161,7 +178,7 @@ def parse_sentences(items: list[tuple[str, str, int, str]]) -> list[SentenceGrap
         from services.nlp.pipeline import get_nlp
 
         nlp = get_nlp()
-        docs = nlp.pipe([parser_text for _, parser_text, _, _ in todo], batch_size=64)
+        docs = nlp.pipe([_titled_doc(nlp, parser_text) for _, parser_text, _, _ in todo], batch_size=64)
         for (key, _, kind, diagnostics), doc in zip(todo, docs, strict=True):
             try:
                 graph = _extract(doc, key[0], kind, diagnostics)
@@ -174,6 +191,20 @@ def parse_sentences(items: list[tuple[str, str, int, str]]) -> list[SentenceGrap
         msgspec.structs.replace(shift_spans(base[key], offset), sentence_id=sid)
         for key, (_, sid, offset, _) in zip(keys, items, strict=True)
     ]
+
+
+def _titled_doc(nlp: Language, text: str) -> Doc:
+    """The tokenized sentence with no sentence break inside a titled name: the parser would otherwise end
+    a sentence at the abbreviation's period ("Prof. | Kim waves")."""
+    doc = nlp.make_doc(text)
+    for tok in doc[:-1]:
+        if tok.text[:1].isupper() and tok.lower_.rstrip(".") in TITLES and doc[tok.i + 1].text[:1].isupper():
+            doc[tok.i + 1].is_sent_start = False
+    for start, end in quote_spans(text):  # nor inside (or at) quoted speech
+        for tok in doc:
+            if start <= tok.idx < end and tok.i > 0:
+                tok.is_sent_start = False
+    return doc
 
 
 def _failed(text: str, exc: Exception) -> SentenceGraph:
@@ -194,7 +225,17 @@ def _prepare(text: str, kind_hint: str) -> SentenceGraph | tuple[str, str, list[
         return _graph("", text, "command", [], commands=[command])
     if kind == "command" or looks_like_command(stripped):
         return _graph(
-            "", text, "command", [diagnostic("W104", f"'{stripped[:60]}'", lead, lead + len(stripped))]
+            "",
+            text,
+            "command",
+            [
+                diagnostic(
+                    "W104",
+                    f"'{stripped[:60]}'{did_you_mean(stripped[:60], 'command')}",
+                    lead,
+                    lead + len(stripped),
+                )
+            ],
         )
     diagnostics: list[Diagnostic] = []
     body = text

@@ -1,4 +1,4 @@
-"""Repairs of two parser errors on character sentences, made on the parsed Doc before extraction.
+"""Repairs of parser errors on character sentences, made on the parsed Doc before extraction.
 
 The pipeline is trained mostly on web text, where verbs such as "quarrel", "high-five" or "shake
 hands" after a coordinated subject are rare; it then reads the verb as a noun and hangs the whole
@@ -17,6 +17,7 @@ from spacy.tokens import Token
 
 from services.nlp import lexicon
 from services.nlp.lemmatizer import verb_lemma_candidates
+from services.nlp.mentions import exact_category
 
 _NOT_VERBS = frozenset({"PUNCT", "CCONJ", "DET", "ADP", "PRON", "PART", "SCONJ", "AUX", "SYM"})
 
@@ -37,20 +38,42 @@ def _is_person(tok: Token) -> bool:
         return True
     if tok.pos_ == "PROPN" and lower[:1].isalpha() and tok.text[:1].isupper():
         return not action_reading(lower)  # "High-five Mary": not a name
+    if tok.text[:1].isupper() and (lower in lexicon.FEMALE_NAMES or lower in lexicon.MALE_NAMES):
+        return True  # "Ada/NOUN thanks her"
     return tok.lemma_.lower() in lexicon.PERSON_NOUNS or lower in lexicon.PERSON_NOUNS
+
+
+def _unknown_name(tok: Token) -> bool:
+    """A capitalised first word that names nothing the system knows, right before a word with a verb
+    reading: a name the tagger never saw ("Puck/ADJ leaps", "Lear/NOUN stumbles")."""
+    if tok.i != tok.sent.start or not tok.text[:1].isupper() or not tok.is_alpha:
+        return False
+    if tok.pos_ not in ("NOUN", "PROPN", "ADJ", "X") or tok.i + 1 >= tok.sent.end:
+        return False
+    lower = tok.lower_
+    if exact_category([lower]) is not None or lexicon.room_of(lower) or action_reading(lower):
+        return False
+    nxt = tok.doc[tok.i + 1]
+    return nxt.lower_.endswith("s") and bool(action_reading(nxt.lower_))
 
 
 def _subject_group(sent: SpacySpan) -> list[Token]:
     """Leading tokens that name who acts: "Tom and Mary", "The man and the woman", "They"."""
     group: list[Token] = []
     for tok in sent:
-        if _is_person(tok) or (group and tok.pos_ in ("CCONJ", "PUNCT") and tok.text in ("and", ",", "&")):
+        if (
+            _is_person(tok)
+            or _unknown_name(tok)
+            or (group and tok.pos_ in ("CCONJ", "PUNCT") and tok.text in ("and", ",", "&"))
+        ):
             group.append(tok)
         elif tok.pos_ == "DET" and tok.lower_ in ("the", "a", "an", "both"):
             group.append(tok)
+        elif group and tok.pos_ == "ADJ" and group[-1].pos_ in ("DET", "ADJ"):
+            group.append(tok)  # "The old man hobbles/NOUN"
         else:
             break
-    while group and not _is_person(group[-1]):
+    while group and not (_is_person(group[-1]) or _unknown_name(group[-1])):
         group.pop()
     return group
 
@@ -58,18 +81,21 @@ def _subject_group(sent: SpacySpan) -> list[Token]:
 def _repair_verbless(sent: SpacySpan) -> bool:
     """ "Tom and Mary quarrel/NOUN." -> quarrel/VERB the root with Tom as subject and what follows as
     its arguments; only when the sentence has no verb and the word after the subject names an action."""
-    if any(t.pos_ in ("VERB", "AUX") for t in sent):
-        return False
     group = _subject_group(sent)
     if not group or group[-1].i + 1 >= sent.end:
         return False
     verb = sent.doc[group[-1].i + 1]
+    if any(t.pos_ in ("VERB", "AUX") for t in sent) and not (verb.i == sent.root.i and verb.pos_ == "NOUN"):
+        return False  # a verb elsewhere is the root; but "The hero sprints/NOUN/ROOT ... and kicks" is not
     if verb.pos_ in _NOT_VERBS or verb.is_punct:
         return False
     lemma = action_reading(verb.lower_)
     if not lemma:
         return False
-    people = [t for t in group if _is_person(t)]
+    people = [t for t in group if _is_person(t) or _unknown_name(t)]
+    for t in people:
+        if _unknown_name(t):
+            t.pos_ = "PROPN"  # the name it is
     subject = people[0]
     in_group = {t.i for t in group}
     after = range(verb.i + 1, sent.end)
@@ -122,6 +148,55 @@ def _repair_progressive(sent: SpacySpan) -> bool:
     return changed
 
 
+def _repair_conjoined_verb(sent: SpacySpan) -> bool:
+    """ "He stops and stares/NOUN/obj at his hands" -> stares/VERB a conjunct of "stops"."""
+    changed = False
+    for tok in sent:
+        if tok.dep_ != "obj" or tok.pos_ != "NOUN" or tok.head.pos_ != "VERB" or not tok.lower_.endswith("s"):
+            continue
+        if not any(c.dep_ == "cc" and c.i < tok.i for c in tok.children):
+            continue
+        if any(c.dep_ == "det" for c in tok.children):
+            continue  # "and the cups": a noun
+        lemma = action_reading(tok.lower_)
+        if not lemma:
+            continue
+        tok.pos_ = "VERB"
+        tok.lemma_ = lemma
+        tok.dep_ = "conj"
+        for c in tok.children:
+            if c.dep_ == "nmod" and any(g.dep_ == "case" for g in c.children):
+                c.dep_ = "obl"
+        changed = True
+    return changed
+
+
+def _repair_verb_as_subject(sent: SpacySpan) -> bool:
+    """ "The teacher/compound sighs/NOUN/nsubj and shakes/ROOT her head" -> sighs/VERB the root with
+    the teacher as subject and "shakes" its conjunct."""
+    for tok in sent:
+        head = tok.head
+        if tok.dep_ != "nsubj" or tok.pos_ != "NOUN" or head.pos_ != "VERB" or not tok.lower_.endswith("s"):
+            continue
+        people = [c for c in tok.children if c.dep_ == "compound" and c.i < tok.i and _is_person(c)]
+        if not people or not any(c.dep_ == "cc" and tok.i < c.i < head.i for c in head.children):
+            continue
+        lemma = action_reading(tok.lower_)
+        if not lemma:
+            continue
+        tok.pos_, tok.lemma_ = "VERB", lemma
+        tok.dep_, tok.head = head.dep_, (tok if head.dep_ == "ROOT" else head.head)
+        head.dep_, head.head = "conj", tok
+        people[0].dep_, people[0].head = "nsubj", tok
+        return True
+    return False
+
+
 def repair_character_sentence(sent: SpacySpan) -> bool:
     """Repair the tree of one character sentence in place; True when something changed."""
-    return _repair_progressive(sent) | _repair_verbless(sent)
+    return (
+        _repair_progressive(sent)
+        | _repair_verbless(sent)
+        | _repair_conjoined_verb(sent)
+        | _repair_verb_as_subject(sent)
+    )

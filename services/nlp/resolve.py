@@ -21,7 +21,7 @@ import re
 import msgspec
 
 from proto.common import Span
-from proto.ssg import ActionNode, CharacterNode, Diagnostic, SentenceGraph, SocialNode
+from proto.ssg import ActionNode, CharacterNode, Diagnostic, ObjectNode, SentenceGraph, SocialNode
 from services.nlp import lexicon
 from services.nlp.errors import diagnostic
 
@@ -59,7 +59,10 @@ class _State:
                 self.characters.remove(canonical)
             self.characters.append(canonical)
         if key not in self.gender:
-            first = key.split()[0]
+            words = [w.rstrip(".") for w in key.split()] or [""]
+            first = words[0]
+            if first in lexicon.TITLES and first not in lexicon.FEMALE_NOUNS | lexicon.MALE_NOUNS:
+                first = words[-1]  # "Dr. Ada": the name says it
             if first in lexicon.FEMALE_NAMES or first in lexicon.FEMALE_NOUNS:
                 self.gender[key] = "she"
             elif first in lexicon.MALE_NAMES or first in lexicon.MALE_NOUNS:
@@ -111,7 +114,9 @@ def _resolve_ref(
     lower = value.lower()
     if lower in lexicon.RECIPROCAL_PHRASES:
         others = [n for n in group if n != actor]
-        return others[0] if len(others) == 1 else ""
+        if len(others) == 1:
+            return others[0]
+        return "each other" if not others else ""  # "the children whisper to each other": among them
     if lower in lexicon.OBJECT_PRONOUNS and lower != "them":
         ids = [o.id for o in graph.objects if before < 0 or o.span.end <= before]
         return ids[-1] if ids else state.last_object
@@ -135,6 +140,7 @@ def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> li
     Returns:
         New graphs; character names canonical, "they" expanded into one node per character.
     """
+    graphs = distinct_objects(graphs, offsets)
     state = _State()
     out: list[SentenceGraph] = []
     for gi, graph in enumerate(graphs):
@@ -231,6 +237,66 @@ def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> li
         out.append(
             msgspec.structs.replace(graph, characters=characters, social=social, diagnostics=diagnostics)
         )
+    return out
+
+
+_NEW_OBJECT = re.compile(r"\b(also|another|second|third|fourth|more|extra|additional|other)\b")
+_INDEFINITE = re.compile(r"^(a|an|another|one|some|two|three|four|five|\d+)\b")
+
+
+def distinct_objects(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> list[SentenceGraph]:
+    """One object node per object across the scene sentences.
+
+    "The desk" of a later scene sentence is the desk already there: its node is dropped (its new
+    attributes go to the first node), so the scene has each object once and nobody is told it
+    "appears twice". "A lamp" when a lamp is already there, or "also"/"another"/"a second" before
+    it, is a new object with a new id ("lamp#2"), in its relations too.
+    """
+    first: dict[str, tuple[int, int]] = {}  # object id -> (graph index, object index) of its node
+    used: set[str] = set()
+    out = list(graphs)
+    extra_attributes: dict[str, dict[str, str]] = {}
+    for gi, graph in enumerate(graphs):
+        if graph.kind != "scene" or not graph.objects:
+            continue
+        base = offsets[gi] if offsets is not None and gi < len(offsets) else graph.objects[0].span.start
+        renames: dict[str, str] = {}
+        kept: list[ObjectNode] = []
+        for o in graph.objects:
+            if o.id not in used:
+                used.add(o.id)
+                first[o.id] = (gi, len(kept))
+                kept.append(o)
+                continue
+            local = max(0, o.span.start - base)
+            phrase = graph.text[local : max(local, o.span.end - base)].lower()
+            before = " ".join(graph.text[:local].lower().split()[-1:])  # "also" right before "a lamp"
+            if _INDEFINITE.match(phrase) or _NEW_OBJECT.search(before + " " + phrase):
+                k = 2
+                while f"{o.category}#{k}" in used:
+                    k += 1
+                new_id = f"{o.category}#{k}"
+                used.add(new_id)
+                renames[o.id] = new_id
+                first[new_id] = (gi, len(kept))
+                kept.append(msgspec.structs.replace(o, id=new_id))
+            else:  # a repeat of an object already in the scene
+                extra_attributes.setdefault(o.id, {}).update(o.attributes)
+        if renames or len(kept) != len(graph.objects):
+            relations = [
+                msgspec.structs.replace(
+                    r, subject=renames.get(r.subject, r.subject), object=renames.get(r.object, r.object)
+                )
+                for r in graph.relations
+            ]
+            out[gi] = msgspec.structs.replace(graph, objects=kept, relations=relations)
+    for oid, attributes in extra_attributes.items():
+        gi, oi = first[oid]
+        objects = list(out[gi].objects)
+        merged = {**attributes, **objects[oi].attributes}
+        if merged != objects[oi].attributes:
+            objects[oi] = msgspec.structs.replace(objects[oi], attributes=dict(sorted(merged.items())))
+            out[gi] = msgspec.structs.replace(out[gi], objects=objects)
     return out
 
 

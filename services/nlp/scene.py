@@ -7,6 +7,9 @@ Relations are read off the dependency tree in the shapes UD English uses:
   "The lamp is hanging above ..."    hanging -nsubj-> lamp, hanging -obl-> table -case-> above
   "Put a lamp on the desk"           put -obj-> lamp, put -obl-> desk -case-> on
   "The sofa faces the TV"            faces -nsubj-> sofa, faces -obj-> TV
+  "a bed under which a box lies"     which -case-> under; the relative clause's noun is the anchor
+  "a desk with a lamp"               desk -nmod-> lamp -case-> with: lamp on desk
+Over 400 lines because each of these shapes needs its own reading of the tree, kept in one place.
 """
 
 from __future__ import annotations
@@ -23,6 +26,8 @@ from services.nlp.mentions import (
     object_mention,
     quantity_target,
 )
+from services.nlp.suggest import did_you_mean
+from wana.assets import vocabulary
 
 MULTIWORD_RELATIONS = {
     "next to": "next_to",
@@ -234,7 +239,10 @@ def _mention(tok: Token, builder: GraphBuilder, report_unknown: bool) -> str | N
     if m is None:
         if report_unknown and is_unknown_object_word(tok):
             builder.diagnose(
-                "W101", f"'{tok.text}' is not in the object catalog", tok.idx, tok.idx + len(tok.text)
+                "W101",
+                f"'{tok.text}' is not in the object catalog{did_you_mean(tok.text, 'object')}",
+                tok.idx,
+                tok.idx + len(tok.text),
             )
         return None
     return builder.object_id(m)
@@ -317,6 +325,7 @@ def extract_scene(sent: SpacySpan, builder: GraphBuilder) -> None:
         if _verb_lemma(verb) == "hang" and relation == "above":
             relation = "hanging_above"
         for anchor in anchors:
+            anchor = relative_antecedent(anchor)  # "a bed under which a box lies": under the bed
             anchor_room = _room(anchor)
             if anchor_room:
                 builder.room_type = builder.room_type or anchor_room
@@ -329,6 +338,7 @@ def extract_scene(sent: SpacySpan, builder: GraphBuilder) -> None:
                 if sid is not None:
                     end = anchor.idx + len(anchor.text)
                     builder.add_relation(sid, relation, anchor_id, min(start, s.idx), end)
+    _with_relations(sent, builder)
     # Verbs that are relations: "The sofa faces the TV", "a chair facing the window".
     for tok in sent:
         rel = lexicon.RELATION_VERBS.get(tok.lemma_.lower())
@@ -339,8 +349,12 @@ def extract_scene(sent: SpacySpan, builder: GraphBuilder) -> None:
             continue
         if tok.dep_ in ("acl", "amod") and tok.head.pos_ in ("NOUN", "PROPN"):
             subjects = _with_conj(tok.head)
+        elif tok.dep_ == "advcl" and any(c.dep_ == "expl" for c in tok.head.children):
+            # "There is a table facing the door": the table faces it
+            subj = [c for c in tok.head.children if c.dep_ in SUBJECT_DEPS]
+            subjects = _expand_subject(subj[0]) if subj else []
         else:
-            subj = [c for c in tok.children if c.dep_ in SUBJECT_DEPS]
+            subj = [relative_antecedent(c) for c in tok.children if c.dep_ in SUBJECT_DEPS]
             subjects = _expand_subject(subj[0]) if subj else []
         for anchor in _with_conj(objs[0]):
             anchor_id = _mention(anchor, builder, report_unknown=False)
@@ -352,6 +366,55 @@ def extract_scene(sent: SpacySpan, builder: GraphBuilder) -> None:
                     builder.add_relation(
                         sid, rel, anchor_id, min(tok.idx, s.idx), anchor.idx + len(anchor.text)
                     )
+
+
+RELATIVE_PRONOUNS = frozenset({"which", "that", "whom", "where"})
+
+
+def relative_antecedent(tok: Token) -> Token:
+    """The noun a relative pronoun stands for ("which" in "a bed under which a box lies" -> bed)."""
+    if tok.lower_ not in RELATIVE_PRONOUNS or tok.pos_ not in ("PRON", "DET", "ADV", "SCONJ"):
+        return tok
+    clause = tok.head
+    for _ in range(4):
+        if clause.dep_ == "acl:relcl" and clause.head.i != clause.i:
+            return clause.head
+        if clause.head.i == clause.i:
+            break
+        clause = clause.head
+    return tok
+
+
+def _with_relations(sent: SpacySpan, builder: GraphBuilder) -> None:
+    """ "a desk with a lamp" -> lamp on desk; "three desks with chairs" -> chair next_to desk: a thing
+    that stands on surfaces is on its holder, anything else stands beside it."""
+    for tok in sent:
+        if not any(c.dep_ == "case" and c.lower_ == "with" for c in tok.children):
+            continue
+        if tok.dep_ == "nmod" and tok.head.pos_ in ("NOUN", "PROPN"):
+            holders = [tok.head]
+        elif tok.dep_ == "obl" and any(c.dep_ == "expl" for c in tok.head.children):
+            holders = [c for c in tok.head.children if c.dep_ in SUBJECT_DEPS]
+        else:
+            continue
+        for holder in holders[:1]:
+            hid = _mention(holder, builder, report_unknown=False)
+            if hid is None:
+                continue
+            for thing in _with_conj(tok):
+                tid = _mention(thing, builder, report_unknown=False)
+                if tid is None:
+                    continue
+                category = next(o.category for o in builder.objects if o.id == tid)
+                info = vocabulary.CATEGORIES.get(category)
+                relation = "on" if info is not None and info.mount == "surface" else "next_to"
+                builder.add_relation(
+                    tid,
+                    relation,
+                    hid,
+                    min(holder.idx, thing.idx),
+                    max(holder.idx, thing.idx) + len(thing.text),
+                )
 
 
 def is_scene_like(sent: SpacySpan) -> bool:

@@ -20,12 +20,32 @@ _TERMINATORS = ".!?$"
 _CLOSERS = "\"')]}»”’"
 
 
+_QUOTE = re.compile(r'"[^"\n]*"|\u201c[^\u201d\n]*\u201d')
+
+
+def quote_spans(text: str) -> list[tuple[int, int]]:
+    """(start, end) of each double-quoted stretch, quotes included; an unclosed quote is none."""
+    return [m.span() for m in _QUOTE.finditer(text)]
+
+
 def _sentence_ends(line: str) -> list[int]:
-    """End positions (exclusive) of sentences inside one line."""
+    """End positions (exclusive) of sentences inside one line; none inside quoted speech."""
     ends: list[int] = []
+    quotes = quote_spans(line)
     i, n = 0, len(line)
     while i < n:
         ch = line[i]
+        inside = next((e for s, e in quotes if s < i < e - 1), None)
+        if inside is not None and ch in _TERMINATORS:
+            # 'says "I drank it. Sorry."': the speech is one piece of the sentence; it ends the
+            # sentence when its last terminator is followed by a new sentence ('"Sorry." Mary nods')
+            # but not by the rest of this one ('"Stop!" shouts Tom.')
+            rest = line[inside:].lstrip()
+            last = line[i + 1 : inside - 1].strip(_TERMINATORS) == ""
+            if last and (not rest or rest[0].isupper()):
+                ends.append(inside)
+            i = inside if last else i + 1
+            continue
         if ch in _TERMINATORS:
             if ch == "." and 0 < i < n - 1 and line[i - 1].isdigit() and line[i + 1].isdigit():
                 i += 1

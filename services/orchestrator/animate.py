@@ -59,7 +59,12 @@ def read_story(path: str) -> str:
         data = p.read_bytes()[: MAX_INPUT_BYTES + 1]
     if len(data) > MAX_INPUT_BYTES:
         raise SystemExit(f"wana animate: the story is larger than {MAX_INPUT_BYTES} bytes")
-    return data.decode("utf-8", errors="replace")
+    text = data.decode("utf-8", errors="replace")
+    from wana.screenplay import looks_like_fountain, to_story
+
+    if looks_like_fountain(text, "" if path == "-" else path):
+        return to_story(text)  # a Fountain screenplay: headings, action lines, dialogue -> our sentences
+    return text
 
 
 def _progress_bar(enabled: bool) -> tuple[Any, Any]:

@@ -1,0 +1,111 @@
+"""'Did you mean ...' for words the parser does not know: the closest words of the object catalog, the
+action library (its names, its synonyms and the verb table) and the command set, by edit distance;
+a synonym found is shown with what it stands for ("couch (sofa)").
+"""
+
+from __future__ import annotations
+
+import difflib
+import functools
+
+from services.nlp import lexicon, verbs
+from services.nlp.commands import CAMERA_VALUES, SPEED_VALUES, WEATHER_VALUES
+from wana.assets import vocabulary
+
+_CUTOFF = 0.75  # difflib ratio: "sist" ~ "sit" (0.86), "chiar" ~ "chair" (0.8); "lamp" !~ "map"
+
+
+@functools.lru_cache(maxsize=1)
+def _object_words() -> dict[str, str]:
+    """Word -> the category it names (itself for a category name)."""
+    words: dict[str, str] = {}
+    for name, info in vocabulary.CATEGORIES.items():
+        words.setdefault(name.replace("_", " "), name)
+        for syn in info.synonyms:
+            words.setdefault(syn, name)
+    return words
+
+
+@functools.lru_cache(maxsize=1)
+def _verb_words() -> dict[str, str]:
+    """One-word verb -> the action it maps to."""
+    out: dict[str, str] = {}
+    for name in lexicon.action_names():
+        if "_" not in name:
+            out.setdefault(name, name)
+    for word in lexicon.verb_words() | {w for w in verbs.VERB_ACTIONS if " " not in w}:
+        action = lexicon.action_for(word)
+        if action:
+            out.setdefault(word, action)
+    return out
+
+
+@functools.lru_cache(maxsize=1)
+def _command_words() -> dict[str, str]:
+    out = {f"camera {v}": f"camera {v}" for v in set(CAMERA_VALUES.values())}
+    out.update({w: w for w in WEATHER_VALUES})
+    out.update({w: w for w in SPEED_VALUES})
+    out["wait"] = "wait"
+    return out
+
+
+def edit_distance(a: str, b: str) -> int:
+    """Damerau-Levenshtein distance (adjacent swaps cost one: "chiar" -> "chair" is 1)."""
+    prev2: list[int] = []
+    prev = list(range(len(b) + 1))
+    for i, ca in enumerate(a, 1):
+        cur = [i] + [0] * len(b)
+        for j, cb in enumerate(b, 1):
+            cur[j] = min(prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (ca != cb))
+            if i > 1 and j > 1 and ca == b[j - 2] and a[i - 2] == cb:
+                cur[j] = min(cur[j], prev2[j - 2] + 1)
+        prev2, prev = prev, cur
+    return prev[-1]
+
+
+def _shown(word: str, meaning: str) -> str:
+    meaning = meaning.replace("_", " ")
+    return f"'{word}'" if meaning == word else f"'{word}' ({meaning})"
+
+
+@functools.lru_cache(maxsize=4096)
+def suggestions(word: str, kind: str, limit: int = 3) -> tuple[str, ...]:
+    """Closest known words to ``word`` as shown strings.
+
+    Args:
+        word: the unknown word as written ("sist", "chiar").
+        kind: "object", "action" or "command": which vocabularies to search first (the other two
+            follow, so a verb written where an object was expected is still found).
+        limit: at most this many suggestions.
+    """
+    lower = word.lower().strip()
+    if len(lower) < 3:
+        return ()
+    order = {"object": ("object", "action", "command"), "action": ("action", "object", "command")}.get(
+        kind, ("command", "action", "object")
+    )
+    tables = {"object": _object_words(), "action": _verb_words(), "command": _command_words()}
+    found: list[str] = []
+    for name in order:
+        table = tables[name]
+        close = difflib.get_close_matches(lower, list(table), n=limit * 3, cutoff=_CUTOFF)
+        close.sort(key=lambda h: (edit_distance(lower, h), h[:1] != lower[:1]))
+        best = edit_distance(lower, close[0]) if close else 0
+        for hit in close:
+            if edit_distance(lower, hit) > best:
+                break  # only the nearest: "sist" -> "sit", not also "insist"
+            if hit != lower:
+                shown = _shown(hit, table[hit])
+                if shown not in found:
+                    found.append(shown)
+        if found:
+            break  # the first vocabulary that has a near word is the likely intent
+    return tuple(found[:limit])
+
+
+def did_you_mean(word: str, kind: str) -> str:
+    """ "; did you mean 'sit'?" or "" when nothing is close."""
+    hits = suggestions(word, kind)
+    if not hits:
+        return ""
+    return "; did you mean " + " or ".join(hits) + "?"
