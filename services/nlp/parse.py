@@ -22,7 +22,7 @@ from proto.common import Span
 from proto.ssg import Diagnostic, SentenceGraph
 from services.nlp.actions import extract_actions
 from services.nlp.builder import GraphBuilder
-from services.nlp.commands import looks_like_command, parse_command
+from services.nlp.commands import looks_like_command, parse_command, unknown_camera_detail
 from services.nlp.errors import MAX_SENTENCE_CHARS, diagnostic
 from services.nlp.repair import repair_character_sentence
 from services.nlp.scene import extract_scene, is_scene_like
@@ -194,7 +194,10 @@ def _prepare(text: str, kind_hint: str) -> SentenceGraph | tuple[str, str, list[
         return _graph("", text, "command", [], commands=[command])
     if kind == "command" or looks_like_command(stripped):
         return _graph(
-            "", text, "command", [diagnostic("W104", f"'{stripped[:60]}'", lead, lead + len(stripped))]
+            "",
+            text,
+            "command",
+            [diagnostic("W104", unknown_camera_detail(stripped), lead, lead + len(stripped))],
         )
     diagnostics: list[Diagnostic] = []
     body = text

@@ -46,12 +46,17 @@ class Coverage:
     height: int = 480
 
     @classmethod
-    def from_rigs(cls, rigs: Mapping[str, Rig], scene: Scene, width: int = 640, height: int = 480) -> Coverage:
+    def from_rigs(
+        cls, rigs: Mapping[str, Rig], scene: Scene, width: int = 640, height: int = 480
+    ) -> Coverage:
         return cls(
             joints={n: r.joint_positions for n, r in rigs.items()},
             furniture=Furniture.from_scene(scene),
             room=scene.room,
-            radii={n: capsule_radii(r.character.rest_joint_positions(), r.character.vertices) for n, r in rigs.items()},
+            radii={
+                n: capsule_radii(r.character.rest_joint_positions(), r.character.vertices)
+                for n, r in rigs.items()
+            },
             width=width,
             height=height,
         )
@@ -79,8 +84,9 @@ class Coverage:
         )
         steps = np.arange(len(idx))
         shown = [
-            body_view(n, steps, local, track, self.furniture, self.room, self.width, self.height, self.radii)
-            .visible.mean(axis=1)
+            body_view(
+                n, steps, local, track, self.furniture, self.room, self.width, self.height, self.radii
+            ).visible.mean(axis=1)
             >= VISIBLE_SHARE
             for n in names
         ]

@@ -34,6 +34,7 @@ from typing import Any
 import numpy as np
 
 from proto.motion_data import Motion
+from proto.render import Shot as RenderShot
 from proto.render import TimedCommand
 from proto.scene import Room
 from services.render.camera import (
@@ -48,7 +49,9 @@ from services.render.framing import Adjust
 from services.render.timeline import camera_mode
 
 MIN_SHOT_FRAMES = 45  # 1.5 s at 30 fps
-WALKS = frozenset({"walk", "run", "jog", "walk_slowly", "walk_backward", "march", "skip", "tiptoe", "limp", "crawl"})
+WALKS = frozenset(
+    {"walk", "run", "jog", "walk_slowly", "walk_backward", "march", "skip", "tiptoe", "limp", "crawl"}
+)
 EMOTIONS = frozenset(
     {
         "laugh", "cry", "cover_face", "facepalm", "celebrate", "fist_pump", "shrug", "shiver", "yawn",
@@ -107,7 +110,12 @@ class _Beat:
 
 
 def _beats(motions: Mapping[str, Motion], n_frames: int) -> list[_Beat]:
-    segs = [(s.start_frame, s.end_frame, name, s) for name, m in motions.items() for s in m.segments if s.sentence_id]
+    segs = [
+        (s.start_frame, s.end_frame, name, s)
+        for name, m in motions.items()
+        for s in m.segments
+        if s.sentence_id
+    ]
     starts: dict[int, tuple[str, str]] = {}
     for lo, _, name, s in sorted(segs, key=lambda t: (t[0], t[2])):
         first_of_sentence = min(x[0] for x in segs if x[3].sentence_id == s.sentence_id)
@@ -162,11 +170,15 @@ def _nearest(who: str, tracks: Mapping[str, CharacterTrack], frame: int) -> str:
     if who not in tracks:
         return ""
     here = tracks[who].at(frame)[0]
-    others = [(float(np.linalg.norm((t.at(frame)[0] - here)[[0, 2]])), n) for n, t in tracks.items() if n != who]
+    others = [
+        (float(np.linalg.norm((t.at(frame)[0] - here)[[0, 2]])), n) for n, t in tracks.items() if n != who
+    ]
     return min(others)[1] if others else ""
 
 
-def _kind(beat: _Beat, first: bool, motions: Mapping[str, Motion], tracks: Mapping[str, CharacterTrack]) -> Shot:
+def _kind(
+    beat: _Beat, first: bool, motions: Mapping[str, Motion], tracks: Mapping[str, CharacterTrack]
+) -> Shot:
     shot = _kind_of(beat, first, motions, tracks)
     return replace(shot, acting=beat.acting)
 
@@ -294,7 +306,9 @@ def _framed(
         frames = _samples(s)
         best, best_score = (1, Adjust()), -np.inf
         for rank, (side, adj) in enumerate(_candidates(s, pair_side.get(pair) if pair else None)):
-            key = CameraKey(frame=s.start, mode=s.kind, character=s.subject, partner=s.partner, side=side, adjust=adj)
+            key = CameraKey(
+                frame=s.start, mode=s.kind, character=s.subject, partner=s.partner, side=side, adjust=adj
+            )
             poses = [_pose(key, track_map, room, f) for f in frames]
             if any(p is None for p in poses):
                 break
@@ -329,8 +343,6 @@ def _outside(room: Room, eye: np.ndarray, margin: float = 0.15) -> float:
     return float(
         max(0.0, abs(eye[0]) - room.width / 2 + margin) + max(0.0, abs(eye[2]) - room.depth / 2 + margin)
     )
-
-
 
 
 def _command_shots(
@@ -383,9 +395,11 @@ def _per_beat(shot: Shot, beats: list[_Beat], tracks: Mapping[str, CharacterTrac
             out.append(piece)
     if not out:
         return [shot]
-    return [replace(out[0], start=shot.start), *out[1:-1], replace(out[-1], end=shot.end)] if len(out) > 1 else [
-        replace(out[0], start=shot.start, end=shot.end)
-    ]
+    return (
+        [replace(out[0], start=shot.start), *out[1:-1], replace(out[-1], end=shot.end)]
+        if len(out) > 1
+        else [replace(out[0], start=shot.start, end=shot.end)]
+    )
 
 
 def _overlay(base: list[Shot], commanded: list[Shot]) -> list[Shot]:
@@ -443,8 +457,25 @@ def shot_keys(shots: Iterable[Shot]) -> list[CameraKey]:
             partner=s.partner,
             side=s.side,
             end=s.end,
-            cut=s.source == "director" or (i > 0 and shots[i - 1].source == "command" and s.sentence_id == shots[i - 1].sentence_id),
+            cut=s.source == "director"
+            or (i > 0 and shots[i - 1].source == "command" and s.sentence_id == shots[i - 1].sentence_id),
             adjust=s.adjust,
         )
         for i, s in enumerate(shots)
+    ]
+
+
+def shot_messages(shots: Iterable[Shot]) -> list[RenderShot]:
+    """The shots as the ExportReply and report.json list them."""
+    return [
+        RenderShot(
+            start_frame=s.start,
+            end_frame=s.end,
+            type=s.kind,
+            subject=s.subject,
+            partner=s.partner,
+            sentence_id=s.sentence_id,
+            source="command" if s.source == "command" else "director",
+        )
+        for s in shots
     ]

@@ -14,11 +14,14 @@ from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any
 
+import msgspec
+
 from proto.fidelity import Check
 from proto.motion_data import Motion
 from proto.scene import Scene
 from services.render.bvh_export import write_character_bvh
 from services.render.camera_checks import staged_checks
+from services.render.director import shot_messages
 from services.render.gltf_export import write_glb
 from services.render.renderer import FrameRenderer
 from services.render.report import write_report
@@ -118,6 +121,7 @@ def write_outputs(
                 ],
                 "files": sorted([*paths, "report.json"]),
                 "checks": paths.checks,
+                "shots": msgspec.to_builtins(shot_messages(renderer.staging.shots)),
             }
             paths["report.json"] = write_report(out / "report.json", report, render_info)
             bar.update(1)

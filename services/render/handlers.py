@@ -20,6 +20,7 @@ from proto.common import reply_header
 from proto.render import Caption, ExportReply, ExportRequest, RenderReply, RenderRequest, TimedCommand
 from services.render.bvh_export import motion_bvh, safe_filename
 from services.render.camera_checks import staged_checks
+from services.render.director import shot_messages
 from services.render.gltf_export import scene_glb
 from services.render.renderer import FrameRenderer
 from services.render.timeline import make_captions, place_commands
@@ -207,6 +208,7 @@ def handle_export(req: ExportRequest) -> ExportReply:
         commands=commands,
         captions=captions,
         checks=checks,
+        shots=shot_messages(r.staging.shots),
     )
 
 

@@ -130,7 +130,9 @@ def place_commands(
         implied = cmd.kind == "camera" and not cmd.target and bool(current)
         if implied:
             cmd = Command(kind=cmd.kind, value=cmd.value, seconds=cmd.seconds, target=current, span=cmd.span)
-        out.append((frame, n, TimedCommand(frame=frame, command=cmd, sentence_id=sid, implied_target=implied)))
+        out.append(
+            (frame, n, TimedCommand(frame=frame, command=cmd, sentence_id=sid, implied_target=implied))
+        )
     out.sort(key=lambda t: (t[0], t[1]))
     return [t[2] for t in out]
 
