@@ -3,7 +3,8 @@
 A sentence's actions start at the earliest ``Segment.start_frame`` that carries its id. A command
 sentence ("camera left", "night") takes effect where the next sentence with motion starts (or, at
 the end of the story, where the last earlier motion ends). A camera command without a target
-follows the character of the closest earlier action sentence (the "current" character).
+follows the character of the closest earlier action sentence (the "current" character); ``close``
+and ``follow`` the character of the next one (what the command cuts to), when there is one.
 
 The inputs are accepted in the shapes the orchestrator has at hand: motions as a list or a
 name -> Motion dict; commands as ``Command``, ``(sentence_id, Command)`` or ``TimedCommand``;
@@ -127,6 +128,8 @@ def place_commands(
                 current = earlier[-1][2]
             elif later:
                 current = later[0][2]
+            if later and cmd.kind == "camera" and MODE_ALIASES.get(cmd.value, cmd.value) in ("close", "follow"):
+                current = later[0][2]  # a close-up or a follow is on who acts next (the scene it cuts to)
         implied = cmd.kind == "camera" and not cmd.target and bool(current)
         if implied:
             cmd = Command(kind=cmd.kind, value=cmd.value, seconds=cmd.seconds, target=current, span=cmd.span)
