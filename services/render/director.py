@@ -214,7 +214,13 @@ def _joined(a: Shot, b: Shot) -> Shot:
 
 
 def _same_framing(a: Shot, b: Shot) -> bool:
-    return a.kind == b.kind and {a.subject, a.partner} == {b.subject, b.partner}
+    """Cutting from a to b would be a jump cut: the same type on the same people (a two-shot of a pair
+    either way round; an over-the-shoulder reversed is the reverse shot, a different framing)."""
+    if a.kind != b.kind:
+        return False
+    if a.kind in ("two_shot", "wide"):
+        return {a.subject, a.partner} == {b.subject, b.partner}
+    return (a.subject, a.partner) == (b.subject, b.partner)
 
 
 def director_shots(
