@@ -19,7 +19,7 @@ from proto.ssg import Command
 from services.render.camera import CameraKey, camera_at, project
 from services.render.coverage import Coverage
 from services.render.demo import walk_motion
-from services.render.director import MIN_SHOT_FRAMES
+from services.render.director import MIN_SHOT_FRAMES, Scorer, plan_shots
 from services.render.framing import Adjust
 from services.render.handlers import handle_export
 from services.render.renderer import FrameRenderer
@@ -161,3 +161,20 @@ def test_the_export_reply_lists_the_shots(pair: list[Motion]) -> None:
     shots = [(s.start_frame, s.end_frame, s.type, s.subject) for s in reply.shots]
     assert shots[0][:3] == (0, 60, "wide") and shots[-1][1] == reply.n_frames
     assert all(a[1] == b[0] for a, b in zip(shots, shots[1:], strict=False))  # every frame in one shot
+
+
+class _SouthThenNorth(Scorer):
+    """Prefers cameras south of the pair (z > 0) before frame 120 and north of it after: a room whose
+    free views change side mid-conversation."""
+
+    def shown(self, poses: list, frames: list[int], who: list[str]) -> float:
+        return float(np.mean([(p.eye[2] > 0) == (f < 120) for p, f in zip(poses, frames, strict=True)]))
+
+
+def test_the_pair_keeps_its_side_even_where_the_other_side_would_see_better(staged: Staging) -> None:
+    shots = plan_shots(staged.motions, staged.tracks, [], staged.n_frames, ROOM, _SouthThenNorth())
+    pairs = [s for s in shots if s.partner]
+    assert len(pairs) == 3 and len({s.side for s in pairs}) == 1
+    assert staged.tracks["Eve"].hips[0][2] > staged.tracks["Tom"].hips[0][2]  # the line is not along x
+    singles = plan_shots(staged.motions, staged.tracks, [], staged.n_frames, ROOM, _SouthThenNorth())
+    assert singles == shots  # planning is a pure function of its inputs
