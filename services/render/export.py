@@ -88,7 +88,8 @@ def write_outputs(
             encode_mp4(renderer.frames(0, n, progress=bar.update), video, fps=FPS)
             paths["animation.mp4"] = video
             render_s = time.perf_counter() - t0
-            paths["scene.glb"] = write_glb(out / "scene.glb", scene, mlist)
+            camera = renderer.staging.camera_track(width, height)
+            paths["scene.glb"] = write_glb(out / "scene.glb", scene, mlist, camera=camera)
             bar.update(1)
             for m in mlist:
                 p = write_character_bvh(out, m)

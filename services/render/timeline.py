@@ -128,7 +128,11 @@ def place_commands(
                 current = earlier[-1][2]
             elif later:
                 current = later[0][2]
-            if later and cmd.kind == "camera" and MODE_ALIASES.get(cmd.value, cmd.value) in ("close", "follow"):
+            if (
+                later
+                and cmd.kind == "camera"
+                and MODE_ALIASES.get(cmd.value, cmd.value) in ("close", "follow")
+            ):
                 current = later[0][2]  # a close-up or a follow is on who acts next (the scene it cuts to)
         implied = cmd.kind == "camera" and not cmd.target and bool(current)
         if implied:
