@@ -27,9 +27,9 @@ resumes. Shots are what ``report.json`` lists.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, replace
-from typing import Any
+from typing import Any, Protocol
 
 import numpy as np
 
@@ -40,6 +40,7 @@ from proto.scene import Room
 from services.render.camera import (
     OVERVIEW_ADJUSTMENTS,
     CameraKey,
+    CameraPose,
     CharacterTrack,
     shot_pose,
     view_pose,
@@ -272,11 +273,10 @@ PREFERENCE = 0.004  # score given up per step down the candidate list (ties go t
 OUTSIDE = 0.02  # score per metre the eye stands outside the room (readable views are from inside)
 
 
-class Scorer:
+class Scorer(Protocol):
     """What a candidate camera shows (services.render.coverage.Coverage.shown), over sample frames."""
 
-    def shown(self, poses: list, frames: list[int], who: list[str]) -> float:  # pragma: no cover - protocol
-        raise NotImplementedError
+    def shown(self, poses: Sequence[CameraPose], frames: Sequence[int], who: Sequence[str]) -> float: ...
 
 
 def _samples(s: Shot) -> list[int]:

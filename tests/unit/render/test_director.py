@@ -167,7 +167,7 @@ class _SouthThenNorth(Scorer):
     """Prefers cameras south of the pair (z > 0) before frame 120 and north of it after: a room whose
     free views change side mid-conversation."""
 
-    def shown(self, poses: list, frames: list[int], who: list[str]) -> float:
+    def shown(self, poses, frames, who) -> float:  # noqa: ANN001
         return float(np.mean([(p.eye[2] > 0) == (f < 120) for p, f in zip(poses, frames, strict=True)]))
 
 
