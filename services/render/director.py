@@ -231,7 +231,8 @@ def director_shots(
     shots: list[Shot] = []
     for i, beat in enumerate(_beats(motions, n_frames)):
         shot = _kind(beat, i == 0, motions, tracks)
-        if shots and (shot.end - shot.start < MIN_SHOT_FRAMES or _same_framing(shots[-1], shot)):
+        same = shots and _same_framing(shots[-1], shot) and shot.end - shots[-1].start <= LONGEST_HOLD
+        if shots and (shot.end - shot.start < MIN_SHOT_FRAMES or same):
             shots[-1] = _joined(shots[-1], shot)
         elif shots and shots[-1].end - shots[-1].start < MIN_SHOT_FRAMES:
             shots[-1] = _joined(shots[-1], shot)  # the first beat was short: it opens the next
@@ -268,7 +269,14 @@ COMMAND_CHOICES = (
     Adjust(rise=1.0, scale=0.7),
 )
 LINE_CHOICE_TURN = np.radians(60.0)  # two-person shots keep to their side of the line
-SAMPLES = 8  # frames of a shot measured per candidate
+SAMPLES = 8  # frames of a shot measured per candidate, at least
+SAMPLE_STEP = 15  # frames between measured frames of a long shot (at most MAX_SAMPLES)
+MAX_SAMPLES = 24
+LONGEST_HOLD = (
+    150  # frames: same-framing sentences join into one shot up to 5 s; beyond, the cut changes angle
+)
+JUMP_TURN = np.radians(30.0)  # a cut on the same subject must turn the view at least this much
+JUMP_SCALE = 0.25  # ... or change the distance by this share
 PREFERENCE = 0.004  # score given up per step down the candidate list (ties go to the preferred one)
 OUTSIDE = 0.02  # score per metre the eye stands outside the room (readable views are from inside)
 
@@ -280,7 +288,7 @@ class Scorer(Protocol):
 
 
 def _samples(s: Shot) -> list[int]:
-    n = min(SAMPLES, max(1, s.end - s.start))
+    n = min(max(SAMPLES, (s.end - s.start) // SAMPLE_STEP), MAX_SAMPLES, max(1, s.end - s.start))
     return sorted({int(round(x)) for x in np.linspace(s.start, max(s.start, s.end - 1), n)})
 
 
@@ -300,17 +308,20 @@ def _framed(
     shots: list[Shot], tracks: Mapping[str, CharacterTrack], room: Room, scorer: Scorer | None
 ) -> list[Shot]:
     """Each shot's side and framing: the candidate that shows its acting characters best (with a scorer),
-    else the side whose eye stays in the room; a pair keeps the side of its first shot (180° rule)."""
+    else the side whose eye stays in the room; a pair keeps the side of its first shot (180° rule), and
+    a cut to the same subject never lands on a near-identical view (no jump cut)."""
     pair_side: dict[tuple[str, str], int] = {}
     track_map = dict(tracks)
-    out = []
+    out: list[Shot] = []
+    last: tuple[Shot, Any] | None = None  # the shot before and its camera on its last frame
     for s in shots:
         if (s.source == "command" and scorer is None) or (s.kind != "wide" and s.subject not in tracks):
             out.append(s)
+            last = None
             continue
         pair = (min(s.subject, s.partner), max(s.subject, s.partner)) if s.partner else None
         frames = _samples(s)
-        best, best_score = (1, Adjust()), -np.inf
+        best, best_score, best_pose = (1, Adjust()), -np.inf, None
         for rank, (side, adj) in enumerate(_candidates(s, pair_side.get(pair) if pair else None)):
             key = CameraKey(
                 frame=s.start, mode=s.kind, character=s.subject, partner=s.partner, side=side, adjust=adj
@@ -318,6 +329,8 @@ def _framed(
             poses = [_pose(key, track_map, room, f) for f in frames]
             if any(p is None for p in poses):
                 break
+            if last is not None and s.start == last[0].end and _jump(last, s, poses[0], track_map):
+                continue
             outside = float(np.mean([_outside(room, p.eye) for p in poses]))
             if scorer is None:
                 score = -outside
@@ -326,14 +339,33 @@ def _framed(
             score -= PREFERENCE * rank
             if score > best_score + 1e-12:
                 best, best_score = (side, adj), score
+                key_end = replace(key, frame=s.start)
+                best_pose = _pose(key_end, track_map, room, max(s.start, s.end - 1))
             if scorer is None and rank >= 1:
                 break  # without measuring, only the side is chosen
             if scorer is not None and best_score >= 1.0 - PREFERENCE * rank - 1e-9 and rank == 0:
                 break  # the preferred framing shows everyone: nothing to improve
         if pair is not None:
             pair_side.setdefault(pair, best[0])
-        out.append(replace(s, side=best[0], adjust=best[1] if scorer is not None else None))
+        framed = replace(s, side=best[0], adjust=best[1] if scorer is not None else None)
+        out.append(framed)
+        last = (framed, best_pose) if best_pose is not None else None
     return out
+
+
+def _jump(last: tuple[Shot, Any], s: Shot, first: Any, tracks: Mapping[str, CharacterTrack]) -> bool:
+    """Whether cutting from the shot before (its camera on its last frame) to this camera is a jump cut:
+    the same people, seen from nearly the same direction and distance."""
+    before, pose = last
+    if pose is None or {before.subject, before.partner} != {s.subject, s.partner} or s.kind == "wide":
+        return False
+    centre = tracks[s.subject].at(s.start)[0]
+    a, b = (pose.eye - centre)[[0, 2]], (first.eye - centre)[[0, 2]]
+    na, nb = float(np.linalg.norm(a)), float(np.linalg.norm(b))
+    if na < 1e-6 or nb < 1e-6:
+        return False
+    turn = float(np.arccos(np.clip(a @ b / (na * nb), -1.0, 1.0)))
+    return turn < JUMP_TURN and abs(na - nb) / max(na, nb) < JUMP_SCALE
 
 
 def _pose(key: CameraKey, tracks: dict[str, CharacterTrack], room: Room, f: int) -> Any:
@@ -446,9 +478,8 @@ def plan_shots(
     """
     n = max(1, n_frames)
     beats = _beats(motions, n)
-    base = _framed(director_shots(motions, tracks, n), tracks, room, scorer)
-    commanded = _framed(_command_shots(commands, motions, tracks, n, beats), tracks, room, scorer)
-    return _overlay(base, commanded)
+    commanded = _command_shots(commands, motions, tracks, n, beats)
+    return _framed(_overlay(director_shots(motions, tracks, n), commanded), tracks, room, scorer)
 
 
 def shot_keys(shots: Iterable[Shot]) -> list[CameraKey]:
