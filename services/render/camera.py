@@ -11,6 +11,11 @@ choice while it stays clear, else moving to the nearest clear one) and eased in 
 camera glides instead of jumping. The establishing overview picks, among views from around the
 room, the first that sees the characters while it is on screen.
 
+The director's shots (services.render.director: wide, medium, tracking, close-up, two-shot,
+over-the-shoulder; poses in services.render.shots) play through the same ``camera_at``: a shot it framed
+by measuring carries its ``adjust`` and is played as it is, and it cuts in instead of easing. (Both kinds
+of key in one player take the module just past 400 lines.)
+
 Conventions: world Y up, metres. ``CameraPose.extrinsic()`` is the OpenCV-style world -> camera
 matrix (x right, y down, z forward) that open3d's pinhole parameters expect.
 """

@@ -10,18 +10,29 @@ segment starts) into shots:
   a change of the expression weights), over the shoulder of the nearest idle character when it talks to
   them, else a medium shot;
 - a shot shorter than MIN_SHOT_FRAMES (1.5 s) joins the shot before it (the subjects of both framed
-  together), and two shots in a row with the same type and subjects are one shot (no jump cut).
+  together); sentences in a row with the same type and subjects are one shot up to LONGEST_HOLD (5 s),
+  and past that the cut must turn the view by JUMP_TURN or change its distance (no jump cut).
+
+Each shot is framed by measuring: among candidate sides, turns, heights and distances
+(SHOT_CHOICES; a commanded view only rises, turns a little or comes closer: COMMAND_CHOICES) the one
+whose camera shows the shot's acting characters best over sample frames wins, measured as the
+``in_view`` check measures the video (services.render.coverage: body points in the picture, unhidden by
+furniture, walls seen from inside and other bodies); the planned camera is played as it is. Walls
+between the camera and the room are cut away (one-sided, culled from behind), so a camera may stand
+outside the room; a small cost per metre outside keeps views inside when they see as well.
 
 Every two-person shot of a pair stays on the side of the line between them that the pair's first shot
-chose (the 180° rule). Which side and which three-quarter side a shot takes is chosen with the eye inside
-the room where one is (walls are cut away, but a view from inside the room is the readable one); the
-camera then moves off its pose only to see past furniture (services.render.framing).
+chose (the 180° rule), whatever a candidate on the other side would show.
 
 A camera command replaces the director from its frame until the next camera command; ``close`` and
 ``follow`` only until their subject's next action ends (at least MIN_SHOT_FRAMES), then the director
-resumes. Shots are what ``report.json`` lists.
+resumes. A view command (front, back, left, right, top) that named nobody turns to whoever acts in each
+sentence of its scope (a pair: their middle). Shots are what ``report.json`` lists.
 
-    shots = plan_shots(motions, tracks, commands, n_frames, room)
+This module is over 400 lines because the shot rules, the framing search and the command scopes are
+one plan: each step reads the one before.
+
+    shots = plan_shots(motions, tracks, commands, n_frames, room, Coverage.from_rigs(rigs, scene))
     keys = shot_keys(shots)  # services.render.camera.camera_at plays them
 """
 
