@@ -444,11 +444,9 @@ def _per_beat(shot: Shot, beats: list[_Beat], tracks: Mapping[str, CharacterTrac
             out.append(piece)
     if not out:
         return [shot]
-    return (
-        [replace(out[0], start=shot.start), *out[1:-1], replace(out[-1], end=shot.end)]
-        if len(out) > 1
-        else [replace(out[0], start=shot.start, end=shot.end)]
-    )
+    out[0] = replace(out[0], start=shot.start)  # the pieces cover the command's whole scope
+    out[-1] = replace(out[-1], end=shot.end)
+    return out
 
 
 def _overlay(base: list[Shot], commanded: list[Shot]) -> list[Shot]:
