@@ -4,14 +4,19 @@ node and perspective reproduce the video's projection of the characters."""
 from __future__ import annotations
 
 import json
+import shutil
 import struct
+import subprocess
+from pathlib import Path
 
 import numpy as np
+import pytest
 from scipy.spatial.transform import Rotation
 
 from proto.common import Header
-from proto.render import ExportRequest
+from proto.render import ExportRequest, TimedCommand
 from proto.scene import Room, Scene
+from proto.ssg import Command
 from services.render.camera import project
 from services.render.demo import walk_motion
 from services.render.handlers import handle_export
@@ -19,6 +24,7 @@ from services.render.staging import Staging
 
 SCENE = Scene(room=Room(room_type="office", width=6.0, depth=5.0, height=2.8), objects=[], seed=0)
 W, H = 320, 240
+REPO = Path(__file__).resolve().parents[3]
 
 
 def read_glb(data: bytes) -> tuple[dict, bytes]:
@@ -75,3 +81,24 @@ def test_the_glb_camera_reproduces_the_videos_framing() -> None:
         np.testing.assert_allclose(got, want, atol=0.05)  # pixels
     assert abs(cam["perspective"]["yfov"] - np.radians(track.fov_deg[0])) < 1e-6
     assert [s.type for s in reply.shots][0] == "wide"
+
+
+def test_the_glb_with_its_camera_passes_the_khronos_validator(tmp_path) -> None:  # noqa: ANN001
+    node = shutil.which("node")
+    if node is None:
+        pytest.skip("needs node (Node.js) to run the Khronos gltf-validator")
+    if not (REPO / "tools" / "node" / "node_modules" / "gltf-validator").is_dir():
+        pytest.skip("needs `npm ci` in tools/node (gltf-validator)")
+    eve = walk_motion("Eve", (-2.0, 1.0), (1.5, -1.0), 120, sentence_id="s1")
+    close = TimedCommand(
+        frame=60, command=Command(kind="camera", value="close", target="Eve"), sentence_id="s2"
+    )
+    req = ExportRequest(header=Header(), format="glb", scene=SCENE, motions=[eve], commands=[close])
+    path = tmp_path / "scene.glb"
+    path.write_bytes(handle_export(req).data)
+    doc, _ = read_glb(path.read_bytes())
+    assert "KHR_animation_pointer" in doc["extensionsUsed"]  # the close-up's yfov differs: it is keyed
+    validator = REPO / "tools" / "node" / "validate_gltf.mjs"
+    run = subprocess.run([node, str(validator), str(path)], capture_output=True, text=True, timeout=120)
+    issues = json.loads(run.stdout)["issues"]
+    assert issues["numErrors"] == 0 and issues["numWarnings"] == 0, issues["messages"][:10]
