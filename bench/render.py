@@ -12,7 +12,11 @@ other (one worker busy at a time), then both at once (one per worker); speed-up 
 time) / time(both at once). Worker start-up and the first scene build are not timed. The machine's CPU count and load are printed: on a shared 2-core machine the speed-up is
 bounded by the cores other processes leave free.
 
-JSON keys: fps, speedup_2_workers (plus context: frames, width, height, seconds_1_worker,
+plan_seconds: building the staging of that video (rigs, tracks and the director's shot plan, which
+measures what each candidate camera shows), with the director and without it (``--no-director``
+renders with the commands' cameras alone, for comparing fps).
+
+JSON keys: fps, speedup_2_workers, plan_seconds, plan_seconds_no_director (plus context: frames, width, height, seconds_1_worker,
 seconds_2_workers, cpu_count, load_average).
 """
 
@@ -46,10 +50,23 @@ def demo_motions(frames: int) -> list:
     ]
 
 
-def measure_fps(frames: int, width: int, height: int) -> float:
+def plan_seconds(frames: int, director: bool) -> float:
+    """Seconds to stage the demo video (the director's planning included when on)."""
+    from services.render.staging import Staging
+
+    t0 = time.perf_counter()
+    Staging.build(demo_scene(), demo_motions(frames + 1), director=director)
+    return time.perf_counter() - t0
+
+
+def measure_fps(frames: int, width: int, height: int, director: bool = True) -> float:
     from services.render.renderer import FrameRenderer
 
     with FrameRenderer(demo_scene(), demo_motions(frames + 1), [], width=width, height=height) as r:
+        if not director:  # the commands' own cameras (here none: the establishing overview)
+            from services.render.staging import Staging
+
+            r.staging = Staging.build(r.scene, demo_motions(frames + 1), director=False)
         r.render(0)  # warm-up: GL context, buffers
         t0 = time.perf_counter()
         for _ in tqdm(r.frames(1, frames + 1), total=frames, desc="fps", unit="frame", leave=False):
@@ -167,13 +184,23 @@ def main(argv: list[str] | None = None) -> dict:
     ap.add_argument("--frames", type=int, default=0, help="frames to render (default 120, quick 10)")
     ap.add_argument("--width", type=int, default=640)
     ap.add_argument("--height", type=int, default=480)
+    ap.add_argument("--no-director", action="store_true", help="render with the commands' cameras alone")
+    ap.add_argument("--fps-only", action="store_true", help="skip the 2-worker speed-up")
     args = ap.parse_args(argv)
     frames = args.frames or (10 if args.quick else 120)
-    fps = measure_fps(frames, args.width, args.height)
-    t1, t2 = time_chunked(frames, args.width, args.height)
+    fps = measure_fps(frames, args.width, args.height, director=not args.no_director)
+    plan = plan_seconds(frames, True)
+    plan_off = plan_seconds(frames, False)
+    if args.fps_only:
+        t1 = t2 = float("nan")
+    else:
+        t1, t2 = time_chunked(frames, args.width, args.height)
     result = {
         "fps": round(fps, 2),
         "speedup_2_workers": round(t1 / t2, 2),
+        "plan_seconds": round(plan, 3),
+        "plan_seconds_no_director": round(plan_off, 3),
+        "director": not args.no_director,
         "frames": frames,
         "width": args.width,
         "height": args.height,
@@ -185,6 +212,7 @@ def main(argv: list[str] | None = None) -> dict:
     print(f"{'metric':<22}{'value':>10}")
     print(f"{'fps (1 worker)':<22}{result['fps']:>10}")
     print(f"{'speedup_2_workers':<22}{result['speedup_2_workers']:>10}")
+    print(f"{'plan s, no director':<22}{result['plan_seconds']:>5} / {result['plan_seconds_no_director']}")
     print(f"{'seconds 1 / 2 workers':<22}{result['seconds_1_worker']:>5} / {result['seconds_2_workers']}")
     print(f"{'frames, size':<22}{frames:>5}, {args.width}x{args.height}")
     print(f"{'cpus, load average':<22}{os.cpu_count():>5}, {result['load_average']}")

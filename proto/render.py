@@ -28,6 +28,8 @@ class TimedCommand(msgspec.Struct, frozen=True, kw_only=True):
     frame: int  # 0-based frame index (30 fps) from which the command applies
     command: Command
     sentence_id: str = ""  # the sentence that gave the command ("" = unknown), for its command_visible check
+    implied_target: bool = False  # camera: the command named nobody; its target is the current character,
+    # and the camera turns to whoever acts in each sentence of its scope
 
 
 class Caption(msgspec.Struct, frozen=True, kw_only=True):
@@ -45,6 +47,19 @@ class StorySentence(msgspec.Struct, frozen=True, kw_only=True):
     sentence_id: str
     text: str  # as written (the caption)
     commands: list[Command] = []  # camera / weather commands of this sentence, in order
+
+
+class Shot(msgspec.Struct, frozen=True, kw_only=True):
+    """One shot of the video's camera: frames [start_frame, end_frame)."""
+
+    start_frame: int
+    end_frame: int  # exclusive
+    type: str  # wide, medium, tracking, close_up, two_shot, over_shoulder (the director's) or a commanded
+    # camera: front, back, left, right, top, follow, close
+    subject: str = ""  # the character it is on ("" = the room)
+    partner: str = ""  # the second character of a two-person shot
+    sentence_id: str = ""  # the sentence that cut to it, or whose command it plays
+    source: Literal["director", "command"] = "director"
 
 
 class RenderRequest(Request["RenderReply"], frozen=True, kw_only=True, tag="render_request"):
@@ -114,3 +129,4 @@ class ExportReply(msgspec.Struct, frozen=True, kw_only=True, tag="export_reply")
     commands: list[TimedCommand] = []  # MP4: the commands as placed on frames
     captions: list[Caption] = []  # MP4: the captions as placed on frames
     checks: dict[str, list[Check]] = {}  # MP4: the video's in_view/command_visible checks by sentence id
+    shots: list[Shot] = []  # MP4 and GLB: the camera's shots, in frame order

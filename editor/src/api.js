@@ -65,6 +65,15 @@ export const listDocuments = () => call("GET", "/api/documents");
 export const createDocument = (text = "", title = "") => call("POST", "/api/documents", { text, title });
 export const getDocument = (docId) => call("GET", `/api/documents/${encodeURIComponent(docId)}`);
 
+/** An export's bytes (ArrayBuffer), e.g. scene.glb with the director's camera; throws on failure. */
+export async function fetchExport(docId, format) {
+  const response = await fetch(apiUrl(`/api/documents/${encodeURIComponent(docId)}/export/${format}`), {
+    headers: authHeaders(),
+  });
+  if (!response.ok) throw new Error(`${format.toUpperCase()} export failed (${response.status})`);
+  return response.arrayBuffer();
+}
+
 /** Download an export; resolves to a message for the status line. */
 export async function downloadExport(docId, format) {
   const response = await fetch(apiUrl(`/api/documents/${encodeURIComponent(docId)}/export/${format}`), {

@@ -1,7 +1,8 @@
 // The wana editor: text on the left, the live animation on the right, one WebSocket per document.
 
 import "./style.css";
-import { createDocument, downloadExport, getDocument, listDocuments } from "./api.js";
+import { createDocument, downloadExport, fetchExport, getDocument, listDocuments } from "./api.js";
+import { directorCamera } from "./directorcam.js";
 import { LiveDocument } from "./connection.js";
 import { Holdings } from "./holdings.js";
 import { TextPane } from "./textpane.js";
@@ -61,6 +62,7 @@ function showAnimation(received) {
   viewer.setObjects(msg.objects);
   viewer.setCharacters(msg.characters); // rebuilds only the figures whose hash changed
   viewer.setCommands(msg.commands);
+  if (state.directorOn) loadDirector();
   viewer.invalidate();
   timeline.setLength(msg.frames, msg.fps);
   $("progress-bar").style.width = "0";
@@ -142,6 +144,31 @@ for (const button of document.querySelectorAll("#exports button")) {
   });
 }
 $("focus").addEventListener("click", () => viewer.frameCharacters());
+
+// "Director" plays the camera the MP4 is rendered with (read from the render service's scene.glb);
+// "Free camera" gives it back to the mouse. Fetched again when a new version arrives while it is on.
+const directorButton = document.createElement("button");
+directorButton.type = "button";
+directorButton.id = "director";
+directorButton.title = "play the director's camera (the MP4's) or orbit freely";
+directorButton.textContent = "Free camera";
+$("focus").after(directorButton);
+state.directorOn = false;
+async function loadDirector() {
+  if (!state.directorOn || !state.docId) return viewer.useDirector(null);
+  const version = state.version;
+  try {
+    const cam = directorCamera(await fetchExport(state.docId, "glb"));
+    if (state.directorOn && version === state.version) viewer.useDirector(cam);
+  } catch (err) {
+    $("export-status").textContent = String(err.message || err);
+  }
+}
+directorButton.addEventListener("click", () => {
+  state.directorOn = !state.directorOn;
+  directorButton.textContent = state.directorOn ? "Director" : "Free camera";
+  loadDirector();
+});
 document.addEventListener("keydown", (e) => {
   if (e.target !== document.body) return; // typing in the text area
   if (e.code === "Space") {

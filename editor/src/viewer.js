@@ -4,6 +4,7 @@
 import * as THREE from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
 import { GLTFLoader } from "three/examples/jsm/loaders/GLTFLoader.js";
+import { cameraAt } from "./directorcam.js";
 
 import { apiUrl, authHeaders } from "./api.js";
 import { CharacterFigure } from "./character.js";
@@ -56,6 +57,7 @@ export class Viewer {
     this.cameraKey = "";
     this.follow = null;
     this.frame = -1;
+    this.director = null; // the director's camera (directorcam.js) while "Director" is on
     this.dirty = true; // render only when something changed: software GL in a test browser is slow
     this.controls.addEventListener("change", () => this.invalidate());
     this.setRoom(null);
@@ -202,12 +204,14 @@ export class Viewer {
 
   /** Apply camera and light commands (only when they changed, so the user's orbiting is kept). */
   setCommands(commands) {
+    this.lastCommands = commands;
     const camera = commands.filter((c) => c.kind === "camera").at(-1);
     const weather = commands.filter((c) => c.kind === "weather").at(-1);
     const key = JSON.stringify([camera?.value, camera?.target, weather?.value]);
     if (key === this.cameraKey) return;
     this.cameraKey = key;
     this.applyWeather(weather?.value || "");
+    if (this.director) return; // the director's camera plays; the presets are for the free camera
     this.follow = null;
     const value = camera?.value || "";
     if (value === "follow" || value === "close") {
@@ -266,13 +270,38 @@ export class Viewer {
     this.invalidate();
   }
 
+  /** Play the director's camera (read from the render service's scene.glb), or null: the free orbit camera. */
+  useDirector(cam) {
+    this.director = cam;
+    this.controls.enabled = !cam;
+    if (cam) {
+      this.applyDirector();
+    } else {
+      this.camera.fov = 50;
+      this.camera.updateProjectionMatrix();
+      this.cameraKey = null;
+      this.setCommands(this.lastCommands || []);
+    }
+    this.invalidate();
+  }
+
+  applyDirector() {
+    const pose = cameraAt(this.director, Math.max(0, this.frame));
+    this.camera.position.fromArray(pose.position);
+    this.camera.quaternion.fromArray(pose.quaternion);
+    this.camera.fov = pose.fovDeg;
+    this.camera.updateProjectionMatrix();
+  }
+
   /** Pose every character at frame f. */
   setFrame(f) {
     if (f === this.frame) return;
     this.frame = f;
     this.invalidate();
     for (const c of this.characters) c.setFrame(f);
-    if (this.follow && this.characters.length) {
+    if (this.director) {
+      this.applyDirector();
+    } else if (this.follow && this.characters.length) {
       const who = this.characters.find((c) => c.name === this.follow.target) || this.characters[0];
       const p = who.position();
       const offset = this.camera.position.clone().sub(this.controls.target).setLength(this.follow.distance);
@@ -283,7 +312,7 @@ export class Viewer {
 
   /** Draw when something changed (or force it). */
   render(force = false) {
-    const moving = this.controls.update();
+    const moving = this.director ? false : this.controls.update(); // the orbit would re-aim the director's camera
     if (!force && !moving && !this.dirty) return;
     this.dirty = false;
     this.renderer.render(this.scene, this.camera);

@@ -78,7 +78,16 @@ CAMERA_VALUES = {
     "close-up": "close",
     "zoom": "close",
     "near": "close",
+    "wide": "wide",
+    "establishing": "wide",
+    "overview": "wide",
+    "long": "wide",
+    "over-the-shoulder": "over_shoulder",
+    "ots": "over_shoulder",
+    "shoulder": "over_shoulder",
 }
+# What a diagnostic on an unknown camera word lists (the render service's COMMAND_MODES, in words).
+KNOWN_CAMERA_WORDS = "front, back, left, right, top, wide, close, follow, over the shoulder"
 WEATHER_VALUES = {
     "sunny": "sunny",
     "sun": "sunny",
@@ -116,6 +125,11 @@ _CAMERA = re.compile(
     r"^camera\s*:?\s+(?:view\s+)?(?:from\s+(?:the\s+)?)?([a-z-]+)(?:\s+(?:on\s+|to\s+)?([A-Za-z][\w'-]*))?$",
     re.IGNORECASE,
 )
+_OVER_SHOULDER = re.compile(
+    r"^camera\s*:?\s+over\s+(?:the\s+shoulder(?:\s+of\s+([A-Za-z][\w'-]*))?|([A-Za-z][\w-]*)'s?\s+shoulder)$",
+    re.IGNORECASE,
+)
+_FOLLOW = re.compile(r"^follow\s+([A-Z][\w'-]*)$")  # "Follow Anna." (an imperative, not "Tom follows Anna")
 _WEATHER = re.compile(r"^(?:(?:weather|light|lighting|time)\s*:?\s+|it\s+is\s+|it's\s+)?([a-z]+)$")
 
 
@@ -143,6 +157,15 @@ def parse_command(text: str, offset: int = 0) -> Command | None:
     lower = clean.lower()
     lead = len(text) - len(text.lstrip())
     span = Span(offset + lead, offset + lead + len(clean))
+    if m := _OVER_SHOULDER.match(clean):
+        return Command(kind="camera", value="over_shoulder", target=m.group(1) or m.group(2) or "", span=span)
+    if (m := _FOLLOW.match(clean[:1].lower() + clean[1:])) and m.group(1).lower() not in (
+        "the",
+        "me",
+        "him",
+        "her",
+    ):
+        return Command(kind="camera", value="follow", target=m.group(1), span=span)
     if m := _CAMERA.match(clean):
         value = CAMERA_VALUES.get(m.group(1).lower())
         if value is None:
@@ -169,6 +192,11 @@ def parse_command(text: str, offset: int = 0) -> Command | None:
         if value is not None:
             return Command(kind="weather", value=value, span=span)
     return None
+
+
+def unknown_camera_detail(text: str) -> str:
+    """The W104 detail of a line that starts like a camera command but names no known camera."""
+    return f"'{text.strip()[:60]}'; the camera words are {KNOWN_CAMERA_WORDS}"
 
 
 def looks_like_command(text: str) -> bool:

@@ -23,7 +23,7 @@ from proto.common import Span
 from proto.ssg import Diagnostic, SentenceGraph
 from services.nlp.actions import extract_actions
 from services.nlp.builder import GraphBuilder
-from services.nlp.commands import looks_like_command, parse_command
+from services.nlp.commands import looks_like_command, parse_command, unknown_camera_detail
 from services.nlp.errors import MAX_SENTENCE_CHARS, diagnostic
 from services.nlp.lexicon import TITLES
 from services.nlp.repair import repair_character_sentence
@@ -231,7 +231,7 @@ def _prepare(text: str, kind_hint: str) -> SentenceGraph | tuple[str, str, list[
             [
                 diagnostic(
                     "W104",
-                    f"'{stripped[:60]}'{did_you_mean(stripped[:60], 'command')}",
+                    unknown_camera_detail(stripped) + did_you_mean(stripped[:60], "command"),
                     lead,
                     lead + len(stripped),
                 )

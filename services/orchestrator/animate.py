@@ -209,6 +209,7 @@ def write_exports(
             for c in video.commands
         ],
         "captions": msgspec.to_builtins(video.captions),
+        "shots": msgspec.to_builtins(video.shots),
         "characters": sorted(result.motions),
         "files": sorted([*paths, "report.json"]),
     }

@@ -11,6 +11,11 @@ choice while it stays clear, else moving to the nearest clear one) and eased in 
 camera glides instead of jumping. The establishing overview picks, among views from around the
 room, the first that sees the characters while it is on screen.
 
+The director's shots (services.render.director: wide, medium, tracking, close-up, two-shot,
+over-the-shoulder; poses in services.render.shots) play through the same ``camera_at``: a shot it framed
+by measuring carries its ``adjust`` and is played as it is, and it cuts in instead of easing. (Both kinds
+of key in one player take the module just past 400 lines.)
+
 Conventions: world Y up, metres. ``CameraPose.extrinsic()`` is the OpenCV-style world -> camera
 matrix (x right, y down, z forward) that open3d's pinhole parameters expect.
 """
@@ -31,13 +36,21 @@ from services.render.framing import (
     person_box,
     sight_points,
 )
+from services.render.shots import (
+    SHOT_MODES,
+    TWO_PERSON_MODES,
+    over_shoulder_pose,
+    single_pose,
+    two_shot_pose,
+)
 
-CAMERA_MODES = ("overview", "front", "back", "left", "right", "top", "follow", "close")
+CAMERA_MODES = ("overview", "front", "back", "left", "right", "top", "follow", "close", *SHOT_MODES)
 TRANSITION_FRAMES = 24  # a camera change eases in over 0.8 s at 30 fps
 SMOOTH_RADIUS = 12  # frames either side averaged for the look-at point (removes gait bob)
 DECISION_STEP = 20  # frames between occlusion decisions (eased in between)
 DECISION_LOOK = (-10, 0, 10)  # frames around a decision whose views must be clear
-UNBLOCKED_MODES = ("front", "back", "left", "right", "follow", "close")
+UNBLOCKED_MODES = ("front", "back", "left", "right", "follow", "close", *SHOT_MODES[1:])
+LINE_TURN = np.radians(75.0)  # a two-person shot turns at most this far, so it never crosses the line
 OVERVIEW_SAMPLES = 8  # character frames checked for the overview
 ROOM_WEIGHT = 0.4  # how much a hidden part of the room counts against an overview, against a hidden character
 OVERVIEW_ADJUSTMENTS = tuple(
@@ -103,11 +116,23 @@ def project(points: np.ndarray, pose: CameraPose, width: int, height: int) -> tu
 
 @dataclass(frozen=True)
 class CameraKey:
-    """From ``frame`` on, the camera is in ``mode`` relative to ``character`` ("" = none)."""
+    """From ``frame`` on, the camera is in ``mode`` relative to ``character`` ("" = none).
+
+    The director's shots (services.render.director) add: ``partner``, the second character of a two-shot
+    or over-the-shoulder; ``side`` (+1/-1), the three-quarter side or the side of the pair's line;
+    ``end``, where a wide shot stops (it sees the characters of [frame, end)); ``cut``, a hard cut into
+    the shot instead of an eased transition; ``adjust``, the framing the director chose by measuring what
+    it shows (services.render.coverage), played as it is (None: the camera moves off boxes in its way).
+    """
 
     frame: int
     mode: str
     character: str = ""
+    partner: str = ""
+    side: int = 1
+    end: int = -1
+    cut: bool = False
+    adjust: Adjust | None = None
 
 
 @dataclass(frozen=True)
@@ -132,6 +157,15 @@ class CharacterTrack:
         norm = np.linalg.norm(face)
         face = face / norm if norm > 1e-6 else self.facing[min(frame, n - 1)]
         return self.hips[lo:hi].mean(axis=0), face, self.head[lo:hi].mean(axis=0)
+
+
+def pair_track(a: CharacterTrack, b: CharacterTrack) -> CharacterTrack:
+    """The middle of two characters as one track (hips and head averaged), facing as the first."""
+    n = max(len(a.hips), len(b.hips))
+    ia, ib = np.minimum(np.arange(n), len(a.hips) - 1), np.minimum(np.arange(n), len(b.hips) - 1)
+    return CharacterTrack(
+        hips=(a.hips[ia] + b.hips[ib]) / 2.0, facing=a.facing[ia], head=(a.head[ia] + b.head[ib]) / 2.0
+    )
 
 
 def overview_pose(room: Room) -> CameraPose:
@@ -206,9 +240,13 @@ def room_points(room: Room) -> np.ndarray:
 
 
 def clear_overview(
-    room: Room, tracks: dict[str, CharacterTrack], occluders: Occluders | None, until: int
+    room: Room,
+    tracks: dict[str, CharacterTrack],
+    occluders: Occluders | None,
+    until: int,
+    since: int = 0,
 ) -> CameraPose:
-    """The overview turned about the room (and raised) until it sees the characters of frames [0, until).
+    """The overview turned about the room (and raised) until it sees the characters of frames [since, until).
 
     Among the views that see the characters, the one that sees most of the room (room_points) wins;
     ties go to the least turned.
@@ -216,11 +254,11 @@ def clear_overview(
     base = overview_pose(room)
     if occluders is None or not tracks:
         return base
-    memo_key = ("overview", until)
+    memo_key = ("overview", until) if since == 0 else ("overview", since, until)
     adj = occluders.memo.get(memo_key)
     if adj is None:
-        n = max(1, until)
-        frames = sorted({int(round(x)) for x in np.linspace(0, n - 1, OVERVIEW_SAMPLES)})
+        n = max(since + 1, until)
+        frames = sorted({int(round(x)) for x in np.linspace(since, n - 1, OVERVIEW_SAMPLES)})
         points = [sight_points(t.at(f)[0], t.at(f)[2]) for t in tracks.values() for f in frames]
         characters = occluders.shares([(base.eye, base.target, np.concatenate(points))], OVERVIEW_ADJUSTMENTS)
         floor = occluders.shares([(base.eye, base.target, room_points(room))], OVERVIEW_ADJUSTMENTS)
@@ -228,6 +266,53 @@ def clear_overview(
         adj = OVERVIEW_ADJUSTMENTS[int(np.argmin(characters + ROOM_WEIGHT * floor + rank))]
         occluders.memo[memo_key] = adj
     return _with_adjust(base, adj)
+
+
+def shot_pose(k: CameraKey, tracks: dict[str, CharacterTrack], frame: int) -> CameraPose | None:
+    """The pose of a director's shot (services.render.shots) at a frame; None for a wide shot or an
+    unknown subject (the overview stands in)."""
+    track = tracks.get(k.character)
+    if track is None or k.mode == "wide":
+        return None
+    hips = track.smoothed(frame)[0]
+    if k.mode in TWO_PERSON_MODES:
+        other = tracks.get(k.partner)
+        if other is None:
+            return None
+        partner = other.smoothed(frame)[0]
+        if k.mode == "two_shot":
+            first, second = (hips, partner) if k.character < k.partner else (partner, hips)
+            eye, target, fov = two_shot_pose(first, second, k.side)
+        else:
+            eye, target, fov = over_shoulder_pose(hips, partner, k.side, k.character < k.partner)
+    else:
+        eye, target, fov = single_pose(k.mode, hips, track.smoothed(k.frame)[1], k.side)
+    pose = CameraPose(eye=eye, target=target, up=np.array([0.0, 1.0, 0.0]), fov_deg=fov)
+    return _with_adjust(pose, k.adjust) if k.adjust is not None else pose
+
+
+def wide_pose(k: CameraKey, room: Room) -> CameraPose:
+    """A wide shot the director framed (k.adjust set): the overview moved by that adjustment."""
+    return _with_adjust(overview_pose(room), k.adjust or Adjust())
+
+
+def view_pose(
+    k: CameraKey, track: CharacterTrack, tracks: dict[str, CharacterTrack], room: Room, f: int
+) -> CameraPose:
+    """A commanded view (front, back, left, right, top, follow, close) of its character, or of the
+    middle of a pair when the key has a partner; moved by ``k.adjust`` when the director measured one."""
+    held = None
+    if k.mode in ("front", "back", "left", "right"):
+        held = track.smoothed(k.frame)[1]  # the side is fixed when the command starts
+    if k.partner in tracks and k.partner != k.character:  # a view of a pair: of their middle, further back
+        pair = pair_track(track, tracks[k.partner])
+        gap = float(np.linalg.norm((track.at(f)[0] - tracks[k.partner].at(f)[0])[[0, 2]]))
+        pose = _mode_pose(k.mode, pair, f, room, held)
+        if k.mode != "top":
+            pose = _with_adjust(pose, Adjust(scale=1.0 + 0.35 * gap))
+    else:
+        pose = _mode_pose(k.mode, track, f, room, held)
+    return _with_adjust(pose, k.adjust) if k.adjust is not None else pose
 
 
 def camera_at(
@@ -249,33 +334,44 @@ def camera_at(
     active = [k for k in keys if k.frame <= frame]
     first_key = keys[0].frame if keys else max((len(t.hips) for t in tracks.values()), default=1)
 
-    def overview() -> CameraPose:
+    def overview(k: CameraKey | None = None) -> CameraPose:
+        if k is not None and k.mode == "wide" and k.adjust is not None:
+            return wide_pose(k, room)
+        if k is not None and k.mode == "wide":
+            return clear_overview(room, tracks, occluders, max(k.end, k.frame + 1), k.frame)
         return clear_overview(room, tracks, occluders, first_key)
 
     def commanded(k: CameraKey, track: CharacterTrack | None, f: int) -> CameraPose:
-        held = None
-        if track is not None and k.mode in ("front", "back", "left", "right"):
-            held = track.smoothed(k.frame)[1]  # the side is fixed when the command starts
+        if k.mode in SHOT_MODES:
+            return shot_pose(k, tracks, f) or overview(k)
         if track is None or k.mode == "overview":
             return overview()
-        return _mode_pose(k.mode, track, f, room, held)
+        return view_pose(k, track, tracks, room, f)
 
     def decide(k: CameraKey, track: CharacterTrack, d: int, previous: Adjust | None) -> Adjust:
         assert occluders is not None
         views = []
-        others = [t for t in tracks.values() if t is not track]
+        framed = [track]
+        if k.mode == "two_shot" and k.partner in tracks:
+            framed.append(tracks[k.partner])  # both must be seen
+        others = [t for t in tracks.values() if all(t is not s for s in framed)]
         for g in sorted({max(k.frame, d + off) for off in DECISION_LOOK}):
             p = commanded(k, track, g)
-            hips, _, head = track.smoothed(g)
-            pts = sight_points(hips, head)[:1] if k.mode == "close" else sight_points(hips, head)
+            pts = []
+            for t in framed:
+                hips, _, head = t.smoothed(g)
+                pts.append(sight_points(hips, head)[:1] if k.mode == "close" else sight_points(hips, head))
             people = np.array([person_box(t.at(g)[0], t.at(g)[2]) for t in others]).reshape(-1, 2, 3)
-            views.append((p.eye, p.target, pts, people))
-        return occluders.choose(views, ADJUSTMENTS, previous)
+            views.append((p.eye, p.target, np.concatenate(pts), people))
+        choices = ADJUSTMENTS
+        if k.mode in TWO_PERSON_MODES:  # the 180° rule: never turn across the line between the two
+            choices = tuple(a for a in ADJUSTMENTS if abs(a.turn) <= LINE_TURN)
+        return occluders.choose(views, choices, previous)
 
     def decision(k: CameraKey, track: CharacterTrack, d: int) -> Adjust:
         """The choice at decision frame d; each depends on the one before (computed forward, memoised)."""
         assert occluders is not None
-        key = (k.frame, k.mode, k.character)
+        key = (k.frame, k.mode, k.character, k.partner)
         start = d
         while start > k.frame and (*key, start - DECISION_STEP) not in occluders.memo:
             start -= DECISION_STEP
@@ -293,8 +389,10 @@ def camera_at(
         if track is None and tracks and k.mode != "overview":
             track = tracks[sorted(tracks)[0]]
         pose = commanded(k, track, f)
-        if occluders is None or track is None or k.mode not in UNBLOCKED_MODES:
+        if occluders is None or track is None or k.mode not in UNBLOCKED_MODES or k.adjust is not None:
             return pose
+        if k.mode in SHOT_MODES and shot_pose(k, tracks, f) is None:
+            return pose  # the overview stood in
         d0 = k.frame + (f - k.frame) // DECISION_STEP * DECISION_STEP
         s = _smoothstep((f - d0) / DECISION_STEP)
         adj = blend_adjust(decision(k, track, d0), decision(k, track, d0 + DECISION_STEP), s)
@@ -304,7 +402,7 @@ def camera_at(
         return overview()
     cur = pose_of(len(active) - 1, frame)
     since = frame - active[-1].frame
-    if since >= TRANSITION_FRAMES:
+    if since >= TRANSITION_FRAMES or active[-1].cut:
         return cur
     prev = pose_of(len(active) - 2, frame)
     return _blend(prev, cur, _smoothstep(since / TRANSITION_FRAMES))

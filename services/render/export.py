@@ -14,11 +14,14 @@ from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any
 
+import msgspec
+
 from proto.fidelity import Check
 from proto.motion_data import Motion
 from proto.scene import Scene
 from services.render.bvh_export import write_character_bvh
 from services.render.camera_checks import staged_checks
+from services.render.director import shot_messages
 from services.render.gltf_export import write_glb
 from services.render.renderer import FrameRenderer
 from services.render.report import write_report
@@ -85,7 +88,8 @@ def write_outputs(
             encode_mp4(renderer.frames(0, n, progress=bar.update), video, fps=FPS)
             paths["animation.mp4"] = video
             render_s = time.perf_counter() - t0
-            paths["scene.glb"] = write_glb(out / "scene.glb", scene, mlist)
+            camera = renderer.staging.camera_track(width, height)
+            paths["scene.glb"] = write_glb(out / "scene.glb", scene, mlist, camera=camera)
             bar.update(1)
             for m in mlist:
                 p = write_character_bvh(out, m)
@@ -118,6 +122,7 @@ def write_outputs(
                 ],
                 "files": sorted([*paths, "report.json"]),
                 "checks": paths.checks,
+                "shots": msgspec.to_builtins(shot_messages(renderer.staging.shots)),
             }
             paths["report.json"] = write_report(out / "report.json", report, render_info)
             bar.update(1)

@@ -22,8 +22,10 @@ import numpy as np
 
 from proto.motion_data import Motion
 from proto.scene import Scene
+from services.render.gltf_camera import add_camera
 from services.render.scene_geometry import ColouredMesh, object_meshes, room_meshes
 from services.render.skinning import Rig
+from services.render.staging import CameraTrack
 from wana.assets.characters import EXPRESSIONS
 from wana.domain.skeleton import JOINT_NAMES, N_JOINTS, PARENTS
 
@@ -280,8 +282,11 @@ def _add_character(b: _Builder, rig: Rig, material: int, animation: dict, fps: f
     channel(mesh_node, "weights", np.clip(expr, 0.0, 1.0).reshape(-1))
 
 
-def scene_glb(scene: Scene, motions: list[Motion], fps: float = 30.0) -> bytes:
-    """The GLB bytes of the scene with its animated characters."""
+def scene_glb(
+    scene: Scene, motions: list[Motion], fps: float = 30.0, camera: CameraTrack | None = None
+) -> bytes:
+    """The GLB bytes of the scene with its animated characters (and the video's camera when given:
+    services.render.gltf_camera)."""
     b = _Builder()
     static_mat = b.material("scene")
     for mesh in room_meshes(scene.room) + object_meshes(scene):
@@ -292,14 +297,22 @@ def scene_glb(scene: Scene, motions: list[Motion], fps: float = 30.0) -> bytes:
         for m in motions:
             rig = Rig.from_motion(m)
             _add_character(b, rig, skin_mat, animation, fps)
+    if camera is not None:
+        add_camera(b, camera, animation, fps)
     if animation["channels"]:
         b.doc["animations"] = [animation]
     return b.glb()
 
 
-def write_glb(path: str | Path, scene: Scene, motions: list[Motion], fps: float = 30.0) -> Path:
+def write_glb(
+    path: str | Path,
+    scene: Scene,
+    motions: list[Motion],
+    fps: float = 30.0,
+    camera: CameraTrack | None = None,
+) -> Path:
     """Write ``scene_glb`` to a file."""
     out = Path(path)
     out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_bytes(scene_glb(scene, motions, fps))
+    out.write_bytes(scene_glb(scene, motions, fps, camera))
     return out

@@ -20,8 +20,10 @@ from proto.common import reply_header
 from proto.render import Caption, ExportReply, ExportRequest, RenderReply, RenderRequest, TimedCommand
 from services.render.bvh_export import motion_bvh, safe_filename
 from services.render.camera_checks import staged_checks
+from services.render.director import shot_messages
 from services.render.gltf_export import scene_glb
 from services.render.renderer import FrameRenderer
+from services.render.staging import Staging
 from services.render.timeline import make_captions, place_commands
 from services.render.video import FPS, encode_mp4
 from wana.bus.service import InvalidInput
@@ -152,13 +154,19 @@ def handle_export(req: ExportRequest) -> ExportReply:
     """Produce the MP4 (with its camera checks, services.render.camera_checks), the GLB or one character's BVH."""
     h = reply_header(req)
     try:
-        if req.format == "glb":
+        if req.format == "glb":  # with the camera the MP4 of the same request shows
+            _check_size(req.width, req.height)
+            stage = Staging.build(req.scene, list(req.motions), placed(req)[0])
             return ExportReply(
                 header=h,
                 format="glb",
                 filename="scene.glb",
                 media_type="model/gltf-binary",
-                data=scene_glb(req.scene, list(req.motions)),
+                data=scene_glb(
+                    req.scene, list(req.motions), camera=stage.camera_track(req.width, req.height)
+                ),
+                n_frames=stage.n_frames,
+                shots=shot_messages(stage.shots),
             )
         if req.format == "bvh":
             if not req.motions:
@@ -207,6 +215,7 @@ def handle_export(req: ExportRequest) -> ExportReply:
         commands=commands,
         captions=captions,
         checks=checks,
+        shots=shot_messages(r.staging.shots),
     )
 
 

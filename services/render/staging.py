@@ -22,6 +22,7 @@ from proto.motion_data import Motion
 from proto.render import TimedCommand
 from proto.scene import Scene
 from services.render.camera import CameraKey, CameraPose, CharacterTrack, camera_at
+from services.render.director import Shot, plan_shots, shot_keys
 from services.render.framing import Occluders
 from services.render.skinning import Rig
 from services.render.timeline import (
@@ -75,12 +76,14 @@ class Staging:
         scene: the composed scene.
         rigs: character name -> rig (its motion on the character's skeleton).
         tracks: character name -> hips/facing/head track (what the camera follows).
-        camera_keys: camera commands on frames.
+        camera_keys: the shots' camera keys (services.render.director), or the commands' own without
+            the director.
         weather_keys: weather/light commands on frames.
         occluders: the scene's collision boxes (the camera moves until it sees past them).
         n_frames: the video's length, frames.
         commands: the timed commands it was built from.
         motions: character name -> the motion its rig was built from (segments: which sentence when).
+        shots: the director's plan with the commands in it (empty without the director).
     """
 
     scene: Scene
@@ -92,6 +95,7 @@ class Staging:
     n_frames: int
     commands: list[TimedCommand]
     motions: dict[str, Motion]
+    shots: list[Shot] = field(default_factory=list)
     _poses: dict[int, CameraPose] = field(default_factory=dict, repr=False)
 
     @classmethod
@@ -101,6 +105,8 @@ class Staging:
         motions: list[Motion],
         commands: list[TimedCommand] | None = None,
         n_frames: int = 0,
+        *,
+        director: bool = True,
     ) -> Staging:
         """Stage a video.
 
@@ -110,6 +116,8 @@ class Staging:
             commands: camera/weather commands placed on frames (services.render.timeline.place_commands).
             n_frames: video length; 0 = the longest motion, held so that the last command shows
                 (timeline.video_frames).
+            director: plan shots per sentence (services.render.director); False: the commands alone,
+                with the establishing overview before the first.
 
         Raises:
             ValueError: a video longer than MAX_FRAMES, an unknown command word, a malformed motion.
@@ -119,16 +127,25 @@ class Staging:
         n = int(n_frames) if n_frames > 0 else video_frames(motions, cmds)
         if n > MAX_FRAMES:
             raise ValueError(f"{n} frames is more than the {MAX_FRAMES} one render may have")
+        tracks = {name: rig.track() for name, rig in rigs.items()}
+        by_name = {m.character: m for m in motions}
+        keys = camera_keys(cmds)  # raises on an unknown camera word, director or not
+        shots: list[Shot] = []
+        if director:
+            from services.render.coverage import Coverage  # it measures with Staging's CameraTrack
+
+            shots = plan_shots(by_name, tracks, cmds, n, scene.room, Coverage.from_rigs(rigs, scene))
         return cls(
             scene=scene,
             rigs=rigs,
-            tracks={name: rig.track() for name, rig in rigs.items()},
-            camera_keys=camera_keys(cmds),
+            tracks=tracks,
+            camera_keys=shot_keys(shots) if director else keys,
             weather_keys=weather_keys(cmds),
             occluders=Occluders.from_scene(scene),
             n_frames=n,
             commands=cmds,
-            motions={m.character: m for m in motions},
+            motions=by_name,
+            shots=shots,
         )
 
     def camera(self, frame: int) -> CameraPose:

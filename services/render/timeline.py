@@ -3,7 +3,8 @@
 A sentence's actions start at the earliest ``Segment.start_frame`` that carries its id. A command
 sentence ("camera left", "night") takes effect where the next sentence with motion starts (or, at
 the end of the story, where the last earlier motion ends). A camera command without a target
-follows the character of the closest earlier action sentence (the "current" character).
+follows the character of the closest earlier action sentence (the "current" character); ``close``
+and ``follow`` the character of the next one (what the command cuts to), when there is one.
 
 The inputs are accepted in the shapes the orchestrator has at hand: motions as a list or a
 name -> Motion dict; commands as ``Command``, ``(sentence_id, Command)`` or ``TimedCommand``;
@@ -127,9 +128,18 @@ def place_commands(
                 current = earlier[-1][2]
             elif later:
                 current = later[0][2]
-        if cmd.kind == "camera" and not cmd.target and current:
+            if (
+                later
+                and cmd.kind == "camera"
+                and MODE_ALIASES.get(cmd.value, cmd.value) in ("close", "follow")
+            ):
+                current = later[0][2]  # a close-up or a follow is on who acts next (the scene it cuts to)
+        implied = cmd.kind == "camera" and not cmd.target and bool(current)
+        if implied:
             cmd = Command(kind=cmd.kind, value=cmd.value, seconds=cmd.seconds, target=current, span=cmd.span)
-        out.append((frame, n, TimedCommand(frame=frame, command=cmd, sentence_id=sid)))
+        out.append(
+            (frame, n, TimedCommand(frame=frame, command=cmd, sentence_id=sid, implied_target=implied))
+        )
     out.sort(key=lambda t: (t[0], t[1]))
     return [t[2] for t in out]
 
@@ -156,18 +166,39 @@ def caption_at(captions: list[Caption], frame: int) -> str:
     return best.text if best else ""
 
 
+COMMAND_MODES = ("front", "back", "left", "right", "top", "wide", "close", "follow", "over_shoulder")
+MODE_ALIASES = {
+    "closeup": "close",
+    "close-up": "close",
+    "close_up": "close",
+    "overview": "wide",
+    "establishing": "wide",
+    "over-the-shoulder": "over_shoulder",
+    "over_the_shoulder": "over_shoulder",
+    "shoulder": "over_shoulder",
+    "ots": "over_shoulder",
+}
+
+
+def camera_mode(value: str) -> str:
+    """The camera mode a command's value names ("close-up" -> "close").
+
+    Raises:
+        ValueError: a word that names no camera the render service has (the message lists them).
+    """
+    mode = MODE_ALIASES.get(value, value)
+    if mode not in COMMAND_MODES or mode not in CAMERA_MODES:
+        raise ValueError(f"unknown camera command {value!r}; choose one of {', '.join(COMMAND_MODES)}")
+    return mode
+
+
 def camera_keys(commands: list[TimedCommand]) -> list[CameraKey]:
+    """The commands' own keys (no director): each from its frame until the next."""
     keys = []
     for tc in commands:
         c = tc.command
         if c.kind == "camera":
-            mode = {"closeup": "close", "close-up": "close", "close_up": "close"}.get(c.value, c.value)
-            if mode not in CAMERA_MODES:
-                raise ValueError(
-                    f"unknown camera command {c.value!r}; choose one of front, back, left, right, "
-                    "top, follow, close"
-                )
-            keys.append(CameraKey(frame=max(0, tc.frame), mode=mode, character=c.target))
+            keys.append(CameraKey(frame=max(0, tc.frame), mode=camera_mode(c.value), character=c.target))
     return sorted(keys, key=lambda k: k.frame)
 
 

@@ -1,0 +1,93 @@
+"""How well a candidate camera shows the acting characters: the ``in_view`` test, run before the shot.
+
+The director (services.render.director) frames each shot from a few candidates (sides, turns, heights,
+distances) and keeps the one that shows its acting characters best over the shot, measured exactly as
+the ``in_view`` story check measures the video (services.render.visibility: body points in the picture
+and unhidden by furniture triangles, walls seen from inside and other characters' bodies).
+
+    cover = Coverage.from_rigs(rigs, scene, width=640, height=480)
+    share = cover.shown(poses, frames, ["Tom", "Mary"])  # share of (frame, character) shown >= 70 %
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from proto.scene import Room, Scene
+from services.render.camera import CameraPose
+from services.render.sightlines import Furniture
+from services.render.skinning import Rig
+from services.render.staging import CameraTrack
+from services.render.visibility import body_view, capsule_radii
+
+VISIBLE_SHARE = 0.7  # as services.render.camera_checks: a frame shows a character when 70 % of it is seen
+
+
+@dataclass(frozen=True)
+class Coverage:
+    """The characters' joints and the scene's occluders, for scoring cameras.
+
+    Attributes:
+        joints: character -> (T, J, 3) world joint positions.
+        furniture: the scene's objects.
+        room: the room.
+        radii: character -> (B,) capsule radii of its body.
+        width, height: the picture's size in pixels.
+    """
+
+    joints: dict[str, np.ndarray]
+    furniture: Furniture
+    room: Room
+    radii: dict[str, np.ndarray]
+    width: int = 640
+    height: int = 480
+
+    @classmethod
+    def from_rigs(
+        cls, rigs: Mapping[str, Rig], scene: Scene, width: int = 640, height: int = 480
+    ) -> Coverage:
+        return cls(
+            joints={n: r.joint_positions for n, r in rigs.items()},
+            furniture=Furniture.from_scene(scene),
+            room=scene.room,
+            radii={
+                n: capsule_radii(r.character.rest_joint_positions(), r.character.vertices)
+                for n, r in rigs.items()
+            },
+            width=width,
+            height=height,
+        )
+
+    def shown(self, poses: Sequence[CameraPose], frames: Sequence[int], who: Sequence[str]) -> float:
+        """Share of (frame, character) pairs in which the camera of that frame shows the character.
+
+        Args:
+            poses: one camera per frame.
+            frames: (F,) story frames (past a motion's end its final pose holds).
+            who: the characters that must be seen.
+        """
+        names = [w for w in who if w in self.joints]
+        if not names or not len(frames):
+            return 1.0
+        idx = np.asarray(frames, dtype=np.int64)
+        local = {n: j[np.clip(idx, 0, len(j) - 1)] for n, j in self.joints.items()}
+        track = CameraTrack(
+            eye=np.array([p.eye for p in poses], dtype=np.float64),
+            target=np.array([p.target for p in poses], dtype=np.float64),
+            up=np.array([p.up for p in poses], dtype=np.float64),
+            fov_deg=np.array([p.fov_deg for p in poses], dtype=np.float64),
+            width=self.width,
+            height=self.height,
+        )
+        steps = np.arange(len(idx))
+        shown = [
+            body_view(
+                n, steps, local, track, self.furniture, self.room, self.width, self.height, self.radii
+            ).visible.mean(axis=1)
+            >= VISIBLE_SHARE
+            for n in names
+        ]
+        return float(np.mean(shown))

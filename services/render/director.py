@@ -1,0 +1,527 @@
+"""The director: shots planned per sentence from what happens in it, and camera commands for their scope.
+
+Without camera commands the video is cut on sentence boundaries (the frame where a sentence's first
+segment starts) into shots:
+
+- the first action gets an establishing wide shot (the room, everyone in it);
+- three or more characters acting at once: wide;
+- two characters acting at once: a two-shot, square to the line between them;
+- one character: a tracking shot while it walks, a close-up when its face changes (an emotion action or
+  a change of the expression weights), over the shoulder of the nearest idle character when it talks to
+  them, else a medium shot;
+- a shot shorter than MIN_SHOT_FRAMES (1.5 s) joins the shot before it (the subjects of both framed
+  together); sentences in a row with the same type and subjects are one shot up to LONGEST_HOLD (5 s),
+  and past that the cut must turn the view by JUMP_TURN or change its distance (no jump cut).
+
+Each shot is framed by measuring: among candidate sides, turns, heights and distances
+(SHOT_CHOICES; a commanded view only rises, turns a little or comes closer: COMMAND_CHOICES) the one
+whose camera shows the shot's acting characters best over sample frames wins, measured as the
+``in_view`` check measures the video (services.render.coverage: body points in the picture, unhidden by
+furniture, walls seen from inside and other bodies); the planned camera is played as it is. Walls
+between the camera and the room are cut away (one-sided, culled from behind), so a camera may stand
+outside the room; a small cost per metre outside keeps views inside when they see as well.
+
+Every two-person shot of a pair stays on the side of the line between them that the pair's first shot
+chose (the 180° rule), whatever a candidate on the other side would show.
+
+A camera command replaces the director from its frame until the next camera command; ``close`` and
+``follow`` only until their subject's next action ends (at least MIN_SHOT_FRAMES), then the director
+resumes. A view command (front, back, left, right, top) that named nobody turns to whoever acts in each
+sentence of its scope (a pair: their middle). Shots are what ``report.json`` lists.
+
+This module is over 400 lines because the shot rules, the framing search and the command scopes are
+one plan: each step reads the one before.
+
+    shots = plan_shots(motions, tracks, commands, n_frames, room, Coverage.from_rigs(rigs, scene))
+    keys = shot_keys(shots)  # services.render.camera.camera_at plays them
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass, replace
+from typing import Any, Protocol
+
+import numpy as np
+
+from proto.motion_data import Motion
+from proto.render import Shot as RenderShot
+from proto.render import TimedCommand
+from proto.scene import Room
+from services.render.camera import (
+    OVERVIEW_ADJUSTMENTS,
+    CameraKey,
+    CameraPose,
+    CharacterTrack,
+    shot_pose,
+    view_pose,
+    wide_pose,
+)
+from services.render.framing import Adjust
+from services.render.timeline import camera_mode
+
+MIN_SHOT_FRAMES = 45  # 1.5 s at 30 fps
+WALKS = frozenset(
+    {"walk", "run", "jog", "walk_slowly", "walk_backward", "march", "skip", "tiptoe", "limp", "crawl"}
+)
+EMOTIONS = frozenset(
+    {
+        "laugh", "cry", "cover_face", "facepalm", "celebrate", "fist_pump", "shrug", "shiver", "yawn",
+        "scratch_head", "think", "surrender", "wipe_sweat", "blow_kiss", "get_hit", "stumble", "fall_down",
+    }
+)  # fmt: skip
+TALKS = frozenset(
+    {"talk", "whisper", "shout", "argue", "quarrel", "apologize", "criticize", "comfort", "introduce",
+     "threaten", "present", "listen_with_headphones", "nod", "shake_head", "greet_bow", "bow"}
+)  # fmt: skip
+NEAR_PARTNER = 3.0  # metres: an idle character this close is who a speaker talks to
+EXPRESSION_CHANGE = 0.3  # largest change of one face weight within a shot that makes it a close-up
+DIRECTIONS = ("front", "back", "left", "right", "top")  # commands that name a view, not a subject
+COMMAND_VIEWS = (*DIRECTIONS, "follow", "close")
+SCOPED_COMMANDS = ("close", "follow")  # commands that end with their subject's next action
+
+
+@dataclass(frozen=True)
+class Shot:
+    """Frames [start, end) of one shot.
+
+    Attributes:
+        kind: wide, medium, tracking, close_up, two_shot, over_shoulder (director), or the commanded
+            mode (front, back, left, right, top, follow, close).
+        subject: who the shot is on ("" for a wide shot).
+        partner: the second character of a two-person shot ("" otherwise).
+        sentence_id: the sentence whose start cut to it (or whose command it is).
+        source: "director" or "command".
+        side: +1/-1, which side the camera stands (see services.render.shots).
+        acting: who acts during the shot (who the framing must show).
+        adjust: the framing chosen among candidates by what it shows (None: not measured).
+    """
+
+    start: int
+    end: int
+    kind: str
+    subject: str = ""
+    partner: str = ""
+    sentence_id: str = ""
+    source: str = "director"
+    side: int = 1
+    acting: tuple[str, ...] = ()
+    adjust: Adjust | None = None
+
+
+@dataclass(frozen=True)
+class _Beat:
+    """A stretch between two sentence starts: who acts in it and what they do."""
+
+    start: int
+    end: int
+    sentence_id: str
+    lead: str  # the character whose sentence starts the beat
+    acting: tuple[str, ...]  # everyone with a sentence's segment in the beat, lead first
+    actions: tuple[str, ...]  # the lead's segment actions in the beat
+
+
+def _beats(motions: Mapping[str, Motion], n_frames: int) -> list[_Beat]:
+    segs = [
+        (s.start_frame, s.end_frame, name, s)
+        for name, m in motions.items()
+        for s in m.segments
+        if s.sentence_id
+    ]
+    starts: dict[int, tuple[str, str]] = {}
+    for lo, _, name, s in sorted(segs, key=lambda t: (t[0], t[2])):
+        first_of_sentence = min(x[0] for x in segs if x[3].sentence_id == s.sentence_id)
+        if lo == first_of_sentence and lo not in starts:
+            starts[max(0, lo)] = (s.sentence_id, name)
+    cuts = sorted(starts)
+    if not cuts:
+        return []
+    edges = [0, *cuts[1:], n_frames] if cuts[0] > 0 else [*cuts, n_frames]
+    out = []
+    for i in range(len(edges) - 1):
+        lo, hi = edges[i], edges[i + 1]
+        if hi <= lo:
+            continue
+        sid, lead = starts.get(lo, starts[cuts[0]])
+        acting = {name for a, b, name, _ in segs if a < hi and b > lo}
+        actions = tuple(s.action for a, b, name, s in segs if name == lead and a < hi and b > lo)
+        order = (lead, *sorted(acting - {lead}))
+        out.append(_Beat(lo, hi, sid, lead, order if lead in acting else tuple(sorted(acting)), actions))
+    return out
+
+
+def _expression_changes(motion: Motion | None, lo: int, hi: int) -> bool:
+    if motion is None or motion.expression is None:
+        return False
+    from wana.arrays import from_wire
+
+    e = np.asarray(from_wire(motion.expression), dtype=np.float64)
+    if e.ndim != 2 or not len(e) or lo >= len(e):
+        return False
+    part = e[lo : min(hi, len(e))]
+    return bool(len(part) and np.abs(part - part[0]).max() > EXPRESSION_CHANGE)
+
+
+def _nearest_idle(beat: _Beat, tracks: Mapping[str, CharacterTrack]) -> str:
+    me = tracks.get(beat.lead)
+    if me is None:
+        return ""
+    mid = (beat.start + beat.end) // 2
+    best, best_d = "", NEAR_PARTNER
+    for name, t in sorted(tracks.items()):
+        if name in beat.acting:
+            continue
+        d = float(np.linalg.norm((t.at(mid)[0] - me.at(mid)[0])[[0, 2]]))
+        if d < best_d:
+            best, best_d = name, d
+    return best
+
+
+def _nearest(who: str, tracks: Mapping[str, CharacterTrack], frame: int) -> str:
+    """The other character nearest to ``who`` at a frame ("" when alone)."""
+    if who not in tracks:
+        return ""
+    here = tracks[who].at(frame)[0]
+    others = [
+        (float(np.linalg.norm((t.at(frame)[0] - here)[[0, 2]])), n) for n, t in tracks.items() if n != who
+    ]
+    return min(others)[1] if others else ""
+
+
+def _kind(
+    beat: _Beat, first: bool, motions: Mapping[str, Motion], tracks: Mapping[str, CharacterTrack]
+) -> Shot:
+    shot = _kind_of(beat, first, motions, tracks)
+    return replace(shot, acting=beat.acting)
+
+
+def _kind_of(
+    beat: _Beat, first: bool, motions: Mapping[str, Motion], tracks: Mapping[str, CharacterTrack]
+) -> Shot:
+    lead = beat.lead
+    if first or len(beat.acting) >= 3 or lead not in tracks:
+        return Shot(beat.start, beat.end, "wide", "", "", beat.sentence_id)
+    if len(beat.acting) == 2:
+        return Shot(beat.start, beat.end, "two_shot", lead, beat.acting[1], beat.sentence_id)
+    acts = set(beat.actions)
+    if acts and acts <= WALKS:
+        return Shot(beat.start, beat.end, "tracking", lead, "", beat.sentence_id)
+    if acts & EMOTIONS or _expression_changes(motions.get(lead), beat.start, beat.end):
+        return Shot(beat.start, beat.end, "close_up", lead, "", beat.sentence_id)
+    if acts & TALKS and (partner := _nearest_idle(beat, tracks)):
+        return Shot(beat.start, beat.end, "over_shoulder", lead, partner, beat.sentence_id)
+    return Shot(beat.start, beat.end, "medium", lead, "", beat.sentence_id)
+
+
+def _joined(a: Shot, b: Shot) -> Shot:
+    """One shot over both (the later one is too short to stand alone): everyone of both in it."""
+    people = [p for p in dict.fromkeys([a.subject, a.partner, b.subject, b.partner]) if p]
+    acting = tuple(dict.fromkeys([*a.acting, *b.acting]))
+    if a.kind == "wide" or len(people) >= 3 or len(acting) >= 3:
+        return Shot(a.start, b.end, "wide", "", "", a.sentence_id, acting=acting)
+    if len(people) == 2:
+        kind = a.kind if a.kind in ("two_shot", "over_shoulder") and a.partner else "two_shot"
+        return Shot(a.start, b.end, kind, people[0], people[1], a.sentence_id, acting=acting)
+    return Shot(a.start, b.end, a.kind, a.subject, a.partner, a.sentence_id, acting=acting)
+
+
+def _same_framing(a: Shot, b: Shot) -> bool:
+    """Cutting from a to b would be a jump cut: the same type on the same people (a two-shot of a pair
+    either way round; an over-the-shoulder reversed is the reverse shot, a different framing)."""
+    if a.kind != b.kind:
+        return False
+    if a.kind in ("two_shot", "wide"):
+        return {a.subject, a.partner} == {b.subject, b.partner}
+    return (a.subject, a.partner) == (b.subject, b.partner)
+
+
+def director_shots(
+    motions: Mapping[str, Motion], tracks: Mapping[str, CharacterTrack], n_frames: int
+) -> list[Shot]:
+    """The director's shots over [0, n_frames), before sides are chosen (see plan_shots)."""
+    shots: list[Shot] = []
+    for i, beat in enumerate(_beats(motions, n_frames)):
+        shot = _kind(beat, i == 0, motions, tracks)
+        same = shots and _same_framing(shots[-1], shot) and shot.end - shots[-1].start <= LONGEST_HOLD
+        if shots and (shot.end - shot.start < MIN_SHOT_FRAMES or same):
+            shots[-1] = _joined(shots[-1], shot)
+        elif shots and shots[-1].end - shots[-1].start < MIN_SHOT_FRAMES:
+            shots[-1] = _joined(shots[-1], shot)  # the first beat was short: it opens the next
+        else:
+            shots.append(shot)
+    if not shots:
+        return [Shot(0, max(1, n_frames), "wide")]
+    return shots
+
+
+# Changes of a shot's pose the director measures, most preferred first (see services.render.framing.Adjust).
+SHOT_CHOICES = (
+    Adjust(),
+    *(Adjust(turn=np.radians(a) * sg) for a in (30, 60) for sg in (1, -1)),
+    Adjust(rise=0.6),
+    Adjust(rise=1.2),
+    *(Adjust(turn=np.radians(a) * sg, rise=0.8) for a in (30, 60) for sg in (1, -1)),
+    Adjust(scale=1.3),
+    Adjust(scale=0.8),
+    *(Adjust(turn=np.radians(a) * sg) for a in (90, 140) for sg in (1, -1)),
+    *(Adjust(turn=np.radians(a) * sg, rise=1.3, scale=1.2) for a in (45, 100) for sg in (1, -1)),
+)
+OVERVIEW_CHOICES = OVERVIEW_ADJUSTMENTS + tuple(
+    Adjust(turn=np.radians(a) * sg, rise=0.8) for a in (135, 180) for sg in (1, -1)
+)  # the room seen from its other sides too
+# A commanded view keeps its side: only small turns, rising and coming closer (a window in the way).
+COMMAND_CHOICES = (
+    Adjust(),
+    Adjust(rise=0.6),
+    *(Adjust(turn=np.radians(a) * sg) for a in (20, 40) for sg in (1, -1)),
+    Adjust(rise=1.2),
+    Adjust(scale=0.75),
+    *(Adjust(turn=np.radians(a) * sg, rise=0.8) for a in (20, 40) for sg in (1, -1)),
+    Adjust(rise=1.0, scale=0.7),
+)
+LINE_CHOICE_TURN = np.radians(60.0)  # two-person shots keep to their side of the line
+SAMPLES = 8  # frames of a shot measured per candidate, at least
+SAMPLE_STEP = 15  # frames between measured frames of a long shot (at most MAX_SAMPLES)
+MAX_SAMPLES = 24
+LONGEST_HOLD = (
+    150  # frames: same-framing sentences join into one shot up to 5 s; beyond, the cut changes angle
+)
+JUMP_TURN = np.radians(30.0)  # a cut on the same subject must turn the view at least this much
+JUMP_SCALE = 0.25  # ... or change the distance by this share
+PREFERENCE = 0.004  # score given up per step down the candidate list (ties go to the preferred one)
+OUTSIDE = 0.02  # score per metre the eye stands outside the room (readable views are from inside)
+
+
+class Scorer(Protocol):
+    """What a candidate camera shows (services.render.coverage.Coverage.shown), over sample frames."""
+
+    def shown(self, poses: Sequence[CameraPose], frames: Sequence[int], who: Sequence[str]) -> float: ...
+
+
+def _samples(s: Shot) -> list[int]:
+    n = min(max(SAMPLES, (s.end - s.start) // SAMPLE_STEP), MAX_SAMPLES, max(1, s.end - s.start))
+    return sorted({int(round(x)) for x in np.linspace(s.start, max(s.start, s.end - 1), n)})
+
+
+def _candidates(s: Shot, fixed_side: int | None) -> list[tuple[int, Adjust]]:
+    sides = (fixed_side,) if fixed_side is not None else (1, -1)
+    if s.source == "command":
+        return [(1, a) for a in COMMAND_CHOICES] if s.kind in COMMAND_VIEWS else []
+    if s.kind == "wide":
+        return [(1, a) for a in OVERVIEW_CHOICES]
+    choices = SHOT_CHOICES
+    if s.partner:
+        choices = tuple(a for a in SHOT_CHOICES if abs(a.turn) <= LINE_CHOICE_TURN + 1e-9)
+    return [(side, a) for a in choices for side in sides]
+
+
+def _framed(
+    shots: list[Shot], tracks: Mapping[str, CharacterTrack], room: Room, scorer: Scorer | None
+) -> list[Shot]:
+    """Each shot's side and framing: the candidate that shows its acting characters best (with a scorer),
+    else the side whose eye stays in the room; a pair keeps the side of its first shot (180° rule), and
+    a cut to the same subject never lands on a near-identical view (no jump cut)."""
+    pair_side: dict[tuple[str, str], int] = {}
+    track_map = dict(tracks)
+    out: list[Shot] = []
+    last: tuple[Shot, Any] | None = None  # the shot before and its camera on its last frame
+    for s in shots:
+        if (s.source == "command" and scorer is None) or (s.kind != "wide" and s.subject not in tracks):
+            out.append(s)
+            last = None
+            continue
+        pair = (min(s.subject, s.partner), max(s.subject, s.partner)) if s.partner else None
+        frames = _samples(s)
+        best, best_score, best_pose = (1, Adjust()), -np.inf, None
+        for rank, (side, adj) in enumerate(_candidates(s, pair_side.get(pair) if pair else None)):
+            key = CameraKey(
+                frame=s.start, mode=s.kind, character=s.subject, partner=s.partner, side=side, adjust=adj
+            )
+            poses = [_pose(key, track_map, room, f) for f in frames]
+            if any(p is None for p in poses):
+                break
+            if last is not None and s.start == last[0].end and _jump(last, s, poses[0], track_map):
+                continue
+            outside = float(np.mean([_outside(room, p.eye) for p in poses]))
+            if scorer is None:
+                score = -outside
+            else:
+                score = scorer.shown(poses, frames, list(s.acting or (s.subject,))) - OUTSIDE * outside
+            score -= PREFERENCE * rank
+            if score > best_score + 1e-12:
+                best, best_score = (side, adj), score
+                key_end = replace(key, frame=s.start)
+                best_pose = _pose(key_end, track_map, room, max(s.start, s.end - 1))
+            if scorer is None and rank >= 1:
+                break  # without measuring, only the side is chosen
+            if scorer is not None and best_score >= 1.0 - PREFERENCE * rank - 1e-9 and rank == 0:
+                break  # the preferred framing shows everyone: nothing to improve
+        if pair is not None:
+            pair_side.setdefault(pair, best[0])
+        framed = replace(s, side=best[0], adjust=best[1] if scorer is not None else None)
+        out.append(framed)
+        last = (framed, best_pose) if best_pose is not None else None
+    return out
+
+
+def _jump(last: tuple[Shot, Any], s: Shot, first: Any, tracks: Mapping[str, CharacterTrack]) -> bool:
+    """Whether cutting from the shot before (its camera on its last frame) to this camera is a jump cut:
+    the same people, seen from nearly the same direction and distance."""
+    before, pose = last
+    if pose is None or {before.subject, before.partner} != {s.subject, s.partner} or s.kind == "wide":
+        return False
+    centre = tracks[s.subject].at(s.start)[0]
+    a, b = (pose.eye - centre)[[0, 2]], (first.eye - centre)[[0, 2]]
+    na, nb = float(np.linalg.norm(a)), float(np.linalg.norm(b))
+    if na < 1e-6 or nb < 1e-6:
+        return False
+    turn = float(np.arccos(np.clip(a @ b / (na * nb), -1.0, 1.0)))
+    return turn < JUMP_TURN and abs(na - nb) / max(na, nb) < JUMP_SCALE
+
+
+def _pose(key: CameraKey, tracks: dict[str, CharacterTrack], room: Room, f: int) -> Any:
+    if key.mode == "wide":
+        return wide_pose(key, room)
+    if key.mode in COMMAND_VIEWS:
+        return view_pose(key, tracks[key.character], tracks, room, f)
+    return shot_pose(key, tracks, f)
+
+
+def _outside(room: Room, eye: np.ndarray, margin: float = 0.15) -> float:
+    """Metres the eye stands outside the room's walls (0 inside)."""
+    return float(
+        max(0.0, abs(eye[0]) - room.width / 2 + margin) + max(0.0, abs(eye[2]) - room.depth / 2 + margin)
+    )
+
+
+def _command_shots(
+    commands: Iterable[TimedCommand],
+    motions: Mapping[str, Motion],
+    tracks: Mapping[str, CharacterTrack],
+    n_frames: int,
+    beats: list[_Beat],
+) -> list[Shot]:
+    """The frames each camera command is in force (see the module doc)."""
+    cams = [tc for tc in commands if tc.command.kind == "camera"]
+    out = []
+    for i, tc in enumerate(cams):
+        start = min(max(0, tc.frame), n_frames)
+        end = cams[i + 1].frame if i + 1 < len(cams) else n_frames
+        mode = camera_mode(tc.command.value)
+        who = tc.command.target
+        if mode in SCOPED_COMMANDS and who in motions:
+            nxt = [s.end_frame for s in motions[who].segments if s.sentence_id and s.end_frame > start]
+            if nxt:
+                end = min(end, max(min(nxt), start + MIN_SHOT_FRAMES))
+        end = min(max(end, start), n_frames)
+        if end <= start:
+            continue
+        acting = tuple(dict.fromkeys(a for b in beats if b.start < end and b.end > start for a in b.acting))
+        shot = Shot(start, end, mode, who, "", tc.sentence_id, "command", acting=acting)
+        if mode == "over_shoulder":  # over this character's shoulder onto the nearest other one
+            other = _nearest(who, tracks, start)
+            shot = replace(shot, subject=other or who, partner=who if other else "")
+        if mode in DIRECTIONS and tc.implied_target:
+            out.extend(_per_beat(shot, beats, tracks))
+        else:
+            out.append(shot)
+    return out
+
+
+def _per_beat(shot: Shot, beats: list[_Beat], tracks: Mapping[str, CharacterTrack]) -> list[Shot]:
+    """A view command that named nobody, turned to whoever acts in each sentence of its scope (a pair:
+    both, from the commanded side of the first)."""
+    out: list[Shot] = []
+    for b in beats:
+        lo, hi = max(shot.start, b.start), min(shot.end, b.end)
+        if hi <= lo or b.lead not in tracks:
+            continue
+        partner = next((a for a in b.acting[1:] if a in tracks), "")
+        piece = replace(shot, start=lo, end=hi, subject=b.lead, partner=partner, acting=b.acting)
+        if out and (hi - lo < MIN_SHOT_FRAMES or (out[-1].subject, out[-1].partner) == (b.lead, partner)):
+            out[-1] = replace(out[-1], end=hi, acting=tuple(dict.fromkeys([*out[-1].acting, *b.acting])))
+        else:
+            out.append(piece)
+    if not out:
+        return [shot]
+    out[0] = replace(out[0], start=shot.start)  # the pieces cover the command's whole scope
+    out[-1] = replace(out[-1], end=shot.end)
+    return out
+
+
+def _overlay(base: list[Shot], commanded: list[Shot]) -> list[Shot]:
+    """The director's shots with the commanded stretches cut out and the commands in their place."""
+    out = []
+    for s in base:
+        pieces = [(s.start, s.end)]
+        for c in commanded:
+            pieces = [
+                part
+                for lo, hi in pieces
+                for part in ((lo, min(hi, c.start)), (max(lo, c.end), hi))
+                if part[1] > part[0]
+            ]
+        for lo, hi in pieces:
+            out.append(replace(s, start=lo, end=hi))
+    return sorted(out + list(commanded), key=lambda s: s.start)
+
+
+def plan_shots(
+    motions: Mapping[str, Motion],
+    tracks: Mapping[str, CharacterTrack],
+    commands: Iterable[TimedCommand],
+    n_frames: int,
+    room: Room,
+    scorer: Scorer | None = None,
+) -> list[Shot]:
+    """Every frame's shot, in order, covering [0, n_frames).
+
+    Args:
+        motions: character -> motion (its segments say which sentence acts when).
+        tracks: character -> hips/facing/head track (services.render.skinning.Rig.track).
+        commands: timed commands in frame order (timeline.place_commands); camera ones override.
+        n_frames: the video's length.
+        room: the room (sides are chosen to keep the eye inside it).
+        scorer: measures what a candidate camera shows (services.render.coverage.Coverage); None: the
+            shots are not measured (the camera moves off boxes in its way instead).
+    """
+    n = max(1, n_frames)
+    beats = _beats(motions, n)
+    commanded = _command_shots(commands, motions, tracks, n, beats)
+    return _framed(_overlay(director_shots(motions, tracks, n), commanded), tracks, room, scorer)
+
+
+def shot_keys(shots: Iterable[Shot]) -> list[CameraKey]:
+    """The camera keys that play the shots: the director cuts (and so does a view command turning to the
+    next sentence's character), a command eases in as it always did."""
+    shots = list(shots)
+    return [
+        CameraKey(
+            frame=s.start,
+            mode=s.kind,
+            character=s.subject,
+            partner=s.partner,
+            side=s.side,
+            end=s.end,
+            cut=s.source == "director"
+            or (i > 0 and shots[i - 1].source == "command" and s.sentence_id == shots[i - 1].sentence_id),
+            adjust=s.adjust,
+        )
+        for i, s in enumerate(shots)
+    ]
+
+
+def shot_messages(shots: Iterable[Shot]) -> list[RenderShot]:
+    """The shots as the ExportReply and report.json list them."""
+    return [
+        RenderShot(
+            start_frame=s.start,
+            end_frame=s.end,
+            type=s.kind,
+            subject=s.subject,
+            partner=s.partner,
+            sentence_id=s.sentence_id,
+            source="command" if s.source == "command" else "director",
+        )
+        for s in shots
+    ]

@@ -1,0 +1,180 @@
+"""The director: shots per sentence, every shot type shows its subject, the 180° rule, command scoping,
+cut-away walls and the shots in the export.
+
+Characters stand (walk on the spot) at known places in an empty room, with segments that say what
+they do in which sentence, so the expected shots follow from the rules in services.render.director.
+"""
+
+from __future__ import annotations
+
+import msgspec
+import numpy as np
+import pytest
+
+from proto.common import Header
+from proto.motion_data import Motion, Segment
+from proto.render import ExportRequest, TimedCommand
+from proto.scene import Room, Scene
+from proto.ssg import Command
+from services.render.camera import CameraKey, camera_at, project
+from services.render.coverage import Coverage
+from services.render.demo import walk_motion
+from services.render.director import MIN_SHOT_FRAMES, Scorer, plan_shots
+from services.render.framing import Adjust
+from services.render.handlers import handle_export
+from services.render.renderer import FrameRenderer
+from services.render.staging import Staging
+
+ROOM = Room(room_type="living_room", width=6.0, depth=5.0, height=2.8)
+SCENE = Scene(room=ROOM, objects=[], seed=0)
+
+
+def actor(name: str, x: float, z: float, n: int, acts: list[tuple[str, int, int, str]]) -> Motion:
+    """A character standing at (x, z) for n frames doing (action, start, end, sentence id)."""
+    m = walk_motion(name, (x, z), (x, z), n, expression="none")
+    segs = [
+        Segment(index=i, action=a, start_frame=s, end_frame=e, sentence_id=sid)
+        for i, (a, s, e, sid) in enumerate(acts)
+    ]
+    return msgspec.structs.replace(m, segments=segs)
+
+
+@pytest.fixture(scope="module")
+def pair() -> list[Motion]:
+    """Eve and Tom 1.4 m apart talking in turns, then hugging."""
+    eve = actor(
+        "Eve", -0.7, 0.2, 240, [("talk", 0, 60, "s1"), ("talk", 120, 180, "s3"), ("hug", 180, 240, "s4")]
+    )
+    tom = actor("Tom", 0.7, -0.2, 240, [("talk", 60, 120, "s2"), ("hug", 180, 240, "s4")])
+    return [eve, tom]
+
+
+@pytest.fixture(scope="module")
+def staged(pair: list[Motion]) -> Staging:
+    return Staging.build(SCENE, pair)
+
+
+@pytest.mark.parametrize("mode", ["wide", "medium", "tracking", "close_up", "two_shot", "over_shoulder"])
+def test_every_shot_type_shows_its_subject_in_frame(staged: Staging, mode: str) -> None:
+    key = CameraKey(frame=0, mode=mode, character="Eve", partner="Tom", adjust=Adjust(), end=240)
+    cover = Coverage.from_rigs(staged.rigs, SCENE)
+    frames = [10, 100, 200]
+    poses = [camera_at(f, [key], staged.tracks, ROOM) for f in frames]
+    who = ["Eve", "Tom"] if mode in ("wide", "two_shot") else ["Eve"]
+    assert cover.shown(poses, frames, who) == 1.0
+    if mode == "over_shoulder":  # over Tom's shoulder: Tom is nearer the lens than Eve
+        eye = poses[0].eye
+        assert np.linalg.norm(eye - staged.tracks["Tom"].hips[10]) < np.linalg.norm(
+            eye - staged.tracks["Eve"].hips[10]
+        )
+
+
+def test_a_conversation_cuts_between_speakers_on_one_side_of_the_line(staged: Staging) -> None:
+    shots = staged.shots
+    assert shots[0].kind == "wide" and shots[0].start == 0  # the establishing shot on the first action
+    assert [s.start for s in shots[1:]] == [60, 120, 180]  # cuts on sentence boundaries
+    assert [(s.kind, s.subject) for s in shots[1:]] == [
+        ("over_shoulder", "Tom"),
+        ("over_shoulder", "Eve"),
+        ("two_shot", "Eve"),
+    ]
+    eve, tom = staged.tracks["Eve"].hips[100], staged.tracks["Tom"].hips[100]
+    line = (tom - eve)[[0, 2]]
+    sides = []
+    for s in shots[1:]:
+        eye = staged.camera((s.start + s.end) // 2).eye
+        rel = (eye - eve)[[0, 2]]
+        sides.append(np.sign(line[0] * rel[1] - line[1] * rel[0]))
+    assert len(set(sides)) == 1 and sides[0] != 0  # the 180° rule: never across the line Eve-Tom
+
+
+def test_no_shot_is_shorter_than_a_second_and_a_half_and_no_two_in_a_row_frame_alike() -> None:
+    eve = actor(
+        "Eve",
+        0.0,
+        0.0,
+        200,
+        [("wave", 0, 20, "s1"), ("nod", 20, 40, "s2"), ("clap", 40, 120, "s3"), ("point", 120, 200, "s4")],
+    )
+    stage = Staging.build(SCENE, [eve])
+    lengths = [s.end - s.start for s in stage.shots]
+    assert min(lengths) >= MIN_SHOT_FRAMES
+    for a, b in zip(stage.shots, stage.shots[1:], strict=False):
+        assert (a.kind, a.subject) != (b.kind, b.subject)
+
+
+def test_close_with_a_subject_lasts_until_its_next_action_ends_then_the_director_resumes() -> None:
+    eve = actor("Eve", -1.5, 0.0, 300, [("walk", 0, 60, "s1"), ("talk", 200, 300, "s5")])
+    tom = actor("Tom", 1.5, 0.0, 300, [("wave", 60, 130, "s3"), ("clap", 130, 200, "s4")])
+    close = TimedCommand(
+        frame=60, command=Command(kind="camera", value="close", target="Tom"), sentence_id="s2"
+    )
+    stage = Staging.build(SCENE, [eve, tom], [close])
+    commanded = [s for s in stage.shots if s.source == "command"]
+    assert [(s.kind, s.subject, s.start, s.end) for s in commanded] == [("close", "Tom", 60, 130)]
+    after = [s for s in stage.shots if s.start >= 130]
+    assert after and all(s.source == "director" for s in after)
+    assert any(s.subject == "Eve" for s in after)  # Eve's talk is not left off-screen
+
+
+def test_a_view_command_holds_until_the_next_camera_command() -> None:
+    eve = actor("Eve", -1.0, 0.0, 300, [("walk", 0, 60, "s1"), ("talk", 200, 300, "s5")])
+    tom = actor("Tom", 1.0, 0.0, 300, [("wave", 60, 200, "s3")])
+    cmds = [
+        TimedCommand(
+            frame=60,
+            command=Command(kind="camera", value="left", target="Eve"),
+            sentence_id="s2",
+            implied_target=True,
+        ),
+        TimedCommand(frame=250, command=Command(kind="camera", value="wide"), sentence_id="s4b"),
+    ]
+    stage = Staging.build(SCENE, [eve, tom], cmds)
+    spans = [(s.kind, s.subject, s.start, s.end) for s in stage.shots if s.start >= 60]
+    assert spans == [("left", "Tom", 60, 200), ("left", "Eve", 200, 250), ("wide", "", 250, 300)]
+    hips, facing, _ = stage.tracks["Tom"].smoothed(60)
+    left = np.array([facing[2], 0.0, -facing[0]])
+    assert float((stage.camera(150).eye - hips) @ left) > 1.0  # on Tom's left while he waves
+
+
+def test_walls_between_the_camera_and_the_room_are_cut_away_in_the_picture() -> None:
+    eve = actor("Eve", 0.0, 1.5, 30, [("wave", 0, 30, "s1")])
+    key = [CameraKey(frame=0, mode="wide", adjust=Adjust(), end=30)]
+    stage = Staging.build(SCENE, [eve])
+    pose = camera_at(5, key, stage.tracks, ROOM)
+    assert pose.eye[2] > ROOM.depth / 2  # the establishing camera stands behind the front wall
+    with_eve = FrameRenderer(SCENE, [eve], width=160, height=120)
+    empty = FrameRenderer(SCENE, [], n_frames=30, width=160, height=120)
+    try:
+        a, b = with_eve.render(5, pose=pose), empty.render(5, pose=pose)
+    finally:
+        with_eve.close()
+        empty.close()
+    uv, z = project(stage.rigs["Eve"].joint_positions[5, :1] + np.array([0.0, 0.3, 0.0]), pose, 160, 120)
+    u, v = np.clip(uv[0].round().astype(int), 0, [159, 119])
+    assert z[0] > 0 and np.abs(a[v, u].astype(int) - b[v, u].astype(int)).sum() > 30  # Eve, not a wall
+
+
+def test_the_export_reply_lists_the_shots(pair: list[Motion]) -> None:
+    req = ExportRequest(header=Header(), format="mp4", scene=SCENE, motions=pair, width=160, height=120)
+    reply = handle_export(req)
+    shots = [(s.start_frame, s.end_frame, s.type, s.subject) for s in reply.shots]
+    assert shots[0][:3] == (0, 60, "wide") and shots[-1][1] == reply.n_frames
+    assert all(a[1] == b[0] for a, b in zip(shots, shots[1:], strict=False))  # every frame in one shot
+
+
+class _SouthThenNorth(Scorer):
+    """Prefers cameras south of the pair (z > 0) before frame 120 and north of it after: a room whose
+    free views change side mid-conversation."""
+
+    def shown(self, poses, frames, who) -> float:  # noqa: ANN001
+        return float(np.mean([(p.eye[2] > 0) == (f < 120) for p, f in zip(poses, frames, strict=True)]))
+
+
+def test_the_pair_keeps_its_side_even_where_the_other_side_would_see_better(staged: Staging) -> None:
+    shots = plan_shots(staged.motions, staged.tracks, [], staged.n_frames, ROOM, _SouthThenNorth())
+    pairs = [s for s in shots if s.partner]
+    assert len(pairs) == 3 and len({s.side for s in pairs}) == 1
+    assert staged.tracks["Eve"].hips[0][2] > staged.tracks["Tom"].hips[0][2]  # the line is not along x
+    singles = plan_shots(staged.motions, staged.tracks, [], staged.n_frames, ROOM, _SouthThenNorth())
+    assert singles == shots  # planning is a pure function of its inputs
