@@ -19,7 +19,9 @@ import msgspec
 _SENTENCE = re.compile(r"[^\s][^\n.!?$]*(?:[.!?$]+|(?=\n)|$)")
 _SPACE = re.compile(r"\s+")
 # Titles and abbreviations whose period, followed by a space, does not end a sentence (services/nlp/segment.py).
-TITLES = frozenset({"mr", "mrs", "ms", "dr", "st", "prof", "jr", "sr", "vs", "etc", "mt", "no", "capt", "gen"})
+TITLES = frozenset(
+    {"mr", "mrs", "ms", "dr", "st", "prof", "jr", "sr", "vs", "etc", "mt", "no", "capt", "gen"}
+)
 _WORD_BEFORE = re.compile(r"([A-Za-z]+)\.$")
 
 MAX_DOCUMENT_CHARS = 1_000_000

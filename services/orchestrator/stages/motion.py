@@ -12,6 +12,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
 import msgspec
+import numpy as np
 
 from proto.common import Span
 from proto.motion import SegmentEndState, SynthesizeReply, SynthesizeRequest
@@ -24,8 +25,19 @@ from services.orchestrator.backend import StageFailed
 from services.orchestrator.document import Sentence
 from services.orchestrator.stages import StageContext, content_of
 from services.orchestrator.stages.social import frame_count
+from services.orchestrator.staging import (
+    Doorway,
+    doorway,
+    first_spot,
+    is_entrance,
+    is_exit,
+    presence,
+    route,
+    spot_near,
+)
 from services.orchestrator.timeline import Beat, assemble, schedule
-from services.orchestrator.views import characters_of, others, scene_view, social_distances, start_positions
+from services.orchestrator.views import characters_of, others, scene_view, social_distances
+from wana.arrays import from_wire, to_wire
 
 Characters = dict[str, tuple[CharacterNode, list[str]]]  # name -> (its actions in order, their sentence ids)
 Distances = dict[tuple[str, int], dict[str, float]]  # (name, k) -> {other: metres}
@@ -49,6 +61,7 @@ def synthesise(
     start: tuple[float, float, float],
     others: dict[str, tuple[float, float]] | None = None,
     distances: dict[str, float] | None = None,
+    routes: list[list[tuple[float, float]]] | None = None,
 ) -> SynthesizeReply:
     request = SynthesizeRequest(
         header=ctx.header(),
@@ -58,6 +71,7 @@ def synthesise(
         start_state=state,
         others=others or {},
         distances=distances or {},
+        routes=routes or [],
     )
     return content_of(ctx.backend.call(request))
 
@@ -85,6 +99,8 @@ def segments(
     starts: dict[str, tuple[float, float, float]],
     upto: dict[str, int] | None = None,
     distances: Distances | None = None,
+    door: Doorway | None = None,
+    hidden: set[str] | None = None,
 ) -> dict[str, list[Motion]]:
     """Every character's motion, one query node `<kind>:<name>:<k>` per action, in document order.
 
@@ -93,8 +109,11 @@ def segments(
     names stands by then. So an edit that leaves an end state unchanged stops there (early cutoff), and
     moving a lamp on a desk re-runs only the actions that use the lamp. ``distances``: (name, k) -> how
     far action k stops from the characters it walks up to (the social plan's, views.social_distances).
+    ``hidden``: the characters waiting outside ``door`` (services/orchestrator/staging.py): their next action
+    comes in through it, and an exit walks out through it.
     """
     states = {name: SegmentEndState(x=st[0], z=st[1], yaw=st[2]) for name, st in starts.items()}
+    outside = set(hidden or ())
     pieces: dict[str, list[Motion]] = {name: [] for name in characters}
     object_ids = {o.id for o in scene.objects}
     order = [
@@ -109,11 +128,17 @@ def segments(
             continue
         node, sids = characters[name]
         action = node.actions[k]
-        single = CharacterNode(name=name, actions=[msgspec.structs.replace(action, verb="")])
+        state = states[name]
+        asked, routes = _staged(scene, door, name, action, state, states, name in outside)
+        if door is not None:
+            if is_exit(action):
+                outside.add(name)
+            else:
+                outside.discard(name)
+        single = CharacterNode(name=name, actions=asked)
         view = scene_view(scene, action)
         near_them = others(action, name, states, object_ids)
         near = {o: d for o, d in (distances or {}).get((name, k), {}).items() if o in near_them}
-        state = states[name]
 
         def run(
             single: CharacterNode = single,
@@ -121,10 +146,15 @@ def segments(
             state: SegmentEndState = state,
             near_them: dict[str, tuple[float, float]] = near_them,
             near: dict[str, float] = near,
+            routes: list[list[tuple[float, float]]] = routes,
         ) -> SynthesizeReply:
-            return synthesise(ctx, single, view, state, (state.x, state.z, state.yaw), near_them, near)
+            return synthesise(
+                ctx, single, view, state, (state.x, state.z, state.yaw), near_them, near, routes
+            )
 
         inputs = [single, view, state, near_them, near] if near else [single, view, state, near_them]
+        if routes:
+            inputs.append(routes)
         reply = ctx.engine.query(f"{kind}:{name}:{k}", inputs, run)
         placed = [
             msgspec.structs.replace(seg, action_index=k, sentence_id=sids[k]) for seg in reply.motion.segments
@@ -145,6 +175,44 @@ def segments(
     return pieces
 
 
+def _staged(
+    scene: Scene,
+    door: Doorway | None,
+    name: str,
+    action: ActionNode,
+    state: SegmentEndState,
+    states: dict[str, SegmentEndState],
+    waiting: bool,
+) -> tuple[list[ActionNode], list[list[tuple[float, float]]]]:
+    """The actions sent to motion for one story action, and the routes their walks take.
+
+    A character waiting at the door (shown from the threshold on) walks in to a free spot: an entrance
+    does only that, any other action walks in to a spot near where it acts first. An exit walks to the
+    door's threshold (the character is gone once there).
+    """
+    plain = msgspec.structs.replace(action, verb="")
+    if door is None:
+        return [plain], []
+    here = (state.x, state.z)
+    taken = [(st.x, st.z) for other, st in states.items() if other != name]
+    walk = msgspec.structs.replace(
+        plain, action=action.action or "walk", target="", destination="", instrument=""
+    )
+    if is_exit(action):
+        return [walk], [route(scene, here, door.inside())]
+    if not waiting:
+        return [plain], []
+    towards = states.get(action.target) or states.get(action.destination)
+    if towards is not None and not is_entrance(action):
+        goal = spot_near(scene, (towards.x, towards.z), taken)
+    else:
+        goal = spot_near(scene, door.inside(1.6), taken, radii=(0.0, 0.6, 1.0, 1.5))
+    way_in = [route(scene, here, (goal[0], goal[1]))]
+    if is_entrance(action):
+        return [walk], way_in
+    return [ActionNode(verb="", action="walk"), plain], way_in
+
+
 def animate(
     ctx: StageContext,
     scene: Scene,
@@ -156,7 +224,9 @@ def animate(
 ) -> Animated:
     """Drafts on the composed layout, the layout optimised around each interaction, then the final motion."""
     characters = characters_of(graphs, [s.id for s in sentences])
-    starts = start_positions(scene, list(characters))
+    door = doorway(scene)
+    starts, hidden = _first_positions(scene, door, characters, sentences)
+    waiting_place = {name: i for i, name in enumerate(sorted(characters, key=lambda n: n not in hidden))}
     ids = {o.id for o in scene.objects}
     out = Animated(scene=scene)
     # Interactions: actions that touch an object of the scene; the layout is optimised around each.
@@ -169,7 +239,18 @@ def animate(
     done, total = 0, len(interactions) + len(characters)
     last = {name: max([k for n, k, _ in interactions if n == name], default=-1) for name in characters}
     near = social_distances(plan)
-    drafts = segments(ctx, "draft", characters, sentences, scene, starts, upto=last, distances=near)
+    drafts = segments(
+        ctx,
+        "draft",
+        characters,
+        sentences,
+        scene,
+        starts,
+        upto=last,
+        distances=near,
+        door=door,
+        hidden=hidden,
+    )
     for name, k, action in interactions:
         tick("optimise", done, total)
         draft = drafts[name][k]
@@ -191,7 +272,9 @@ def animate(
         done += 1
     out.scene = scene
     tick("motion", done, total)
-    pieces = segments(ctx, "segment", characters, sentences, scene, starts, distances=near)
+    pieces = segments(
+        ctx, "segment", characters, sentences, scene, starts, distances=near, door=door, hidden=hidden
+    )
     tick("motion", total, total)
     # Story timing: sentence order sets when actions start; gaps hold the pose.
     beats = [
@@ -211,5 +294,49 @@ def animate(
     length = max([start_frames[(b.character, b.k)] + b.frames for b in beats] or [1])
     for name, (node, _) in characters.items():
         firsts = [start_frames[(name, k)] for k in range(len(node.actions))] or [0]
-        out.motions[name] = assemble(name, pieces[name], firsts, total=length)
+        motion = assemble(name, pieces[name], firsts, total=length)
+        lengths = [frame_count(p) for p in pieces[name]] if node.actions else []
+        on = presence(length, firsts if node.actions else [], lengths, node.actions, name not in hidden)
+        motion = msgspec.structs.replace(motion, present=to_wire(on))
+        if door is not None and not on.all():
+            motion = _wait_outside(motion, on, door.outside(waiting_place[name]))
+        out.motions[name] = motion
     return out
+
+
+def _wait_outside(motion: Motion, on: np.ndarray, spot: tuple[float, float]) -> Motion:
+    """The motion with its off-stage frames (on == 0) moved to the character's place outside the door."""
+    root = from_wire(motion.root_position).copy()
+    root[on == 0, 0], root[on == 0, 2] = spot
+    return msgspec.structs.replace(motion, root_position=to_wire(root.astype(np.float32)))
+
+
+def _first_positions(
+    scene: Scene, door: Doorway | None, characters: Characters, sentences: Sequence[Sentence]
+) -> tuple[dict[str, tuple[float, float, float]], set[str]]:
+    """Where each character is at frame 0, and who waits outside the door until their first sentence.
+
+    Characters of the first action sentence start at free spots near what they first act on; an entrance
+    and every character introduced later wait at the door (hidden until their first sentence), those who
+    come in by the same sentence side by side on its threshold.
+    """
+    order = {s.id: i for i, s in enumerate(sentences)}
+    firsts = [order[sids[0]] for _, sids in characters.values() if sids]
+    opening = min(firsts, default=-1)
+    starts: dict[str, tuple[float, float, float]] = {}
+    hidden: set[str] = set()
+    taken: list[tuple[float, float]] = []
+    together: dict[str, int] = {}  # sentence id -> characters coming in with it so far
+    for name, (node, sids) in characters.items():
+        first = node.actions[0] if node.actions else None
+        late = bool(sids) and order[sids[0]] != opening
+        if door is not None and first is not None and (late or is_entrance(first)):
+            beside = together.get(sids[0], 0)
+            together[sids[0]] = beside + 1
+            starts[name] = (*door.inside(beside=beside), door.yaw_in)
+            hidden.add(name)
+            continue
+        spot = first_spot(scene, first, taken)
+        taken.append((spot[0], spot[1]))
+        starts[name] = spot
+    return starts, hidden
