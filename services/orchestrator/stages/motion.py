@@ -23,6 +23,7 @@ from proto.social import SocialPlan
 from proto.ssg import ActionNode, CharacterNode, Command, Diagnostic, SentenceGraph
 from services.orchestrator.backend import StageFailed
 from services.orchestrator.document import Sentence
+from services.orchestrator.slotting import Slotting
 from services.orchestrator.stages import StageContext, content_of
 from services.orchestrator.stages.social import frame_count
 from services.orchestrator.staging import (
@@ -62,6 +63,8 @@ def synthesise(
     others: dict[str, tuple[float, float]] | None = None,
     distances: dict[str, float] | None = None,
     routes: list[list[tuple[float, float]]] | None = None,
+    seats: dict[int, str] | None = None,
+    spots: dict[int, tuple[float, float]] | None = None,
 ) -> SynthesizeReply:
     request = SynthesizeRequest(
         header=ctx.header(),
@@ -72,6 +75,8 @@ def synthesise(
         others=others or {},
         distances=distances or {},
         routes=routes or [],
+        seats=seats or {},
+        spots=spots or {},
     )
     return content_of(ctx.backend.call(request))
 
@@ -114,6 +119,7 @@ def segments(
     """
     states = {name: SegmentEndState(x=st[0], z=st[1], yaw=st[2]) for name, st in starts.items()}
     outside = set(hidden or ())
+    slotting = Slotting(scene)  # who holds which seat and stand slot, as the story runs
     pieces: dict[str, list[Motion]] = {name: [] for name in characters}
     object_ids = {o.id for o in scene.objects}
     order = [
@@ -124,12 +130,19 @@ def segments(
         if sid == s.id
     ]
     for name, k in order:
+        slotting.expect(name, characters[name][0].actions[k])
+    for name, k in order:
         if upto is not None and k > upto.get(name, -1):
             continue
         node, sids = characters[name]
         action = node.actions[k]
         state = states[name]
         asked, routes = _staged(scene, door, name, action, state, states, name in outside)
+        claim = slotting.claim(name, asked[-1])
+        asked[-1] = claim.action
+        at = len(asked) - 1
+        seats = {at: claim.seat} if claim.seat else {}
+        spots = {at: claim.spot} if claim.spot is not None else {}
         if door is not None:
             if is_exit(action):
                 outside.add(name)
@@ -147,14 +160,15 @@ def segments(
             near_them: dict[str, tuple[float, float]] = near_them,
             near: dict[str, float] = near,
             routes: list[list[tuple[float, float]]] = routes,
+            seats: dict[int, str] = seats,
+            spots: dict[int, tuple[float, float]] = spots,
         ) -> SynthesizeReply:
-            return synthesise(
-                ctx, single, view, state, (state.x, state.z, state.yaw), near_them, near, routes
-            )
+            start = (state.x, state.z, state.yaw)
+            return synthesise(ctx, single, view, state, start, near_them, near, routes, seats, spots)
 
         inputs = [single, view, state, near_them, near] if near else [single, view, state, near_them]
-        if routes:
-            inputs.append(routes)
+        if routes or seats or spots:
+            inputs.append([routes, sorted(seats.items()), sorted(spots.items())])
         reply = ctx.engine.query(f"{kind}:{name}:{k}", inputs, run)
         placed = [
             msgspec.structs.replace(seg, action_index=k, sentence_id=sids[k]) for seg in reply.motion.segments
