@@ -23,6 +23,7 @@ from wana.domain.routes import OccupancyGrid, occupancy_grid
 from wana.domain.slots import SlotBook, seat_slots, stand_slots
 
 LYING = ("lie_down", "sleep")
+AROUND_M = 1.6  # metres: the seats "at" a table are within this of it
 STAND_KEY = "#stand"  # a stand slot's object key in the book: "<object id>#stand"
 
 
@@ -108,8 +109,8 @@ class Slotting:
         if obj is None:
             return Claim(action)
         slots = seat_slots(obj, kind)
-        if not slots:
-            return Claim(action)
+        if not slots:  # "sits at the table": a free seat around it
+            return self._seat_at(who, action, obj, kind)
         default = slots[0]  # what the planner takes by itself
         if len(self.sitters.get(obj.id, ())) == 2 and len(slots) >= 3:
             slots = [*slots[1:], slots[0]]  # two on three cushions: the ends, with the middle between them
@@ -129,6 +130,30 @@ class Slotting:
                 moved = msgspec.structs.replace(action, target=other.id) if action.target else action
                 if not action.target:
                     moved = msgspec.structs.replace(action, destination=other.id)
+                return Claim(moved, seat="" if taken == slots[0] else taken)
+        return Claim(action)
+
+    def _seat_at(self, who: str, action: ActionNode, obj: PlacedObject, kind: str) -> Claim:
+        """A free seat slot of the seats within AROUND_M of an object that has none itself (a table)."""
+        here = np.array([obj.position[0], obj.position[2]])
+        near = sorted(
+            (
+                (float(np.linalg.norm(np.array([o.position[0], o.position[2]]) - here)), o)
+                for o in self.scene.objects
+                if o.id != obj.id and not o.support
+            ),
+            key=lambda d_o: d_o[0],
+        )
+        for distance, seat in near:
+            if distance > AROUND_M:
+                break
+            slots = seat_slots(seat, kind)
+            taken = self.book.take(seat.id, slots, who) if slots else None
+            if taken is not None:
+                field_name = (
+                    "target" if action.target == obj.id or action.target == obj.category else "destination"
+                )
+                moved = msgspec.structs.replace(action, **{field_name: seat.id})
                 return Claim(moved, seat="" if taken == slots[0] else taken)
         return Claim(action)
 

@@ -32,6 +32,7 @@ DOOR_WIDTH = 0.95  # metres, the catalog door's width
 OUTSIDE_M = 0.5  # metres outside the wall where a hidden character waits
 QUEUE_M = 0.8  # metres between characters waiting outside one door
 THRESHOLD_M = 0.45  # metres in front of the door where a character appears or disappears
+IN_WALL_M = 0.35  # metres: a door whose centre is this close to a wall is in it
 BESIDE_M = 0.6  # metres along the wall between characters coming in together
 BODY_M = 0.3  # metres: a body's radius for the starting-spot grid
 APART_M = 0.9  # metres between starting spots
@@ -43,8 +44,10 @@ def _verb_is(action: ActionNode, verbs: Sequence[str]) -> bool:
 
 
 def is_entrance(action: ActionNode) -> bool:
-    """ "walks in", "enters", "comes in" (the verb as written; the action is usually plain "walk")."""
-    return _verb_is(action, ENTRANCE_VERBS)
+    """ "walks in", "enters", "comes in" (the verb as written; the action is usually plain "walk"), and a bare
+    "come" going nowhere named (the parser drops the particle of a plural: "Tom and Sam come in")."""
+    bare_come = action.verb.lower() == "come" and not (action.target or action.destination)
+    return _verb_is(action, ENTRANCE_VERBS) or bare_come
 
 
 def is_exit(action: ActionNode) -> bool:
@@ -91,11 +94,13 @@ def _wall_normal(scene: Scene, xz: np.ndarray) -> np.ndarray:
 
 
 def doorway(scene: Scene) -> Doorway | None:
-    """The room's first door, None when it has none."""
+    """The room's first door in a wall, None when it has none (a door standing in the room is no way in)."""
+    hw, hd = scene.room.width / 2, scene.room.depth / 2
     for o in scene.objects:
         if o.category == "door":
             xz = np.array([o.position[0], o.position[2]], float)
-            return Doorway(centre=xz, inward=_wall_normal(scene, xz))
+            if min(hw - abs(xz[0]), hd - abs(xz[1])) <= IN_WALL_M:
+                return Doorway(centre=xz, inward=_wall_normal(scene, xz))
     return None
 
 
@@ -137,8 +142,15 @@ def with_door(scene: Scene) -> Scene:
             best = (p, yaw)
             break
     p, yaw = best
+    ids = {o.id for o in scene.objects}
     door = PlacedObject(
-        id="door", category="door", position=(float(p[0]), 0.0, float(p[1])), yaw=yaw, from_text=False
+        id=next(f"door#{i}" for i in range(2, len(ids) + 3) if f"door#{i}" not in ids)
+        if "door" in ids
+        else "door",
+        category="door",
+        position=(float(p[0]), 0.0, float(p[1])),
+        yaw=yaw,
+        from_text=False,
     )
     return msgspec.structs.replace(scene, objects=[*scene.objects, door])
 
@@ -198,12 +210,24 @@ def first_spot(
     return spot_near(scene, (0.0, 0.0), taken, radii=(0.0, 0.9, 1.4, 1.9))
 
 
-def route(scene: Scene, start: tuple[float, float], goal: tuple[float, float]) -> list[tuple[float, float]]:
-    """A* waypoints around the furniture (the straight line where there is no route)."""
-    try:
-        points = [tuple(map(float, p)) for p in plan_route(scene, np.array(start), np.array(goal))]
-    except NoRouteError:
-        points = [start, goal]
+def route(
+    scene: Scene,
+    start: tuple[float, float],
+    goal: tuple[float, float],
+    bodies: Sequence[tuple[float, float]] = (),
+) -> list[tuple[float, float]]:
+    """A* waypoints around the furniture and the other characters standing at ``bodies`` (around the
+    furniture alone where the others close the way; the straight line where nothing is open)."""
+    points: list[tuple[float, float]] = [start, goal]
+    for around in (list(bodies), []):
+        try:
+            points = [
+                tuple(map(float, p))
+                for p in plan_route(scene, np.array(start), np.array(goal), bodies=around)
+            ]
+            break
+        except NoRouteError:
+            continue
     return _dedupe([start, *points[1:]])
 
 

@@ -59,7 +59,7 @@ def stand_slots(placed: PlacedObject) -> list[tuple[float, float]]:
     except Exception:  # noqa: BLE001 - unknown category: a spot in front of its position
         dims = np.array([0.6, 0.0, 0.6])
     width, depth = float(dims[0]) * placed.scale[0], float(dims[2]) * placed.scale[2]
-    n = max(1, int((width + 0.1) // STAND_APART_M))
+    n = max(1, int(width / STAND_APART_M + 0.6))  # a 1 m counter: two; a 2 m table side: three
     offsets = sorted(((i - (n - 1) / 2) * STAND_APART_M for i in range(n)), key=abs)
     sides = [1.0, -1.0] if any(w in placed.category for w in TABLE_WORDS) else [1.0]
     local = np.array(

@@ -137,7 +137,7 @@ def segments(
         node, sids = characters[name]
         action = node.actions[k]
         state = states[name]
-        asked, routes = _staged(scene, door, name, action, state, states, name in outside)
+        asked, routes = _staged(scene, door, name, action, state, states, outside)
         claim = slotting.claim(name, asked[-1])
         asked[-1] = claim.action
         at = len(asked) - 1
@@ -196,24 +196,26 @@ def _staged(
     action: ActionNode,
     state: SegmentEndState,
     states: dict[str, SegmentEndState],
-    waiting: bool,
+    hidden: set[str],
 ) -> tuple[list[ActionNode], list[list[tuple[float, float]]]]:
     """The actions sent to motion for one story action, and the routes their walks take.
 
     A character waiting at the door (shown from the threshold on) walks in to a free spot: an entrance
     does only that, any other action walks in to a spot near where it acts first. An exit walks to the
-    door's threshold (the character is gone once there).
+    door's threshold (the character is gone once there). Walks go around the others on stage (``hidden``:
+    who is off stage now).
     """
+    waiting = name in hidden
     plain = msgspec.structs.replace(action, verb="")
     if door is None:
         return [plain], []
     here = (state.x, state.z)
-    taken = [(st.x, st.z) for other, st in states.items() if other != name]
+    taken = [(st.x, st.z) for other, st in states.items() if other != name and other not in hidden]
     walk = msgspec.structs.replace(
         plain, action=action.action or "walk", target="", destination="", instrument=""
     )
     if is_exit(action):
-        return [walk], [route(scene, here, door.inside())]
+        return [walk], [route(scene, here, door.inside(), taken)]
     if not waiting:
         return [plain], []
     towards = states.get(action.target) or states.get(action.destination)
@@ -221,7 +223,7 @@ def _staged(
         goal = spot_near(scene, (towards.x, towards.z), taken)
     else:
         goal = spot_near(scene, door.inside(1.6), taken, radii=(0.0, 0.6, 1.0, 1.5))
-    way_in = [route(scene, here, (goal[0], goal[1]))]
+    way_in = [route(scene, here, (goal[0], goal[1]), taken)]
     if is_entrance(action):
         return [walk], way_in
     return [ActionNode(verb="", action="walk"), plain], way_in
@@ -239,7 +241,8 @@ def animate(
     """Drafts on the composed layout, the layout optimised around each interaction, then the final motion."""
     characters = characters_of(graphs, [s.id for s in sentences])
     door = doorway(scene)
-    starts, hidden = _first_positions(scene, door, characters, sentences)
+    waits = {sid for sid, c in commands if c.kind == "wait"}
+    starts, hidden = _first_positions(scene, door, characters, sentences, waits)
     waiting_place = {name: i for i, name in enumerate(sorted(characters, key=lambda n: n not in hidden))}
     ids = {o.id for o in scene.objects}
     out = Animated(scene=scene)
@@ -325,28 +328,55 @@ def _wait_outside(motion: Motion, on: np.ndarray, spot: tuple[float, float]) -> 
     return msgspec.structs.replace(motion, root_position=to_wire(root.astype(np.float32)))
 
 
+def _late_comers(characters: Characters, sentences: Sequence[Sentence], waits: set[str]) -> set[str]:
+    """The characters whose first sentence starts after frame 0 (timeline.schedule's rule, before timing).
+
+    A sentence starts with the one before it unless one of its characters is still busy with an earlier
+    action or a `wait` holds it; from the first sentence that starts later, every later one does too.
+    """
+    group: dict[str, set[str]] = {}
+    for name, (_, sids) in characters.items():
+        for sid in sids:
+            group.setdefault(sid, set()).add(name)
+    seen: set[str] = set()
+    late: set[str] = set()
+    delayed = False
+    for s in sentences:
+        if s.id in waits and seen:
+            delayed = True
+        names = group.get(s.id, set())
+        if names & seen:
+            delayed = True
+        if delayed:
+            late |= names - seen
+        seen |= names
+    return late
+
+
 def _first_positions(
-    scene: Scene, door: Doorway | None, characters: Characters, sentences: Sequence[Sentence]
+    scene: Scene,
+    door: Doorway | None,
+    characters: Characters,
+    sentences: Sequence[Sentence],
+    waits: set[str] | None = None,
 ) -> tuple[dict[str, tuple[float, float, float]], set[str]]:
     """Where each character is at frame 0, and who waits outside the door until their first sentence.
 
-    Characters of the first action sentence start at free spots near what they first act on; an entrance
-    and every character introduced later wait at the door (hidden until their first sentence), those who
-    come in by the same sentence side by side on its threshold.
+    Characters on stage from frame 0 start at free spots near what they first act on; an entrance and every
+    character whose first sentence starts later wait at the door (hidden until their first sentence), those
+    who come in at the same time side by side on its threshold.
     """
-    order = {s.id: i for i, s in enumerate(sentences)}
-    firsts = [order[sids[0]] for _, sids in characters.values() if sids]
-    opening = min(firsts, default=-1)
+    late = _late_comers(characters, sentences, waits or set())
     starts: dict[str, tuple[float, float, float]] = {}
     hidden: set[str] = set()
     taken: list[tuple[float, float]] = []
     together: dict[str, int] = {}  # sentence id -> characters coming in with it so far
     for name, (node, sids) in characters.items():
         first = node.actions[0] if node.actions else None
-        late = bool(sids) and order[sids[0]] != opening
-        if door is not None and first is not None and (late or is_entrance(first)):
-            beside = together.get(sids[0], 0)
-            together[sids[0]] = beside + 1
+        if door is not None and first is not None and (name in late or is_entrance(first)):
+            when = sids[0] if name in late else ""  # "": with the story's first frame
+            beside = together.get(when, 0)
+            together[when] = beside + 1
             starts[name] = (*door.inside(beside=beside), door.yaw_in)
             hidden.add(name)
             continue
