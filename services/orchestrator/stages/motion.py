@@ -242,7 +242,8 @@ def animate(
     characters = characters_of(graphs, [s.id for s in sentences])
     door = doorway(scene)
     waits = {sid for sid, c in commands if c.kind == "wait"}
-    starts, hidden = _first_positions(scene, door, characters, sentences, waits)
+    answering = {r.responder for r in (plan.responses if plan is not None else []) if r.response_index == 0}
+    starts, hidden = _first_positions(scene, door, characters, sentences, waits, answering)
     waiting_place = {name: i for i, name in enumerate(sorted(characters, key=lambda n: n not in hidden))}
     ids = {o.id for o in scene.objects}
     out = Animated(scene=scene)
@@ -328,11 +329,14 @@ def _wait_outside(motion: Motion, on: np.ndarray, spot: tuple[float, float]) -> 
     return msgspec.structs.replace(motion, root_position=to_wire(root.astype(np.float32)))
 
 
-def _late_comers(characters: Characters, sentences: Sequence[Sentence], waits: set[str]) -> set[str]:
+def _late_comers(
+    characters: Characters, sentences: Sequence[Sentence], waits: set[str], answering: set[str]
+) -> set[str]:
     """The characters whose first sentence starts after frame 0 (timeline.schedule's rule, before timing).
 
     A sentence starts with the one before it unless one of its characters is still busy with an earlier
-    action or a `wait` holds it; from the first sentence that starts later, every later one does too.
+    action, its first action answers another's (the social plan's response delay: ``answering``) or a
+    `wait` holds it; from the first sentence that starts later, every later one does too.
     """
     group: dict[str, set[str]] = {}
     for name, (_, sids) in characters.items():
@@ -345,7 +349,7 @@ def _late_comers(characters: Characters, sentences: Sequence[Sentence], waits: s
         if s.id in waits and seen:
             delayed = True
         names = group.get(s.id, set())
-        if names & seen:
+        if names & seen or (names & answering and seen):
             delayed = True
         if delayed:
             late |= names - seen
@@ -359,6 +363,7 @@ def _first_positions(
     characters: Characters,
     sentences: Sequence[Sentence],
     waits: set[str] | None = None,
+    answering: set[str] | None = None,
 ) -> tuple[dict[str, tuple[float, float, float]], set[str]]:
     """Where each character is at frame 0, and who waits outside the door until their first sentence.
 
@@ -366,7 +371,7 @@ def _first_positions(
     character whose first sentence starts later wait at the door (hidden until their first sentence), those
     who come in at the same time side by side on its threshold.
     """
-    late = _late_comers(characters, sentences, waits or set())
+    late = _late_comers(characters, sentences, waits or set(), answering or set())
     starts: dict[str, tuple[float, float, float]] = {}
     hidden: set[str] = set()
     taken: list[tuple[float, float]] = []
