@@ -163,7 +163,7 @@ def spot_near(
     scene: Scene,
     around: tuple[float, float],
     taken: Sequence[tuple[float, float]],
-    radii=(1.1, 1.5, 2.0, 0.7),
+    radii: Sequence[float] = (1.1, 1.5, 2.0, 0.7),
 ) -> tuple[float, float, float]:
     """A free standing spot (x, z, yaw facing ``around``) near a point, at least APART_M from the taken ones.
 
@@ -221,10 +221,8 @@ def route(
     points: list[tuple[float, float]] = [start, goal]
     for around in (list(bodies), []):
         try:
-            points = [
-                tuple(map(float, p))
-                for p in plan_route(scene, np.array(start), np.array(goal), bodies=around)
-            ]
+            found = plan_route(scene, np.array(start), np.array(goal), bodies=around)
+            points = [(float(p[0]), float(p[1])) for p in found]
             break
         except NoRouteError:
             continue

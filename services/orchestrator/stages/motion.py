@@ -241,9 +241,9 @@ def animate(
     """Drafts on the composed layout, the layout optimised around each interaction, then the final motion."""
     characters = characters_of(graphs, [s.id for s in sentences])
     door = doorway(scene)
-    waits = {sid for sid, c in commands if c.kind == "wait"}
+    wait_ids = {sid for sid, c in commands if c.kind == "wait"}
     answering = {r.responder for r in (plan.responses if plan is not None else []) if r.response_index == 0}
-    starts, hidden = _first_positions(scene, door, characters, sentences, waits, answering)
+    starts, hidden = _first_positions(scene, door, characters, sentences, wait_ids, answering)
     waiting_place = {name: i for i, name in enumerate(sorted(characters, key=lambda n: n not in hidden))}
     ids = {o.id for o in scene.objects}
     out = Animated(scene=scene)
