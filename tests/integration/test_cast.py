@@ -114,3 +114,22 @@ def test_a_titled_name_is_one_character(orchestrator):
     result = orchestrator.create("Dr. Jones walks in. Mrs. Brown waves at Dr. Jones.\n").compute()
     assert [s.text for s in result.sentences] == ["Dr. Jones walks in.", "Mrs. Brown waves at Dr. Jones."]
     assert not {"Dr", "Mrs", "Dr.", "Mrs."} & set(result.motions)
+
+
+def _social_eval():
+    import importlib.util
+    import sys
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[2] / "eval" / "social.py"
+    spec = importlib.util.spec_from_file_location("eval_social", path)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules["eval_social"] = module
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_eval_social_counts_no_overlap_and_a_good_entrance_on_the_sofa_visit():
+    social = _social_eval()
+    cast = social.cast_metrics({"visit": social.CAST_STORIES["sofa_visit"]})
+    assert cast == {"overlap_frames": 0, "entrance_ok_share": 1.0, "entrances": 1, "shared_slots": 0}
