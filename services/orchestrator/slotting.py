@@ -158,9 +158,8 @@ class Slotting:
         return Claim(action)
 
     def _stand(self, who: str, action: ActionNode, obj: PlacedObject) -> Claim:
-        spots = [p for p in stand_slots(obj) if bool(self.grid.is_free_xz(np.asarray(p)))] or stand_slots(
-            obj
-        )[:1]
+        spots = [p for p in stand_slots(obj, rows=2) if bool(self.grid.is_free_xz(np.asarray(p)))]
+        spots = spots or stand_slots(obj)[:1]
         names = [str(i) for i in range(len(spots))]
         taken = self.book.take(obj.id + STAND_KEY, names, who)
         if taken is None or taken == names[0]:

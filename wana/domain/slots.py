@@ -46,11 +46,12 @@ def seat_slots(placed: PlacedObject, kind: str = "sit") -> list[str]:
     return sorted(points, key=lambda n: (n != first, float(np.linalg.norm(points[n] - points[first])), n))
 
 
-def stand_slots(placed: PlacedObject) -> list[tuple[float, float]]:
+def stand_slots(placed: PlacedObject, rows: int = 1) -> list[tuple[float, float]]:
     """World (x, z) spots where characters stand at an object, the middle of its front first.
 
     Spots run along the front edge one STAND_APART_M apart (as many as its width holds, at least one);
-    tables, desks and counters get the same along their back.
+    tables and desks get the same along their back. ``rows`` > 1 adds rows further out, one
+    STAND_APART_M behind the other (a crowd at a window), after all the spots of the rows before.
     """
     from wana.assets.catalog import asset_for, to_world
 
@@ -64,7 +65,12 @@ def stand_slots(placed: PlacedObject) -> list[tuple[float, float]]:
     sides = [1.0, -1.0] if any(w in placed.category for w in TABLE_WORDS) else [1.0]
     local = np.array(
         [
-            [along / placed.scale[0], 0.0, side * (depth / 2 + STAND_OUT_M) / placed.scale[2]]
+            [
+                along / placed.scale[0],
+                0.0,
+                side * (depth / 2 + STAND_OUT_M + row * STAND_APART_M) / placed.scale[2],
+            ]
+            for row in range(rows)
             for side in sides
             for along in offsets
         ]

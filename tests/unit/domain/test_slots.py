@@ -59,3 +59,11 @@ def test_taking_a_new_slot_gives_back_the_old_one():
     book.take("chair", ["sit"], "Eve")
     book.take("sofa", ["sit"], "Eve")
     assert book.holder("chair", "sit") == "" and book.holder("sofa", "sit") == "Eve"
+
+
+def test_a_second_row_of_stand_slots_lies_behind_the_first():
+    window = placed("window")
+    one, two = stand_slots(window), stand_slots(window, rows=2)
+    assert two[: len(one)] == one and len(two) == 2 * len(one)
+    behind = np.array(two[len(one) :])[:, 1]
+    assert np.all(behind > max(z for _, z in one) + 0.5)  # the window faces +z: the second row is further out
