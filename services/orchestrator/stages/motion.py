@@ -4,6 +4,11 @@ Nodes: `draft:<name>:<k>` (action k on the composed layout, what the optimiser s
 `optimise:<name>:<k>` (the layout around an action that touches an object), `segment:<name>:<k>` (action
 k on the final layout from the end state of action k-1), `<kind>:<name>:idle` for a character with no
 action. Story timing (services/orchestrator/timeline.py) then places the segments on one time line.
+
+Who is on stage when and where each starts (the door, entrances, exits: services/orchestrator/staging.py)
+and which seat or stand slot each action takes (services/orchestrator/slotting.py) are decided here, in
+story order, and reach the motion service as each segment's start, routes, seats and spots; after timing,
+each motion gets its presence track (Motion.present) and waits outside the room while off stage.
 """
 
 from __future__ import annotations
