@@ -10,6 +10,12 @@ apology lowers the apologiser's dominance; ...). 24 cases; --quick times fewer r
 JSON keys: expectations_met (share of cases whose expectation holds), energy_drop (mean over all plans of
 (E_initial - E_final) / E_initial, the share of the initial energy the sampler removes), ms_per_plan (mean
 wall time of plan_social per plan over the cases' stories and a two-character ten-action scene, one core).
+
+The cast on screen (the whole pipeline, in-process, over CAST_STORIES or the .txt stories of --stories DIR):
+overlap_frames (frames where two characters on stage overlap by more than the story checks' 3 cm, summed
+over the stories), entrance_ok_share (share of "walks in" / "enters" / "comes in" actions whose character is
+off stage before and first shown outside the room or within 1 m of a door), shared_slots (seated frames where
+two characters' hips are within 0.35 m: one seat for two). --no-cast skips them.
 """
 
 from __future__ import annotations
@@ -197,6 +203,96 @@ CASES: list[tuple[str, str, str | None, Check]] = [
 ]
 
 
+CAST_STORIES = {
+    "sofa_visit": "A sofa is near a window$.\nEve sits on the sofa.\nEve laughs.\nTom walks in.\n"
+    "He sits on the sofa.\nEve waves at Tom.\nTom leaves.\n",
+    "three_on_a_sofa": "A sofa is near a window$.\nAda walks to the window.\nBen walks to the window.\n"
+    "Eve walks to the window.\nThey sit on the sofa.\n",
+    "kitchen_table": "In the kitchen there is a dining table$. Three chairs are around the table$.\n"
+    "Tom and Sam come in.\nThey sit at the table.\nMom walks in.\nShe waves at Tom.\n",
+    "office_entrance": "In the office there is a desk near a window$. A chair is in front of the desk$.\n"
+    "Eve sits on the chair.\nEve nods.\nTom enters the office.\nHe walks to Eve.\nTom goes out.\n",
+}
+DOOR_M = 1.0  # metres: an entrance shown this close to a door starts "at the door"
+SHARED_SEAT_M = 0.35  # metres between two seated characters' hips that means one seat for two
+OVERLAP_M = 0.03  # metres, as the story checks' body overlap
+
+
+def cast_metrics(stories: dict[str, str], seed: int = 0) -> dict[str, float | int]:
+    """overlap_frames, entrance_ok_share and shared_slots over stories run through the whole pipeline."""
+    import tempfile
+
+    import numpy as np
+
+    from services.orchestrator.backend import InProcessBackend
+    from services.orchestrator.session import Orchestrator
+    from services.orchestrator.staging import is_entrance
+    from wana.arrays import from_wire
+    from wana.fidelity.bodies import body_of
+    from wana.fidelity.body_checks import overlap
+
+    overlaps, entrances, entrances_ok, shared = 0, 0, 0, 0
+    with tempfile.TemporaryDirectory(prefix="wana-cast-") as tmp:
+        orch = Orchestrator(Path(tmp) / "s.db", InProcessBackend(), seed=seed)
+        try:
+            for text in stories.values():
+                result = orch.create(text).compute()
+                motions = {n: m for n, m in result.motions.items() if m.root_position.shape[0]}
+                on = {
+                    n: from_wire(m.present).astype(bool)
+                    if m.present is not None
+                    else np.ones(m.root_position.shape[0], bool)
+                    for n, m in motions.items()
+                }
+                bodies = {n: body_of(m) for n, m in motions.items()}
+                names = sorted(bodies)
+                frames = max((b.frames for b in bodies.values()), default=0)
+                bad = np.zeros(frames, bool)
+                seated_close = np.zeros(frames, bool)
+                for i, a in enumerate(names):
+                    for b in names[i + 1 :]:
+                        fa, _ = overlap(bodies[a], bodies[b])
+                        both = on[a] & on[b]
+                        bad |= fa.failing & (fa.amount > OVERLAP_M) & both
+                        ha, hb = bodies[a].joint("Hips"), bodies[b].joint("Hips")
+                        low = (ha[:, 1] < 0.7) & (hb[:, 1] < 0.7)  # both seated
+                        near = np.hypot(ha[:, 0] - hb[:, 0], ha[:, 2] - hb[:, 2]) < SHARED_SEAT_M
+                        seated_close |= low & near & both
+                overlaps += int(bad.sum())
+                shared += int(seated_close.sum())
+                doors = [
+                    np.array([o.position[0], o.position[2]])
+                    for o in result.scene.objects
+                    if o.category == "door"
+                ]
+                room = result.scene.room
+                for g in result.graphs.values():
+                    for c in g.characters:
+                        motion = motions.get(c.name)
+                        if motion is None or not c.actions or not is_entrance(c.actions[0]):
+                            continue
+                        mine = [s for s in motion.segments if s.sentence_id == g.sentence_id]
+                        if not mine:
+                            continue
+                        entrances += 1
+                        start = min(s.start_frame for s in mine)
+                        shown = np.flatnonzero(on[c.name][start:])
+                        if on[c.name][:start].any() or not len(shown):
+                            continue
+                        at = from_wire(motion.root_position)[start + shown[0], [0, 2]]
+                        outside = abs(at[0]) > room.width / 2 or abs(at[1]) > room.depth / 2
+                        if outside or any(np.linalg.norm(at - d) <= DOOR_M for d in doors):
+                            entrances_ok += 1
+        finally:
+            orch.close()
+    return {
+        "overlap_frames": overlaps,
+        "entrance_ok_share": round(entrances_ok / entrances, 4) if entrances else 1.0,
+        "entrances": entrances,
+        "shared_slots": shared,
+    }
+
+
 def timed_plan(text: str, seed: int, reps: int) -> tuple[SocialPlan, list[float]]:
     graphs = sketch_graphs(text)
     times = []
@@ -215,6 +311,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--quick", action="store_true", help="fewer timing repetitions (well under 30 s)")
     parser.add_argument("--json", type=Path, help="write the summary here")
     parser.add_argument("--seed", type=int, default=0, help="sampler seed (default 0)")
+    parser.add_argument("--stories", type=Path, help="a folder of .txt stories for the cast metrics")
+    parser.add_argument("--no-cast", action="store_true", help="skip the cast metrics (the whole pipeline)")
     args = parser.parse_args(argv)
     reps = 1 if args.quick else 5
     rows, drops, times = [], [], []
@@ -247,6 +345,22 @@ def main(argv: list[str] | None = None) -> int:
         f"expectations_met {summary['expectations_met']:.3f}  energy_drop {summary['energy_drop']:.3f}  "
         f"ms_per_plan {summary['ms_per_plan']:.2f}  (seed {args.seed})"
     )
+    if not args.no_cast:
+        stories = (
+            {
+                p.stem: p.read_text(encoding="utf-8", errors="replace")
+                for p in sorted(args.stories.glob("*.txt"))
+            }
+            if args.stories
+            else CAST_STORIES
+        )
+        cast = cast_metrics(stories, args.seed)
+        summary.update(cast)
+        print(
+            f"cast over {len(stories)} stories: overlap_frames {cast['overlap_frames']}  "
+            f"entrance_ok_share {cast['entrance_ok_share']:.3f} ({cast['entrances']} entrances)  "
+            f"shared_slots {cast['shared_slots']}"
+        )
     if args.json:
         args.json.parent.mkdir(parents=True, exist_ok=True)
         args.json.write_text(json.dumps(summary, indent=2) + "\n")

@@ -48,6 +48,12 @@ class SynthesizeRequest(Request["SynthesizeReply"], frozen=True, kw_only=True, t
     distances: dict[
         str, float
     ] = {}  # metres to stop from another character when walking up to them (the social model's); absent = 0.8
+    seats: dict[
+        int, str
+    ] = {}  # action index -> the contact point its seat or bed slot is ("sit_0"); absent = default
+    spots: dict[
+        int, tuple[float, float]
+    ] = {}  # action index -> x, z (metres, world) where it stands at its object
 
 
 class SynthesizeReply(msgspec.Struct, frozen=True, kw_only=True, tag="synthesize_reply"):

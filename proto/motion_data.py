@@ -25,3 +25,4 @@ class Motion(msgspec.Struct, frozen=True, kw_only=True):
     foot_contact: NDArray | None = None  # (T, 2) uint8, left/right foot planted
     expression: NDArray | None = None  # (T, E) float32 face blendshape weights
     segments: list[Segment] = []
+    present: NDArray | None = None  # (T,) uint8, 1 while the character is on stage (None: always)

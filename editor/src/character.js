@@ -31,6 +31,7 @@ export class CharacterFigure {
     this.jointCount = data.joints.length;
     this.root = decodeF32(data.root_position); // (T, 3)
     this.rotations = decodeF32(data.rotations); // (T, J, 4)
+    this.present = data.present ? decodeF32(data.present) : null; // (T,) 1 on stage, 0 off stage
     this.segments = data.segments;
     this.group = new THREE.Group();
     this.group.name = `character:${data.name}`;
@@ -76,6 +77,7 @@ export class CharacterFigure {
   setFrame(f) {
     if (this.frames === 0) return;
     const t = Math.max(0, Math.min(this.frames - 1, f));
+    this.group.visible = !this.present || this.present[t] > 0.5; // off stage: not drawn
     const J = this.jointCount;
     for (let j = 0; j < J; j++) {
       const k = (t * J + j) * 4;

@@ -150,6 +150,7 @@ def sent_motion(motion: Motion) -> Motion:
         motion,
         rotations=to_wire(rotations[:cut]),
         root_position=to_wire(from_wire(motion.root_position)[:cut]),
+        present=None if motion.present is None else to_wire(from_wire(motion.present)[:cut]),
         segments=[*motion.segments[:-1], msgspec.structs.replace(last, end_frame=cut)],
     )
 
@@ -190,6 +191,8 @@ def character_entry(motion: Motion, digest: str | None = None) -> dict[str, Any]
         "offsets": b64_f32(skeleton.REST_OFFSETS[index]),  # (J, 3) metres
         "root_position": b64_f32(root),  # (T, 3) metres, world
         "rotations": b64_f32(rotations),  # (T, J, 4) local quaternions x, y, z, w
+        # (T,) 1 while on stage, 0 before its first sentence and after it left; null: always on stage
+        "present": None if motion.present is None else b64_f32(from_wire(motion.present).astype(np.float32)),
         "segments": [
             {
                 "index": s.index,

@@ -54,6 +54,8 @@ def handle_synthesize(req: SynthesizeRequest) -> SynthesizeReply:
         posture=posture,
         others={k: (float(v[0]), float(v[1])) for k, v in req.others.items()},
         distances=dict(req.distances),
+        seats=dict(req.seats),
+        spots={k: (float(v[0]), float(v[1])) for k, v in req.spots.items()},
     )
     if req.from_segment < 0 or req.from_segment > len(plan.segments):
         raise InvalidInput(f"from_segment {req.from_segment} outside 0..{len(plan.segments)}")

@@ -148,6 +148,8 @@ def plan_actions(
     posture: str = "stand",
     others: dict[str, tuple[float, float]] | None = None,
     distances: dict[str, float] | None = None,
+    seats: dict[int, str] | None = None,
+    spots: dict[int, tuple[float, float]] | None = None,
 ) -> MotionPlan:
     """Turn a character's ordered actions into a MotionPlan.
 
@@ -162,11 +164,14 @@ def plan_actions(
             one of them face it, and walking / touching actions go up to it.
         distances: metres a walk up to another character stops short of them (the social model's
             standing distance: friends closer than a boss); touching actions keep their clip's distance.
+        seats: action index -> the object's contact point to sit or lie on (its slot: "sit_0" on a sofa).
+        spots: action index -> x, z where it stands at or walks to its object (its stand slot).
 
     Returns:
         the plan; unknown actions become a 1 s wait and a diagnostic.
     """
     others = dict(others or {})
+    seats, spots = dict(seats or {}), dict(spots or {})
     lib = load_library()
     segs: list[PlannedSegment] = []
     diags: list[str] = []
@@ -271,6 +276,8 @@ def plan_actions(
                 from services.motion.routing import free_spot
 
                 goal = np.asarray(free_spot(scene, (float(goal[0]), float(goal[1]))), float)
+                if ai in spots:
+                    goal = np.asarray(spots[ai], float)
             else:
                 fwd = np.array([np.sin(yaw), np.cos(yaw)])
                 goal = pos + fwd * (2.0 if node.destination or not node.target else 1.5)
@@ -286,6 +293,9 @@ def plan_actions(
             geo = _object_geometry(obj) or _fallback_geometry(obj)
             stand, points = geo
             targets = contact_targets(clip, points)
+            slot = seats.get(ai, "")
+            if slot in points:
+                targets = {j: (float(p[0]), float(p[1]), float(p[2])) for j, p in points[slot]}
             if clip.interaction.object in ("seat", "bed") and "Hips" in targets:
                 face = float(obj.yaw)
                 seat = np.array([targets["Hips"][0], targets["Hips"][2]])
@@ -316,6 +326,8 @@ def plan_actions(
                     stand_xz = (float(stand[0]), float(stand[1]))
                     if free_spot(scene, stand_xz) != stand_xz:
                         stand = np.asarray(free_spot(scene, (float(centre[0]), float(centre[1]))), float)
+                if ai in spots:
+                    stand = np.asarray(spots[ai], float)
                 d = centre - stand
                 face = float(np.arctan2(d[0], d[1])) if np.linalg.norm(d) > 1e-6 else yaw
                 already_there = np.linalg.norm(stand - pos) < 0.35

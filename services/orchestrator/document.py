@@ -1,7 +1,9 @@
 """A document: text split into sentences with stable ids, edited by text diffs.
 
 A sentence ends after `.`, `!`, `?` or `$` (the `$` marks a scene sentence and stays part of it), or at a
-newline; a line such as `camera left` is a sentence of its own. Whitespace between sentences belongs to
+newline; a line such as `camera left` is a sentence of its own. The period of a title ("Dr. Jones",
+"Mrs. Brown") ends nothing, as the parser's own segmenter (services/nlp/segment.py) has it: a titled name
+is one character, in one sentence. Whitespace between sentences belongs to
 no sentence. An edit re-splits only the region it touches; the sentences outside it keep their ids (their
 offsets shift) and inside it an unchanged sentence text keeps its old id.
 """
@@ -16,6 +18,11 @@ import msgspec
 # A sentence: a run of non-space text up to and including a terminator, or up to a newline / the end.
 _SENTENCE = re.compile(r"[^\s][^\n.!?$]*(?:[.!?$]+|(?=\n)|$)")
 _SPACE = re.compile(r"\s+")
+# Titles and abbreviations whose period, followed by a space, does not end a sentence (services/nlp/segment.py).
+TITLES = frozenset(
+    {"mr", "mrs", "ms", "dr", "st", "prof", "jr", "sr", "vs", "etc", "mt", "no", "capt", "gen"}
+)
+_WORD_BEFORE = re.compile(r"([A-Za-z]+)\.$")
 
 MAX_DOCUMENT_CHARS = 1_000_000
 
@@ -63,14 +70,35 @@ def normalise(text: str) -> str:
 
 def split_spans(text: str, base: int = 0) -> list[tuple[int, int]]:
     """Sentence spans [start, end) of text, shifted by base."""
-    spans = []
+    spans: list[tuple[int, int]] = []
+    glue = False  # the previous piece ended at a title's period: this piece continues its sentence
     for m in _SENTENCE.finditer(text):
         s, e = m.start(), m.end()
         while e > s and text[e - 1].isspace():
             e -= 1
-        if e > s:
-            spans.append((s + base, e + base))
+        if e <= s:
+            continue
+        if glue and spans:
+            s = spans.pop()[0] - base
+        spans.append((s + base, e + base))
+        glue = _ends_in_title(text, s, e)
     return spans
+
+
+def _ends_in_title(text: str, start: int, end: int) -> bool:
+    """Whether text[start:end] ends with a title's period ("Dr.") before a name on the same line ("Dr. Jones").
+
+    Title and name are capitalised ("He sees a dr. He sits." stays two sentences).
+    """
+    word = _WORD_BEFORE.search(text, max(start, end - 6), end)
+    follows = text[end : end + 2]
+    return (
+        word is not None
+        and word.group(1)[0].isupper()
+        and word.group(1).lower() in TITLES
+        and follows[:1] == " "
+        and follows[1:2].isupper()
+    )
 
 
 @dataclass

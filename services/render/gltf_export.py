@@ -267,11 +267,15 @@ def _add_character(b: _Builder, rig: Rig, material: int, animation: dict, fps: f
     times = b.accessor((np.arange(t, dtype=np.float64) / fps).astype(np.float32), FLOAT, bounds=True)
     samplers, channels = animation["samplers"], animation["channels"]
 
-    def channel(node: int, path: str, values: np.ndarray) -> None:
-        samplers.append({"input": times, "output": b.accessor(values, FLOAT), "interpolation": "LINEAR"})
+    def channel(node: int, path: str, values: np.ndarray, interpolation: str = "LINEAR") -> None:
+        samplers.append({"input": times, "output": b.accessor(values, FLOAT), "interpolation": interpolation})
         channels.append({"sampler": len(samplers) - 1, "target": {"node": node, "path": path}})
 
     channel(joint_nodes[0], "translation", rig.root.astype(np.float32))
+    if rig.present is not None and len(rig.present) == t and not rig.present.all():
+        # Off stage: the Hips (and so the whole skinned body) at scale 0, switched on and off, not faded.
+        scale = np.repeat(rig.present.astype(np.float32)[:, None], 3, axis=1)
+        channel(joint_nodes[0], "scale", scale, "STEP")
     quats = _unit_quats(rig.rotations)
     for j in range(N_JOINTS):
         channel(joint_nodes[j], "rotation", quats[:, j])

@@ -84,6 +84,7 @@ class Rig:
     rotations: np.ndarray
     expression: np.ndarray | None = None
     name: str = ""  # the story's name for the character ("" = the character's own)
+    present: np.ndarray | None = None  # (T,) bool, on stage (None: always); off-stage frames skin to a point
 
     @classmethod
     def from_motion(cls, motion: Motion) -> Rig:
@@ -94,6 +95,7 @@ class Rig:
             rotations=rot,
             expression=expr,
             name=motion.character,
+            present=None if motion.present is None else from_wire(motion.present).astype(bool),
         )
 
     @property
@@ -159,4 +161,8 @@ class Rig:
         w = ch.weights.astype(np.float64)  # (V, 4)
         blend_r = np.einsum("vk,nvkab->nvab", w, mats[:, joints])  # (N, V, 3, 3)
         blend_t = np.einsum("vk,nvka->nva", w, trans[:, joints])  # (N, V, 3)
-        return np.einsum("nvab,nvb->nva", blend_r, base) + blend_t
+        out = np.einsum("nvab,nvb->nva", blend_r, base) + blend_t
+        if self.present is not None and len(self.present) == self.n_frames:
+            gone = ~self.present[idx]
+            out[gone] = pos[gone, :1]  # off stage: the whole mesh at the hips, scale 0 (nothing drawn)
+        return out

@@ -38,10 +38,10 @@ def test_a_later_sentence_starts_no_earlier_than_the_one_before(orchestrator):
     )
 
 
-def test_a_story_without_scene_sentences_gets_an_empty_room(orchestrator):
+def test_a_story_without_scene_sentences_gets_an_empty_room_with_a_door(orchestrator):
     result = orchestrator.create("Eve walks slowly. Eve waves.").compute()
     assert result.unavailable == {}
-    assert result.scene is not None and result.scene.objects == []
+    assert result.scene is not None and [o.category for o in result.scene.objects] == ["door"]
     assert [s.action for s in result.motions["Eve"].segments if s.action != "hold"][-1] == "wave"
 
 

@@ -86,6 +86,26 @@ class Footprints:
     def __len__(self) -> int:
         return len(self.centre)
 
+    def concat(self, other: Footprints) -> Footprints:
+        """These footprints and ``other``'s together."""
+        return Footprints(
+            np.concatenate([self.centre.reshape(-1, 2), other.centre.reshape(-1, 2)]),
+            np.concatenate([self.half.reshape(-1, 2), other.half.reshape(-1, 2)]),
+            np.concatenate([self.yaw, other.yaw]),
+            np.concatenate([self.y_min, other.y_min]),
+            np.concatenate([self.y_max, other.y_max]),
+            self.owner + other.owner,
+        )
+
+
+def body_footprints(points: Iterable[tuple[float, float]], radius: float = 0.22) -> Footprints:
+    """Other characters standing at floor points (x, z), as squares of half side ``radius`` from the floor
+    to head height: what a route planned for one character walks around (the others where they are)."""
+    xz = np.asarray(list(points), dtype=np.float64).reshape(-1, 2)
+    lo = np.column_stack([xz[:, 0] - radius, np.zeros(len(xz)), xz[:, 1] - radius])
+    hi = np.column_stack([xz[:, 0] + radius, np.full(len(xz), 1.8), xz[:, 1] + radius])
+    return Footprints.from_aabbs(np.stack([lo, hi], axis=1), owner=[f"body:{i}" for i in range(len(xz))])
+
 
 @dataclass(frozen=True)
 class OccupancyGrid:
@@ -366,6 +386,7 @@ def plan_route(
     cell: float = 0.05,
     ignore: set[str] | frozenset[str] = frozenset(),
     step_in: float = 1.0,
+    bodies: Iterable[tuple[float, float]] = (),
 ) -> np.ndarray:
     """Collision-free walking route through a scene (the motion service's ``route_fn``).
 
@@ -384,6 +405,7 @@ def plan_route(
         cell: grid cell size in metres.
         ignore: ids of objects that do not block (e.g. the chair being walked to).
         step_in: longest final step into the goal objects' clearance, metres (0: end at the free cell).
+        bodies: floor points (x, z) where other characters stand; the route goes around them too.
 
     Returns:
         (N, 2) world x, z waypoints from start to the goal (or the free cell nearest to it).
@@ -394,6 +416,9 @@ def plan_route(
     from wana.domain.object_geometry import scene_footprints
 
     fp = scene_footprints(scene, ignore=ignore)
+    others = list(bodies)
+    if others:
+        fp = fp.concat(body_footprints(others))
     grid = occupancy_grid(scene.room, fp, radius=radius, cell=cell)
     route = plan_route_on_grid(grid, start_xz, goal_xz)
     goal = np.asarray(goal_xz, dtype=np.float64).reshape(2)

@@ -4,6 +4,11 @@ Nodes: `draft:<name>:<k>` (action k on the composed layout, what the optimiser s
 `optimise:<name>:<k>` (the layout around an action that touches an object), `segment:<name>:<k>` (action
 k on the final layout from the end state of action k-1), `<kind>:<name>:idle` for a character with no
 action. Story timing (services/orchestrator/timeline.py) then places the segments on one time line.
+
+Who is on stage when and where each starts (the door, entrances, exits: services/orchestrator/staging.py)
+and which seat or stand slot each action takes (services/orchestrator/slotting.py) are decided here, in
+story order, and reach the motion service as each segment's start, routes, seats and spots; after timing,
+each motion gets its presence track (Motion.present) and waits outside the room while off stage.
 """
 
 from __future__ import annotations
@@ -12,6 +17,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
 import msgspec
+import numpy as np
 
 from proto.common import Span
 from proto.motion import SegmentEndState, SynthesizeReply, SynthesizeRequest
@@ -22,10 +28,22 @@ from proto.social import SocialPlan
 from proto.ssg import ActionNode, CharacterNode, Command, Diagnostic, SentenceGraph
 from services.orchestrator.backend import StageFailed
 from services.orchestrator.document import Sentence
+from services.orchestrator.slotting import Slotting
 from services.orchestrator.stages import StageContext, content_of
 from services.orchestrator.stages.social import frame_count
+from services.orchestrator.staging import (
+    Doorway,
+    doorway,
+    first_spot,
+    is_entrance,
+    is_exit,
+    presence,
+    route,
+    spot_near,
+)
 from services.orchestrator.timeline import Beat, assemble, schedule
-from services.orchestrator.views import characters_of, others, scene_view, social_distances, start_positions
+from services.orchestrator.views import characters_of, others, scene_view, social_distances
+from wana.arrays import from_wire, to_wire
 
 Characters = dict[str, tuple[CharacterNode, list[str]]]  # name -> (its actions in order, their sentence ids)
 Distances = dict[tuple[str, int], dict[str, float]]  # (name, k) -> {other: metres}
@@ -49,6 +67,9 @@ def synthesise(
     start: tuple[float, float, float],
     others: dict[str, tuple[float, float]] | None = None,
     distances: dict[str, float] | None = None,
+    routes: list[list[tuple[float, float]]] | None = None,
+    seats: dict[int, str] | None = None,
+    spots: dict[int, tuple[float, float]] | None = None,
 ) -> SynthesizeReply:
     request = SynthesizeRequest(
         header=ctx.header(),
@@ -58,6 +79,9 @@ def synthesise(
         start_state=state,
         others=others or {},
         distances=distances or {},
+        routes=routes or [],
+        seats=seats or {},
+        spots=spots or {},
     )
     return content_of(ctx.backend.call(request))
 
@@ -85,6 +109,8 @@ def segments(
     starts: dict[str, tuple[float, float, float]],
     upto: dict[str, int] | None = None,
     distances: Distances | None = None,
+    door: Doorway | None = None,
+    hidden: set[str] | None = None,
 ) -> dict[str, list[Motion]]:
     """Every character's motion, one query node `<kind>:<name>:<k>` per action, in document order.
 
@@ -93,8 +119,12 @@ def segments(
     names stands by then. So an edit that leaves an end state unchanged stops there (early cutoff), and
     moving a lamp on a desk re-runs only the actions that use the lamp. ``distances``: (name, k) -> how
     far action k stops from the characters it walks up to (the social plan's, views.social_distances).
+    ``hidden``: the characters waiting outside ``door`` (services/orchestrator/staging.py): their next action
+    comes in through it, and an exit walks out through it.
     """
     states = {name: SegmentEndState(x=st[0], z=st[1], yaw=st[2]) for name, st in starts.items()}
+    outside = set(hidden or ())
+    slotting = Slotting(scene)  # who holds which seat and stand slot, as the story runs
     pieces: dict[str, list[Motion]] = {name: [] for name in characters}
     object_ids = {o.id for o in scene.objects}
     order = [
@@ -105,15 +135,28 @@ def segments(
         if sid == s.id
     ]
     for name, k in order:
+        slotting.expect(name, characters[name][0].actions[k])
+    for name, k in order:
         if upto is not None and k > upto.get(name, -1):
             continue
         node, sids = characters[name]
         action = node.actions[k]
-        single = CharacterNode(name=name, actions=[msgspec.structs.replace(action, verb="")])
+        state = states[name]
+        asked, routes = _staged(scene, door, name, action, state, states, outside)
+        claim = slotting.claim(name, asked[-1])
+        asked[-1] = claim.action
+        at = len(asked) - 1
+        seats = {at: claim.seat} if claim.seat else {}
+        spots = {at: claim.spot} if claim.spot is not None else {}
+        if door is not None:
+            if is_exit(action):
+                outside.add(name)
+            else:
+                outside.discard(name)
+        single = CharacterNode(name=name, actions=asked)
         view = scene_view(scene, action)
         near_them = others(action, name, states, object_ids)
         near = {o: d for o, d in (distances or {}).get((name, k), {}).items() if o in near_them}
-        state = states[name]
 
         def run(
             single: CharacterNode = single,
@@ -121,10 +164,16 @@ def segments(
             state: SegmentEndState = state,
             near_them: dict[str, tuple[float, float]] = near_them,
             near: dict[str, float] = near,
+            routes: list[list[tuple[float, float]]] = routes,
+            seats: dict[int, str] = seats,
+            spots: dict[int, tuple[float, float]] = spots,
         ) -> SynthesizeReply:
-            return synthesise(ctx, single, view, state, (state.x, state.z, state.yaw), near_them, near)
+            start = (state.x, state.z, state.yaw)
+            return synthesise(ctx, single, view, state, start, near_them, near, routes, seats, spots)
 
         inputs = [single, view, state, near_them, near] if near else [single, view, state, near_them]
+        if routes or seats or spots:
+            inputs.append([routes, sorted(seats.items()), sorted(spots.items())])
         reply = ctx.engine.query(f"{kind}:{name}:{k}", inputs, run)
         placed = [
             msgspec.structs.replace(seg, action_index=k, sentence_id=sids[k]) for seg in reply.motion.segments
@@ -145,6 +194,46 @@ def segments(
     return pieces
 
 
+def _staged(
+    scene: Scene,
+    door: Doorway | None,
+    name: str,
+    action: ActionNode,
+    state: SegmentEndState,
+    states: dict[str, SegmentEndState],
+    hidden: set[str],
+) -> tuple[list[ActionNode], list[list[tuple[float, float]]]]:
+    """The actions sent to motion for one story action, and the routes their walks take.
+
+    A character waiting at the door (shown from the threshold on) walks in to a free spot: an entrance
+    does only that, any other action walks in to a spot near where it acts first. An exit walks to the
+    door's threshold (the character is gone once there). Walks go around the others on stage (``hidden``:
+    who is off stage now).
+    """
+    waiting = name in hidden
+    plain = msgspec.structs.replace(action, verb="")
+    if door is None:
+        return [plain], []
+    here = (state.x, state.z)
+    taken = [(st.x, st.z) for other, st in states.items() if other != name and other not in hidden]
+    walk = msgspec.structs.replace(
+        plain, action=action.action or "walk", target="", destination="", instrument=""
+    )
+    if is_exit(action):
+        return [walk], [route(scene, here, door.inside(), taken)]
+    if not waiting:
+        return [plain], []
+    towards = states.get(action.target) or states.get(action.destination)
+    if towards is not None and not is_entrance(action):
+        goal = spot_near(scene, (towards.x, towards.z), taken)
+    else:
+        goal = spot_near(scene, door.inside(1.6), taken, radii=(0.0, 0.6, 1.0, 1.5))
+    way_in = [route(scene, here, (goal[0], goal[1]), taken)]
+    if is_entrance(action):
+        return [walk], way_in
+    return [ActionNode(verb="", action="walk"), plain], way_in
+
+
 def animate(
     ctx: StageContext,
     scene: Scene,
@@ -156,7 +245,11 @@ def animate(
 ) -> Animated:
     """Drafts on the composed layout, the layout optimised around each interaction, then the final motion."""
     characters = characters_of(graphs, [s.id for s in sentences])
-    starts = start_positions(scene, list(characters))
+    door = doorway(scene)
+    wait_ids = {sid for sid, c in commands if c.kind == "wait"}
+    answering = {r.responder for r in (plan.responses if plan is not None else []) if r.response_index == 0}
+    starts, hidden = _first_positions(scene, door, characters, sentences, wait_ids, answering)
+    waiting_place = {name: i for i, name in enumerate(sorted(characters, key=lambda n: n not in hidden))}
     ids = {o.id for o in scene.objects}
     out = Animated(scene=scene)
     # Interactions: actions that touch an object of the scene; the layout is optimised around each.
@@ -169,7 +262,18 @@ def animate(
     done, total = 0, len(interactions) + len(characters)
     last = {name: max([k for n, k, _ in interactions if n == name], default=-1) for name in characters}
     near = social_distances(plan)
-    drafts = segments(ctx, "draft", characters, sentences, scene, starts, upto=last, distances=near)
+    drafts = segments(
+        ctx,
+        "draft",
+        characters,
+        sentences,
+        scene,
+        starts,
+        upto=last,
+        distances=near,
+        door=door,
+        hidden=hidden,
+    )
     for name, k, action in interactions:
         tick("optimise", done, total)
         draft = drafts[name][k]
@@ -191,7 +295,9 @@ def animate(
         done += 1
     out.scene = scene
     tick("motion", done, total)
-    pieces = segments(ctx, "segment", characters, sentences, scene, starts, distances=near)
+    pieces = segments(
+        ctx, "segment", characters, sentences, scene, starts, distances=near, door=door, hidden=hidden
+    )
     tick("motion", total, total)
     # Story timing: sentence order sets when actions start; gaps hold the pose.
     beats = [
@@ -211,5 +317,80 @@ def animate(
     length = max([start_frames[(b.character, b.k)] + b.frames for b in beats] or [1])
     for name, (node, _) in characters.items():
         firsts = [start_frames[(name, k)] for k in range(len(node.actions))] or [0]
-        out.motions[name] = assemble(name, pieces[name], firsts, total=length)
+        motion = assemble(name, pieces[name], firsts, total=length)
+        lengths = [frame_count(p) for p in pieces[name]] if node.actions else []
+        on = presence(length, firsts if node.actions else [], lengths, node.actions, name not in hidden)
+        motion = msgspec.structs.replace(motion, present=to_wire(on))
+        if door is not None and not on.all():
+            motion = _wait_outside(motion, on, door.outside(waiting_place[name]))
+        out.motions[name] = motion
     return out
+
+
+def _wait_outside(motion: Motion, on: np.ndarray, spot: tuple[float, float]) -> Motion:
+    """The motion with its off-stage frames (on == 0) moved to the character's place outside the door."""
+    root = from_wire(motion.root_position).copy()
+    root[on == 0, 0], root[on == 0, 2] = spot
+    return msgspec.structs.replace(motion, root_position=to_wire(root.astype(np.float32)))
+
+
+def _late_comers(
+    characters: Characters, sentences: Sequence[Sentence], waits: set[str], answering: set[str]
+) -> set[str]:
+    """The characters whose first sentence starts after frame 0 (timeline.schedule's rule, before timing).
+
+    A sentence starts with the one before it unless one of its characters is still busy with an earlier
+    action, its first action answers another's (the social plan's response delay: ``answering``) or a
+    `wait` holds it; from the first sentence that starts later, every later one does too.
+    """
+    group: dict[str, set[str]] = {}
+    for name, (_, sids) in characters.items():
+        for sid in sids:
+            group.setdefault(sid, set()).add(name)
+    seen: set[str] = set()
+    late: set[str] = set()
+    delayed = False
+    for s in sentences:
+        if s.id in waits and seen:
+            delayed = True
+        names = group.get(s.id, set())
+        if names & seen or (names & answering and seen):
+            delayed = True
+        if delayed:
+            late |= names - seen
+        seen |= names
+    return late
+
+
+def _first_positions(
+    scene: Scene,
+    door: Doorway | None,
+    characters: Characters,
+    sentences: Sequence[Sentence],
+    waits: set[str] | None = None,
+    answering: set[str] | None = None,
+) -> tuple[dict[str, tuple[float, float, float]], set[str]]:
+    """Where each character is at frame 0, and who waits outside the door until their first sentence.
+
+    Characters on stage from frame 0 start at free spots near what they first act on; an entrance and every
+    character whose first sentence starts later wait at the door (hidden until their first sentence), those
+    who come in at the same time side by side on its threshold.
+    """
+    late = _late_comers(characters, sentences, waits or set(), answering or set())
+    starts: dict[str, tuple[float, float, float]] = {}
+    hidden: set[str] = set()
+    taken: list[tuple[float, float]] = []
+    together: dict[str, int] = {}  # sentence id -> characters coming in with it so far
+    for name, (node, sids) in characters.items():
+        first = node.actions[0] if node.actions else None
+        if door is not None and first is not None and (name in late or is_entrance(first)):
+            when = sids[0] if name in late else ""  # "": with the story's first frame
+            beside = together.get(when, 0)
+            together[when] = beside + 1
+            starts[name] = (*door.inside(beside=beside), door.yaw_in)
+            hidden.add(name)
+            continue
+        spot = first_spot(scene, first, taken)
+        taken.append((spot[0], spot[1]))
+        starts[name] = spot
+    return starts, hidden

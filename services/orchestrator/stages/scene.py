@@ -8,6 +8,7 @@ from proto.retrieval import ComposeReply, ComposeRequest
 from proto.scene import Room, Scene
 from proto.ssg import SentenceGraph
 from services.orchestrator.stages import StageContext, content_of
+from services.orchestrator.staging import with_door
 from services.orchestrator.views import ScenePart, scene_part
 
 
@@ -15,7 +16,7 @@ def compose(ctx: StageContext, part: ScenePart) -> tuple[Scene, ComposeReply | N
     """The composed room and the retrieval report; an empty room (no report) when nothing is described."""
     if not part.objects:  # nothing to retrieve: an empty room for the characters
         room = Room(room_type=part.room_type or "room", width=5.0, depth=5.0, height=2.8)
-        return Scene(room=room, seed=ctx.seed), None
+        return with_door(Scene(room=room, seed=ctx.seed)), None
     reply = ctx.backend.call(
         ComposeRequest(
             header=ctx.header(),
@@ -25,7 +26,7 @@ def compose(ctx: StageContext, part: ScenePart) -> tuple[Scene, ComposeReply | N
             seed=ctx.seed,
         )
     )
-    return reply.scene, content_of(reply)
+    return with_door(reply.scene), content_of(reply)  # every entrance and exit needs a door
 
 
 def scene(ctx: StageContext, graphs: Sequence[SentenceGraph]) -> tuple[Scene, ComposeReply | None]:

@@ -49,6 +49,21 @@ def test_animation_carries_each_characters_frames_exactly() -> None:
     assert eve["segments"][0]["sentence_id"] == "s2"
 
 
+def test_a_character_off_stage_carries_its_presence_and_one_always_on_stage_none() -> None:
+    rotations, root = _walk(12)
+    on = np.r_[np.zeros(4), np.ones(8)].astype(np.uint8)
+    motion = Motion(character="Eve", root_position=to_wire(root), rotations=to_wire(rotations))
+    (always,) = animation_message(PipelineResult(doc_id="d", version=1, motions={"Eve": motion}))[
+        "characters"
+    ]
+    assert always["present"] is None
+    entering = Motion(
+        character="Eve", root_position=to_wire(root), rotations=to_wire(rotations), present=to_wire(on)
+    )
+    (eve,) = animation_message(PipelineResult(doc_id="d", version=1, motions={"Eve": entering}))["characters"]
+    np.testing.assert_array_equal(_f32(eve["present"]), on)
+
+
 def test_a_motion_in_another_joint_order_gets_matching_parents_and_offsets() -> None:
     names = list(reversed(skeleton.JOINT_NAMES))
     rotations, root = _walk(2)

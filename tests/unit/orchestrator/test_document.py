@@ -110,3 +110,24 @@ def test_random_edits_always_match_a_fresh_split():
         assert [(x.start, x.end) for x in doc.sentences] == split_spans(doc.text)
         assert all(doc.text[x.start : x.end] == x.text for x in doc.sentences)
         assert len({x.id for x in doc.sentences}) == len(doc.sentences)
+
+
+def test_a_titled_name_is_one_sentence():
+    text = "Dr. Jones walks in. Mrs. Brown sits on the sofa.\nMr. Takahashi waves at Ms. Lee. Prof. Kim sits."
+    assert [text[s:e] for s, e in split_spans(text)] == [
+        "Dr. Jones walks in.",
+        "Mrs. Brown sits on the sofa.",
+        "Mr. Takahashi waves at Ms. Lee.",
+        "Prof. Kim sits.",
+    ]
+
+
+def test_a_lower_case_abbreviation_before_a_new_sentence_still_ends_it():
+    assert texts(Document.from_text("d", "Eve calls the dr. Tom sits.")) == ["Eve calls the dr.", "Tom sits."]
+
+
+def test_an_edit_that_writes_a_title_joins_the_name_to_it():
+    doc = Document.from_text("d", "Eve sees Tom. Jones waves.")
+    doc.apply(0, [TextChange(start=9, end=13, text="Dr.")])
+    assert texts(doc) == ["Eve sees Dr. Jones waves."]
+    assert [(x.start, x.end) for x in doc.sentences] == split_spans(doc.text)

@@ -89,10 +89,10 @@ def test_a_new_relation_recomposes_the_scene():
     assert len(backend.sent) == 2 and backend.sent[1].relations[0].relation == "near"
 
 
-def test_no_scene_object_gives_an_empty_room_without_asking_retrieval():
+def test_no_scene_object_gives_an_empty_room_with_only_a_door_without_asking_retrieval():
     backend, engine = RecordingBackend(), QueryEngine()
     room, report = scene(ctx(backend, engine), [action_graph("s1", "Eve", "walk")])
-    assert backend.sent == [] and report is None and room.objects == []
+    assert backend.sent == [] and report is None and [o.category for o in room.objects] == ["door"]
 
 
 def test_the_social_plan_reads_verbs_and_social_nodes_but_not_scene_sentences():
