@@ -170,21 +170,29 @@ def is_entrance(act: Act) -> bool:
     return any(verb == v or verb.startswith(v + " ") for v in ENTRANCE_VERBS)
 
 
-def entrance(act: Act, body: Body, world: World, first: bool) -> Check | None:
-    """An entrance starts outside or at a door; nobody is on stage before their first sentence."""
+def entrance(
+    act: Act, body: Body, world: World, first: bool, present: np.ndarray | None = None
+) -> Check | None:
+    """An entrance starts outside or at a door; nobody is on stage before their first sentence.
+
+    Args:
+        present: (T,) bool, the frames the character is on stage (shown); None means always.
+    """
     who = act.character
     if act.start < 0:
         return None
     problems: list[str] = []
     frames: list[int] = []
     hips = body.joint("Hips")[:, [0, 2]]
+    shown = np.ones(body.frames, bool) if present is None else present[: body.frames]
     if first and act.start > 0:
-        early = np.nonzero(world.inside_room(hips[: act.start]))[0]
+        early = np.nonzero(world.inside_room(hips[: act.start]) & shown[: act.start])[0]
         if len(early):
             problems.append(f"{who} is in the room from {span_words(early)}, before {who}'s first sentence")
             frames.extend(int(f) for f in early)
     if is_entrance(act):
-        at = hips[min(act.start, body.frames - 1)]
+        later = np.nonzero(shown[act.start :])[0]  # where the character is first seen, from its sentence on
+        at = hips[min(act.start + (int(later[0]) if len(later) else 0), body.frames - 1)]
         inside = bool(world.inside_room(at[None])[0])
         doors = [o for o in world.scene.objects if o.category == "door"]
         door_gap = min(

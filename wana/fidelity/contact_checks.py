@@ -17,6 +17,7 @@ import numpy as np
 from proto.fidelity import Check
 from proto.scene import PlacedObject
 from wana.assets.catalog import world_bounds
+from wana.assets.relations import footprint_gap
 from wana.assets.vocabulary import lookup_room
 from wana.fidelity.acts import Act, is_locomotion, window_frames
 from wana.fidelity.bodies import Body
@@ -138,6 +139,25 @@ def _candidates(act: Act, world: World, characters: set[str]) -> tuple[list[Plac
     return [o for o in world.scene.objects if meant & set(world.contact_points(o))], ""
 
 
+AT_M = 1.6  # metres: how far a chair may stand from the table it is "at"
+
+
+def _fitting_at(act: Act, world: World, named: list[PlacedObject]) -> list[PlacedObject]:
+    """Objects that offer the action's own point and stand at one of the named objects ("at the table")."""
+    clip = clip_needs(act.node.action)
+    if clip is None or clip.object in HELD:
+        return []
+    meant = {act.node.action, *PREFERRED_POINTS.get(clip.object, ())} - {"touch", "pick_up"}
+    ids = {o.id for o in named}
+    return [
+        o
+        for o in world.scene.objects
+        if o.id not in ids
+        and meant & set(world.contact_points(o))
+        and min(footprint_gap(o, n) for n in named) <= AT_M
+    ]
+
+
 def contact(
     act: Act, body: Body, world: World, bodies: Mapping[str, Body]
 ) -> tuple[Check | None, dict[str, bool]]:
@@ -172,6 +192,9 @@ def contact(
             {},
         )
     got = reach(act, body, world, candidates)
+    if got is None and word:  # "sits at the table": a fitting object at the named one (a chair at it)
+        at = _fitting_at(act, world, candidates)
+        got = reach(act, body, world, at) if at else None
     if got is None:
         name = display(candidates[0].id)
         return base(ok=False, reason=f"the {name} has no place for {who} to {verb} with"), {}

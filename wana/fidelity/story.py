@@ -17,6 +17,7 @@ from proto.fidelity import Check, SentenceVerdict, verdict_of
 from proto.motion_data import Motion
 from proto.scene import Scene
 from proto.ssg import SentenceGraph
+from wana.arrays import from_wire
 from wana.domain.skeleton import JOINT_NAMES
 from wana.fidelity import action_checks as ac
 from wana.fidelity import body_checks as bc
@@ -166,10 +167,27 @@ def _action_checks(
                     on[act.clip.start_frame : act.clip.end_frame] = True
                     lo, hi = sorted((act.character, other))
                     touching[(lo, hi)] = touching.get((lo, hi), np.zeros(body.frames, bool)) | on
-        for check in (ac.supported(act, body, world, until), ac.entrance(act, body, world, first)):
+        on_stage = presence(motion, body.frames)
+        for check in (
+            ac.supported(act, body, world, until),
+            ac.entrance(act, body, world, first, on_stage),
+        ):
             if check is not None:
                 checks.append(check)
     _body_checks(out, acts, world, bodies, motions, exempt, touching)
+
+
+def presence(motion: Motion, frames: int) -> np.ndarray:
+    """(frames,) bool: the character is on stage (Motion.present; always when the motion has none)."""
+    if motion.present is None:
+        return np.ones(frames, bool)
+    present = from_wire(motion.present).astype(bool).reshape(-1)
+    out = np.ones(frames, bool)
+    n = min(frames, len(present))
+    out[:n] = present[:n]
+    if n and n < frames:
+        out[n:] = present[n - 1]
+    return out
 
 
 def _body_checks(
@@ -183,10 +201,15 @@ def _body_checks(
 ) -> None:
     """penetration, overlap and continuity per (sentence, acting character), from one pass per motion."""
     names = sorted(bodies)
+    on_stage = {name: presence(motions[name], bodies[name].frames) for name in names}
     apart: dict[str, list[bc.FrameFailures]] = {name: [] for name in names}
     for i, a in enumerate(names):
         for b in names[i + 1 :]:
-            fa, fb = bc.overlap(bodies[a], bodies[b], touching.get((a, b)))
+            n = min(bodies[a].frames, bodies[b].frames)
+            off = ~(on_stage[a][:n] & on_stage[b][:n])  # someone off stage: nobody to collide with
+            allowed = touching.get((a, b))
+            allowed = off if allowed is None else (allowed[:n] | off)
+            fa, fb = bc.overlap(bodies[a], bodies[b], allowed)
             apart[a].append(fa)
             apart[b].append(fb)
     for name in names:
@@ -196,6 +219,13 @@ def _body_checks(
         inside = bc.penetration(body, world, exempt.get(name, {}))
         boundaries = sorted({s.start_frame for s in motion.segments if s.start_frame > 0})
         fast, popped = bc.speeds(body, motion.fps), bc.pops(body, boundaries)
+        # Off stage nothing is seen: no furniture to be inside, and the hidden move to the door is no jump.
+        here = on_stage[name]
+        seen = here.copy()
+        seen[1:] &= here[:-1]
+        inside.failing[:] &= here
+        fast.failing[:] &= seen
+        popped.failing[:] &= seen
         for sid, frames in owned.items():
             f = np.arange(frames.start, min(frames.stop, body.frames))
             checks = out.setdefault(sid, [])

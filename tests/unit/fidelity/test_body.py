@@ -120,3 +120,34 @@ def test_leaning_on_air_is_not_supported_and_a_hand_on_the_wall_is(make):
         assert check.ok is on_wall, check.reason
         if not on_wall:
             assert "leans on air" in check.reason and check.essential
+
+
+def test_off_stage_frames_are_neither_early_nor_a_jump(make):
+    """A character hidden until its sentence (Motion.present) is not on stage early, and the hidden move to
+    the door is no teleport; the same path shown all along fails both."""
+    import msgspec
+
+    from proto.scene import PlacedObject
+    from wana.arrays import to_wire
+
+    graphs = {
+        "s1": make.action_graph("s1", "Eve", "wave", "wave"),
+        "s2": make.action_graph("s2", "Tom", "walk in", "walk"),
+    }
+    sentences = [("s1", "action"), ("s2", "action")]
+    eve = make.motion(
+        "Eve", make.still(1.0, 0.95, 0.0, 90), [("wave", 0, 69, "s1", 0), ("hold", 69, 90, "", -1)]
+    )
+    room = make.scene(PlacedObject(id="door", category="door", position=(-1.0, 0.0, -2.95)))
+    path = np.concatenate(
+        [make.still(2.0, 0.95, 2.0, 30), np.linspace([-1.0, 0.95, -2.6], [-1.0, 0.95, 0.0], 60)]
+    )  # waits 2 m inside the room, then jumps to the door: hidden, that is an entrance
+    shown = make.motion("Tom", path, [("hold", 0, 30, "", -1), ("walk", 30, 90, "s2", 0)])
+    present = np.r_[np.zeros(30), np.ones(60)].astype(np.uint8)
+    hidden = msgspec.structs.replace(shown, present=to_wire(present))
+    for tom, passes in ((hidden, True), (shown, False)):
+        checks = story_checks(sentences, graphs, room, {"Eve": eve, "Tom": tom})["s2"]
+        (entrance,) = by_name(checks, "entrance")
+        (continuity,) = by_name(checks, "continuity")
+        assert entrance.ok is passes, entrance.reason
+        assert continuity.ok is passes, continuity.reason
