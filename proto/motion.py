@@ -48,6 +48,9 @@ class SynthesizeRequest(Request["SynthesizeReply"], frozen=True, kw_only=True, t
     distances: dict[
         str, float
     ] = {}  # metres to stop from another character when walking up to them (the social model's); absent = 0.8
+    occupied: list[
+        tuple[float, float]
+    ] = []  # x, z (metres, world) of other characters seated by then: seat slots there are not free
 
 
 class SynthesizeReply(msgspec.Struct, frozen=True, kw_only=True, tag="synthesize_reply"):

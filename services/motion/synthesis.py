@@ -3,7 +3,9 @@
 Each planned segment is synthesised from the end state of the previous one only
 (`synthesise_segment(plan, k, start_state) -> (MotionPiece, end_state)`), so the orchestrator can
 recompute from segment k on and stop as soon as an end state comes out unchanged. Every piece
-starts and ends in its posture's rest pose, so pieces join with short cross-fades. Upper body from
+starts and ends exactly in its posture's rest pose at its start / end state (`join_rest`: the first and
+last JOIN frames blend from / into it), so pieces synthesised apart join without a pose pop wherever the
+orchestrator puts them on the time line, and holds between them hold that pose. Upper body from
 the action, lower body from locomotion or the posture; IK brings contact joints to the object's
 contact points; foot locking removes sliding.
 """
@@ -26,6 +28,7 @@ from wana.domain.skeleton import JOINT_INDEX, JOINT_NAMES, N_JOINTS, REST_OFFSET
 from wana.domain.units import FPS
 
 FADE = 6  # frames of cross-fade at the start of each piece
+JOIN = 10  # frames over which a piece blends from its start state's rest pose and into its end state's
 POSTURE_AFTER = {
     "sit": "sit",
     "lie_down": "lie",
@@ -317,10 +320,57 @@ def _standing_pose(yaw: float) -> np.ndarray:
     return p
 
 
+def rest_frame(state: SegmentState) -> tuple[np.ndarray, np.ndarray]:
+    """(J, 4) rotations (root yawed) and (3,) world hips of the rest pose of a state's posture."""
+    base_rot, base_off = posture_pose(state.posture)
+    rot = base_rot.copy()
+    rot[0] = quat.mul(quat.yaw(np.array(state.yaw)), rot[0])
+    root, _ = _to_world(state, base_off[None], np.zeros(1))
+    return rot, root[0]
+
+
+def join_rest(piece: MotionPiece, start: SegmentState, end: SegmentState, frames: int = JOIN) -> MotionPiece:
+    """The piece with its first frame exactly the start state's rest pose and its last the end state's,
+    blended over ``frames`` frames at each end (smoothstep, rotations slerped, hips lerped).
+
+    Every piece is synthesised from its start state alone (so the orchestrator can recompute from any
+    segment on); ending where the next piece starts is what makes the boundary invisible: the piece
+    after, or a hold on the time line, starts from exactly this pose.
+    """
+    t = len(piece.root)
+    n = min(frames, t // 2)
+    if n < 2:
+        return piece
+    rot = np.array(piece.rotations, dtype=np.float64, copy=True)
+    root = np.array(piece.root, dtype=np.float64, copy=True)
+    u = _smooth(np.arange(n) / (n - 1))  # 0 at the boundary frame, 1 inside the piece
+    for (pose, hips), idx, w in (
+        (rest_frame(start), np.arange(n), u),
+        (rest_frame(end), np.arange(t - n, t), u[::-1]),
+    ):
+        ww = np.repeat(w[:, None], N_JOINTS, 1)
+        rot[idx] = quat.slerp(np.broadcast_to(pose, (n, N_JOINTS, 4)), rot[idx], ww)
+        root[idx] = hips + (root[idx] - hips) * w[:, None]
+    # The blended frames leave the contact: a looping contact (typing) holds from the first to the last
+    # frame the join leaves alone.
+    held = {
+        j: (frames[(frames >= n) & (frames < t - n)], target)
+        for j, (frames, target) in piece.contact_frames.items()
+    }
+    return MotionPiece(root, quat.normalize(rot), piece.contacts, piece.segment, held)
+
+
 def synthesise_segment(
     plan: MotionPlan, k: int, start_state: SegmentState
 ) -> tuple[MotionPiece, SegmentState]:
     """Synthesise segment k of a plan from the end state of segment k-1 (or plan.start_state())."""
+    piece, end = _synthesise_segment(plan, k, start_state)
+    return join_rest(piece, start_state, end), end
+
+
+def _synthesise_segment(
+    plan: MotionPlan, k: int, start_state: SegmentState
+) -> tuple[MotionPiece, SegmentState]:
     seg = plan.segments[k]
     if seg.kind == "locomotion":
         return _locomotion_piece(seg, start_state)

@@ -26,6 +26,7 @@ from services.orchestrator.stages import StageContext, content_of
 from services.orchestrator.stages.social import frame_count
 from services.orchestrator.timeline import Beat, assemble, schedule
 from services.orchestrator.views import characters_of, others, scene_view, social_distances, start_positions
+from wana.domain.actions import get_clip
 
 Characters = dict[str, tuple[CharacterNode, list[str]]]  # name -> (its actions in order, their sentence ids)
 Distances = dict[tuple[str, int], dict[str, float]]  # (name, k) -> {other: metres}
@@ -49,6 +50,7 @@ def synthesise(
     start: tuple[float, float, float],
     others: dict[str, tuple[float, float]] | None = None,
     distances: dict[str, float] | None = None,
+    occupied: list[tuple[float, float]] | None = None,
 ) -> SynthesizeReply:
     request = SynthesizeRequest(
         header=ctx.header(),
@@ -58,8 +60,25 @@ def synthesise(
         start_state=state,
         others=others or {},
         distances=distances or {},
+        occupied=occupied or [],
     )
     return content_of(ctx.backend.call(request))
+
+
+def seated_others(
+    action: ActionNode, name: str, states: dict[str, SegmentEndState]
+) -> list[tuple[float, float]]:
+    """Where the other characters sit by the time a sit / lie action starts (their seat slots are taken);
+    [] for any other action, so that its recompute does not depend on them."""
+    try:
+        clip = get_clip(action.action) if action.action else None
+    except KeyError:
+        clip = None
+    if clip is None or clip.interaction is None or clip.interaction.object not in ("seat", "bed"):
+        return []
+    return sorted(
+        (round(st.x, 3), round(st.z, 3)) for c, st in states.items() if c != name and st.posture != "stand"
+    )
 
 
 def optimise(
@@ -114,6 +133,7 @@ def segments(
         near_them = others(action, name, states, object_ids)
         near = {o: d for o, d in (distances or {}).get((name, k), {}).items() if o in near_them}
         state = states[name]
+        seated = seated_others(action, name, states)
 
         def run(
             single: CharacterNode = single,
@@ -121,10 +141,15 @@ def segments(
             state: SegmentEndState = state,
             near_them: dict[str, tuple[float, float]] = near_them,
             near: dict[str, float] = near,
+            seated: list[tuple[float, float]] = seated,
         ) -> SynthesizeReply:
-            return synthesise(ctx, single, view, state, (state.x, state.z, state.yaw), near_them, near)
+            return synthesise(
+                ctx, single, view, state, (state.x, state.z, state.yaw), near_them, near, seated
+            )
 
         inputs = [single, view, state, near_them, near] if near else [single, view, state, near_them]
+        if seated:  # only a seat-taking action depends on where the others sit
+            inputs.append(seated)
         reply = ctx.engine.query(f"{kind}:{name}:{k}", inputs, run)
         placed = [
             msgspec.structs.replace(seg, action_index=k, sentence_id=sids[k]) for seg in reply.motion.segments
