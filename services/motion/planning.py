@@ -379,9 +379,9 @@ def plan_actions(
             )
             if seat_pick is None:
                 what = "bed" if clip.interaction.object == "bed" else "seat"
-                near = f" near the {obj.id.split('#')[0].replace('_', ' ')}" if obj is not None else ""
+                where = f" near the {obj.id.split('#')[0].replace('_', ' ')}" if obj is not None else ""
                 diags.append(
-                    f"no free {what}{near} for {character.name} to {name.replace('_', ' ')} on: "
+                    f"no free {what}{where} for {character.name} to {name.replace('_', ' ')} on: "
                     f"{character.name} stands instead"
                 )
                 add(kind="wait", action="idle", duration_s=STAY_S, action_index=ai)
@@ -397,9 +397,9 @@ def plan_actions(
                 # Sleeping from standing: lie down on the bed first, then sleep there.
                 lie = lib.get("lie_down")
                 if lie is not None:
-                    stand_xz = np.array([seat_pick[1][0], seat_pick[1][2]])
+                    bed_xz = np.array([seat_pick[1][0], seat_pick[1][2]])
                     face = float(obj.yaw)
-                    approach = stand_xz + np.array([np.sin(face), np.cos(face)]) * SEAT_BACK
+                    approach = bed_xz + np.array([np.sin(face), np.cos(face)]) * SEAT_BACK
                     walk_to(approach, 1.2, face, "walk", ai, obj.id)
                     pos, yaw = approach.copy(), face
                     add(
@@ -460,7 +460,7 @@ def plan_actions(
                     )  # close enough, but facing away: turn in place
         elif obj is not None and clip.interaction is None and name in ("look_at", "point", "wave", "talk"):
             d = np.array([obj.position[0], obj.position[2]]) - pos
-            if np.linalg.norm(d) > 0.3:
+            if np.linalg.norm(d) > 0.3 and now_posture() == "stand":  # seated: no standing up to turn
                 face = float(np.arctan2(d[0], d[1]))
                 if abs(np.arctan2(np.sin(face - yaw), np.cos(face - yaw))) > 0.3:
                     walk_to(pos.copy(), 1.0, face, "turn", ai, obj.id)

@@ -23,12 +23,14 @@ from services.motion.ik import joint_globals, lean_needed, lean_spine, lock_feet
 from services.motion.locomotion import locomote
 from wana.arrays import to_wire
 from wana.domain import quat
-from wana.domain.actions import ActionClip, get_clip, neutral_rotations
+from wana.domain.actions import JOIN_FRAMES, ActionClip, get_clip, neutral_rotations
 from wana.domain.skeleton import JOINT_INDEX, JOINT_NAMES, N_JOINTS, REST_OFFSETS
 from wana.domain.units import FPS
 
 FADE = 6  # frames of cross-fade at the start of each piece
-JOIN = 10  # frames over which a piece blends from its start state's rest pose and into its end state's
+JOIN = (
+    JOIN_FRAMES  # frames over which a piece blends from its start state's rest pose and into its end state's
+)
 POSTURE_AFTER = {
     "sit": "sit",
     "lie_down": "lie",
