@@ -371,7 +371,12 @@ def plan_actions(
             and now_posture() != "stand"
         ):
             add(kind="action", action="stand", action_index=ai)  # a whole-body action needs standing
-        obj = _find_object(scene, node.target or node.instrument or node.destination)
+        # The first of target, instrument, destination that names an object ("falls asleep on the sofa":
+        # a target word that is no object leaves the sofa).
+        obj = next(
+            (o for r in (node.target, node.instrument, node.destination) if (o := _find_object(scene, r))),
+            None,
+        )
         seat_pick: tuple[PlacedObject, tuple[float, float, float]] | None = None
         if clip.interaction and clip.interaction.object in ("seat", "bed"):
             seat_pick = pick_seat(

@@ -23,6 +23,7 @@ from proto.ssg import ActionNode, CharacterNode, Command, Diagnostic, SentenceGr
 from services.orchestrator.backend import StageFailed
 from services.orchestrator.document import Sentence
 from services.orchestrator.stages import StageContext, content_of
+from services.orchestrator.stages.seats import furnish
 from services.orchestrator.stages.social import frame_count
 from services.orchestrator.timeline import Beat, assemble, schedule
 from services.orchestrator.views import characters_of, others, scene_view, social_distances, start_positions
@@ -104,6 +105,7 @@ def segments(
     starts: dict[str, tuple[float, float, float]],
     upto: dict[str, int] | None = None,
     distances: Distances | None = None,
+    notes: list[tuple[str, str]] | None = None,
 ) -> dict[str, list[Motion]]:
     """Every character's motion, one query node `<kind>:<name>:<k>` per action, in document order.
 
@@ -112,6 +114,7 @@ def segments(
     names stands by then. So an edit that leaves an end state unchanged stops there (early cutoff), and
     moving a lamp on a desk re-runs only the actions that use the lamp. ``distances``: (name, k) -> how
     far action k stops from the characters it walks up to (the social plan's, views.social_distances).
+    ``notes`` collects (sentence id, what the motion service said) ("no free seat ...: Zoe stands instead").
     """
     states = {name: SegmentEndState(x=st[0], z=st[1], yaw=st[2]) for name, st in starts.items()}
     pieces: dict[str, list[Motion]] = {name: [] for name in characters}
@@ -155,6 +158,9 @@ def segments(
             msgspec.structs.replace(seg, action_index=k, sentence_id=sids[k]) for seg in reply.motion.segments
         ]
         pieces[name].append(msgspec.structs.replace(reply.motion, segments=placed))
+        if notes is not None:
+            # (unknown actions the parse already reported)
+            notes.extend((sids[k], d) for d in reply.diagnostics if not d.startswith("unknown action"))
         states[name] = reply.end_states[-1] if reply.end_states else state
     for name, (node, _) in characters.items():
         if not node.actions and upto is None:
@@ -181,9 +187,10 @@ def animate(
 ) -> Animated:
     """Drafts on the composed layout, the layout optimised around each interaction, then the final motion."""
     characters = characters_of(graphs, [s.id for s in sentences])
+    scene, added = furnish(ctx, scene, graphs, sentences)  # a chair where a sit has no free seat
     starts = start_positions(scene, list(characters))
     ids = {o.id for o in scene.objects}
-    out = Animated(scene=scene)
+    out = Animated(scene=scene, diagnostics=list(added))
     # Interactions: actions that touch an object of the scene; the layout is optimised around each.
     interactions = [
         (name, k, a)
@@ -216,7 +223,16 @@ def animate(
         done += 1
     out.scene = scene
     tick("motion", done, total)
-    pieces = segments(ctx, "segment", characters, sentences, scene, starts, distances=near)
+    notes: list[tuple[str, str]] = []
+    pieces = segments(ctx, "segment", characters, sentences, scene, starts, distances=near, notes=notes)
+    spans = {s.id: Span(s.start, s.end) for s in sentences}
+    for sid, why in dict.fromkeys(notes):
+        span = spans.get(sid, Span(0, 0))
+        if "instead" in why:  # something the sentence asks could not be done
+            note = Diagnostic(code="W302", message=why, span=span, severity="warning")
+        else:
+            note = Diagnostic(code="I301", message=why, span=span, severity="info")
+        out.diagnostics.append((sid, note))
     tick("motion", total, total)
     # Story timing: sentence order sets when actions start; gaps hold the pose.
     beats = [
