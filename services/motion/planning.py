@@ -45,6 +45,7 @@ PERSON_DISTANCE = 0.8  # metres between two characters after one walks up to the
 CLOSE_DISTANCE = {"hug": 0.45, "shake_hands": 0.75, "high_five": 0.75}  # metres, per touching action
 SEATING = ("sit", "lie_down", "sleep")  # clips that leave the character on a seat or a bed
 TURN_TOLERANCE = 0.3  # radians off the wanted facing before the character turns in place
+PICK_REACH = 0.9  # metres (horizontal) from where the character stands to a prop it can pick up
 SEATED_AS = {"sit": "sit", "lie_down": "lie", "sleep": "lie", "sit_on_floor": "sit_floor", "stand": "stand"}
 STAY_S = 1.0  # seconds a "sits" while seated or a "stands" while standing holds the posture
 NEAR_NAMED = 1.6  # metres from a named non-seat ("sits at the desk") to the seat used with it
@@ -165,6 +166,52 @@ def pick_seat(
     if named is not None:
         return nearest(cands, np.array([named.position[0], named.position[2]]), NEAR_NAMED)
     return nearest(cands, pos, NEAR_ANY)
+
+
+def prop_grip(
+    scene: Scene, action: str, named: PlacedObject | None, pos: np.ndarray
+) -> tuple[PlacedObject, str, tuple[float, float, float]] | None:
+    """The small object a handheld action holds, the joint holding it and its grip point (object frame).
+
+    Small objects are those the catalog lets a hand pick up (a "pick_up" contact point); the grip is the
+    point named for the action ("drink", "call", "read"...: the action's name or its first word), else the
+    pick-up point. The named object when it is one; else the nearest one made for the action.
+    """
+
+    def grip(placed: PlacedObject) -> tuple[str, tuple[float, float, float]] | None:
+        try:
+            from wana.assets.catalog import asset_for
+
+            points = asset_for(placed).contact_points
+        except Exception:  # noqa: BLE001 - unknown category or no catalog: nothing to hold
+            return None
+        if "pick_up" not in points:
+            return None
+        for key in (action, action.split("_")[0], "pick_up"):
+            if key in points:
+                cp = points[key]
+                joint = cp.joint.replace("Middle1", "")
+                return joint, (float(cp.position[0]), float(cp.position[1]), float(cp.position[2]))
+        return None
+
+    if named is not None:
+        g = grip(named)
+        return (named, *g) if g is not None else None
+    made_for = []
+    for o in scene.objects:
+        try:
+            from wana.assets.catalog import asset_for
+
+            names = set(asset_for(o).contact_points)
+        except Exception:  # noqa: BLE001
+            continue
+        if "pick_up" in names and {action, action.split("_")[0]} & names:
+            made_for.append(o)
+    if not made_for:
+        return None
+    best = min(made_for, key=lambda o: float(np.hypot(o.position[0] - pos[0], o.position[2] - pos[1])))
+    g = grip(best)
+    return (best, *g) if g is not None else None
 
 
 def _other_character(
@@ -415,6 +462,29 @@ def plan_actions(
                         action_index=ai,
                     )
         targets: dict[str, tuple[float, float, float]] = {}
+        held: dict = {}
+        if clip.interaction and clip.interaction.object == "handheld":
+            grip = prop_grip(scene, name, obj, pos)
+            if grip is not None:
+                prop_obj, joint, local = grip
+                here = np.array([prop_obj.position[0], prop_obj.position[2]])
+                if np.linalg.norm(here - pos) > REACH + 0.2 and now_posture() == "stand":
+                    # Walk up to the prop first (it is picked up where it lies).
+                    from services.motion.routing import free_spot
+
+                    away = pos - here
+                    n = float(np.linalg.norm(away))
+                    spot = here + (away / n if n > 1e-6 else np.array([0.0, 1.0])) * REACH
+                    spot = np.asarray(free_spot(scene, (float(spot[0]), float(spot[1]))), float)
+                    walk_to(spot, 1.2, _yaw_to(spot, here, yaw), "walk", ai, prop_obj.id)
+                if np.linalg.norm(here - pos) <= PICK_REACH:  # within reach: it is held
+                    held = {
+                        "prop": prop_obj.id,
+                        "prop_joint": joint,
+                        "prop_grip": local,
+                        "prop_yaw": float(prop_obj.yaw),
+                    }
+                    obj = prop_obj
         if obj is not None and clip.interaction and clip.interaction.object not in ("handheld", "person"):
             geo = _object_geometry(obj) or _fallback_geometry(obj)
             stand, points = geo
@@ -476,6 +546,7 @@ def plan_actions(
             targets=tuple(sorted(targets.items())),
             target_id=obj.id if obj else node.target,
             action_index=ai,
+            **held,
         )
     return MotionPlan(
         character=character.name,

@@ -15,9 +15,10 @@ from __future__ import annotations
 import functools
 from dataclasses import asdict, dataclass, field
 
+import msgspec
 import numpy as np
 
-from proto.motion_data import Motion, Segment
+from proto.motion_data import Motion, PropTrack, Segment
 from services.motion.blend import fade_from, layer, upper_body_mask
 from services.motion.ik import joint_globals, lean_needed, lean_spine, lock_feet, two_bone_ik
 from services.motion.locomotion import locomote
@@ -89,6 +90,10 @@ class PlannedSegment:
     target_id: str = ""
     sentence_id: str = ""
     action_index: int = -1  # index of the ActionNode this segment serves
+    prop: str = ""  # id of a small object held during the clip's contact window ("" = none)
+    prop_joint: str = "RightHand"  # the joint holding it
+    prop_grip: tuple[float, float, float] = (0.0, 0.0, 0.0)  # its grip point, object frame, metres
+    prop_yaw: float = 0.0  # its yaw as placed (radians): the orientation it is picked up in
 
 
 @dataclass(frozen=True)
@@ -113,6 +118,7 @@ class MotionPiece:
     contact_frames: dict[str, tuple[np.ndarray, np.ndarray]] = field(
         default_factory=dict
     )  # joint -> (frames, target)
+    props: list[PropTrack] = field(default_factory=list)  # frames relative to the piece
 
 
 @functools.lru_cache(maxsize=8)
@@ -359,7 +365,7 @@ def join_rest(piece: MotionPiece, start: SegmentState, end: SegmentState, frames
         j: (frames[(frames >= n) & (frames < t - n)], target)
         for j, (frames, target) in piece.contact_frames.items()
     }
-    return MotionPiece(root, quat.normalize(rot), piece.contacts, piece.segment, held)
+    return MotionPiece(root, quat.normalize(rot), piece.contacts, piece.segment, held, piece.props)
 
 
 def synthesise_segment(
@@ -367,7 +373,39 @@ def synthesise_segment(
 ) -> tuple[MotionPiece, SegmentState]:
     """Synthesise segment k of a plan from the end state of segment k-1 (or plan.start_state())."""
     piece, end = _synthesise_segment(plan, k, start_state)
-    return join_rest(piece, start_state, end), end
+    piece = join_rest(piece, start_state, end)
+    if piece.segment.prop:
+        piece.props = [held_prop(piece)]
+    return piece, end
+
+
+def held_prop(piece: MotionPiece) -> PropTrack:
+    """The prop of a piece's segment held by its joint over the clip's contact window (between the joins).
+
+    The object keeps the orientation it had relative to the hand when grasped (its placed yaw at the first
+    held frame), and its grip point sits on the joint in every held frame.
+    """
+    seg = piece.segment
+    t = len(piece.root)
+    clip = get_clip(seg.action)
+    w0, w1 = clip.interaction.window if clip.interaction else (0.0, clip.duration_s)
+    if clip.looping:
+        w0, w1 = 0.0, t / FPS
+    a = int(np.clip(round(w0 * FPS), JOIN, max(JOIN, t - JOIN - 1)))
+    b = int(np.clip(round(w1 * FPS), a + 1, max(a + 1, t - JOIN)))
+    pos, grot = joint_globals(piece.rotations[a:b], piece.root[a:b], JOINT_INDEX[seg.prop_joint])
+    rest = quat.mul(quat.inv(grot[0]), quat.yaw(np.array(seg.prop_yaw)))  # object in the hand's frame
+    rot = quat.normalize(quat.mul(grot, np.broadcast_to(rest, grot.shape)))
+    origin = pos - quat.rotate(rot, np.broadcast_to(np.asarray(seg.prop_grip, float), pos.shape))
+    return PropTrack(
+        object_id=seg.prop,
+        joint=seg.prop_joint,
+        start_frame=a,
+        end_frame=b,
+        grip=tuple(float(v) for v in seg.prop_grip),  # type: ignore[arg-type]
+        position=to_wire(origin.astype(np.float32)),
+        rotation=to_wire(rot.astype(np.float32)),
+    )
 
 
 def _synthesise_segment(
@@ -399,6 +437,7 @@ def synthesise(plan: MotionPlan) -> tuple[Motion, list[MotionPiece], list[Segmen
 
 def assemble(character: str, pieces: list[MotionPiece], start: SegmentState | None = None) -> Motion:
     """Concatenate pieces into a proto Motion (float32 arrays, segments with frame ranges)."""
+    props: list[PropTrack] = []
     if not pieces:
         s = start or SegmentState()
         rot = _standing_pose(s.yaw)[None]
@@ -412,6 +451,10 @@ def assemble(character: str, pieces: list[MotionPiece], start: SegmentState | No
         segments, f = [], 0
         for p in pieces:
             n = len(p.root)
+            props += [
+                msgspec.structs.replace(h, start_frame=h.start_frame + f, end_frame=h.end_frame + f)
+                for h in p.props
+            ]
             segments.append(
                 Segment(
                     index=p.segment.index,
@@ -431,6 +474,7 @@ def assemble(character: str, pieces: list[MotionPiece], start: SegmentState | No
         rotations=to_wire(rot.astype(np.float32)),
         foot_contact=to_wire(contacts.astype(np.uint8)),
         segments=segments,
+        props=props,
     )
 
 
