@@ -81,3 +81,22 @@ def test_the_story_motion_keeps_the_prop_in_the_hand_after_timing():
     drink = next(s for s in motion.segments if s.action == "drink")
     assert drink.start_frame <= motion.props[0].start_frame < motion.props[0].end_frame <= drink.end_frame
     assert max(_grip_errors(motion)) < 0.01
+
+
+def test_the_renderer_poses_a_held_prop_on_the_hand_and_leaves_it_out_of_the_static_room():
+    from services.render.scene_geometry import held_ids, object_meshes, prop_pose
+
+    eve = CharacterNode(name="Eve", actions=[ActionNode(verb="drink", action="drink", target="cup")])
+    motion, _, _ = synthesise(plan_actions(eve, SCENE, (-1.0, -1.0, 0.0)))
+    assert held_ids([motion]) == {"cup"}
+    assert "cup" not in {m.name for m in object_meshes(SCENE, held_ids([motion]))}
+    track = motion.props[0]
+    cup = SCENE.objects[1]
+    pos, _ = global_transforms(
+        from_wire(motion.rotations).astype(float), from_wire(motion.root_position).astype(float)
+    )
+    for f in (track.start_frame, (track.start_frame + track.end_frame) // 2, track.end_frame - 1):
+        m = prop_pose(cup, [motion], f)
+        grip = m[:3, :3] @ np.asarray(track.grip) + m[:3, 3]
+        assert np.linalg.norm(grip - pos[f, JOINT_INDEX[track.joint]]) < 0.01
+    assert np.allclose(prop_pose(cup, [motion], 0)[:3, 3], cup.position)  # before: where it was placed
