@@ -136,6 +136,25 @@ def prop_mesh(placed: PlacedObject) -> ColouredMesh:
     return _face_coloured(placed.id, asset_for(placed).mesh, scale)
 
 
+def prop_track(placed: PlacedObject, motions: list[Motion], n_frames: int) -> tuple[np.ndarray, np.ndarray]:
+    """(T, 3) world positions and (T, 4) rotations (x, y, z, w) of an object over the animation: the
+    tracks holding it where they do, where the scene placed it elsewhere (an animated GLB node)."""
+    from wana.arrays import from_wire
+    from wana.domain import quat
+
+    pos = np.tile(np.asarray(placed.position, dtype=np.float64), (n_frames, 1))
+    rot = np.tile(quat.yaw(np.array(float(placed.yaw))), (n_frames, 1))
+    for motion in motions:
+        for track in motion.props:
+            if track.object_id != placed.id:
+                continue
+            a, b = max(0, track.start_frame), min(n_frames, track.end_frame)
+            if b > a:
+                pos[a:b] = from_wire(track.position)[a - track.start_frame : b - track.start_frame]
+                rot[a:b] = from_wire(track.rotation)[a - track.start_frame : b - track.start_frame]
+    return pos, rot
+
+
 def prop_pose(placed: PlacedObject, motions: list[Motion], frame: int) -> np.ndarray:
     """(4, 4) object -> world (no scale) of an object at a frame: in the hand of the track holding it
     then, else where the scene placed it."""

@@ -100,3 +100,38 @@ def test_the_renderer_poses_a_held_prop_on_the_hand_and_leaves_it_out_of_the_sta
         grip = m[:3, :3] @ np.asarray(track.grip) + m[:3, 3]
         assert np.linalg.norm(grip - pos[f, JOINT_INDEX[track.joint]]) < 0.01
     assert np.allclose(prop_pose(cup, [motion], 0)[:3, 3], cup.position)  # before: where it was placed
+
+
+def test_the_glb_animates_the_held_prop_as_a_node_of_its_own():
+    import json
+    import struct
+
+    from services.render.gltf_export import scene_glb
+    from services.render.scene_geometry import prop_track
+
+    eve = CharacterNode(name="Eve", actions=[ActionNode(verb="drink", action="drink", target="cup")])
+    motion, _, _ = synthesise(plan_actions(eve, SCENE, (-1.0, -1.0, 0.0)))
+    glb = scene_glb(SCENE, [motion])
+    (length,) = struct.unpack_from("<I", glb, 12)
+    doc = json.loads(glb[20 : 20 + length])
+    cup = [i for i, n in enumerate(doc["nodes"]) if n["name"] == "cup"]
+    assert len(cup) == 1  # drawn once: not also in the static room
+    paths = {c["target"]["path"] for c in doc["animations"][0]["channels"] if c["target"]["node"] == cup[0]}
+    assert paths == {"translation", "rotation"}
+    n = len(from_wire(motion.root_position))
+    pos, rot = prop_track(SCENE.objects[1], [motion], n)
+    track = motion.props[0]
+    assert np.allclose(pos[0], SCENE.objects[1].position)  # on the table before it is picked up
+    assert np.allclose(pos[track.start_frame], from_wire(track.position)[0])
+    # the placed orientation as a quaternion agrees with the catalog's object-to-world yaw
+    from wana.assets.catalog import yaw_matrix
+
+    x, y, z, w = rot[0]
+    m = np.array(
+        [
+            [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+            [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+            [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
+        ]
+    )
+    assert np.allclose(m, yaw_matrix(SCENE.objects[1].yaw), atol=1e-6)
