@@ -44,6 +44,9 @@ SEATED_MAX_LEAN = np.radians(40.0)  # radians of spine pitch a seated character 
 SCOOT_MAX = 0.15  # metres the hips may slide forward on a seat to bring the hands to a far target
 FULL_REACH = 0.97  # share of the arm's reach a hand contact may use (nearly straight arm: pressing, wiping)
 COMFORT_REACH = 0.85  # the same for typing and playing: elbows bent ~110 degrees
+STAND_MAX_LEAN = np.radians(30.0)  # radians of trunk lean a standing reach may use before ...
+CROUCH_MAX = 0.45  # ... the knees bend: metres the hips may drop (feet planted) to reach a low target
+HAND_JOINTS = ("LeftHand", "RightHand", "LeftHandMiddle1", "RightHandMiddle1")
 
 
 @dataclass(frozen=True)
@@ -204,7 +207,12 @@ def _action_piece(seg: PlannedSegment, state: SegmentState) -> tuple[MotionPiece
         contact_frames["Hips"] = (inside, np.asarray(targets["Hips"]))
     stand_feet = not clip.drives_lower_body or seg.action in POSTURE_AFTER
     contacts = np.ones((t, 2), np.uint8) if stand_feet else _clip_contacts(rot, root)
-    rot = lock_feet(rot, root, contacts)
+    stand_lean = None  # standing at a low target: bend the knees first, the trunk at most STAND_MAX_LEAN
+    if posture == "stand" and not clip.drives_lower_body and clip.interaction and stand_feet:
+        low = {j: p for j, p in targets.items() if j in HAND_JOINTS}
+        if low and clip.interaction.object not in ("handheld", "person"):
+            root, stand_lean = _crouch_to_reach(rot, root, low, _contact_weight(clip, t, dur), clip)
+    rot = lock_feet(rot, root, contacts)  # feet stay planted: a lowered root bends the knees
     if clip.interaction and clip.interaction.object not in ("handheld", "person"):
         w0, w1 = clip.interaction.window
         frames = np.arange(t)
@@ -219,7 +227,7 @@ def _action_piece(seg: PlannedSegment, state: SegmentState) -> tuple[MotionPiece
             for j, p in targets.items()
             if j in ("LeftHand", "RightHand", "LeftHandMiddle1", "RightHandMiddle1")
         }
-        max_lean = np.radians(80.0)
+        max_lean = np.radians(80.0) if stand_lean is None else stand_lean
         if posture in ("sit", "sit_floor") and not clip.drives_lower_body and hands:
             # Seated, the trunk leans at most SEATED_MAX_LEAN; past that the hips slide forward on the seat.
             max_lean = SEATED_MAX_LEAN
@@ -258,6 +266,38 @@ def _action_piece(seg: PlannedSegment, state: SegmentState) -> tuple[MotionPiece
     else:
         end = SegmentState(state.x, state.z, end_yaw, new_posture, state.phase, hips_dy)
     return MotionPiece(root, quat.normalize(rot), contacts, seg, contact_frames), end.rounded()
+
+
+def _contact_weight(clip: ActionClip, t: int, dur: float) -> np.ndarray:
+    """(T,) how much the contact holds per frame: the clip's window, eased in and out over 0.4 s."""
+    assert clip.interaction is not None
+    w0, w1 = (0.0, dur) if clip.looping else clip.interaction.window
+    tt = np.arange(t) / FPS
+    return np.clip(np.minimum((tt - (w0 - 0.4)) / 0.4, ((w1 + 0.4) - tt) / 0.4), 0, 1)
+
+
+def _crouch_to_reach(
+    rot: np.ndarray,
+    root: np.ndarray,
+    hands: dict[str, tuple[float, float, float]],
+    weight: np.ndarray,
+    clip: ActionClip,
+) -> tuple[np.ndarray, float | None]:
+    """Root (T, 3) lowered (at most CROUCH_MAX, eased in by weight) just far enough that a trunk lean of
+    STAND_MAX_LEAN brings every hand target within reach, and that lean; (root, None) when no crouch
+    is enough (the trunk then leans as far as it must)."""
+    assert clip.interaction is not None
+    slack = COMFORT_REACH if clip.interaction.object in ("keyboard", "instrument") else FULL_REACH
+    for drop in np.linspace(0.0, CROUCH_MAX, 8):
+        lowered = root.copy()
+        lowered[:, 1] -= weight * drop
+        if all(
+            lean_needed(rot, lowered, j, np.asarray(p, dtype=np.float64), weight, STAND_MAX_LEAN, slack)
+            is not None
+            for j, p in hands.items()
+        ):
+            return lowered, STAND_MAX_LEAN
+    return root, None
 
 
 def _scoot_to_reach(
