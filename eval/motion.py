@@ -7,8 +7,11 @@ Scenarios: generated scenes (a chair, a desk, a bed, a button on a wall...) with
 sitting, typing, standing, waving, lying down, pushing buttons, plus free locomotion along random
 waypoints (>= 30 in the full run), and held-out CMU clips from ../shared/data (their captured root
 path replayed through the controller; skipped when the data is absent).
-JSON keys: foot_slide_cm, path_error_cm, contact_cm, jerk, actions, scenarios, cmu_clips, ...
-Targets: foot_slide_cm <= 1.0 (cm per frame while a foot is in contact), contact_cm <= 3.0.
+JSON keys: foot_slide_cm, path_error_cm, contact_cm, jerk, spine_bend_p95_deg (trunk from upright while a
+standing hand reaches a target), prop_grip_error_cm (worst held frame: a prop's grip point to its hand),
+actions, scenarios, cmu_clips, ...
+Targets: foot_slide_cm <= 1.0 (cm per frame while a foot is in contact), contact_cm <= 3.0,
+spine_bend_p95_deg <= 30, prop_grip_error_cm <= 1.
 """
 
 from __future__ import annotations
@@ -34,7 +37,13 @@ from wana.domain.skeleton import JOINT_INDEX  # noqa: E402
 
 SCRIPTS = [
     [("walk", "", "chair"), ("sit", "chair", ""), ("type", "desk", ""), ("stand", "", "")],
-    [("walk", "", "desk"), ("wave", "", ""), ("sit", "chair", ""), ("write", "desk", "")],
+    [
+        ("walk", "", "desk"),
+        ("drink", "cup", ""),
+        ("wave", "", ""),
+        ("sit", "chair", ""),
+        ("write", "desk", ""),
+    ],
     [("run", "", "bed"), ("lie_down", "bed", ""), ("sleep", "bed", ""), ("stand", "", "")],
     [
         ("push_button", "elevator_button", ""),
@@ -61,6 +70,13 @@ def make_scene(rng: np.random.Generator) -> Scene:
                 category="bed",
                 position=(rng.uniform(-3, -2), 0.0, rng.uniform(2, 3)),
                 yaw=float(rng.uniform(-1, 1)),
+            ),
+            PlacedObject(
+                id="cup",
+                category="cup",
+                position=(float(desk[0] + 0.3 * c), 0.76, float(desk[2] - 0.3 * s)),
+                yaw=yaw,
+                support="desk",
             ),
             PlacedObject(
                 id="elevator_button",
@@ -124,7 +140,44 @@ def run_scenario(character: CharacterNode, scene: Scene, start) -> dict:
                     (np.linalg.norm(pos[f0 + frames, JOINT_INDEX[joint]] - target, axis=1) * 100).tolist()
                 )
         f0 += n
-    return {"slides": slides, "paths": paths, "contact": contact, "jerk": jerk(pos), "frames": len(root)}
+    return {
+        "slides": slides,
+        "paths": paths,
+        "contact": contact,
+        "jerk": jerk(pos),
+        "frames": len(root),
+        "spine": spine_bends(pos, pieces),
+        "grip": grip_errors(pos, motion),
+    }
+
+
+def spine_bends(pos: np.ndarray, pieces: list) -> list[float]:
+    """Degrees between the trunk (hips -> neck) and upright on every frame a standing hand reaches a target."""
+    out, f0 = [], 0
+    up = pos[:, JOINT_INDEX["Neck"]] - pos[:, JOINT_INDEX["Hips"]]
+    angle = np.degrees(np.arccos(np.clip(up[:, 1] / np.linalg.norm(up, axis=1), -1, 1)))
+    for p in pieces:
+        reach = [fr for j, (fr, _) in p.contact_frames.items() if "Hand" in j and len(fr)]
+        if reach and "Hips" not in p.contact_frames and p.segment.action not in ("sit", "lie_down"):
+            frames = np.unique(np.concatenate(reach))
+            out.extend(angle[f0 + frames].tolist())
+        f0 += len(p.root)
+    return out
+
+
+def grip_errors(pos: np.ndarray, motion) -> list[float]:  # noqa: ANN001 - proto Motion
+    """Per held frame, cm between a prop's grip point (world) and the joint holding it."""
+    from wana.domain import quat
+
+    out = []
+    for t in motion.props:
+        origin = from_wire(t.position).astype(np.float64)
+        grip = origin + quat.rotate(
+            from_wire(t.rotation).astype(np.float64), np.broadcast_to(t.grip, origin.shape)
+        )
+        hand = pos[t.start_frame : t.end_frame, JOINT_INDEX[t.joint]]
+        out.extend((np.linalg.norm(grip - hand, axis=1) * 100).tolist())
+    return out
 
 
 def scenarios(n: int, seed: int):
@@ -191,7 +244,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     t0 = time.time()
     n = 10 if args.quick else 36
-    slides, paths, contact, jerks, frames = [], [], [], [], 0
+    slides, paths, contact, jerks, frames, spine, grip = [], [], [], [], 0, [], []
     for _name, ch, scene, start in scenarios(n, args.seed):
         r = run_scenario(ch, scene, start)
         slides += r["slides"]
@@ -199,6 +252,8 @@ def main(argv: list[str] | None = None) -> int:
         contact += r["contact"]
         jerks.append(r["jerk"])
         frames += r["frames"]
+        spine += r["spine"]
+        grip += r["grip"]
     cmu = cmu_heldout(args.quick)
     result = {
         "foot_slide_cm": round(float(np.mean(slides)), 4) if slides else 0.0,
@@ -206,6 +261,9 @@ def main(argv: list[str] | None = None) -> int:
         "contact_cm": round(float(np.mean(contact)), 4) if contact else 0.0,
         "contact_p95_cm": round(float(np.percentile(contact, 95)), 4) if contact else 0.0,
         "jerk": round(float(np.mean(jerks)), 3),
+        "spine_bend_p95_deg": round(float(np.percentile(spine, 95)), 2) if spine else 0.0,
+        "prop_grip_error_cm": round(float(np.max(grip)), 4) if grip else None,
+        "prop_held_frames": len(grip),
         "actions": len(load_library()),
         "scenarios": n,
         "frames": frames,

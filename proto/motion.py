@@ -54,6 +54,9 @@ class SynthesizeRequest(Request["SynthesizeReply"], frozen=True, kw_only=True, t
     spots: dict[
         int, tuple[float, float]
     ] = {}  # action index -> x, z (metres, world) where it stands at its object
+    occupied: list[
+        tuple[float, float]
+    ] = []  # x, z (metres, world) of other characters seated by then: seat slots there are not free
 
 
 class SynthesizeReply(msgspec.Struct, frozen=True, kw_only=True, tag="synthesize_reply"):

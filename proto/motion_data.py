@@ -16,6 +16,23 @@ class Segment(msgspec.Struct, frozen=True, kw_only=True):
     action_index: int = -1  # index of the character's ActionNode this segment serves; -1 = none
 
 
+class PropTrack(msgspec.Struct, frozen=True, kw_only=True):
+    """A small object held in a hand: from start_frame to end_frame (exclusive) it moves with the joint.
+
+    Outside those frames the object is where the scene placed it. position / rotation are the object's
+    world pose per held frame (what a renderer or an animated GLB node plays); the object's grip point
+    (catalog contact point, object frame) is then on the holding joint.
+    """
+
+    object_id: str  # PlacedObject.id of the scene
+    joint: str  # canonical joint holding it, e.g. "RightHand"
+    start_frame: int
+    end_frame: int  # exclusive
+    grip: tuple[float, float, float] = (0.0, 0.0, 0.0)  # metres, object frame: the point held
+    position: NDArray  # (end - start, 3) float32, metres, world: the object's origin
+    rotation: NDArray  # (end - start, 4) float32 world rotation, quaternion x, y, z, w
+
+
 class Motion(msgspec.Struct, frozen=True, kw_only=True):
     character: str  # character name
     fps: int = 30
@@ -26,3 +43,4 @@ class Motion(msgspec.Struct, frozen=True, kw_only=True):
     expression: NDArray | None = None  # (T, E) float32 face blendshape weights
     segments: list[Segment] = []
     present: NDArray | None = None  # (T,) uint8, 1 while the character is on stage (None: always)
+    props: list[PropTrack] = []  # objects held in a hand, in frame order

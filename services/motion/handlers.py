@@ -29,6 +29,8 @@ def handle_synthesize(req: SynthesizeRequest) -> SynthesizeReply:
     for name, xz in req.others.items():
         if not all(np.isfinite(xz)):
             raise InvalidInput(f"others[{name!r}] must be finite (x, z)")
+    if not all(np.isfinite(xz).all() for xz in req.occupied):
+        raise InvalidInput("occupied must be finite (x, z) pairs")
     routes = list(req.routes)
     route_diags: list[str] = []
 
@@ -56,6 +58,7 @@ def handle_synthesize(req: SynthesizeRequest) -> SynthesizeReply:
         distances=dict(req.distances),
         seats=dict(req.seats),
         spots={k: (float(v[0]), float(v[1])) for k, v in req.spots.items()},
+        occupied=[(float(x), float(z)) for x, z in req.occupied],
     )
     if req.from_segment < 0 or req.from_segment > len(plan.segments):
         raise InvalidInput(f"from_segment {req.from_segment} outside 0..{len(plan.segments)}")

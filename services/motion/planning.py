@@ -45,6 +45,13 @@ PERSON_DISTANCE = 0.8  # metres between two characters after one walks up to the
 CLOSE_DISTANCE = {"hug": 0.45, "shake_hands": 0.75, "high_five": 0.75}  # metres, per touching action
 SEATING = ("sit", "lie_down", "sleep")  # clips that leave the character on a seat or a bed
 TURN_TOLERANCE = 0.3  # radians off the wanted facing before the character turns in place
+PICK_REACH = 0.9  # metres (horizontal) from where the character stands to a prop it can pick up
+SEATED_AS = {"sit": "sit", "lie_down": "lie", "sleep": "lie", "sit_on_floor": "sit_floor", "stand": "stand"}
+STAY_S = 1.0  # seconds a "sits" while seated or a "stands" while standing holds the posture
+NEAR_NAMED = 1.6  # metres from a named non-seat ("sits at the desk") to the seat used with it
+NEAR_ANY = 4.0  # metres from the character to the seat a bare "sits down" uses
+TAKEN = 0.4  # metres from another character to a seat slot that counts as theirs
+SAME_SEAT = 0.35  # metres between the hips and a seat point for a character to count as sitting on it
 
 
 def straight_route(scene: Scene, start: tuple[float, float], goal: tuple[float, float]) -> np.ndarray:
@@ -107,6 +114,106 @@ def _find_object(scene: Scene, ref: str) -> PlacedObject | None:
     return None
 
 
+def seat_slots(placed: PlacedObject, kind: str) -> list[tuple[float, float, float]]:
+    """World hips points of an object's seat slots ("sit", "sit_0", ...; a bed's "lie" for lying)."""
+    geo = _object_geometry(placed)
+    if geo is None:
+        return []
+    prefix = ("lie",) if kind == "bed" else ("sit",)
+    return [
+        (float(p[0]), float(p[1]), float(p[2]))
+        for name, pairs in sorted(geo[1].items())
+        if name.startswith(prefix)
+        for j, p in pairs
+        if j == "Hips"
+    ]
+
+
+def pick_seat(
+    scene: Scene,
+    kind: str,
+    named: PlacedObject | None,
+    pos: np.ndarray,
+    others: dict[str, tuple[float, float]],
+    me: str,
+    occupied: list[tuple[float, float]] | tuple[()] = (),
+) -> tuple[PlacedObject, tuple[float, float, float]] | None:
+    """The seat (bed) an action sits (lies) on and the hips point of its slot, or None.
+
+    The named object's free slot nearest the character when it has one; else the free slot of any
+    object nearest the named object ("sits at the desk": a chair at the desk, within NEAR_NAMED) or,
+    with nothing named, nearest the character (within NEAR_ANY: "walks to the bench. sits down").
+    A slot within TAKEN of another character (``others``, ``occupied``: those seated by then) is not free.
+    """
+    taken = [np.asarray(xz, float) for n, xz in others.items() if n != me]
+    taken += [np.asarray(xz, float) for xz in occupied]
+
+    def free(p: tuple[float, float, float]) -> bool:
+        return all(np.hypot(p[0] - o[0], p[2] - o[1]) > TAKEN for o in taken)
+
+    def nearest(cands: list[tuple[PlacedObject, tuple[float, float, float]]], ref: np.ndarray, limit: float):
+        ok = [(o, p) for o, p in cands if free(p) and np.hypot(p[0] - ref[0], p[2] - ref[1]) <= limit]
+        return min(ok, key=lambda c: np.hypot(c[1][0] - ref[0], c[1][2] - ref[1]), default=None)
+
+    if named is not None:
+        own = nearest([(named, p) for p in seat_slots(named, kind)], pos, np.inf)
+        if own is not None:
+            return own
+    kinds = ("bed",) if kind == "bed" else ("seat",)
+    cands = [(o, p) for o in scene.objects for k in kinds for p in seat_slots(o, k)]
+    if kind == "bed":  # a bed first; a sofa's lie slot too
+        cands = [(o, p) for o in scene.objects for p in seat_slots(o, "bed")]
+    if named is not None:
+        return nearest(cands, np.array([named.position[0], named.position[2]]), NEAR_NAMED)
+    return nearest(cands, pos, NEAR_ANY)
+
+
+def prop_grip(
+    scene: Scene, action: str, named: PlacedObject | None, pos: np.ndarray
+) -> tuple[PlacedObject, str, tuple[float, float, float]] | None:
+    """The small object a handheld action holds, the joint holding it and its grip point (object frame).
+
+    Small objects are those the catalog lets a hand pick up (a "pick_up" contact point); the grip is the
+    point named for the action ("drink", "call", "read"...: the action's name or its first word), else the
+    pick-up point. The named object when it is one; else the nearest one made for the action.
+    """
+
+    def grip(placed: PlacedObject) -> tuple[str, tuple[float, float, float]] | None:
+        try:
+            from wana.assets.catalog import asset_for
+
+            points = asset_for(placed).contact_points
+        except Exception:  # noqa: BLE001 - unknown category or no catalog: nothing to hold
+            return None
+        if "pick_up" not in points:
+            return None
+        for key in (action, action.split("_")[0], "pick_up"):
+            if key in points:
+                cp = points[key]
+                joint = cp.joint.replace("Middle1", "")
+                return joint, (float(cp.position[0]), float(cp.position[1]), float(cp.position[2]))
+        return None
+
+    if named is not None:
+        g = grip(named)
+        return (named, *g) if g is not None else None
+    made_for = []
+    for o in scene.objects:
+        try:
+            from wana.assets.catalog import asset_for
+
+            names = set(asset_for(o).contact_points)
+        except Exception:  # noqa: BLE001
+            continue
+        if "pick_up" in names and {action, action.split("_")[0]} & names:
+            made_for.append(o)
+    if not made_for:
+        return None
+    best = min(made_for, key=lambda o: float(np.hypot(o.position[0] - pos[0], o.position[2] - pos[1])))
+    g = grip(best)
+    return (best, *g) if g is not None else None
+
+
 def _other_character(
     node: ActionNode, clip: ActionClip | None, others: dict[str, tuple[float, float]], scene: Scene, me: str
 ) -> str:
@@ -150,6 +257,7 @@ def plan_actions(
     distances: dict[str, float] | None = None,
     seats: dict[int, str] | None = None,
     spots: dict[int, tuple[float, float]] | None = None,
+    occupied: list[tuple[float, float]] | None = None,
 ) -> MotionPlan:
     """Turn a character's ordered actions into a MotionPlan.
 
@@ -166,6 +274,7 @@ def plan_actions(
             standing distance: friends closer than a boss); touching actions keep their clip's distance.
         seats: action index -> the object's contact point to sit or lie on (its slot: "sit_0" on a sofa).
         spots: action index -> x, z where it stands at or walks to its object (its stand slot).
+        occupied: (x, z) metres, world, of other characters already seated: seat slots there are taken.
 
     Returns:
         the plan; unknown actions become a 1 s wait and a diagnostic.
@@ -221,6 +330,26 @@ def plan_actions(
         if face is not None:
             yaw = face
 
+    def now_posture() -> str:
+        """The posture the plan so far leaves the character in."""
+        for s in reversed(segs):
+            if s.kind == "locomotion":
+                return "stand"
+            if s.action in SEATED_AS:
+                return SEATED_AS[s.action]
+            if s.kind == "action" and s.action in lib and lib[s.action].drives_lower_body:
+                return "stand"
+        return posture
+
+    def now_seat() -> str:
+        """The seat (bed) the plan so far sat the character on ("" when unknown or standing)."""
+        for s in reversed(segs):
+            if s.action in SEATED_AS:
+                return s.target_id
+            if s.kind == "locomotion" or (s.kind == "action" and s.action == "stand"):
+                return ""
+        return ""
+
     node: ActionNode
     for ai, node in enumerate(character.actions):
         name = node.action
@@ -237,9 +366,7 @@ def plan_actions(
         if person:
             there = np.asarray(others[person], dtype=float)
             touching = clip.interaction is not None and clip.interaction.object == "person"
-            seated = (segs and any(s.action in ("sit", "lie_down") for s in segs[-2:])) or (
-                not segs and posture in ("sit", "lie")
-            )
+            seated = now_posture() != "stand"
             if "locomotion" in clip.tags or name in CLOSE_DISTANCE or touching:
                 near = CLOSE_DISTANCE.get(name) or (
                     (distances or {}).get(person, PERSON_DISTANCE)
@@ -283,29 +410,109 @@ def plan_actions(
                 goal = pos + fwd * (2.0 if node.destination or not node.target else 1.5)
             walk_to(goal, SPEEDS.get(name, 1.3) * speed_k, None, name, ai, obj.id if obj else "")
             continue
+        if name == "stand" and now_posture() == "stand":
+            # Already standing: a short hold, not a get-up from a seat that is not there.
+            add(kind="wait", action=name, duration_s=STAY_S, action_index=ai)
+            continue
         if name in ("turn_left", "turn_right", "turn_around"):
             add(kind="action", action=name, action_index=ai)
             yaw += {"turn_left": np.pi / 2, "turn_right": -np.pi / 2, "turn_around": np.pi}[name]
             continue
-        obj = _find_object(scene, node.target or node.instrument or node.destination)
+        if (
+            clip.drives_lower_body
+            and name not in SEATED_AS
+            and name not in ("turn_left", "turn_right", "turn_around")
+            and now_posture() != "stand"
+        ):
+            add(kind="action", action="stand", action_index=ai)  # a whole-body action needs standing
+        # The first of target, instrument, destination that names an object ("falls asleep on the sofa":
+        # a target word that is no object leaves the sofa).
+        obj = next(
+            (o for r in (node.target, node.instrument, node.destination) if (o := _find_object(scene, r))),
+            None,
+        )
+        seat_pick: tuple[PlacedObject, tuple[float, float, float]] | None = None
+        if clip.interaction and clip.interaction.object in ("seat", "bed"):
+            seat_pick = pick_seat(
+                scene, clip.interaction.object, obj, pos, others, character.name, occupied or []
+            )
+            if seat_pick is None:
+                what = "bed" if clip.interaction.object == "bed" else "seat"
+                where = f" near the {obj.id.split('#')[0].replace('_', ' ')}" if obj is not None else ""
+                diags.append(
+                    f"no free {what}{where} for {character.name} to {name.replace('_', ' ')} on: "
+                    f"{character.name} stands instead"
+                )
+                add(kind="wait", action="idle", duration_s=STAY_S, action_index=ai)
+                continue
+            if obj is not None and seat_pick[0].id != obj.id:
+                asked = f"the {obj.id.split('#')[0].replace('_', ' ')}"
+                diags.append(
+                    f"{character.name} {name.replace('_', ' ')}s on the nearest free "
+                    f"{seat_pick[0].category.replace('_', ' ')} ({asked} named)"
+                )
+            obj = seat_pick[0]
+            if name == "sleep" and now_posture() != "lie":
+                # Sleeping from standing: lie down on the bed first, then sleep there.
+                lie = lib.get("lie_down")
+                if lie is not None:
+                    bed_xz = np.array([seat_pick[1][0], seat_pick[1][2]])
+                    face = float(obj.yaw)
+                    approach = bed_xz + np.array([np.sin(face), np.cos(face)]) * SEAT_BACK
+                    walk_to(approach, 1.2, face, "walk", ai, obj.id)
+                    pos, yaw = approach.copy(), face
+                    add(
+                        kind="action",
+                        action="lie_down",
+                        targets=(("Hips", seat_pick[1]),),
+                        target_id=obj.id,
+                        action_index=ai,
+                    )
         targets: dict[str, tuple[float, float, float]] = {}
+        held: dict = {}
+        if clip.interaction and clip.interaction.object == "handheld":
+            grip = prop_grip(scene, name, obj, pos)
+            if grip is not None:
+                prop_obj, joint, local = grip
+                here = np.array([prop_obj.position[0], prop_obj.position[2]])
+                if np.linalg.norm(here - pos) > REACH + 0.2 and now_posture() == "stand":
+                    # Walk up to the prop first (it is picked up where it lies).
+                    from services.motion.routing import free_spot
+
+                    away = pos - here
+                    n = float(np.linalg.norm(away))
+                    spot = here + (away / n if n > 1e-6 else np.array([0.0, 1.0])) * REACH
+                    spot = np.asarray(free_spot(scene, (float(spot[0]), float(spot[1]))), float)
+                    walk_to(spot, 1.2, _yaw_to(spot, here, yaw), "walk", ai, prop_obj.id)
+                if np.linalg.norm(here - pos) <= PICK_REACH:  # within reach: it is held
+                    held = {
+                        "prop": prop_obj.id,
+                        "prop_joint": joint,
+                        "prop_grip": local,
+                        "prop_yaw": float(prop_obj.yaw),
+                    }
+                    obj = prop_obj
         if obj is not None and clip.interaction and clip.interaction.object not in ("handheld", "person"):
             geo = _object_geometry(obj) or _fallback_geometry(obj)
             stand, points = geo
             targets = contact_targets(clip, points)
             slot = seats.get(ai, "")
-            if slot in points:
+            if slot in points:  # the orchestrator's slot book gave this action its own slot
                 targets = {j: (float(p[0]), float(p[1]), float(p[2])) for j, p in points[slot]}
+            elif seat_pick is not None:
+                targets = {"Hips": seat_pick[1]}
             if clip.interaction.object in ("seat", "bed") and "Hips" in targets:
                 face = float(obj.yaw)
                 seat = np.array([targets["Hips"][0], targets["Hips"][2]])
                 approach = seat + np.array([np.sin(face), np.cos(face)]) * SEAT_BACK
-                on_it = (
-                    segs
-                    and segs[-1].kind == "action"
-                    and segs[-1].target_id == obj.id
-                    and segs[-1].action in SEATING
-                ) or (not segs and posture in ("sit", "lie"))
+                on_it = now_posture() in ("sit", "lie") and (
+                    now_seat() == obj.id or (not now_seat() and np.linalg.norm(seat - pos) < SAME_SEAT)
+                )
+                if on_it and name in ("sit", "lie_down", "sit_on_floor") and SEATED_AS[name] == now_posture():
+                    # Already sitting (lying) there: keep the posture, no replayed sit-down.
+                    dur = float(node.duration_s) if node.duration_s > 0 and name != "sit" else STAY_S
+                    add(kind="wait", action=name, duration_s=dur, target_id=obj.id, action_index=ai)
+                    continue
                 if not on_it:  # already sitting / lying there ("lies down on the bed and sleeps"): stay
                     walk_to(approach, 1.2, face, "walk", ai, obj.id)
                     # Sitting brings the hips onto the seat wherever the walk stopped; getting up ends here.
@@ -331,9 +538,7 @@ def plan_actions(
                 d = centre - stand
                 face = float(np.arctan2(d[0], d[1])) if np.linalg.norm(d) > 1e-6 else yaw
                 already_there = np.linalg.norm(stand - pos) < 0.35
-                seated = (segs and any(s.action in ("sit", "lie_down") for s in segs[-2:])) or (
-                    not segs and posture in ("sit", "lie")
-                )
+                seated = now_posture() != "stand"
                 if not already_there and not seated:
                     walk_to(stand, 1.2, face, "walk", ai, obj.id)
                 elif not seated and abs(np.arctan2(np.sin(face - yaw), np.cos(face - yaw))) > 0.3:
@@ -342,7 +547,7 @@ def plan_actions(
                     )  # close enough, but facing away: turn in place
         elif obj is not None and clip.interaction is None and name in ("look_at", "point", "wave", "talk"):
             d = np.array([obj.position[0], obj.position[2]]) - pos
-            if np.linalg.norm(d) > 0.3:
+            if np.linalg.norm(d) > 0.3 and now_posture() == "stand":  # seated: no standing up to turn
                 face = float(np.arctan2(d[0], d[1]))
                 if abs(np.arctan2(np.sin(face - yaw), np.cos(face - yaw))) > 0.3:
                     walk_to(pos.copy(), 1.0, face, "turn", ai, obj.id)
@@ -353,6 +558,7 @@ def plan_actions(
             targets=tuple(sorted(targets.items())),
             target_id=obj.id if obj else node.target,
             action_index=ai,
+            **held,
         )
     return MotionPlan(
         character=character.name,

@@ -3,7 +3,9 @@
 Each planned segment is synthesised from the end state of the previous one only
 (`synthesise_segment(plan, k, start_state) -> (MotionPiece, end_state)`), so the orchestrator can
 recompute from segment k on and stop as soon as an end state comes out unchanged. Every piece
-starts and ends in its posture's rest pose, so pieces join with short cross-fades. Upper body from
+starts and ends exactly in its posture's rest pose at its start / end state (`join_rest`: the first and
+last JOIN frames blend from / into it), so pieces synthesised apart join without a pose pop wherever the
+orchestrator puts them on the time line, and holds between them hold that pose. Upper body from
 the action, lower body from locomotion or the posture; IK brings contact joints to the object's
 contact points; foot locking removes sliding.
 """
@@ -13,19 +15,23 @@ from __future__ import annotations
 import functools
 from dataclasses import asdict, dataclass, field
 
+import msgspec
 import numpy as np
 
-from proto.motion_data import Motion, Segment
+from proto.motion_data import Motion, PropTrack, Segment
 from services.motion.blend import fade_from, layer, upper_body_mask
 from services.motion.ik import joint_globals, lean_needed, lean_spine, lock_feet, two_bone_ik
 from services.motion.locomotion import locomote
 from wana.arrays import to_wire
 from wana.domain import quat
-from wana.domain.actions import ActionClip, get_clip, neutral_rotations
+from wana.domain.actions import JOIN_FRAMES, ActionClip, get_clip, neutral_rotations
 from wana.domain.skeleton import JOINT_INDEX, JOINT_NAMES, N_JOINTS, REST_OFFSETS
 from wana.domain.units import FPS
 
 FADE = 6  # frames of cross-fade at the start of each piece
+JOIN = (
+    JOIN_FRAMES  # frames over which a piece blends from its start state's rest pose and into its end state's
+)
 POSTURE_AFTER = {
     "sit": "sit",
     "lie_down": "lie",
@@ -38,6 +44,9 @@ SEATED_MAX_LEAN = np.radians(40.0)  # radians of spine pitch a seated character 
 SCOOT_MAX = 0.15  # metres the hips may slide forward on a seat to bring the hands to a far target
 FULL_REACH = 0.97  # share of the arm's reach a hand contact may use (nearly straight arm: pressing, wiping)
 COMFORT_REACH = 0.85  # the same for typing and playing: elbows bent ~110 degrees
+STAND_MAX_LEAN = np.radians(30.0)  # radians of trunk lean a standing reach may use before ...
+CROUCH_MAX = 0.45  # ... the knees bend: metres the hips may drop (feet planted) to reach a low target
+HAND_JOINTS = ("LeftHand", "RightHand", "LeftHandMiddle1", "RightHandMiddle1")
 
 
 @dataclass(frozen=True)
@@ -84,6 +93,10 @@ class PlannedSegment:
     target_id: str = ""
     sentence_id: str = ""
     action_index: int = -1  # index of the ActionNode this segment serves
+    prop: str = ""  # id of a small object held during the clip's contact window ("" = none)
+    prop_joint: str = "RightHand"  # the joint holding it
+    prop_grip: tuple[float, float, float] = (0.0, 0.0, 0.0)  # its grip point, object frame, metres
+    prop_yaw: float = 0.0  # its yaw as placed (radians): the orientation it is picked up in
 
 
 @dataclass(frozen=True)
@@ -108,6 +121,7 @@ class MotionPiece:
     contact_frames: dict[str, tuple[np.ndarray, np.ndarray]] = field(
         default_factory=dict
     )  # joint -> (frames, target)
+    props: list[PropTrack] = field(default_factory=list)  # frames relative to the piece
 
 
 @functools.lru_cache(maxsize=8)
@@ -193,7 +207,12 @@ def _action_piece(seg: PlannedSegment, state: SegmentState) -> tuple[MotionPiece
         contact_frames["Hips"] = (inside, np.asarray(targets["Hips"]))
     stand_feet = not clip.drives_lower_body or seg.action in POSTURE_AFTER
     contacts = np.ones((t, 2), np.uint8) if stand_feet else _clip_contacts(rot, root)
-    rot = lock_feet(rot, root, contacts)
+    stand_lean = None  # standing at a low target: bend the knees first, the trunk at most STAND_MAX_LEAN
+    if posture == "stand" and not clip.drives_lower_body and clip.interaction and stand_feet:
+        low = {j: p for j, p in targets.items() if j in HAND_JOINTS}
+        if low and clip.interaction.object not in ("handheld", "person"):
+            root, stand_lean = _crouch_to_reach(rot, root, low, _contact_weight(clip, t, dur), clip)
+    rot = lock_feet(rot, root, contacts)  # feet stay planted: a lowered root bends the knees
     if clip.interaction and clip.interaction.object not in ("handheld", "person"):
         w0, w1 = clip.interaction.window
         frames = np.arange(t)
@@ -208,7 +227,7 @@ def _action_piece(seg: PlannedSegment, state: SegmentState) -> tuple[MotionPiece
             for j, p in targets.items()
             if j in ("LeftHand", "RightHand", "LeftHandMiddle1", "RightHandMiddle1")
         }
-        max_lean = np.radians(80.0)
+        max_lean = np.radians(80.0) if stand_lean is None else stand_lean
         if posture in ("sit", "sit_floor") and not clip.drives_lower_body and hands:
             # Seated, the trunk leans at most SEATED_MAX_LEAN; past that the hips slide forward on the seat.
             max_lean = SEATED_MAX_LEAN
@@ -247,6 +266,38 @@ def _action_piece(seg: PlannedSegment, state: SegmentState) -> tuple[MotionPiece
     else:
         end = SegmentState(state.x, state.z, end_yaw, new_posture, state.phase, hips_dy)
     return MotionPiece(root, quat.normalize(rot), contacts, seg, contact_frames), end.rounded()
+
+
+def _contact_weight(clip: ActionClip, t: int, dur: float) -> np.ndarray:
+    """(T,) how much the contact holds per frame: the clip's window, eased in and out over 0.4 s."""
+    assert clip.interaction is not None
+    w0, w1 = (0.0, dur) if clip.looping else clip.interaction.window
+    tt = np.arange(t) / FPS
+    return np.clip(np.minimum((tt - (w0 - 0.4)) / 0.4, ((w1 + 0.4) - tt) / 0.4), 0, 1)
+
+
+def _crouch_to_reach(
+    rot: np.ndarray,
+    root: np.ndarray,
+    hands: dict[str, tuple[float, float, float]],
+    weight: np.ndarray,
+    clip: ActionClip,
+) -> tuple[np.ndarray, float | None]:
+    """Root (T, 3) lowered (at most CROUCH_MAX, eased in by weight) just far enough that a trunk lean of
+    STAND_MAX_LEAN brings every hand target within reach, and that lean; (root, None) when no crouch
+    is enough (the trunk then leans as far as it must)."""
+    assert clip.interaction is not None
+    slack = COMFORT_REACH if clip.interaction.object in ("keyboard", "instrument") else FULL_REACH
+    for drop in np.linspace(0.0, CROUCH_MAX, 8):
+        lowered = root.copy()
+        lowered[:, 1] -= weight * drop
+        if all(
+            lean_needed(rot, lowered, j, np.asarray(p, dtype=np.float64), weight, STAND_MAX_LEAN, slack)
+            is not None
+            for j, p in hands.items()
+        ):
+            return lowered, STAND_MAX_LEAN
+    return root, None
 
 
 def _scoot_to_reach(
@@ -317,10 +368,89 @@ def _standing_pose(yaw: float) -> np.ndarray:
     return p
 
 
+def rest_frame(state: SegmentState) -> tuple[np.ndarray, np.ndarray]:
+    """(J, 4) rotations (root yawed) and (3,) world hips of the rest pose of a state's posture."""
+    base_rot, base_off = posture_pose(state.posture)
+    rot = base_rot.copy()
+    rot[0] = quat.mul(quat.yaw(np.array(state.yaw)), rot[0])
+    root, _ = _to_world(state, base_off[None], np.zeros(1))
+    return rot, root[0]
+
+
+def join_rest(piece: MotionPiece, start: SegmentState, end: SegmentState, frames: int = JOIN) -> MotionPiece:
+    """The piece with its first frame exactly the start state's rest pose and its last the end state's,
+    blended over ``frames`` frames at each end (smoothstep, rotations slerped, hips lerped).
+
+    Every piece is synthesised from its start state alone (so the orchestrator can recompute from any
+    segment on); ending where the next piece starts is what makes the boundary invisible: the piece
+    after, or a hold on the time line, starts from exactly this pose.
+    """
+    t = len(piece.root)
+    n = min(frames, t // 2)
+    if n < 2:
+        return piece
+    rot = np.array(piece.rotations, dtype=np.float64, copy=True)
+    root = np.array(piece.root, dtype=np.float64, copy=True)
+    u = _smooth(np.arange(n) / (n - 1))  # 0 at the boundary frame, 1 inside the piece
+    for (pose, hips), idx, w in (
+        (rest_frame(start), np.arange(n), u),
+        (rest_frame(end), np.arange(t - n, t), u[::-1]),
+    ):
+        ww = np.repeat(w[:, None], N_JOINTS, 1)
+        rot[idx] = quat.slerp(np.broadcast_to(pose, (n, N_JOINTS, 4)), rot[idx], ww)
+        root[idx] = hips + (root[idx] - hips) * w[:, None]
+    # The blended frames leave the contact: a looping contact (typing) holds from the first to the last
+    # frame the join leaves alone.
+    held = {
+        j: (frames[(frames >= n) & (frames < t - n)], target)
+        for j, (frames, target) in piece.contact_frames.items()
+    }
+    return MotionPiece(root, quat.normalize(rot), piece.contacts, piece.segment, held, piece.props)
+
+
 def synthesise_segment(
     plan: MotionPlan, k: int, start_state: SegmentState
 ) -> tuple[MotionPiece, SegmentState]:
     """Synthesise segment k of a plan from the end state of segment k-1 (or plan.start_state())."""
+    piece, end = _synthesise_segment(plan, k, start_state)
+    piece = join_rest(piece, start_state, end)
+    if piece.segment.prop:
+        piece.props = [held_prop(piece)]
+    return piece, end
+
+
+def held_prop(piece: MotionPiece) -> PropTrack:
+    """The prop of a piece's segment held by its joint over the clip's contact window (between the joins).
+
+    The object keeps the orientation it had relative to the hand when grasped (its placed yaw at the first
+    held frame), and its grip point sits on the joint in every held frame.
+    """
+    seg = piece.segment
+    t = len(piece.root)
+    clip = get_clip(seg.action)
+    w0, w1 = clip.interaction.window if clip.interaction else (0.0, clip.duration_s)
+    if clip.looping:
+        w0, w1 = 0.0, t / FPS
+    a = int(np.clip(round(w0 * FPS), JOIN, max(JOIN, t - JOIN - 1)))
+    b = int(np.clip(round(w1 * FPS), a + 1, max(a + 1, t - JOIN)))
+    pos, grot = joint_globals(piece.rotations[a:b], piece.root[a:b], JOINT_INDEX[seg.prop_joint])
+    rest = quat.mul(quat.inv(grot[0]), quat.yaw(np.array(seg.prop_yaw)))  # object in the hand's frame
+    rot = quat.normalize(quat.mul(grot, np.broadcast_to(rest, grot.shape)))
+    origin = pos - quat.rotate(rot, np.broadcast_to(np.asarray(seg.prop_grip, float), pos.shape))
+    return PropTrack(
+        object_id=seg.prop,
+        joint=seg.prop_joint,
+        start_frame=a,
+        end_frame=b,
+        grip=tuple(float(v) for v in seg.prop_grip),  # type: ignore[arg-type]
+        position=to_wire(origin.astype(np.float32)),
+        rotation=to_wire(rot.astype(np.float32)),
+    )
+
+
+def _synthesise_segment(
+    plan: MotionPlan, k: int, start_state: SegmentState
+) -> tuple[MotionPiece, SegmentState]:
     seg = plan.segments[k]
     if seg.kind == "locomotion":
         return _locomotion_piece(seg, start_state)
@@ -347,6 +477,7 @@ def synthesise(plan: MotionPlan) -> tuple[Motion, list[MotionPiece], list[Segmen
 
 def assemble(character: str, pieces: list[MotionPiece], start: SegmentState | None = None) -> Motion:
     """Concatenate pieces into a proto Motion (float32 arrays, segments with frame ranges)."""
+    props: list[PropTrack] = []
     if not pieces:
         s = start or SegmentState()
         rot = _standing_pose(s.yaw)[None]
@@ -360,6 +491,10 @@ def assemble(character: str, pieces: list[MotionPiece], start: SegmentState | No
         segments, f = [], 0
         for p in pieces:
             n = len(p.root)
+            props += [
+                msgspec.structs.replace(h, start_frame=h.start_frame + f, end_frame=h.end_frame + f)
+                for h in p.props
+            ]
             segments.append(
                 Segment(
                     index=p.segment.index,
@@ -379,6 +514,7 @@ def assemble(character: str, pieces: list[MotionPiece], start: SegmentState | No
         rotations=to_wire(rot.astype(np.float32)),
         foot_contact=to_wire(contacts.astype(np.uint8)),
         segments=segments,
+        props=props,
     )
 
 

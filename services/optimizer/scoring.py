@@ -22,6 +22,7 @@ from services.optimizer.costs import (
     joint_index,
     total_cost,
 )
+from wana.domain.actions import JOIN_FRAMES
 from wana.domain.units import FPS
 
 LOCOMOTION_ACTIONS = ("walk", "run", "jog", "turn", "locomotion")
@@ -104,6 +105,8 @@ def action_frames(motion: Motion, interaction: Interaction, n_frames: int) -> tu
     window = contact_window(seg.action, motion.fps)
     if window is not None:  # the clip's contacts hold only part of it (sitting down, then seated)
         start, end = min(start + window[0], end - 1), min(start + window[1], end)
+    elif end - start > 3 * JOIN_FRAMES:  # a loop holds between the blends from / into the rest pose
+        start, end = start + JOIN_FRAMES, end - JOIN_FRAMES
     return (start, end) if end > start else (0, n_frames)
 
 

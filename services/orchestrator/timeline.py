@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import msgspec
 import numpy as np
 
-from proto.motion_data import Motion, Segment
+from proto.motion_data import Motion, PropTrack, Segment
 from wana.arrays import from_wire, to_wire
 from wana.domain.units import FPS
 
@@ -95,6 +95,7 @@ def assemble(name: str, pieces: list[Motion], starts: list[int], total: int | No
     rots: list[np.ndarray] = []  # (n_i, J, 4) float joint rotations
     contacts: list[np.ndarray] = []  # (n_i, 2) uint8 foot contacts
     segments: list[Segment] = []
+    props: list[PropTrack] = []  # held objects, frames moved with their piece
     frame = 0
     for piece, start in zip(pieces, starts, strict=True):
         root, rot = from_wire(piece.root_position), from_wire(piece.rotations)
@@ -120,6 +121,10 @@ def assemble(name: str, pieces: list[Motion], starts: list[int], total: int | No
                     end_frame=seg.end_frame + frame,
                 )
             )
+        props += [
+            msgspec.structs.replace(p, start_frame=p.start_frame + frame, end_frame=p.end_frame + frame)
+            for p in piece.props
+        ]
         roots.append(root)
         rots.append(rot)
         contacts.append(foot)
@@ -139,4 +144,5 @@ def assemble(name: str, pieces: list[Motion], starts: list[int], total: int | No
         rotations=to_wire(np.concatenate(rots).astype(np.float32)),
         foot_contact=to_wire(np.concatenate(contacts).astype(np.uint8)),
         segments=segments,
+        props=props,
     )

@@ -23,9 +23,17 @@ import numpy as np
 from proto.motion_data import Motion
 from proto.scene import Scene
 from services.render.gltf_camera import add_camera
-from services.render.scene_geometry import ColouredMesh, object_meshes, room_meshes
+from services.render.scene_geometry import (
+    ColouredMesh,
+    held_ids,
+    object_meshes,
+    prop_mesh,
+    prop_track,
+    room_meshes,
+)
 from services.render.skinning import Rig
 from services.render.staging import CameraTrack
+from wana.arrays import from_wire
 from wana.assets.characters import EXPRESSIONS
 from wana.domain.skeleton import JOINT_NAMES, N_JOINTS, PARENTS
 
@@ -286,16 +294,47 @@ def _add_character(b: _Builder, rig: Rig, material: int, animation: dict, fps: f
     channel(mesh_node, "weights", np.clip(expr, 0.0, 1.0).reshape(-1))
 
 
+def _add_props(
+    b: _Builder,
+    scene: Scene,
+    motions: list[Motion],
+    held: set[str],
+    material: int,
+    animation: dict,
+    fps: float,
+) -> None:
+    """Each held prop as a node of its own, its translation and rotation animated (in the hand while held)."""
+    n = max((int(from_wire(m.root_position).shape[0]) for m in motions), default=0)
+    if not held or n == 0:
+        return
+    times = b.accessor((np.arange(n, dtype=np.float64) / fps).astype(np.float32), FLOAT, bounds=True)
+    for placed in scene.objects:
+        if placed.id not in held:
+            continue
+        _add_static(b, prop_mesh(placed), material)  # the mesh in its own frame, at the node
+        node = len(b.doc["nodes"]) - 1
+        pos, rot = prop_track(placed, motions, n)
+        for path, values in (("translation", pos.astype(np.float32)), ("rotation", _unit_quats(rot))):
+            animation["samplers"].append(
+                {"input": times, "output": b.accessor(values, FLOAT), "interpolation": "LINEAR"}
+            )
+            animation["channels"].append(
+                {"sampler": len(animation["samplers"]) - 1, "target": {"node": node, "path": path}}
+            )
+
+
 def scene_glb(
     scene: Scene, motions: list[Motion], fps: float = 30.0, camera: CameraTrack | None = None
 ) -> bytes:
-    """The GLB bytes of the scene with its animated characters (and the video's camera when given:
-    services.render.gltf_camera)."""
+    """The GLB bytes of the scene with its animated characters and held props (and the video's camera when
+    given: services.render.gltf_camera)."""
     b = _Builder()
     static_mat = b.material("scene")
-    for mesh in room_meshes(scene.room) + object_meshes(scene):
+    held = held_ids(motions)
+    for mesh in room_meshes(scene.room) + object_meshes(scene, held):
         _add_static(b, mesh, static_mat)
     animation: dict = {"name": "wana", "samplers": [], "channels": []}
+    _add_props(b, scene, motions, held, static_mat, animation, fps)
     if motions:
         skin_mat = b.material("characters")
         for m in motions:

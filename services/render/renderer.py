@@ -22,9 +22,12 @@ from services.render.camera import CameraPose
 from services.render.canvas import Canvas
 from services.render.scene_geometry import (
     FLOOR_RGBA,
+    held_ids,
     merge,
     object_meshes,
     project_to_floor,
+    prop_mesh,
+    prop_pose,
     room_meshes,
     shadow_faces,
 )
@@ -68,7 +71,10 @@ class FrameRenderer:
         self.tracks = self.staging.tracks
         self.occluders = self.staging.occluders
         room_parts = room_meshes(scene.room)
-        objects = object_meshes(scene)
+        held = held_ids(motions)
+        objects = object_meshes(scene, held)
+        self._motions = list(motions)
+        self._props = {o.id: (o, prop_mesh(o)) for o in scene.objects if o.id in held}
         self._static = merge(room_parts + objects)
         self._objects = merge(objects, "objects")
         self._canvas: Canvas | None = None
@@ -143,6 +149,16 @@ class FrameRenderer:
         look = look_at(f, self.weather_keys)
         for name, v in verts.items():
             c.set_mesh(f"char:{name}", v)
+        for oid, (placed, mesh) in self._props.items():  # held props move with the hand
+            m = prop_pose(placed, self._motions, f)
+            key = f"prop:{oid}"
+            fresh = key not in c.names()
+            c.set_mesh(
+                key,
+                mesh.vertices @ m[:3, :3].T + m[:3, 3],
+                mesh.faces if fresh else None,
+                mesh.colours[:, :3] / 255.0 if fresh else None,
+            )
         self._update_shadows(c, look, verts)
         room = self.scene.room
         c.set_lines("rain", rain_segments(f, room, look.rain), (0.78, 0.82, 0.9))

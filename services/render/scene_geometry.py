@@ -1,4 +1,5 @@
-"""The static part of a frame: room (floor and four one-sided walls) and the placed catalog objects.
+"""The static part of a frame: room (floor and four one-sided walls) and the placed catalog objects;
+and the props held in a hand (Motion.props), drawn on their own and posed per frame.
 
 Meshes are flattened to per-face colours (each triangle gets its own three vertices), so flat
 shading and exact material colours survive the per-vertex-colour renderer and the glTF export.
@@ -13,7 +14,8 @@ from typing import Any
 import numpy as np
 import trimesh
 
-from proto.scene import Room, Scene
+from proto.motion_data import Motion
+from proto.scene import PlacedObject, Room, Scene
 
 FLOOR_RGBA = (196, 178, 150, 255)
 WALL_RGBA = (232, 228, 218, 255)
@@ -103,18 +105,78 @@ def room_meshes(room: Room) -> list[ColouredMesh]:
     return [floor, *walls]
 
 
-def object_meshes(scene: Scene) -> list[ColouredMesh]:
-    """Every placed object in world coordinates (catalog mesh through ``object_to_world``)."""
+def object_meshes(scene: Scene, leave_out: set[str] | frozenset[str] = frozenset()) -> list[ColouredMesh]:
+    """Every placed object in world coordinates (catalog mesh through ``object_to_world``), but those
+    left out (props held in a hand, drawn on their own)."""
     from wana.assets.catalog import asset_for, object_to_world
 
     out = []
     for placed in scene.objects:
+        if placed.id in leave_out:
+            continue
         try:
             asset = asset_for(placed)
         except KeyError as exc:
             raise ValueError(f"scene object {placed.id!r}: {exc}") from exc
         out.append(_face_coloured(placed.id, asset.mesh, object_to_world(placed)))
     return out
+
+
+def held_ids(motions: list[Motion]) -> set[str]:
+    """Objects some character holds at some frame (drawn on their own, posed per frame)."""
+    return {track.object_id for m in motions for track in m.props}
+
+
+def prop_mesh(placed: PlacedObject) -> ColouredMesh:
+    """A held object's mesh in its own frame, scaled (``prop_pose`` places it per frame)."""
+    from wana.assets.catalog import asset_for
+
+    scale = np.eye(4)
+    scale[:3, :3] = np.diag(placed.scale)
+    return _face_coloured(placed.id, asset_for(placed).mesh, scale)
+
+
+def prop_track(placed: PlacedObject, motions: list[Motion], n_frames: int) -> tuple[np.ndarray, np.ndarray]:
+    """(T, 3) world positions and (T, 4) rotations (x, y, z, w) of an object over the animation: the
+    tracks holding it where they do, where the scene placed it elsewhere (an animated GLB node)."""
+    from wana.arrays import from_wire
+    from wana.domain import quat
+
+    pos = np.tile(np.asarray(placed.position, dtype=np.float64), (n_frames, 1))
+    rot = np.tile(quat.yaw(np.array(float(placed.yaw))), (n_frames, 1))
+    for motion in motions:
+        for track in motion.props:
+            if track.object_id != placed.id:
+                continue
+            a, b = max(0, track.start_frame), min(n_frames, track.end_frame)
+            if b > a:
+                pos[a:b] = from_wire(track.position)[a - track.start_frame : b - track.start_frame]
+                rot[a:b] = from_wire(track.rotation)[a - track.start_frame : b - track.start_frame]
+    return pos, rot
+
+
+def prop_pose(placed: PlacedObject, motions: list[Motion], frame: int) -> np.ndarray:
+    """(4, 4) object -> world (no scale) of an object at a frame: in the hand of the track holding it
+    then, else where the scene placed it."""
+    from wana.arrays import from_wire
+    from wana.assets.catalog import yaw_matrix
+
+    m = np.eye(4)
+    for motion in motions:
+        for track in motion.props:
+            if track.object_id == placed.id and track.start_frame <= frame < track.end_frame:
+                i = frame - track.start_frame
+                x, y, z, w = (float(v) for v in from_wire(track.rotation)[i])
+                m[:3, :3] = [
+                    [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                    [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                    [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
+                ]
+                m[:3, 3] = from_wire(track.position)[i]
+                return m
+    m[:3, :3] = yaw_matrix(placed.yaw)
+    m[:3, 3] = placed.position
+    return m
 
 
 def merge(meshes: list[ColouredMesh], name: str = "static") -> ColouredMesh:

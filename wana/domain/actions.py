@@ -294,6 +294,10 @@ def get_clip(name: str) -> ActionClip:
     raise KeyError(f"unknown action {name!r}")
 
 
+# Frames a synthesised piece blends from its start state's rest pose and into its end state's (both
+# ends), so pieces made apart meet without a pose pop; contacts hold only between them.
+JOIN_FRAMES = 10
+
 # Catalog contact-point names (wana.assets.catalog make_object(cat).contact_points) preferred for each
 # interaction kind, best first; CLIP_POINTS comes before them for the clips that mean one point.
 PREFERRED_POINTS = {
@@ -377,6 +381,7 @@ def _limb(joint: str) -> str:
 
 __all__ = [
     "CLIP_POINTS",
+    "JOIN_FRAMES",
     "PREFERRED_POINTS",
     "contact_targets",
     "ActionClip",

@@ -30,6 +30,7 @@ from services.orchestrator.backend import StageFailed
 from services.orchestrator.document import Sentence
 from services.orchestrator.slotting import Slotting
 from services.orchestrator.stages import StageContext, content_of
+from services.orchestrator.stages.seats import furnish
 from services.orchestrator.stages.social import frame_count
 from services.orchestrator.staging import (
     Doorway,
@@ -44,6 +45,7 @@ from services.orchestrator.staging import (
 from services.orchestrator.timeline import Beat, assemble, schedule
 from services.orchestrator.views import characters_of, others, scene_view, social_distances
 from wana.arrays import from_wire, to_wire
+from wana.domain.actions import get_clip
 
 Characters = dict[str, tuple[CharacterNode, list[str]]]  # name -> (its actions in order, their sentence ids)
 Distances = dict[tuple[str, int], dict[str, float]]  # (name, k) -> {other: metres}
@@ -70,6 +72,7 @@ def synthesise(
     routes: list[list[tuple[float, float]]] | None = None,
     seats: dict[int, str] | None = None,
     spots: dict[int, tuple[float, float]] | None = None,
+    occupied: list[tuple[float, float]] | None = None,
 ) -> SynthesizeReply:
     request = SynthesizeRequest(
         header=ctx.header(),
@@ -82,8 +85,25 @@ def synthesise(
         routes=routes or [],
         seats=seats or {},
         spots=spots or {},
+        occupied=occupied or [],
     )
     return content_of(ctx.backend.call(request))
+
+
+def seated_others(
+    action: ActionNode, name: str, states: dict[str, SegmentEndState]
+) -> list[tuple[float, float]]:
+    """Where the other characters sit by the time a sit / lie action starts (their seat slots are taken);
+    [] for any other action, so that its recompute does not depend on them."""
+    try:
+        clip = get_clip(action.action) if action.action else None
+    except KeyError:
+        clip = None
+    if clip is None or clip.interaction is None or clip.interaction.object not in ("seat", "bed"):
+        return []
+    return sorted(
+        (round(st.x, 3), round(st.z, 3)) for c, st in states.items() if c != name and st.posture != "stand"
+    )
 
 
 def optimise(
@@ -111,6 +131,7 @@ def segments(
     distances: Distances | None = None,
     door: Doorway | None = None,
     hidden: set[str] | None = None,
+    notes: list[tuple[str, str]] | None = None,
 ) -> dict[str, list[Motion]]:
     """Every character's motion, one query node `<kind>:<name>:<k>` per action, in document order.
 
@@ -121,6 +142,7 @@ def segments(
     far action k stops from the characters it walks up to (the social plan's, views.social_distances).
     ``hidden``: the characters waiting outside ``door`` (services/orchestrator/staging.py): their next action
     comes in through it, and an exit walks out through it.
+    ``notes`` collects (sentence id, what the motion service said) ("no free seat ...: Zoe stands instead").
     """
     states = {name: SegmentEndState(x=st[0], z=st[1], yaw=st[2]) for name, st in starts.items()}
     outside = set(hidden or ())
@@ -157,6 +179,7 @@ def segments(
         view = scene_view(scene, action)
         near_them = others(action, name, states, object_ids)
         near = {o: d for o, d in (distances or {}).get((name, k), {}).items() if o in near_them}
+        seated = seated_others(action, name, states)
 
         def run(
             single: CharacterNode = single,
@@ -167,18 +190,24 @@ def segments(
             routes: list[list[tuple[float, float]]] = routes,
             seats: dict[int, str] = seats,
             spots: dict[int, tuple[float, float]] = spots,
+            seated: list[tuple[float, float]] = seated,
         ) -> SynthesizeReply:
             start = (state.x, state.z, state.yaw)
-            return synthesise(ctx, single, view, state, start, near_them, near, routes, seats, spots)
+            return synthesise(ctx, single, view, state, start, near_them, near, routes, seats, spots, seated)
 
         inputs = [single, view, state, near_them, near] if near else [single, view, state, near_them]
         if routes or seats or spots:
             inputs.append([routes, sorted(seats.items()), sorted(spots.items())])
+        if seated:  # only a seat-taking action depends on where the others sit
+            inputs.append(seated)
         reply = ctx.engine.query(f"{kind}:{name}:{k}", inputs, run)
         placed = [
             msgspec.structs.replace(seg, action_index=k, sentence_id=sids[k]) for seg in reply.motion.segments
         ]
         pieces[name].append(msgspec.structs.replace(reply.motion, segments=placed))
+        if notes is not None:
+            # (unknown actions the parse already reported)
+            notes.extend((sids[k], d) for d in reply.diagnostics if not d.startswith("unknown action"))
         states[name] = reply.end_states[-1] if reply.end_states else state
     for name, (node, _) in characters.items():
         if not node.actions and upto is None:
@@ -245,13 +274,14 @@ def animate(
 ) -> Animated:
     """Drafts on the composed layout, the layout optimised around each interaction, then the final motion."""
     characters = characters_of(graphs, [s.id for s in sentences])
+    scene, added = furnish(ctx, scene, graphs, sentences)  # a chair where a sit has no free seat
     door = doorway(scene)
     wait_ids = {sid for sid, c in commands if c.kind == "wait"}
     answering = {r.responder for r in (plan.responses if plan is not None else []) if r.response_index == 0}
     starts, hidden = _first_positions(scene, door, characters, sentences, wait_ids, answering)
     waiting_place = {name: i for i, name in enumerate(sorted(characters, key=lambda n: n not in hidden))}
     ids = {o.id for o in scene.objects}
-    out = Animated(scene=scene)
+    out = Animated(scene=scene, diagnostics=list(added))
     # Interactions: actions that touch an object of the scene; the layout is optimised around each.
     interactions = [
         (name, k, a)
@@ -295,9 +325,27 @@ def animate(
         done += 1
     out.scene = scene
     tick("motion", done, total)
+    notes: list[tuple[str, str]] = []
     pieces = segments(
-        ctx, "segment", characters, sentences, scene, starts, distances=near, door=door, hidden=hidden
+        ctx,
+        "segment",
+        characters,
+        sentences,
+        scene,
+        starts,
+        distances=near,
+        door=door,
+        hidden=hidden,
+        notes=notes,
     )
+    spans = {s.id: Span(s.start, s.end) for s in sentences}
+    for sid, why in dict.fromkeys(notes):
+        span = spans.get(sid, Span(0, 0))
+        if "instead" in why:  # something the sentence asks could not be done
+            note = Diagnostic(code="W302", message=why, span=span, severity="warning")
+        else:
+            note = Diagnostic(code="I301", message=why, span=span, severity="info")
+        out.diagnostics.append((sid, note))
     tick("motion", total, total)
     # Story timing: sentence order sets when actions start; gaps hold the pose.
     beats = [

@@ -1,0 +1,94 @@
+"""Posture-aware planning and joins: no replayed sit-down, no get-up from standing, the seat an action needs,
+and pieces that meet at their boundaries without a pose pop (the story checks' own pop test)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from proto.scene import PlacedObject, Room, Scene
+from proto.ssg import ActionNode, CharacterNode
+from services.motion.planning import pick_seat, plan_actions
+from services.motion.synthesis import SegmentState, rest_frame, synthesise, synthesise_segment
+from wana.arrays import from_wire
+from wana.fidelity import body_checks
+from wana.fidelity.bodies import body_of
+
+SCENE = Scene(
+    room=Room(room_type="office", width=8, depth=8, height=3),
+    objects=[
+        PlacedObject(id="desk", category="desk", position=(1.0, 0.0, 0.3), yaw=0.0),
+        PlacedObject(id="chair", category="office_chair", position=(1.0, 0.0, 1.05), yaw=np.pi),
+        PlacedObject(id="sofa", category="sofa", position=(-2.5, 0.0, 2.5), yaw=0.0),
+        PlacedObject(id="bed", category="bed", position=(2.5, 0.0, -2.5), yaw=0.0),
+    ],
+)
+
+
+def _eve(*acts: tuple[str, str]) -> CharacterNode:
+    return CharacterNode(name="Eve", actions=[ActionNode(verb=a, action=a, target=t) for a, t in acts])
+
+
+def _plan(*acts: tuple[str, str], posture: str = "stand", start=(0.0, -3.0, 0.0)):
+    return plan_actions(_eve(*acts), SCENE, start, posture=posture)
+
+
+def test_sits_while_seated_keeps_sitting():
+    plan = _plan(("sit", "chair"), ("sit", ""), ("sit", "chair"))
+    sits = [s for s in plan.segments if s.action == "sit"]
+    assert [s.kind for s in sits] == ["action", "wait", "wait"]
+    motion, _, _ = synthesise(plan)
+    hips = from_wire(motion.root_position)
+    seated = motion.segments[-2].start_frame  # the two holds: the hips stay on the seat
+    assert np.ptp(hips[seated:, 1]) < 0.01
+    assert np.linalg.norm(np.diff(hips, axis=0), axis=1).max() * motion.fps < 6.0
+
+
+def test_stands_while_standing_is_a_hold_and_walking_while_seated_stands_first():
+    plan = _plan(("stand", ""))
+    assert [(s.kind, s.action) for s in plan.segments] == [("wait", "stand")]
+    seated = _plan(("jump", ""), posture="sit")
+    assert [s.action for s in seated.segments] == ["stand", "jump"]
+
+
+def test_seat_resolution_named_nearest_and_none():
+    pos = np.array([0.0, 0.0])
+    named = pick_seat(SCENE, "seat", SCENE.objects[2], pos, {}, "Eve")
+    assert named is not None and named[0].id == "sofa"
+    at_desk = pick_seat(SCENE, "seat", SCENE.objects[0], pos, {}, "Eve")  # "sits at the desk": its chair
+    assert at_desk is not None and at_desk[0].id == "chair"
+    taken = pick_seat(SCENE, "seat", SCENE.objects[0], pos, {"Tom": (at_desk[1][0], at_desk[1][2])}, "Eve")
+    assert taken is None or taken[0].id != "chair" or taken[1] != at_desk[1]
+    empty = Scene(room=SCENE.room, objects=[SCENE.objects[0]])
+    assert pick_seat(empty, "seat", None, pos, {}, "Eve") is None
+    plan = plan_actions(_eve(("sit", "")), empty, (0.0, -3.0, 0.0))
+    assert all(s.action != "sit" for s in plan.segments)  # never sits on nothing ...
+    assert any("stands instead" in d for d in plan.diagnostics)  # ... and says so
+
+
+def test_sofa_slots_are_free_for_a_second_character():
+    pos = np.array([-2.5, 1.5])
+    first = pick_seat(SCENE, "seat", SCENE.objects[2], pos, {}, "Eve")
+    assert first is not None
+    second = pick_seat(SCENE, "seat", SCENE.objects[2], pos, {"Eve": (first[1][0], first[1][2])}, "Tom")
+    assert second is not None and np.hypot(second[1][0] - first[1][0], second[1][2] - first[1][2]) > 0.4
+
+
+def test_pieces_join_without_pops_even_when_synthesised_apart():
+    plan = _plan(
+        ("walk", "desk"), ("wave", ""), ("sit", "chair"), ("type", "desk"), ("stand", ""), ("sleep", "bed")
+    )
+    motion, pieces, states = synthesise(plan)
+    body = body_of(motion)
+    boundaries = [s.start_frame for s in motion.segments if s.start_frame > 0]
+    assert len(boundaries) >= 6
+    assert not body_checks.pops(body, boundaries).failing.any()
+    assert not body_checks.speeds(body, motion.fps).failing.any()
+    # Each piece ends in exactly the rest pose the next one starts from (what lets holds sit between them).
+    state = plan.start_state()
+    for k in range(len(plan.segments)):
+        piece, end = synthesise_segment(plan, k, state)
+        rot, hips = rest_frame(end)
+        assert np.allclose(piece.root[-1], hips, atol=1e-6)
+        assert np.allclose(np.abs(np.sum(piece.rotations[-1] * rot, axis=-1)), 1.0, atol=1e-6)
+        state = end
+    assert isinstance(state, SegmentState)

@@ -1,0 +1,137 @@
+"""Props in hand: a handheld action walks to its small object, and the object's grip point sits on the holding
+joint in every held frame, in the motion service's output and in the story's assembled motion."""
+
+from __future__ import annotations
+
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from proto.motion_data import Motion
+from proto.scene import PlacedObject, Room, Scene
+from proto.ssg import ActionNode, CharacterNode
+from services.motion.ik import global_transforms
+from services.motion.planning import plan_actions
+from services.motion.synthesis import synthesise
+from services.orchestrator.backend import InProcessBackend
+from services.orchestrator.session import Orchestrator
+from wana.arrays import from_wire
+from wana.domain import quat
+from wana.domain.skeleton import JOINT_INDEX
+
+SCENE = Scene(
+    room=Room(room_type="kitchen", width=6, depth=6, height=3),
+    objects=[
+        PlacedObject(id="table", category="dining_table", position=(1.5, 0.0, 1.0), yaw=0.0),
+        PlacedObject(id="cup", category="cup", position=(1.5, 0.76, 1.0), yaw=0.4, support="table"),
+        PlacedObject(id="phone", category="phone", position=(-2.0, 0.76, -2.0), yaw=0.0),
+    ],
+)
+
+
+def _grip_errors(motion: Motion) -> list[float]:
+    """Per held frame: metres between the prop's grip point (world) and its joint."""
+    pos, _ = global_transforms(
+        from_wire(motion.rotations).astype(float), from_wire(motion.root_position).astype(float)
+    )
+    out = []
+    for track in motion.props:
+        origin = from_wire(track.position).astype(float)
+        rot = from_wire(track.rotation).astype(float)
+        grip = origin + quat.rotate(rot, np.broadcast_to(np.asarray(track.grip), origin.shape))
+        hand = pos[track.start_frame : track.end_frame, JOINT_INDEX[track.joint]]
+        assert len(hand) == len(grip) == track.end_frame - track.start_frame > 0
+        out += np.linalg.norm(grip - hand, axis=1).tolist()
+    return out
+
+
+def test_drinking_walks_to_the_cup_and_holds_it_in_the_hand():
+    eve = CharacterNode(name="Eve", actions=[ActionNode(verb="drink", action="drink", target="cup")])
+    plan = plan_actions(eve, SCENE, (-1.0, -1.0, 0.0))
+    assert [s.kind for s in plan.segments] == ["locomotion", "action"]
+    assert plan.segments[-1].prop == "cup"
+    motion, _, _ = synthesise(plan)
+    assert [p.object_id for p in motion.props] == ["cup"]
+    errors = _grip_errors(motion)
+    assert len(errors) > 30 and max(errors) < 0.01
+    track = motion.props[0]
+    origin = from_wire(track.position)
+    assert np.ptp(origin[:, 1]) > 0.1  # it travels with the hand (to the mouth), not left on the table
+
+
+def test_the_nearest_prop_made_for_the_action_is_used_when_none_is_named():
+    tom = CharacterNode(name="Tom", actions=[ActionNode(verb="call", action="call_with_phone")])
+    plan = plan_actions(tom, SCENE, (-1.0, -1.0, 0.0))
+    assert plan.segments[-1].prop == "phone"
+    motion, _, _ = synthesise(plan)
+    assert max(_grip_errors(motion)) < 0.01
+
+
+def test_the_story_motion_keeps_the_prop_in_the_hand_after_timing():
+    text = "In the kitchen there is a table$. A cup is on the table$.\nEve waves.\nEve drinks from the cup.\n"
+    with tempfile.TemporaryDirectory() as tmp:
+        orchestrator = Orchestrator(Path(tmp) / "s.db", InProcessBackend(), seed=0)
+        try:
+            result = orchestrator.create(text, doc_id="props").compute()
+        finally:
+            orchestrator.close()
+    motion = result.motions["Eve"]
+    assert motion.props and motion.props[0].object_id in {o.id for o in result.scene.objects}
+    drink = next(s for s in motion.segments if s.action == "drink")
+    assert drink.start_frame <= motion.props[0].start_frame < motion.props[0].end_frame <= drink.end_frame
+    assert max(_grip_errors(motion)) < 0.01
+
+
+def test_the_renderer_poses_a_held_prop_on_the_hand_and_leaves_it_out_of_the_static_room():
+    from services.render.scene_geometry import held_ids, object_meshes, prop_pose
+
+    eve = CharacterNode(name="Eve", actions=[ActionNode(verb="drink", action="drink", target="cup")])
+    motion, _, _ = synthesise(plan_actions(eve, SCENE, (-1.0, -1.0, 0.0)))
+    assert held_ids([motion]) == {"cup"}
+    assert "cup" not in {m.name for m in object_meshes(SCENE, held_ids([motion]))}
+    track = motion.props[0]
+    cup = SCENE.objects[1]
+    pos, _ = global_transforms(
+        from_wire(motion.rotations).astype(float), from_wire(motion.root_position).astype(float)
+    )
+    for f in (track.start_frame, (track.start_frame + track.end_frame) // 2, track.end_frame - 1):
+        m = prop_pose(cup, [motion], f)
+        grip = m[:3, :3] @ np.asarray(track.grip) + m[:3, 3]
+        assert np.linalg.norm(grip - pos[f, JOINT_INDEX[track.joint]]) < 0.01
+    assert np.allclose(prop_pose(cup, [motion], 0)[:3, 3], cup.position)  # before: where it was placed
+
+
+def test_the_glb_animates_the_held_prop_as_a_node_of_its_own():
+    import json
+    import struct
+
+    from services.render.gltf_export import scene_glb
+    from services.render.scene_geometry import prop_track
+
+    eve = CharacterNode(name="Eve", actions=[ActionNode(verb="drink", action="drink", target="cup")])
+    motion, _, _ = synthesise(plan_actions(eve, SCENE, (-1.0, -1.0, 0.0)))
+    glb = scene_glb(SCENE, [motion])
+    (length,) = struct.unpack_from("<I", glb, 12)
+    doc = json.loads(glb[20 : 20 + length])
+    cup = [i for i, n in enumerate(doc["nodes"]) if n["name"] == "cup"]
+    assert len(cup) == 1  # drawn once: not also in the static room
+    paths = {c["target"]["path"] for c in doc["animations"][0]["channels"] if c["target"]["node"] == cup[0]}
+    assert paths == {"translation", "rotation"}
+    n = len(from_wire(motion.root_position))
+    pos, rot = prop_track(SCENE.objects[1], [motion], n)
+    track = motion.props[0]
+    assert np.allclose(pos[0], SCENE.objects[1].position)  # on the table before it is picked up
+    assert np.allclose(pos[track.start_frame], from_wire(track.position)[0])
+    # the placed orientation as a quaternion agrees with the catalog's object-to-world yaw
+    from wana.assets.catalog import yaw_matrix
+
+    x, y, z, w = rot[0]
+    m = np.array(
+        [
+            [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+            [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+            [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
+        ]
+    )
+    assert np.allclose(m, yaw_matrix(SCENE.objects[1].yaw), atol=1e-6)
