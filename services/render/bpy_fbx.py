@@ -68,7 +68,7 @@ def export(glb: str, fbx: str) -> None:
         bake_anim_use_all_bones=True,
         bake_anim_use_nla_strips=False,
         bake_anim_use_all_actions=False,
-        bake_anim_force_startend_keying=True,
+        bake_anim_force_startend_keying=False,  # else every static object gets keys too
         bake_anim_step=1.0,
         bake_anim_simplify_factor=0.0,  # every frame kept: the round trip is held to 1 cm
         path_mode="AUTO",
@@ -82,7 +82,7 @@ def probe(path: str, frames: list[int]) -> dict:
     _fresh_scene()
     _import(path)
     scene = bpy.context.scene
-    out: dict = {"armatures": {}, "meshes": {}, "cameras": [], "frame_range": [], "actions": {}}
+    out: dict = {"armatures": {}, "meshes": {}, "cameras": [], "frame_range": [], "actions": {}, "moving": {}}
     ranges = [a.frame_range for a in bpy.data.actions]
     if ranges:
         out["frame_range"] = [min(r[0] for r in ranges), max(r[1] for r in ranges)]
@@ -90,8 +90,16 @@ def probe(path: str, frames: list[int]) -> dict:
     armatures = [o for o in scene.objects if o.type == "ARMATURE"]
     for arm in armatures:
         out["armatures"][arm.name] = {"bones": [b.name for b in arm.pose.bones], "frames": {}}
+    # objects animated on their own (held props, the camera): world positions per frame
+    moving = [
+        o for o in scene.objects if o.type != "ARMATURE" and o.animation_data and o.animation_data.action
+    ]
+    for o in moving:
+        out["moving"][o.name] = {"type": o.type, "frames": {}}
     for f in frames:
         scene.frame_set(f)
+        for o in moving:
+            out["moving"][o.name]["frames"][str(f)] = _y_up(o.matrix_world.translation)
         for arm in armatures:
             out["armatures"][arm.name]["frames"][str(f)] = {
                 b.name: _y_up(arm.matrix_world @ b.head) for b in arm.pose.bones

@@ -179,7 +179,7 @@ def handle_export(req: ExportRequest) -> ExportReply:
                 if req.format == "usd":
                     data, filename = scene_usd(req.scene, list(req.motions), camera), "animation.usdc"
                 else:
-                    glb = scene_glb(req.scene, list(req.motions), camera=camera)
+                    glb = scene_glb(req.scene, list(req.motions), camera=camera, armature_nodes=True)
                     data, filename = glb_to_fbx(glb), "animation.fbx"
             except ModuleNotFoundError as exc:  # an optional package this worker lacks
                 raise InvalidInput(str(exc)) from exc

@@ -28,13 +28,22 @@ import numpy as np
 from proto.motion_data import Motion
 from proto.scene import Scene
 from services.render.gltf_camera import ZFAR, ZNEAR, camera_rotations
-from services.render.scene_geometry import ColouredMesh, held_ids, object_meshes, prop_mesh, prop_track, room_meshes
+from services.render.scene_geometry import (
+    ColouredMesh,
+    held_ids,
+    object_meshes,
+    prop_mesh,
+    prop_track,
+    room_meshes,
+)
 from services.render.skinning import Rig
 from services.render.staging import CameraTrack
 from wana.assets.characters import EXPRESSIONS
 from wana.domain.skeleton import JOINT_NAMES, N_JOINTS, PARENTS
 
-HORIZONTAL_APERTURE = 20.955  # millimetres, USD's default (a 35 mm film back); the focal length follows the fov
+HORIZONTAL_APERTURE = (
+    20.955  # millimetres, USD's default (a 35 mm film back); the focal length follows the fov
+)
 MISSING = "a USD export needs Pixar's usd-core (pip install usd-core, or `make setup`)"
 
 
@@ -130,11 +139,15 @@ def _add_character(stage: Any, root: str, rig: Rig) -> None:
     body = _mesh(
         stage,
         f"{root}/Body",
-        ColouredMesh(name=rig.name, vertices=ch.vertices, faces=ch.faces.astype(np.int64), colours=ch.colours),
+        ColouredMesh(
+            name=rig.name, vertices=ch.vertices, faces=ch.faces.astype(np.int64), colours=ch.colours
+        ),
     )
     binding = UsdSkel.BindingAPI.Apply(body.GetPrim())
     binding.CreateSkeletonRel().SetTargets([skel.GetPath()])
-    binding.CreateJointIndicesPrimvar(False, 4).Set(Vt.IntArray.FromNumpy(ch.joints.astype(np.int32).reshape(-1)))
+    binding.CreateJointIndicesPrimvar(False, 4).Set(
+        Vt.IntArray.FromNumpy(ch.joints.astype(np.int32).reshape(-1))
+    )
     binding.CreateJointWeightsPrimvar(False, 4).Set(
         Vt.FloatArray.FromNumpy(ch.weights.astype(np.float32).reshape(-1))
     )
