@@ -7,8 +7,8 @@ It imports only ``bpy`` and the standard library and is never imported by the re
     python bpy_fbx.py probe animation.fbx 0 15 30        # JSON: joint world positions at those frames,
                                                          # the skin's joint names, the frame range
 
-The probe re-imports a file (.fbx or .glb) with Blender's own importer; the round-trip tests and the
-README's compatibility table are made with it.
+The probe re-imports a file (.fbx, .glb or .usdc/.usda) with Blender's own importer; the round-trip tests
+and the README's compatibility table are made with it.
 """
 
 from __future__ import annotations
@@ -37,6 +37,8 @@ def _import(path: str) -> None:
 
     if path.lower().endswith((".glb", ".gltf")):
         bpy.ops.import_scene.gltf(filepath=path)
+    elif path.lower().endswith((".usd", ".usdc", ".usda")):
+        bpy.ops.wm.usd_import(filepath=path, import_skeletons=True, import_blendshapes=True)
     else:
         bpy.ops.import_scene.fbx(filepath=path, use_anim=True, anim_offset=0.0)
 
@@ -89,7 +91,11 @@ def probe(path: str, frames: list[int]) -> dict:
     out["actions"] = {a.name: list(a.frame_range) for a in bpy.data.actions}
     armatures = [o for o in scene.objects if o.type == "ARMATURE"]
     for arm in armatures:
-        out["armatures"][arm.name] = {"bones": [b.name for b in arm.pose.bones], "frames": {}}
+        out["armatures"][arm.name] = {
+            "bones": [b.name for b in arm.pose.bones],
+            "parent": arm.parent.name if arm.parent else "",  # a USD SkelRoot comes in as the parent
+            "frames": {},
+        }
     # objects animated on their own (held props, the camera): world positions per frame
     moving = [
         o for o in scene.objects if o.type != "ARMATURE" and o.animation_data and o.animation_data.action

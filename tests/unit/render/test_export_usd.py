@@ -14,7 +14,7 @@ from proto.scene import PlacedObject, Scene
 from services.render.bvh_export import motion_bvh
 from services.render.demo import demo_scene, walk_motion
 from services.render.handlers import handle_export
-from services.render.skinning import Rig
+from services.render.skinning import Rig, character_for
 from services.render.staging import Staging
 from wana.arrays import from_wire, to_wire
 from wana.domain.bvh import parse_bvh
@@ -213,3 +213,36 @@ def test_the_text_form_is_the_same_stage():
     stage = Usd.Stage.Open(layer)
     assert UsdSkel.Skeleton(stage.GetPrimAtPath("/World/Eve/Skeleton"))
     assert len(stage.GetPrimAtPath("/World/Eve/Anim").GetAttribute("rotations").GetTimeSamples()) == 40
+
+
+@pytest.mark.slow
+def test_blenders_usd_importer_reads_both_skeletons_within_1_cm(exported):
+    """Blender's own USD importer (bpy 5.0.1, in a subprocess): one armature per SkelRoot, same joints."""
+    from services.render import fbx_export
+
+    try:
+        fbx_export.blender_python()
+    except ModuleNotFoundError as exc:
+        pytest.skip(str(exc))
+    _, path, _, motions = exported
+    frames = [0, 15, 39]
+    read = fbx_export.probe(path, frames)
+    assert read["frame_range"] == [0.0, 39.0]
+    by_character = {a["parent"]: a for a in read["armatures"].values()}
+    assert sorted(by_character) == ["Eve", "Quentin"]
+    skins = {read["armatures"][m["armature"]]["parent"]: m for m in read["meshes"].values()}
+    assert sorted(skins) == ["Eve", "Quentin"]
+    for name, skin in skins.items():
+        assert sorted(skin["vertex_groups"]) == sorted(JOINT_NAMES)
+        assert skin["vertices"] == len(character_for(name).vertices)
+    for m in motions:
+        bvh = parse_bvh(motion_bvh(m)).global_positions()
+        got = by_character[m.character]
+        assert sorted(got["bones"]) == sorted(JOINT_NAMES)
+        for f in frames:
+            pos = got["frames"][str(f)]
+            err = max(
+                np.linalg.norm(np.array(p) - bvh[min(f, len(bvh) - 1), JOINT_INDEX[b]])
+                for b, p in pos.items()
+            )
+            assert err < 0.01, f"{m.character} frame {f}: {err * 100:.3f} cm"
