@@ -177,12 +177,14 @@ def handle_export(req: ExportRequest) -> ExportReply:
             camera = stage.camera_track(req.width, req.height)
             try:
                 if req.format == "usd":
-                    data, filename = scene_usd(req.scene, list(req.motions), camera), "animation.usdc"
+                    data, filename = scene_usd(req.scene, list(req.motions), camera, FPS), "animation.usdc"
                 else:
                     glb = scene_glb(req.scene, list(req.motions), camera=camera, armature_nodes=True)
                     data, filename = glb_to_fbx(glb), "animation.fbx"
             except ModuleNotFoundError as exc:  # an optional package this worker lacks
                 raise InvalidInput(str(exc)) from exc
+            if len(data) > MAX_REPLY_BYTES:
+                raise InvalidInput(f"the {req.format.upper()} file is larger than one reply may be")
             return ExportReply(
                 header=h,
                 format=req.format,
