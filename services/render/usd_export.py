@@ -106,6 +106,9 @@ def _add_character(stage: Any, root: str, rig: Rig) -> None:
     _, _, _, UsdGeom, UsdSkel, Vt = _pxr()
     ch = rig.character
     skel_root = UsdSkel.Root.Define(stage, root)
+    skel_root.GetPrim().SetDisplayName(
+        rig.name or ch.name
+    )  # the story's name, e.g. "Mary Ann" at /World/Mary_Ann
     skel = UsdSkel.Skeleton.Define(stage, f"{root}/Skeleton")
     joints = joint_paths()
     offsets = ch.offsets.astype(np.float64)

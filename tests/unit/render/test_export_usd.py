@@ -246,3 +246,13 @@ def test_blenders_usd_importer_reads_both_skeletons_within_1_cm(exported):
                 for b, p in pos.items()
             )
             assert err < 0.01, f"{m.character} frame {f}: {err * 100:.3f} cm"
+
+
+def test_a_name_that_is_no_prim_name_is_kept_as_the_display_name(tmp_path):
+    from services.render.usd_export import scene_usd
+
+    path = tmp_path / "animation.usdc"
+    path.write_bytes(scene_usd(demo_scene(), [walk_motion("Mary Ann", (0.0, 0.0), (1.0, 0.0), 10)]))
+    stage = Usd.Stage.Open(str(path))
+    prim = stage.GetPrimAtPath("/World/Mary_Ann")
+    assert prim.IsA(UsdSkel.Root) and prim.GetDisplayName() == "Mary Ann"
