@@ -19,7 +19,7 @@ from proto.scene import Scene
 from proto.ssg import Command
 
 FrameEncoding = Literal["png", "jpeg", "raw", "mp4"]
-ExportFormat = Literal["mp4", "glb", "bvh"]
+ExportFormat = Literal["mp4", "glb", "bvh", "usd", "fbx"]  # usd: usd-core; fbx: Blender (bpy)
 
 
 class TimedCommand(msgspec.Struct, frozen=True, kw_only=True):
@@ -104,7 +104,9 @@ class RenderReply(msgspec.Struct, frozen=True, kw_only=True, tag="render_reply")
 
 
 class ExportRequest(Request["ExportReply"], frozen=True, kw_only=True, tag="export_request"):
-    """Produce one whole file: the MP4 video, the animated GLB scene or one character's BVH."""
+    """Produce one whole file: the MP4 video, the animated GLB scene, one character's BVH, or the whole
+    animation as USD (animation.usdc) or FBX (animation.fbx); the last two need optional packages on the
+    render worker (usd-core; Blender's bpy) and are refused with a message that names them when absent."""
 
     header: Header
     format: ExportFormat
@@ -122,11 +124,11 @@ class ExportReply(msgspec.Struct, frozen=True, kw_only=True, tag="export_reply")
     header: Header
     status: Status = "ok"
     format: ExportFormat
-    filename: str  # suggested file name, e.g. "scene.glb", "Eve.bvh"
-    media_type: str  # "video/mp4", "model/gltf-binary", "application/octet-stream"
+    filename: str  # suggested file name, e.g. "scene.glb", "Eve.bvh", "animation.usdc", "animation.fbx"
+    media_type: str  # "video/mp4", "model/gltf-binary", "application/octet-stream" (BVH, USD, FBX)
     data: bytes
     n_frames: int = 0  # MP4: frames in the video
     commands: list[TimedCommand] = []  # MP4: the commands as placed on frames
     captions: list[Caption] = []  # MP4: the captions as placed on frames
     checks: dict[str, list[Check]] = {}  # MP4: the video's in_view/command_visible checks by sentence id
-    shots: list[Shot] = []  # MP4 and GLB: the camera's shots, in frame order
+    shots: list[Shot] = []  # MP4, GLB, USD and FBX: the camera's shots, in frame order

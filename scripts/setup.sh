@@ -28,6 +28,16 @@ fi
 .venv/bin/python -m pip install -q torch==2.13.0
 echo "==> installing wana and its pinned dependencies"
 .venv/bin/python -m pip install -q -e ".[dev]"
+# The 'blender' extra (FBX export; about 370 MB): bpy declares numpy<2 yet works with ours, so it goes in
+# without its declared dependencies (see pyproject.toml). WANA_SKIP_BLENDER=1 leaves it out.
+if [ "${WANA_SKIP_BLENDER:-0}" != "1" ]; then
+  if ! .venv/bin/python -c "import importlib.util, sys; sys.exit(importlib.util.find_spec('bpy') is None)"; then
+    echo "==> installing the 'blender' extra (bpy, for FBX export)"
+    .venv/bin/python -m pip install -q --no-deps bpy==5.0.1 zstandard==0.25.0 cython==3.3.1
+  fi
+else
+  echo "==> WANA_SKIP_BLENDER=1: no bpy; --export fbx will say so"
+fi
 # A PyPI package `proto-plus` also installs a top-level `proto`; ours must win.
 .venv/bin/python -c "import proto, pathlib, sys; p = pathlib.Path(proto.__file__).resolve(); \
 sys.exit(0 if p.is_relative_to(pathlib.Path('.').resolve()) else f'wrong proto package imported: {p}')"

@@ -1,17 +1,22 @@
 """`wana animate FILE -o DIR`: the whole pipeline on one text, embedded, writing the outputs.
 
-Writes DIR/animation.mp4, DIR/scene.glb, DIR/<character>.bvh and DIR/report.json. A stage whose logic is
-not in this build is named in a clear message and in the report; nothing is faked.
+Writes DIR/animation.mp4, DIR/scene.glb, DIR/<character>.bvh and DIR/report.json; `--export` picks the
+formats (mp4, glb, bvh, usd: DIR/animation.usdc, fbx: DIR/animation.fbx) and `zip` bundles every file
+written with report.json in DIR/animation.zip. A stage whose logic is not in this build, or an export whose
+optional package is missing, is named in a clear message; nothing is faked.
 """
 
 from __future__ import annotations
 
 import argparse
 import contextlib
+import importlib.util
 import json
+import os
 import sys
 import tempfile
-from collections.abc import Mapping
+import zipfile
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -19,6 +24,7 @@ import msgspec
 
 from proto.common import ErrorCode
 from proto.fidelity import Check
+from proto.render import ExportFormat, ExportReply
 from services.orchestrator.backend import Backend, InProcessBackend, StageFailed, StageUnavailable
 from services.orchestrator.exports import export
 from services.orchestrator.pipeline import PipelineResult
@@ -27,13 +33,57 @@ from services.orchestrator.timeline import FPS
 from wana.fidelity import story_checks, verdicts
 
 MAX_INPUT_BYTES = 1_000_000
+FORMATS: tuple[ExportFormat, ...] = ("mp4", "glb", "bvh", "usd", "fbx")
+DEFAULT_EXPORTS: tuple[ExportFormat, ...] = ("mp4", "glb", "bvh")
+BUNDLE = "animation.zip"
+# what each optional format needs on the machine that renders: (importable module, how to get it)
+EXTRAS: dict[str, tuple[str, str]] = {
+    "usd": ("pxr", "Pixar's usd-core: `make setup`, or `pip install usd-core`"),
+    "fbx": (
+        "bpy",
+        "Blender as a Python module: `make setup` (the 'blender' extra), or set WANA_BLENDER_PYTHON",
+    ),
+}
+
+
+def parse_exports(value: str) -> list[str]:
+    """The --export list, in FORMATS order (plus "zip"); "zip" alone bundles the default formats.
+
+    Raises:
+        argparse.ArgumentTypeError: an unknown or empty entry.
+    """
+    asked = [v.strip().lower().lstrip(".") for v in value.split(",") if v.strip()]
+    unknown = [v for v in asked if v not in (*FORMATS, "zip")]
+    if unknown or not asked:
+        raise argparse.ArgumentTypeError(
+            f"unknown export {', '.join(unknown) or '(none)'}; choose from {','.join(FORMATS)},zip"
+        )
+    formats = [f for f in FORMATS if f in asked] or list(DEFAULT_EXPORTS)
+    return formats + (["zip"] if "zip" in asked else [])
+
+
+def missing_extras(formats: Sequence[str]) -> list[str]:
+    """One message per asked format whose optional package this machine lacks (the embedded render runs
+    here; a remote render worker answers for itself)."""
+    out = []
+    for fmt in formats:
+        if fmt not in EXTRAS:
+            continue
+        module, how = EXTRAS[fmt]
+        chosen = os.environ.get("WANA_BLENDER_PYTHON", "") if fmt == "fbx" else ""
+        if chosen and not Path(chosen).is_file():
+            out.append(f"--export {fmt} needs {how} (WANA_BLENDER_PYTHON={chosen} is not a file)")
+        elif not chosen and importlib.util.find_spec(module) is None:  # found without importing it
+            out.append(f"--export {fmt} needs {how}")
+    return out
 
 
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="wana animate",
         description="Turn a story file into an animation: animation.mp4, scene.glb, one BVH per character and "
-        "report.json in the output folder. Runs the broker and one worker per service in this process.",
+        "report.json in the output folder (--export picks the formats, USD and FBX among them). Runs the broker "
+        "and one worker per service in this process.",
     )
     p.add_argument("file", help="the story text file ('-' reads standard input)")
     p.add_argument("-o", "--out", default="out", help="output folder (created; default: out)")
@@ -46,6 +96,14 @@ def build_parser() -> argparse.ArgumentParser:
         help="call the services' handlers directly instead of through the embedded bus",
     )
     p.add_argument("--no-progress", action="store_true", help="no progress bars")
+    p.add_argument(
+        "--export",
+        type=parse_exports,
+        default=list(DEFAULT_EXPORTS),
+        metavar="LIST",
+        help="comma-separated files to write: mp4,glb,bvh (default), usd (animation.usdc, needs usd-core), "
+        "fbx (animation.fbx, needs Blender's bpy), zip (animation.zip: every file written and report.json)",
+    )
     return p
 
 
@@ -182,39 +240,55 @@ def write_exports(
     *,
     width: int = 640,
     height: int = 480,
+    formats: Sequence[str] = DEFAULT_EXPORTS,
 ) -> dict[str, Path]:
-    """animation.mp4, scene.glb, one BVH per character (ExportRequests through the backend, as the gateway
-    sends them) and report.json with a "render" section; file name -> path.
+    """The asked files (ExportRequests through the backend, as the gateway sends them: animation.mp4,
+    scene.glb, one BVH per character, animation.usdc, animation.fbx), report.json with a "render" section,
+    and with "zip" animation.zip holding all of them; file name -> path.
 
     The video's camera and command checks (only the render service knows the camera) join the verdicts of
-    the report's sentences.
+    the report's sentences; without the MP4 the report has the story checks alone.
     """
     paths: dict[str, Path] = {}
-    video = export(backend, result, "mp4", width=width, height=height)
-    replies = [video, export(backend, result, "glb")]
-    replies += [export(backend, result, "bvh", character=name) for name in sorted(result.motions)]
+    replies: list[ExportReply] = []
+    for fmt in FORMATS:
+        if fmt not in formats:
+            continue
+        if fmt == "bvh":
+            replies += [export(backend, result, "bvh", character=name) for name in sorted(result.motions)]
+        else:
+            replies.append(export(backend, result, fmt, width=width, height=height))
     for reply in replies:
         paths[reply.filename] = out / reply.filename
         paths[reply.filename].write_bytes(reply.data)
-    report.update(summary(result, extra_checks=video.checks))
+    video = next((r for r in replies if r.format == "mp4"), None)
+    timed = video or next((r for r in replies if r.n_frames), None)  # the GLB, USD and FBX know the shots
+    report.update(summary(result, extra_checks=video.checks if video else None))
     fps = next(iter(result.motions.values())).fps if result.motions else FPS
+    n_frames = timed.n_frames if timed else 0
+    written = sorted([*paths, "report.json"])
     report["render"] = {
-        "frames": video.n_frames,
+        "frames": n_frames,
         "fps": fps,
         "width": width,
         "height": height,
-        "duration_s": video.n_frames / fps,
+        "duration_s": n_frames / fps,
         "commands": [
             {"frame": c.frame, "kind": c.command.kind, "value": c.command.value, "target": c.command.target}
-            for c in video.commands
+            for c in (video.commands if video else [])
         ],
-        "captions": msgspec.to_builtins(video.captions),
-        "shots": msgspec.to_builtins(video.shots),
+        "captions": msgspec.to_builtins(video.captions) if video else [],
+        "shots": msgspec.to_builtins(timed.shots) if timed else [],
         "characters": sorted(result.motions),
-        "files": sorted([*paths, "report.json"]),
+        "files": sorted([*written, BUNDLE]) if "zip" in formats else written,
     }
     paths["report.json"] = out / "report.json"
     paths["report.json"].write_text(json.dumps(report, indent=2, ensure_ascii=False))
+    if "zip" in formats:
+        paths[BUNDLE] = out / BUNDLE
+        with zipfile.ZipFile(paths[BUNDLE], "w", compression=zipfile.ZIP_DEFLATED) as bundle:
+            for name in written:
+                bundle.write(paths[name], arcname=name)
     return paths
 
 
@@ -232,6 +306,11 @@ def print_verdicts(report: dict[str, Any]) -> None:
 
 def main(argv: list[str]) -> int:
     args = build_parser().parse_args(argv)
+    missing = missing_extras(args.export)
+    if missing:
+        for why in missing:
+            print(f"wana animate: {why}", file=sys.stderr)
+        return 2
     text = read_story(args.file)
     out = Path(args.out)
     if not text.strip():
@@ -262,7 +341,9 @@ def main(argv: list[str]) -> int:
         paths: dict[str, Path] = {}
         if result.scene is not None and not result.unavailable:
             try:
-                paths = write_exports(backend, result, report, out, width=args.width, height=args.height)
+                paths = write_exports(
+                    backend, result, report, out, width=args.width, height=args.height, formats=args.export
+                )
             except (StageFailed, StageUnavailable) as exc:
                 result.unavailable["render"] = str(exc)
     for sid, diags in result.diagnostics.items():

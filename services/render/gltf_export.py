@@ -205,11 +205,14 @@ def _unit_quats(q: np.ndarray) -> np.ndarray:
     return q.astype(np.float32)
 
 
-def _add_character(b: _Builder, rig: Rig, material: int, animation: dict, fps: float) -> None:
+def _add_character(
+    b: _Builder, rig: Rig, material: int, animation: dict, fps: float, armature_node: bool = False
+) -> None:
     ch = rig.character
     name = rig.name or ch.name
     offsets = ch.offsets.astype(np.float64)
     rest = ch.rest_joint_positions()
+    rig_node = b.node({"name": name}, root=True) if armature_node else -1
     first = len(b.doc["nodes"])
     joint_nodes = []
     for j in range(N_JOINTS):
@@ -217,7 +220,9 @@ def _add_character(b: _Builder, rig: Rig, material: int, animation: dict, fps: f
         kids = [first + k for k in range(N_JOINTS) if PARENTS[k] == j]
         if kids:
             node["children"] = kids
-        joint_nodes.append(b.node(node, root=PARENTS[j] < 0))
+        joint_nodes.append(b.node(node, root=PARENTS[j] < 0 and not armature_node))
+    if armature_node:
+        b.doc["nodes"][rig_node]["children"] = [joint_nodes[0]]
     ibm = np.zeros((N_JOINTS, 4, 4), dtype=np.float32)
     ibm[:] = np.eye(4, dtype=np.float32)
     ibm[:, :3, 3] = -rest  # rest pose has identity rotations: the inverse bind is a translation
@@ -268,7 +273,12 @@ def _add_character(b: _Builder, rig: Rig, material: int, animation: dict, fps: f
         }
     )
     mesh_node = b.node(
-        {"name": name, "mesh": len(b.doc["meshes"]) - 1, "skin": len(b.doc["skins"]) - 1}, root=True
+        {
+            "name": f"{name}_body" if armature_node else name,
+            "mesh": len(b.doc["meshes"]) - 1,
+            "skin": len(b.doc["skins"]) - 1,
+        },
+        root=True,
     )
 
     t = rig.n_frames
@@ -324,10 +334,19 @@ def _add_props(
 
 
 def scene_glb(
-    scene: Scene, motions: list[Motion], fps: float = 30.0, camera: CameraTrack | None = None
+    scene: Scene,
+    motions: list[Motion],
+    fps: float = 30.0,
+    camera: CameraTrack | None = None,
+    armature_nodes: bool = False,
 ) -> bytes:
     """The GLB bytes of the scene with its animated characters and held props (and the video's camera when
-    given: services.render.gltf_camera)."""
+    given: services.render.gltf_camera).
+
+    ``armature_nodes`` puts each character's Hips under a plain node named after the character (its mesh
+    node then is "<name>_body"): Blender's glTF importer makes an armature of the parent of a skeleton's
+    root, so with the Hips at the scene root every character would land in one shared armature. The FBX
+    export asks for it; the GLB we ship keeps the validator's layout."""
     b = _Builder()
     static_mat = b.material("scene")
     held = held_ids(motions)
@@ -339,7 +358,7 @@ def scene_glb(
         skin_mat = b.material("characters")
         for m in motions:
             rig = Rig.from_motion(m)
-            _add_character(b, rig, skin_mat, animation, fps)
+            _add_character(b, rig, skin_mat, animation, fps, armature_nodes)
     if camera is not None:
         add_camera(b, camera, animation, fps)
     if animation["channels"]:

@@ -21,10 +21,12 @@ from proto.render import Caption, ExportReply, ExportRequest, RenderReply, Rende
 from services.render.bvh_export import motion_bvh, safe_filename
 from services.render.camera_checks import staged_checks
 from services.render.director import shot_messages
+from services.render.fbx_export import glb_to_fbx
 from services.render.gltf_export import scene_glb
 from services.render.renderer import FrameRenderer
 from services.render.staging import Staging
 from services.render.timeline import make_captions, place_commands
+from services.render.usd_export import scene_usd
 from services.render.video import FPS, encode_mp4
 from wana.bus.service import InvalidInput
 
@@ -151,7 +153,8 @@ def handle_render(req: RenderRequest) -> RenderReply:
 
 
 def handle_export(req: ExportRequest) -> ExportReply:
-    """Produce the MP4 (with its camera checks, services.render.camera_checks), the GLB or one character's BVH."""
+    """Produce the MP4 (with its camera checks, services.render.camera_checks), the GLB, one character's BVH,
+    or the USD or FBX of the whole animation."""
     h = reply_header(req)
     try:
         if req.format == "glb":  # with the camera the MP4 of the same request shows
@@ -165,6 +168,29 @@ def handle_export(req: ExportRequest) -> ExportReply:
                 data=scene_glb(
                     req.scene, list(req.motions), camera=stage.camera_track(req.width, req.height)
                 ),
+                n_frames=stage.n_frames,
+                shots=shot_messages(stage.shots),
+            )
+        if req.format in ("usd", "fbx"):  # the whole animation with the MP4's camera
+            _check_size(req.width, req.height)
+            stage = Staging.build(req.scene, list(req.motions), placed(req)[0])
+            camera = stage.camera_track(req.width, req.height)
+            try:
+                if req.format == "usd":
+                    data, filename = scene_usd(req.scene, list(req.motions), camera, FPS), "animation.usdc"
+                else:
+                    glb = scene_glb(req.scene, list(req.motions), camera=camera, armature_nodes=True)
+                    data, filename = glb_to_fbx(glb), "animation.fbx"
+            except ModuleNotFoundError as exc:  # an optional package this worker lacks
+                raise InvalidInput(str(exc)) from exc
+            if len(data) > MAX_REPLY_BYTES:
+                raise InvalidInput(f"the {req.format.upper()} file is larger than one reply may be")
+            return ExportReply(
+                header=h,
+                format=req.format,
+                filename=filename,
+                media_type="application/octet-stream",
+                data=data,
                 n_frames=stage.n_frames,
                 shots=shot_messages(stage.shots),
             )
