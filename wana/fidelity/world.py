@@ -9,7 +9,7 @@ from functools import cached_property, lru_cache
 import numpy as np
 
 from proto.scene import PlacedObject, Scene
-from wana.assets import catalog
+from wana.assets import catalog, vocabulary
 from wana.assets.geometry import build_mesh, voxel_boxes
 
 THIN_M = 0.05  # metres: objects lower than this (rugs, mats) are walked on, not into
@@ -44,7 +44,13 @@ class World:
         if ref in self.by_id:
             return [self.by_id[ref]]
         same = [o for o in self.scene.objects if base_id(o.id) == base_id(ref)]
-        return same or [o for o in self.scene.objects if o.category == ref]
+        if same:
+            return same
+        exact = [o for o in self.scene.objects if o.category == ref]
+        if exact:
+            return exact
+        kind = base_id(ref)  # "a chair" is also the dining chair or the office chair the room has
+        return [o for o in self.scene.objects if kind in _kinds(o.category)]
 
     def copies(self, node_id: str) -> list[PlacedObject]:
         """The placed objects of one SSG object node: "chair" and, for "two chairs", "chair/2"."""
@@ -164,3 +170,12 @@ def point_box_distance(points: np.ndarray, boxes: np.ndarray) -> np.ndarray:
     above = points[:, None] - boxes[None, :, 1]
     gap = np.maximum(np.maximum(below, above), 0.0)
     return np.sqrt(np.einsum("nkc,nkc->nk", gap, gap))
+
+
+@lru_cache(maxsize=1024)
+def _kinds(category: str) -> tuple[str, ...]:
+    """What a category is an instance of (dining_chair -> chair, seat, furniture); () when unknown."""
+    try:
+        return tuple(vocabulary.hypernyms(category))
+    except KeyError:
+        return ()

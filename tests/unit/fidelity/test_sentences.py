@@ -166,3 +166,17 @@ def test_a_stool_a_hand_apart_from_the_drums_is_next_to_them_and_one_a_stride_aw
     far = story_checks([("s1", "scene")], graphs, make.scene(drums, stool_at(0.8)), {})["s1"][-1]
     assert close.ok
     assert not far.ok and "0.80 m apart" in far.reason
+
+
+def test_a_chair_the_text_names_is_also_the_dining_chair_the_room_has(make):
+    """Seen on a contact sheet: Mrs Brown sat on the dining chair while the check said there was no chair."""
+    from wana.fidelity.world import World
+
+    room = make.scene(
+        PlacedObject(id="dining_chair", category="dining_chair", position=(0.0, 0.0, 0.0)),
+        PlacedObject(id="table", category="table", position=(1.5, 0.0, 0.0)),
+    )
+    world = World(room)
+    assert [o.id for o in world.find("chair")] == ["dining_chair"]
+    assert [o.id for o in world.find("seat")] == ["dining_chair"]
+    assert world.find("sofa") == []
