@@ -27,6 +27,9 @@ def display(word: str) -> str:
     return base_id(word).removeprefix("ctx_").replace("_", " ")
 
 
+SMALL_M = 0.25  # metres: objects smaller than this in every direction are props, not furniture
+
+
 class World:
     """One scene with the geometry the checks need, cached per object."""
 
@@ -94,6 +97,8 @@ class World:
             outer = np.stack([boxes[:, 0].min(axis=0), boxes[:, 1].max(axis=0)])
             if outer[1, 1] - outer[0, 1] < THIN_M:
                 continue
+            if float(np.max(outer[1] - outer[0])) < SMALL_M:
+                continue  # a can or a cup is no furniture: a shin brushing it is not a body inside furniture
             out.append((o, boxes, outer))
         return out
 

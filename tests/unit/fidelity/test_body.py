@@ -151,3 +151,15 @@ def test_off_stage_frames_are_neither_early_nor_a_jump(make):
         (continuity,) = by_name(checks, "continuity")
         assert entrance.ok is passes, entrance.reason
         assert continuity.ok is passes, continuity.reason
+
+
+def test_a_shin_through_a_soda_can_is_no_body_inside_furniture_but_through_a_cabinet_it_is(make):
+    """Seen on a contact sheet: Ben's shin brushing a can beside the sofa was called "inside" the can."""
+    from proto.scene import PlacedObject
+
+    graph = {"s1": make.action_graph("s1", "Ben", "wave", "wave")}
+    ben = make.motion("Ben", make.still(0.0, 0.95, 0.0, 40), [("wave", 0, 40, "s1", 0)])
+    for category, inside in (("soda_can", False), ("cabinet", True)):
+        room = make.scene(PlacedObject(id=category, category=category, position=(0.0, 0.0, 0.0)))
+        (pen,) = by_name(story_checks([("s1", "action")], graph, room, {"Ben": ben})["s1"], "penetration")
+        assert pen.ok is (not inside), pen.reason
