@@ -242,7 +242,24 @@ def other_character(act: Act, bodies: Mapping[str, Body]) -> str:
         if ref in bodies and ref != act.character:
             return ref
     others = [n for n in bodies if n != act.character]
-    return others[0] if len(others) == 1 else ""
+    if len(others) <= 1:
+        return others[0] if others else ""
+    # "They shake hands": no one named, so the partner is whoever is nearest during the action.
+    me = bodies.get(act.character)
+    if me is None or act.clip is None:
+        return ""
+    lo = max(0, min(act.clip.start_frame, me.frames - 1))
+    hi = max(lo + 1, min(act.clip.end_frame, me.frames))
+
+    def mean_gap(name: str) -> float:
+        them = bodies[name]
+        n = min(hi, them.frames)
+        if n <= lo:
+            return float("inf")
+        d = me.joint("Hips")[lo:n, [0, 2]] - them.joint("Hips")[lo:n, [0, 2]]
+        return float(np.linalg.norm(d, axis=1).mean())
+
+    return min(others, key=mean_gap)
 
 
 def _touch_person(act: Act, body: Body, bodies: Mapping[str, Body], frames: range) -> Check:

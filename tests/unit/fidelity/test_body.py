@@ -163,3 +163,14 @@ def test_a_shin_through_a_soda_can_is_no_body_inside_furniture_but_through_a_cab
         room = make.scene(PlacedObject(id=category, category=category, position=(0.0, 0.0, 0.0)))
         (pen,) = by_name(story_checks([("s1", "action")], graph, room, {"Ben": ben})["s1"], "penetration")
         assert pen.ok is (not inside), pen.reason
+
+
+def test_they_shake_hands_two_metres_apart_is_no_handshake_with_the_nearest_partner(make):
+    """Seen on a contact sheet: "They stand up and shake hands" across a table passed with nobody touching."""
+    graphs = {"s1": make.action_graph("s1", "Eve", "shake", "shake_hands")}
+    eve = make.motion("Eve", make.still(0.0, 0.95, 0.0, 90), [("shake_hands", 0, 90, "s1", 0)])
+    tom = make.motion("Tom", make.still(2.0, 0.95, 0.0, 90), [("hold", 0, 90, "", -1)])
+    ann = make.motion("Ann", make.still(0.0, 0.95, 4.0, 90), [("hold", 0, 90, "", -1)])
+    checks = story_checks([("s1", "action")], graphs, make.scene(), {"Eve": eve, "Tom": tom, "Ann": ann})
+    (contact,) = by_name(checks["s1"], "contact")
+    assert not contact.ok and "from Tom" in contact.reason
