@@ -69,7 +69,11 @@ class Bus:
     def spawn(self, *args: str, log: str) -> subprocess.Popen[bytes]:
         with open(self.tmp / f"{log}.log", "wb") as err:
             return subprocess.Popen(
-                [sys.executable, "-m", "wana.cli", *args], cwd=REPO, env=self.env, stderr=err
+                [sys.executable, "-m", "wana.cli", *args],
+                cwd=REPO,
+                env=self.env,
+                stdout=subprocess.DEVNULL,
+                stderr=err,
             )
 
     def workers(self, service: str, n: int, timeout_s: float = 300) -> list[subprocess.Popen[bytes]]:
@@ -222,7 +226,7 @@ def main(argv: list[str] | None = None) -> dict:
     p.add_argument("--workers", default="1,2,4", help="worker counts to measure (comma separated)")
     args = p.parse_args(argv)
     counts = [int(n) for n in args.workers.split(",")]
-    motion_jobs = 8 if args.quick else 32
+    motion_jobs = 24 if args.quick else 200
     frames = 120 if args.quick else 600
     result: dict = {
         "motion_jobs_per_s": {},

@@ -80,16 +80,19 @@ def test_queued_jobs_show_as_depth_then_as_completed_jobs_with_their_latencies(b
         assert time.monotonic() < deadline, "the echo worker never registered"
         time.sleep(0.05)
     with Client(bus, heartbeat_s=HEARTBEAT_S) as client:
-        jobs = [client.submit("echo", f"sleep:0.3:{i}".encode(), deadline_s=30) for i in range(5)]
+        jobs = [client.submit("echo", f"sleep:0.5:{i}".encode(), deadline_s=30) for i in range(5)]
         deadline = time.monotonic() + 10
         while True:  # the jobs reach the broker asynchronously
             loaded = samples(exporter)
-            if value(loaded, "wana_queue_depth", service="echo") == 4:
+            if (value(loaded, "wana_queue_depth", service="echo") or 0) > 0:
                 break
             assert time.monotonic() < deadline, loaded
             time.sleep(0.02)
+        # one STATS answer: every job is queued, on the one worker, or done
+        depth = value(loaded, "wana_queue_depth", service="echo")
         assert value(loaded, "wana_in_flight_jobs", service="echo") == 1
         assert value(loaded, "wana_idle_workers", service="echo") == 0
+        assert depth + 1 + value(loaded, "wana_jobs_completed_total", service="echo") == 5
         assert len(client.wait(jobs, timeout=30)) == 5
     done = samples(exporter)
     assert value(done, "wana_queue_depth", service="echo") == 0
@@ -97,10 +100,10 @@ def test_queued_jobs_show_as_depth_then_as_completed_jobs_with_their_latencies(b
     assert value(done, "wana_jobs_completed_total", service="echo") == 5
     assert value(done, "wana_broker_completed_total") == 5
     assert value(done, "wana_job_latency_seconds_count", service="echo") == 5
-    assert value(done, "wana_job_latency_seconds_bucket", service="echo", le="0.25") == 0  # each slept 0.3 s
+    assert value(done, "wana_job_latency_seconds_bucket", service="echo", le="0.25") == 0  # each slept 0.5 s
     assert value(done, "wana_job_latency_seconds_bucket", service="echo", le="+Inf") == 5
     # one worker, one at a time: the k-th job waited for the k-1 before it
-    assert value(done, "wana_job_latency_seconds_sum", service="echo") >= 0.3 * (1 + 2 + 3 + 4 + 5) * 0.95
+    assert value(done, "wana_job_latency_seconds_sum", service="echo") >= 0.5 * (1 + 2 + 3 + 4 + 5) * 0.95
     assert value(done, "wana_broker_up") == 1
 
 
@@ -124,3 +127,31 @@ def test_a_broker_that_does_not_answer_reads_as_down_with_no_depths():
         shutil.rmtree(tmp, ignore_errors=True)
     assert value(got, "wana_broker_up") == 0
     assert not any(name == "wana_queue_depth" for name, _ in got)
+
+
+def test_wana_metrics_serves_until_sigterm_and_then_exits_cleanly(bus):
+    import socket
+
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "wana.cli", "metrics", "--broker", bus, "--port", str(port)],
+        stderr=subprocess.PIPE,
+    )
+    try:
+        deadline = time.monotonic() + 30
+        while True:
+            try:
+                got = samples(f"http://127.0.0.1:{port}/metrics")
+                if value(got, "wana_workers", service="echo") == 1:
+                    break
+            except httpx.HTTPError:
+                pass
+            assert time.monotonic() < deadline and proc.poll() is None, "wana metrics did not serve"
+            time.sleep(0.1)
+        proc.terminate()
+        assert proc.wait(timeout=15) == 0
+    finally:
+        if proc.poll() is None:
+            proc.kill()
