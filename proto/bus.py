@@ -136,11 +136,21 @@ Envelope = Union[  # noqa: UP007 - a runtime union for msgspec decoders
 WITH_BODY = (RequestFrame, JobFrame, ReplyFrame, ErrorFrame)
 
 
+# Upper bounds (seconds) of the job-latency buckets in ServiceStats.latency_counts; one more count
+# follows for the jobs slower than the last bound (Prometheus' +Inf bucket).
+LATENCY_BUCKETS_S: tuple[float, ...] = (0.01, 0.025, 0.05, 0.1, 0.25, 0.5, 1.0, 2.5, 5.0, 10.0, 30.0, 60.0)
+
+
 class ServiceStats(msgspec.Struct, frozen=True, kw_only=True):
     workers: int  # registered workers
     idle: int  # workers waiting for a job
     queued: int  # jobs waiting for a worker
     in_flight: int  # jobs a worker is handling
+    completed: int = 0  # replies forwarded for this service
+    # seconds from a request's arrival at the broker to its reply, per bucket of LATENCY_BUCKETS_S
+    # (not cumulative; len(LATENCY_BUCKETS_S) + 1 counts, or empty before the first reply)
+    latency_counts: list[int] = []
+    latency_sum_s: float = 0.0  # seconds, sum over the completed jobs
 
 
 class WorkerStats(msgspec.Struct, frozen=True, kw_only=True):

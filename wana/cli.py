@@ -1,4 +1,4 @@
-"""The `wana` command: animate, serve, broker, worker, parse, assets, motion.
+"""The `wana` command: animate, serve, broker, worker, metrics, keys, parse, assets, motion.
 
 Each sub-command delegates to the module that owns the work, imported lazily so that `wana --help` is fast
 and a stage whose logic is missing reports itself instead of breaking the others.
@@ -28,6 +28,7 @@ examples:
   wana keys new keys/                           # CURVE key pairs and allow lists for a bus across hosts
   wana broker --bind tcp://0.0.0.0:5555 --keys keys/         # scale out: a broker here ...
   wana worker motion --connect tcp://HOST:5555 --keys keys/  # ... and workers anywhere
+  wana metrics --broker tcp://HOST:5555 --port 9108          # its queue depths for Prometheus
 """
 
 
@@ -116,6 +117,10 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("rest", nargs=argparse.REMAINDER)
     p = sub.add_parser("motion", help="manage the action library (import BVH clips)", add_help=False)
     p.add_argument("rest", nargs=argparse.REMAINDER)
+    p = sub.add_parser(
+        "metrics", help="export a broker's queue depths and job counters to Prometheus", add_help=False
+    )
+    p.add_argument("rest", nargs=argparse.REMAINDER)
 
     p = sub.add_parser(
         "broker",
@@ -165,6 +170,7 @@ _DELEGATES = {
     "parse": ("services.nlp.cli", "the parser"),
     "assets": ("wana.assets.cli", "the asset library"),
     "motion": ("services.motion.cli", "the motion library tools"),
+    "metrics": ("wana.metrics", "the metrics exporter"),
 }
 
 

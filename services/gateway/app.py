@@ -14,13 +14,15 @@ from collections.abc import AsyncIterator
 from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
-from fastapi import Depends, FastAPI
+from fastapi import Depends, FastAPI, Response
 from fastapi.responses import HTMLResponse, JSONResponse
 from fastapi.staticfiles import StaticFiles
+from prometheus_client import CONTENT_TYPE_LATEST, generate_latest
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
 from proto.common import ErrorCode
 from services.gateway import deps
+from services.gateway import metrics as gateway_metrics
 from services.gateway.live import LiveHub
 from services.gateway.meshes import MeshCache
 from services.gateway.routers import documents, exports, live, meshes, session
@@ -156,6 +158,16 @@ def create_app(settings: Settings | None = None, orchestrator: Orchestrator | No
     @app.get("/api/health", tags=["health"], summary="Liveness and which pipeline stages this build has")
     async def health() -> dict[str, Any]:
         return {"status": "ok", "api_version": API_VERSION}
+
+    @app.get("/healthz", include_in_schema=False)
+    async def healthz() -> JSONResponse:
+        # Readiness (the Kubernetes probe, compose's healthcheck): 200 once the session database is open.
+        ready = getattr(app.state, "orchestrator", None) is not None
+        return JSONResponse({"status": "ok" if ready else "starting"}, status_code=200 if ready else 503)
+
+    @app.get("/metrics", include_in_schema=False)
+    async def prometheus_metrics() -> Response:
+        return Response(generate_latest(gateway_metrics.REGISTRY), media_type=CONTENT_TYPE_LATEST)
 
     if (settings.editor_dist / "index.html").is_file():
         app.mount("/", StaticFiles(directory=settings.editor_dist, html=True), name="editor")

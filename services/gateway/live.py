@@ -21,7 +21,7 @@ from starlette.concurrency import run_in_threadpool
 from starlette.websockets import WebSocket, WebSocketState
 
 from proto.common import ErrorCode
-from services.gateway import messages
+from services.gateway import messages, metrics
 from services.gateway.delta import CharacterCache, EncodedAnimation, Holdings, encode_animation, encode_json
 from services.orchestrator.document import BadEdit, StaleEdit, TextChange
 from services.orchestrator.session import Orchestrator, Session
@@ -136,6 +136,7 @@ class DocumentChannel:
         self, base_version: int, changes: list[TextChange], *, origin: Client | None = None
     ) -> dict[str, Any]:
         """Apply one edit; returns the message for its sender (ack, stale or error) and tells the others."""
+        arrived = time.perf_counter()
         try:
             ack = await run_in_threadpool(self.session.edit, base_version, changes)
         except StaleEdit as exc:
@@ -159,6 +160,7 @@ class DocumentChannel:
             exclude=origin,
         )
         self.request_compute()
+        metrics.EDIT_ACK_SECONDS.observe(time.perf_counter() - arrived)
         return {"type": "ack", "version": ack.version, "changed": list(ack.changed)}
 
     # -- computing -----------------------------------------------------------------------------------
@@ -182,6 +184,7 @@ class DocumentChannel:
                 try:
                     diag, anim = await loop.run_in_executor(self.executor, self._compute, loop)
                 except Exception as exc:
+                    metrics.COMPUTE_FAILURES.inc()
                     log.exception("compute of %s failed", self.session.doc_id)
                     await self.broadcast(
                         {
@@ -220,6 +223,7 @@ class DocumentChannel:
         # while it runs: edits are acknowledged and REST reads answered during a long compute.
         result = self.session.compute(progress=progress)
         compute_ms = (time.perf_counter() - started) * 1000.0
+        metrics.COMPUTE_SECONDS.observe(compute_ms / 1000.0)
         with self.session.lock:  # a consistent copy of the sentences, for as long as that takes
             doc = dataclasses.replace(self.session.doc, sentences=list(self.session.doc.sentences))
         diag = messages.diagnostics_message(result, doc)

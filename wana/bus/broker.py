@@ -541,6 +541,9 @@ class Broker:
                 )
             else:
                 self.completed += 1
+                served = self._services.get(job.service)
+                if served is not None:
+                    served.record_reply(self._now - job.arrived)
                 self._post(job.client, job_id, frames[at], body)  # the envelope is forwarded as it came
         if worker is None:
             self._send(sender, _DISCONNECT)  # e.g. a worker of the broker before a restart

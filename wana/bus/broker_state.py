@@ -6,12 +6,13 @@ on their own.
 
 from __future__ import annotations
 
+import bisect
 import collections
 from collections.abc import Callable
 
 import zmq
 
-from proto.bus import BrokerStats, ReadyFrame, RequestFrame, ServiceStats, WorkerStats
+from proto.bus import LATENCY_BUCKETS_S, BrokerStats, ReadyFrame, RequestFrame, ServiceStats, WorkerStats
 
 
 class Job:
@@ -25,6 +26,7 @@ class Job:
         "payload",
         "worker",
         "holders",
+        "arrived",
     )
 
     def __init__(self, client: bytes, request: RequestFrame, payload: zmq.Frame, now: float):
@@ -37,6 +39,7 @@ class Job:
         self.payload = payload
         self.worker: bytes | None = None
         self.holders: set[bytes] = set()  # workers it was dispatched to: only they may answer it
+        self.arrived = now  # when the broker took it in (its latency runs from here to the reply)
 
 
 class WorkerEntry:
@@ -56,7 +59,18 @@ class WorkerEntry:
 
 
 class Service:
-    __slots__ = ("name", "idle", "queue", "workers", "prefetching", "empty_since", "held_bytes")
+    __slots__ = (
+        "name",
+        "idle",
+        "queue",
+        "workers",
+        "prefetching",
+        "empty_since",
+        "held_bytes",
+        "completed",
+        "latency_counts",
+        "latency_sum_s",
+    )
 
     def __init__(self, name: str):
         self.name = name
@@ -68,6 +82,15 @@ class Service:
         self.prefetching = 0  # registered workers with capacity > 1
         self.empty_since: float | None = None  # when it last had neither workers nor jobs
         self.held_bytes = 0  # payload bytes of its jobs, queued or in flight
+        self.completed = 0  # replies forwarded
+        self.latency_counts = [0] * (len(LATENCY_BUCKETS_S) + 1)  # per bucket, see ServiceStats
+        self.latency_sum_s = 0.0
+
+    def record_reply(self, latency_s: float) -> None:
+        """Count one forwarded reply that took ``latency_s`` seconds since its request arrived."""
+        self.completed += 1
+        self.latency_counts[bisect.bisect_left(LATENCY_BUCKETS_S, latency_s)] += 1
+        self.latency_sum_s += latency_s
 
 
 def broker_stats(
@@ -88,7 +111,13 @@ def broker_stats(
         in_flight = sum(len(workers[wid].jobs) for wid in svc.workers)
         idle = sum(1 for wid in svc.workers if not workers[wid].jobs)
         service_stats[name] = ServiceStats(
-            workers=len(svc.workers), idle=idle, queued=len(svc.queue), in_flight=in_flight
+            workers=len(svc.workers),
+            idle=idle,
+            queued=len(svc.queue),
+            in_flight=in_flight,
+            completed=svc.completed,
+            latency_counts=list(svc.latency_counts) if svc.completed else [],
+            latency_sum_s=svc.latency_sum_s,
         )
     worker_stats = []
     for w in workers.values():

@@ -165,8 +165,10 @@ def test_deployments_take_the_bus_keys_from_secrets_and_the_image_never_holds_th
         files = {item["key"] for item in volumes["bus-keys"]["secret"]["items"]}
         if "broker" in path.name:
             assert "broker.key_secret" in files and "worker.key_secret" not in files
-        else:  # a worker never holds the broker's secret
+        elif path.name.startswith("worker-"):  # a worker never holds the broker's secret
             assert files == {"broker.key", "worker.key", "worker.key_secret"}, path.name
+        else:  # the bus's clients (gateway, metrics exporter): the client pair only
+            assert files == {"broker.key", "client.key", "client.key_secret"}, path.name
     compose = yaml.safe_load((deploy / "compose.yaml").read_text())
     assert all(Path(s["file"]).parts[:2] == ("..", "keys") for s in compose["secrets"].values())
     ignored = (deploy / "Dockerfile.dockerignore").read_text().split()
