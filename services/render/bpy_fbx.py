@@ -16,7 +16,7 @@ from __future__ import annotations
 import json
 import sys
 
-FPS = 30  # wana.domain.units.FPS; this script cannot import wana
+FRAME_RATE = 30  # wana.domain.units.FPS; this script runs in Blender's Python and cannot import wana
 
 
 def _y_up(v) -> list[float]:  # noqa: ANN001 - a mathutils.Vector
@@ -28,7 +28,7 @@ def _fresh_scene() -> None:
     import bpy
 
     bpy.ops.wm.read_factory_settings(use_empty=True)
-    bpy.context.scene.render.fps = FPS
+    bpy.context.scene.render.fps = FRAME_RATE
     bpy.context.scene.render.fps_base = 1.0
 
 
