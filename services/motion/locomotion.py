@@ -26,7 +26,15 @@ import numpy as np
 
 from services.motion.gait import synthesize_gait
 from services.motion.locomotion_features import sensor_features, trajectory_features
-from services.motion.pfnn import N_JOINTS, N_OUT, N_POSE, SLICE_CONTACT, SLICE_DPHASE, SLICE_POSE, SLICE_ROT
+from services.motion.pfnn_layout import (
+    N_JOINTS,
+    N_OUT,
+    N_POSE,
+    SLICE_CONTACT,
+    SLICE_DPHASE,
+    SLICE_POSE,
+    SLICE_ROT,
+)
 from wana.domain import quat
 from wana.domain.paths import model_path
 from wana.domain.units import FPS

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from services.motion.pfnn import N_JOINTS, N_SENSOR, TRAJ_OFFSETS
+from services.motion.pfnn_layout import N_JOINTS, N_SENSOR, TRAJ_OFFSETS
 from wana.domain import quat
 from wana.domain.skeleton import forward_kinematics
 

@@ -15,20 +15,37 @@ from __future__ import annotations
 import torch
 from torch import nn
 
-from wana.domain.skeleton import N_JOINTS
+from services.motion.pfnn_layout import (  # re-exported: the layout is defined once, without torch
+    N_IN,
+    N_JOINTS,
+    N_OUT,
+    N_POSE,
+    N_ROT,
+    N_SENSOR,
+    N_TRAJ,
+    SLICE_CONTACT,
+    SLICE_DPHASE,
+    SLICE_POSE,
+    SLICE_ROOT,
+    SLICE_ROT,
+    TRAJ_OFFSETS,
+)
 
-TRAJ_OFFSETS = tuple(range(-30, 30, 5))  # frames at 30 fps: 12 samples
-N_TRAJ = len(TRAJ_OFFSETS) * 4
-N_SENSOR = 12
-N_POSE = N_JOINTS * 6  # positions + velocities
-N_IN = N_TRAJ + N_SENSOR + N_POSE
-N_ROT = N_JOINTS * 4
-N_OUT = N_POSE + N_ROT + 3 + 1 + 2
-SLICE_POSE = slice(0, N_POSE)
-SLICE_ROT = slice(N_POSE, N_POSE + N_ROT)
-SLICE_ROOT = slice(N_POSE + N_ROT, N_POSE + N_ROT + 3)
-SLICE_DPHASE = slice(N_POSE + N_ROT + 3, N_POSE + N_ROT + 4)
-SLICE_CONTACT = slice(N_POSE + N_ROT + 4, N_OUT)
+__all__ = [
+    "N_IN",
+    "N_JOINTS",
+    "N_OUT",
+    "N_POSE",
+    "N_ROT",
+    "N_SENSOR",
+    "N_TRAJ",
+    "SLICE_CONTACT",
+    "SLICE_DPHASE",
+    "SLICE_POSE",
+    "SLICE_ROOT",
+    "SLICE_ROT",
+    "TRAJ_OFFSETS",
+]
 
 
 def catmull_rom_coefficients(phase: torch.Tensor) -> torch.Tensor:

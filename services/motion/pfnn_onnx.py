@@ -20,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from services.motion.pfnn import N_IN, N_OUT, N_POSE, N_SENSOR, N_TRAJ, SLICE_DPHASE, SLICE_POSE
+from services.motion.pfnn_layout import N_IN, N_OUT, N_POSE, N_SENSOR, N_TRAJ, SLICE_DPHASE, SLICE_POSE
 
 FAST_STEPS = 60  # frames per onnxruntime call (2 s at 30 fps)
 PHASE_BINS = 24  # precomputed phase locations: 24 keeps the table (7 MB float32) cache-friendly; mean pose deviation from the exact blend ~0.7 cm

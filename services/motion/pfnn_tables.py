@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from services.motion.pfnn import N_OUT, N_POSE
+from services.motion.pfnn_layout import N_OUT, N_POSE
 
 N_CONTROL = 60
 N_HEAD = N_CONTROL + 1  # control and the constant 1 (bias row)

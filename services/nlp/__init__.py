@@ -24,3 +24,26 @@ parse, resolve (names, pronouns, one object node per object), errors (diagnostic
 also reads Fountain screenplays through wana.screenplay).
 The pipeline is rebuilt by ``scripts/train_nlp.py``.
 """
+
+import sys as _sys
+
+
+def _load_thinc_without_torch() -> None:
+    """Import thinc (spaCy's ML layer) without torch: parsing runs on thinc's numpy ops.
+
+    ``thinc.compat`` imports torch whenever it is installed, which costs about 1.3 s of every start-up
+    although the shipped pipeline (a CNN tok2vec) never calls it. A ``None`` entry in ``sys.modules``
+    makes that ``import torch`` fail fast; the entry is removed at once, so training code that imports
+    torch later in the same process still gets it. A process that already imported torch is left alone.
+    """
+    if "torch" in _sys.modules or "thinc" in _sys.modules:
+        return
+    _sys.modules["torch"] = None  # type: ignore[assignment]
+    try:
+        import thinc.compat  # noqa: F401
+    finally:
+        if _sys.modules.get("torch", ...) is None:
+            del _sys.modules["torch"]
+
+
+_load_thinc_without_torch()

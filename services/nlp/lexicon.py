@@ -455,9 +455,15 @@ VERB_OVERRIDES: dict[str, str] = {
 @functools.lru_cache(maxsize=1)
 def _library() -> tuple[frozenset[str], dict[str, str]]:
     try:
-        from wana.domain.actions import action_names, synonym_index
+        from wana.domain.clip_headers import clip_headers
 
-        return frozenset(action_names()), synonym_index()
+        headers = clip_headers()  # names and synonyms only: no keyframes to build at start-up
+        synonyms: dict[str, str] = {}
+        for h in headers.values():  # as wana.domain.actions.synonym_index orders them
+            synonyms.setdefault(h.name.replace("_", " "), h.name)
+            for s in h.synonyms:
+                synonyms.setdefault(s.lower(), h.name)
+        return frozenset(headers), synonyms
     except Exception:  # the motion library is optional for parsing: fall back to the overrides alone
         return frozenset(set(ACTION_OVERRIDES.values()) | set(VERB_OVERRIDES.values()) - {""}), {}
 
@@ -470,12 +476,9 @@ def action_names() -> frozenset[str]:
 def _clip_info() -> dict[str, tuple[frozenset[str], str]]:
     """Action name -> (its tags, the object its interaction touches: "person", a category or "")."""
     try:
-        from wana.domain.actions import load_library
+        from wana.domain.clip_headers import clip_headers
 
-        return {
-            name: (frozenset(clip.tags), clip.interaction.object if clip.interaction else "")
-            for name, clip in load_library().items()
-        }
+        return {name: (frozenset(h.tags), h.interaction_object) for name, h in clip_headers().items()}
     except Exception:
         return {}
 

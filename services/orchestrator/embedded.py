@@ -9,6 +9,7 @@ from __future__ import annotations
 import logging
 import threading
 import uuid
+from collections.abc import Callable
 from types import TracebackType
 
 import zmq
@@ -21,6 +22,26 @@ from wana.bus.service import make_frame_handler
 from wana.bus.worker import Worker
 
 log = logging.getLogger(__name__)
+
+
+def lazy_frame_handler(service: str) -> Callable[[bytes], bytes]:
+    """A worker's frame handler that imports the service's handlers on its first job, in its own thread.
+
+    Importing every service (spaCy, open3d, onnxruntime, trimesh...) before the first compute would keep
+    the pipeline waiting seconds for stages it reaches much later; the worker heartbeats while a job
+    runs, so the import inside the first job is safe.
+    """
+    ready: list[Callable[[bytes], bytes]] = []
+    lock = threading.Lock()
+
+    def handle(payload: bytes) -> bytes:
+        if not ready:
+            with lock:
+                if not ready:
+                    ready.append(make_frame_handler(contract(service)))
+        return ready[0](payload)
+
+    return handle
 
 
 class Embedded:
@@ -41,7 +62,7 @@ class Embedded:
         self._broker = Broker(self.url, context=self.context)
         self.threads.append(self._broker.start_thread())
         for service in self.services:
-            worker = Worker(service, make_frame_handler(contract(service)), self.url, context=self.context)
+            worker = Worker(service, lazy_frame_handler(service), self.url, context=self.context)
             t = threading.Thread(
                 target=worker.run, kwargs={"stop": self.stop}, name=f"wana-{service}", daemon=True
             )

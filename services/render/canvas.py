@@ -34,6 +34,18 @@ _LOCK = threading.Lock()  # guards _ACTIVE
 _ACTIVE: list[Canvas] = []  # the open canvas, if any
 
 
+def to_uint8(rgb: np.ndarray) -> np.ndarray:
+    """(H, W, 3) float read-back in [0, 1] -> uint8, rounded; in place on one float32 buffer.
+
+    The legacy visualiser reads back only floats; one scaled float32 copy, clipped and added to in place,
+    then one cast is half the cost of ``np.clip(rgb * 255 + 0.5, 0, 255)`` (float64 temporaries).
+    """
+    scaled = np.multiply(rgb, 255.0, dtype=np.float32)
+    scaled += 0.5
+    np.clip(scaled, 0.0, 255.0, out=scaled)
+    return scaled.astype(np.uint8)
+
+
 class Canvas:
     """An offscreen drawing surface of a fixed size.
 
@@ -179,8 +191,7 @@ class Canvas:
         ctl.set_constant_z_far(100.0)
         ctl.convert_from_pinhole_camera_parameters(params, allow_arbitrary=True)
         self._vis.update_renderer()
-        rgb = np.asarray(self._vis.capture_screen_float_buffer(do_render=True))
-        frame = np.clip(rgb * 255.0 + 0.5, 0, 255).astype(np.uint8)
+        frame = to_uint8(np.asarray(self._vis.capture_screen_float_buffer(do_render=True)))
         depth = None
         if with_depth:
             depth = np.asarray(self._vis.capture_depth_float_buffer(do_render=False), dtype=np.float32)

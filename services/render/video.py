@@ -8,6 +8,8 @@ joined video has exactly the frames of the chunks, in order, and plays without a
 from __future__ import annotations
 
 import io
+import queue
+import threading
 from collections.abc import Iterable
 from fractions import Fraction
 from pathlib import Path
@@ -28,8 +30,16 @@ def _even(frame: np.ndarray) -> np.ndarray:
     return frame
 
 
+QUEUE_FRAMES = 8  # frames in flight between the renderer and the encoder thread (about 7 MB at 640x480)
+_END = None  # the producer's last item
+
+
 def encode_mp4(frames: Iterable[np.ndarray], out: str | Path | io.BytesIO, fps: int = FPS) -> int:
-    """Encode RGB frames to an H.264 MP4.
+    """Encode RGB frames to an H.264 MP4, the encoding on a thread of its own.
+
+    The caller's thread pulls the frames (rendering them, when ``frames`` is a renderer's generator)
+    while the encoder thread converts and compresses the previous ones: PyAV and x264 release the GIL,
+    so the two overlap instead of taking turns. A bounded queue keeps memory flat.
 
     Args:
         frames: (H, W, 3) uint8 arrays, all the same size.
@@ -42,38 +52,68 @@ def encode_mp4(frames: Iterable[np.ndarray], out: str | Path | io.BytesIO, fps: 
     Raises:
         ValueError: no frames, or frames of different sizes.
     """
-    container = None
-    stream = None
+    target = str(out) if isinstance(out, (str, Path)) else out
+    pending: queue.Queue[np.ndarray | None] = queue.Queue(maxsize=QUEUE_FRAMES)
+    failures: list[BaseException] = []
+
+    def encoder() -> None:
+        container = None
+        try:
+            stream = None
+            n = 0
+            while (frame := pending.get()) is not _END:
+                if container is None:
+                    container = av.open(target, mode="w", format="mp4")
+                    stream = container.add_stream("libx264", rate=fps, options=dict(ENCODER_OPTIONS))
+                    stream.width, stream.height = frame.shape[1], frame.shape[0]
+                    stream.pix_fmt = "yuv420p"
+                    stream.codec_context.time_base = Fraction(1, fps)
+                assert stream is not None  # opened together with the container
+                vf = av.VideoFrame.from_ndarray(frame, format="rgb24")
+                vf.pts = n
+                for packet in stream.encode(vf):
+                    container.mux(packet)
+                n += 1
+            if container is not None and stream is not None and not failures:
+                for packet in stream.encode():
+                    container.mux(packet)
+        except BaseException as exc:  # handed to the caller's thread, which raises it
+            failures.append(exc)
+            while pending.get() is not _END:  # let the producer finish putting
+                pass
+        finally:
+            if container is not None:
+                container.close()
+
+    thread = threading.Thread(target=encoder, name="mp4-encoder", daemon=True)
+    thread.start()
     n = 0
     size: tuple[int, int] | None = None
-    target = str(out) if isinstance(out, (str, Path)) else out
     try:
         for frame in frames:
-            frame = _even(np.ascontiguousarray(frame, dtype=np.uint8))
+            if failures:
+                break
+            frame = _even(
+                np.array(frame, dtype=np.uint8, order="C")
+            )  # a copy: the caller may reuse its buffer
             if frame.ndim != 3 or frame.shape[2] != 3:
                 raise ValueError(f"frames must be (H, W, 3) uint8, got {frame.shape}")
-            if container is None:
-                container = av.open(target, mode="w", format="mp4")
-                stream = container.add_stream("libx264", rate=fps, options=dict(ENCODER_OPTIONS))
-                stream.width, stream.height = frame.shape[1], frame.shape[0]
-                stream.pix_fmt = "yuv420p"
-                stream.codec_context.time_base = Fraction(1, fps)
+            if size is None:
                 size = frame.shape[:2]
             elif frame.shape[:2] != size:
                 raise ValueError(f"frame {n} is {frame.shape[:2]}, the video is {size}")
-            assert stream is not None  # opened together with the container
-            vf = av.VideoFrame.from_ndarray(frame, format="rgb24")
-            vf.pts = n
-            for packet in stream.encode(vf):
-                container.mux(packet)
+            pending.put(frame)
             n += 1
-        if container is None or stream is None:
-            raise ValueError("no frames to encode")
-        for packet in stream.encode():
-            container.mux(packet)
+    except BaseException as exc:
+        failures.append(exc)  # the encoder stops at the end marker without finishing the file
+        raise
     finally:
-        if container is not None:
-            container.close()
+        pending.put(_END)
+        thread.join()
+    if failures:
+        raise failures[0]
+    if n == 0:
+        raise ValueError("no frames to encode")
     return n
 
 

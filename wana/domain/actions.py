@@ -14,20 +14,18 @@ from __future__ import annotations
 
 import functools
 import json
-import os
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from wana.domain import quat
-from wana.domain.paths import asset_path
+from wana.domain.clip_headers import ACTIONS_DIR, clip_headers, library_dirs
+from wana.domain.clip_headers import IMPORTED_DIR as IMPORTED_DIR  # re-exported: services/motion/cli.py
 from wana.domain.posing import neutral
 from wana.domain.skeleton import JOINT_INDEX, JOINT_NAMES, N_JOINTS
 from wana.domain.units import FPS
 
-ACTIONS_DIR = asset_path("actions")
-IMPORTED_DIR = ACTIONS_DIR / "imported"
 EULER_ORDER = "ZYX"
 
 BODY_PARTS = ("full_body", "upper_body", "lower_body", "left_arm", "right_arm", "spine", "head", "legs")
@@ -233,14 +231,6 @@ def clip_from_dict(d: dict, source: str = "authored") -> ActionClip:
         raise ValueError(f"clip file is missing field {exc}") from exc
 
 
-def _library_dirs() -> list[Path]:
-    dirs = [ACTIONS_DIR, IMPORTED_DIR]
-    extra = os.environ.get("WANA_ACTIONS_DIR")
-    if extra:
-        dirs.append(Path(extra))
-    return dirs
-
-
 @functools.lru_cache(maxsize=4)
 def _load(dirs: tuple[Path, ...]) -> dict[str, ActionClip]:
     clips: dict[str, ActionClip] = {}
@@ -259,12 +249,13 @@ def _load(dirs: tuple[Path, ...]) -> dict[str, ActionClip]:
 
 def load_library() -> dict[str, ActionClip]:
     """All clips by name (authored, then imported, then $WANA_ACTIONS_DIR; later ones win)."""
-    return dict(_load(tuple(_library_dirs())))
+    return dict(_load(tuple(library_dirs())))
 
 
 def reload_library() -> dict[str, ActionClip]:
     """Forget the cache (after an import) and load again."""
     _load.cache_clear()
+    clip_headers.cache_clear()  # type: ignore[attr-defined]
     return load_library()
 
 
