@@ -25,10 +25,13 @@ const state = {
 
 const viewer = new Viewer($("viewport"));
 const pane = new TextPane({
-  textarea: $("text"),
-  backdrop: $("backdrop"),
+  parent: $("text"),
   list: $("diagnostics"),
   onInput: () => state.live?.flush(),
+  vocabulary: () => ({
+    characters: (state.animation?.characters ?? []).map((c) => c.name),
+    sceneObjects: (state.animation?.objects ?? []).map((o) => o.category),
+  }),
 });
 const timeline = new Timeline({
   playButton: $("play"),
@@ -106,8 +109,8 @@ async function open(docId) {
   state.holdings = new Holdings();
   if (location.hash !== `#doc=${docId}`) history.replaceState(null, "", `#doc=${docId}`);
   state.live = new LiveDocument(docId, {
-    getText: () => pane.getText(),
-    setText: (text, change) => pane.setText(text, change),
+    view: () => pane.view,
+    reset: (text) => pane.reset(text),
     onMessage,
     onStatus: (status) => {
       const badge = $("connection");
@@ -135,7 +138,7 @@ $("doc-picker").addEventListener("change", (e) => open(e.target.value));
 $("new-doc").addEventListener("click", async () => {
   const doc = await createDocument("", `untitled ${new Date().toLocaleString()}`);
   await open(doc.doc_id);
-  $("text").focus();
+  pane.view.focus();
 });
 for (const button of document.querySelectorAll("#exports button")) {
   button.addEventListener("click", async () => {
@@ -170,7 +173,7 @@ directorButton.addEventListener("click", () => {
   loadDirector();
 });
 document.addEventListener("keydown", (e) => {
-  if (e.target !== document.body) return; // typing in the text area
+  if (e.target !== document.body) return; // typing in the text
   if (e.code === "Space") {
     e.preventDefault();
     timeline.toggle();

@@ -1,0 +1,51 @@
+// Quick fixes for a diagnostic: "did you mean 'sit'?" replaces the word; a missing object gets a scene
+// sentence that adds it.
+
+/** The words a diagnostic message suggests ("...; did you mean 'sit' or 'sits'?"). */
+export function suggestedWords(message) {
+  const m = /did you mean (.+)\?/.exec(message);
+  if (!m) return [];
+  return [...m[1].matchAll(/'([^']+)'|"([^"]+)"/g)].map((x) => x[1] ?? x[2]);
+}
+
+/** An object the message says is missing from the scene ("no armchair in the scene"), or null. */
+export function missingObject(message) {
+  const m = /\bno (?:free )?([a-z][a-z ]*?) (?:in the scene|in the room|to sit on|is in the scene)/i.exec(message);
+  return m ? m[1] : null;
+}
+
+/**
+ * CodeMirror lint actions for one server diagnostic.
+ * @param {{message: string}} d the diagnostic
+ * @param {string} marked the text the mark covers now
+ */
+export function quickFixes(d, marked) {
+  const actions = [];
+  for (const word of suggestedWords(d.message)) {
+    actions.push({
+      name: `did you mean ${word}?`,
+      apply(view, from, to) {
+        // replace the first word of the marked span that is not the suggestion (the unknown one)
+        const text = view.state.sliceDoc(from, to);
+        const m = /[A-Za-z][\w'-]*/.exec(text);
+        const at = m ? from + m.index : from;
+        const end = m ? at + m[0].length : to;
+        view.dispatch({ changes: { from: at, to: end, insert: word } });
+      },
+    });
+  }
+  const missing = missingObject(d.message);
+  if (missing) {
+    actions.push({
+      name: `add a ${missing} to the scene`,
+      apply(view) {
+        const doc = view.state.doc.toString();
+        const line = `There is a ${missing} in the room$. `;
+        view.dispatch({ changes: { from: 0, to: 0, insert: line } });
+        void doc;
+      },
+    });
+  }
+  void marked;
+  return actions;
+}
