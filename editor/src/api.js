@@ -75,8 +75,9 @@ export async function fetchExport(docId, format) {
 }
 
 /** Download an export; resolves to a message for the status line. */
-export async function downloadExport(docId, format) {
-  const response = await fetch(apiUrl(`/api/documents/${encodeURIComponent(docId)}/export/${format}`), {
+export async function downloadExport(docId, format, character = "") {
+  const query = character ? `?character=${encodeURIComponent(character)}` : "";
+  const response = await fetch(apiUrl(`/api/documents/${encodeURIComponent(docId)}/export/${format}${query}`), {
     headers: authHeaders(),
   });
   if (!response.ok) {

@@ -3,6 +3,8 @@
 import "./style.css";
 import { createDocument, downloadExport, fetchExport, getDocument, listDocuments } from "./api.js";
 import { directorCamera } from "./directorcam.js";
+import { fillExamples, renderHelp } from "./help.js";
+import { VOCABULARY } from "./vocabulary.js";
 import { LiveDocument } from "./connection.js";
 import { Holdings } from "./holdings.js";
 import { TextPane } from "./textpane.js";
@@ -27,7 +29,10 @@ const viewer = new Viewer($("viewport"));
 const pane = new TextPane({
   parent: $("text"),
   list: $("diagnostics"),
-  onInput: () => state.live?.flush(),
+  onInput: () => {
+    state.live?.flush();
+    updateExports();
+  },
   vocabulary: () => ({
     characters: (state.animation?.characters ?? []).map((c) => c.name),
     sceneObjects: (state.animation?.objects ?? []).map((o) => o.category),
@@ -68,6 +73,7 @@ function showAnimation(received) {
   if (state.directorOn) loadDirector();
   viewer.invalidate();
   timeline.setLength(msg.frames, msg.fps);
+  updateExports();
   $("progress-bar").style.width = "0";
   $("progress-text").textContent = msg.characters.length || msg.objects.length
     ? `v${msg.version}: ${msg.objects.length} objects, ${msg.characters.length} characters, ${msg.stats.total_ms ?? msg.stats.compute_ms} ms`
@@ -79,6 +85,8 @@ function onMessage(msg) {
   switch (msg.type) {
     case "state":
       $("doc-version").textContent = `v${msg.version}`;
+      $("export-status").textContent = "";
+      updateExports();
       break;
     case "ack":
       $("doc-version").textContent = `v${msg.version}`;
@@ -107,6 +115,8 @@ async function open(docId) {
   state.docId = docId;
   state.version = null;
   state.holdings = new Holdings();
+  state.animation = null;
+  updateExports();
   if (location.hash !== `#doc=${docId}`) history.replaceState(null, "", `#doc=${docId}`);
   state.live = new LiveDocument(docId, {
     view: () => pane.view,
@@ -140,12 +150,64 @@ $("new-doc").addEventListener("click", async () => {
   await open(doc.doc_id);
   pane.view.focus();
 });
+/** Exports need something to export: a non-empty text (and, for BVH, a character). */
+function updateExports() {
+  const empty = !pane.getText().trim();
+  for (const button of document.querySelectorAll("#exports button")) {
+    const noCharacters = button.dataset.format === "bvh" && !(state.animation?.characters ?? []).length;
+    button.disabled = empty || noCharacters;
+  }
+}
 for (const button of document.querySelectorAll("#exports button")) {
   button.addEventListener("click", async () => {
-    $("export-status").textContent = `${button.dataset.format.toUpperCase()}…`;
-    $("export-status").textContent = await downloadExport(state.docId, button.dataset.format);
+    const format = button.dataset.format;
+    const docId = state.docId;
+    const status = $("export-status");
+    status.textContent = `${format.toUpperCase()}…`;
+    if (format === "bvh") {
+      // one BVH per character of the animation shown
+      const names = (state.animation?.characters ?? []).map((c) => c.name);
+      const done = [];
+      for (const name of names) {
+        status.textContent = `BVH ${name} (${done.length + 1}/${names.length})…`;
+        done.push(await downloadExport(docId, "bvh", name));
+      }
+      if (docId === state.docId) status.textContent = done.join("; ");
+      return;
+    }
+    const message = await downloadExport(docId, format);
+    if (docId === state.docId) status.textContent = message;
   });
 }
+$("help-toggle").addEventListener("click", () => {
+  const help = $("help");
+  help.hidden = !help.hidden;
+  $("help-toggle").setAttribute("aria-expanded", String(!help.hidden));
+  if (!help.hidden) help.querySelector("summary")?.focus();
+});
+renderHelp($("help"));
+fillExamples($("example-picker"));
+$("example-picker").addEventListener("change", async (e) => {
+  const example = VOCABULARY.examples[Number(e.target.value)];
+  e.target.value = "";
+  if (!example) return;
+  const doc = await createDocument(example.text, example.title);
+  await open(doc.doc_id);
+});
+$("viewport").addEventListener("keydown", (e) => {
+  const step = Math.PI / 18;
+  const moves = { ArrowLeft: [step, 0], ArrowRight: [-step, 0], ArrowUp: [0, step], ArrowDown: [0, -step] };
+  const move = moves[e.key];
+  if (move) {
+    e.preventDefault();
+    viewer.orbitBy(...move);
+  } else if (e.key === "f") {
+    viewer.frameCharacters();
+  } else if (e.key === " ") {
+    e.preventDefault();
+    timeline.toggle();
+  }
+});
 $("focus").addEventListener("click", () => viewer.frameCharacters());
 
 // "Director" plays the camera the MP4 is rendered with (read from the render service's scene.glb);

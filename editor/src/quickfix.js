@@ -17,17 +17,18 @@ export function missingObject(message) {
 /**
  * CodeMirror lint actions for one server diagnostic.
  * @param {{message: string}} d the diagnostic
- * @param {string} marked the text the mark covers now
  */
-export function quickFixes(d, marked) {
+export function quickFixes(d) {
   const actions = [];
   for (const word of suggestedWords(d.message)) {
     actions.push({
       name: `did you mean ${word}?`,
       apply(view, from, to) {
-        // replace the first word of the marked span that is not the suggestion (the unknown one)
+        // replace the word the message quotes ("'sitts' is not an action ..."), else the first word marked
         const text = view.state.sliceDoc(from, to);
-        const m = /[A-Za-z][\w'-]*/.exec(text);
+        const unknown = /^'([^']+)'/.exec(d.message)?.[1];
+        const index = unknown ? text.indexOf(unknown) : -1;
+        const m = index >= 0 ? { index, 0: unknown } : /[A-Za-z][\w'-]*/.exec(text);
         const at = m ? from + m.index : from;
         const end = m ? at + m[0].length : to;
         view.dispatch({ changes: { from: at, to: end, insert: word } });
@@ -39,13 +40,9 @@ export function quickFixes(d, marked) {
     actions.push({
       name: `add a ${missing} to the scene`,
       apply(view) {
-        const doc = view.state.doc.toString();
-        const line = `There is a ${missing} in the room$. `;
-        view.dispatch({ changes: { from: 0, to: 0, insert: line } });
-        void doc;
+        view.dispatch({ changes: { from: 0, to: 0, insert: `There is a ${missing} in the room$. ` } });
       },
     });
   }
-  void marked;
   return actions;
 }

@@ -136,7 +136,7 @@ export class TextPane {
         severity: d.severity === "error" ? "error" : d.severity === "warning" ? "warning" : "info",
         source: d.code,
         message: d.message,
-        actions: quickFixes(d, this.view.state.sliceDoc(from, to)),
+        actions: quickFixes(d),
       });
     }
     const marks = [];
