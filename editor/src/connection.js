@@ -19,6 +19,7 @@ export class LiveDocument {
   /**
    * @param {string} docId
    * @param {{view: () => import("@codemirror/view").EditorView, reset: (text: string) => void,
+   *          selection: () => {anchor: number, head: number}, onPresence: (msg: object, confirmed: string) => void,
    *          onMessage: (msg: object) => void, onStatus: (status: string) => void}} hooks
    */
   constructor(docId, hooks) {
@@ -86,6 +87,21 @@ export class LiveDocument {
     this.seq += 1;
     this.inFlight = { count: updates.length, seq: this.seq, changes, text: applyChanges(this.confirmed, changes) };
     this.ws.send(JSON.stringify({ type: "edit", base_version: this.version, changes, client_seq: this.seq }));
+  }
+
+  /** Tell the other tabs where the selection is, once nothing local is unconfirmed (throttled). */
+  sendPresence() {
+    if (this.presenceTimer) return;
+    this.presenceTimer = setTimeout(() => {
+      this.presenceTimer = null;
+      if (!this.ready || this.ws?.readyState !== WebSocket.OPEN) return;
+      if (this.inFlight || this.unconfirmed().length) return; // sent again once acknowledged
+      const sel = this.hooks.selection();
+      const key = `${this.version}:${sel.anchor}:${sel.head}`;
+      if (key === this.presenceSent) return;
+      this.presenceSent = key;
+      this.ws.send(JSON.stringify({ type: "presence", version: this.version, anchor: sel.anchor, head: sel.head }));
+    }, 80);
   }
 
   /** Apply the buffered versions that are next in line. */
@@ -168,6 +184,10 @@ export class LiveDocument {
         }
         break;
       }
+      case "presence": {
+        if (msg.gone || msg.version === this.version) this.hooks.onPresence(msg, this.confirmed);
+        break;
+      }
       case "error": {
         if (this.inFlight && msg.client_seq === this.inFlight.seq) {
           // refused (too large, bad range): drop the local changes, back to the server's text
@@ -180,6 +200,9 @@ export class LiveDocument {
         break;
     }
     this.hooks.onMessage(msg);
-    queueMicrotask(() => this.flush());
+    queueMicrotask(() => {
+      this.flush();
+      if (msg.type === "ack" || msg.type === "state") this.sendPresence();
+    });
   }
 }

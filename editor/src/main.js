@@ -33,6 +33,7 @@ const pane = new TextPane({
     state.live?.flush();
     updateExports();
   },
+  onSelection: () => state.live?.sendPresence(),
   vocabulary: () => ({
     characters: (state.animation?.characters ?? []).map((c) => c.name),
     sceneObjects: (state.animation?.objects ?? []).map((o) => o.category),
@@ -121,6 +122,8 @@ async function open(docId) {
   state.live = new LiveDocument(docId, {
     view: () => pane.view,
     reset: (text) => pane.reset(text),
+    selection: () => pane.selectionCp(),
+    onPresence: (msg, confirmed) => pane.showRemoteCaret(msg, confirmed),
     onMessage,
     onStatus: (status) => {
       const badge = $("connection");

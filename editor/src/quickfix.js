@@ -14,13 +14,24 @@ export function missingObject(message) {
   return m ? m[1] : null;
 }
 
+/** "sit" for "sitts" in a sentence -> "sits": an action keeps the third person the writer used. */
+export function inflectLike(suggestion, unknown, message) {
+  const isAction = /not an action/.test(message);
+  if (!isAction || !/s$/.test(unknown) || /s$/.test(suggestion) || suggestion.includes(" ")) return suggestion;
+  if (/(s|sh|ch|x|z)$/.test(suggestion)) return `${suggestion}es`;
+  if (/[^aeiou]y$/.test(suggestion)) return `${suggestion.slice(0, -1)}ies`;
+  return `${suggestion}s`;
+}
+
 /**
  * CodeMirror lint actions for one server diagnostic.
  * @param {{message: string}} d the diagnostic
  */
 export function quickFixes(d) {
   const actions = [];
-  for (const word of suggestedWords(d.message)) {
+  const unknown = /^'([^']+)'/.exec(d.message)?.[1] ?? "";
+  for (const suggestion of suggestedWords(d.message)) {
+    const word = inflectLike(suggestion, unknown, d.message);
     actions.push({
       name: `did you mean ${word}?`,
       apply(view, from, to) {

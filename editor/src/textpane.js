@@ -12,7 +12,8 @@ import { lintGutter, lintKeymap, setDiagnostics } from "@codemirror/lint";
 import { EditorState, StateEffect, StateField, Transaction } from "@codemirror/state";
 import { Decoration, EditorView, keymap, placeholder } from "@codemirror/view";
 import { quickFixes } from "./quickfix.js";
-import { cpToUtf16 } from "./textdiff.js";
+import { remoteCarets, setRemoteCaret } from "./remotecarets.js";
+import { cpToUtf16, utf16ToCp } from "./textdiff.js";
 import { storyCompletions } from "./vocabulary.js";
 
 const setSentences = StateEffect.define();
@@ -60,8 +61,9 @@ export class TextPane {
    * @param {{parent: HTMLElement, list: HTMLElement, onInput: () => void, vocabulary: () => object}} opts
    *   vocabulary() gives {characters, sceneObjects} of the current animation for completion.
    */
-  constructor({ parent, list, onInput, vocabulary }) {
+  constructor({ parent, list, onInput, vocabulary, onSelection = () => {} }) {
     this.parent = parent;
+    this.onSelection = onSelection;
     this.list = list;
     this.onInput = onInput;
     this.vocabulary = vocabulary;
@@ -86,9 +88,11 @@ export class TextPane {
         lintGutter(),
         sentenceField,
         activeField,
+        remoteCarets,
         theme,
         EditorView.updateListener.of((u) => {
           if (u.docChanged && u.transactions.some((tr) => !tr.annotation(Transaction.remote))) this.onInput();
+          if (u.selectionSet || u.docChanged) this.onSelection();
         }),
       ],
     });
@@ -114,6 +118,25 @@ export class TextPane {
       const pos = Math.min(cpToUtf16(confirmed, cp), confirmed.length);
       return local ? local.mapPos(pos, assoc) : pos;
     };
+  }
+
+  /** Where this tab's selection is, in code points of the text now. */
+  selectionCp() {
+    const text = this.getText();
+    const { anchor, head } = this.view.state.selection.main;
+    return { anchor: utf16ToCp(text, anchor), head: utf16ToCp(text, head) };
+  }
+
+  /** Show (or, with `gone`, remove) another tab's caret; positions are code points of `confirmed`. */
+  showRemoteCaret(msg, confirmed) {
+    if (msg.gone) {
+      this.view.dispatch({ effects: setRemoteCaret.of({ client: msg.client, head: null }) });
+      return;
+    }
+    const at = this.mapper(confirmed);
+    this.view.dispatch({
+      effects: setRemoteCaret.of({ client: msg.client, anchor: at(msg.anchor, 1), head: at(msg.head, 1) }),
+    });
   }
 
   /** Show a diagnostics message when it belongs to the version this tab has (`confirmed` is its text). */

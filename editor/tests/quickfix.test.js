@@ -1,6 +1,6 @@
 import assert from "node:assert/strict";
 import { test } from "node:test";
-import { missingObject, suggestedWords } from "../src/quickfix.js";
+import { inflectLike, missingObject, suggestedWords } from "../src/quickfix.js";
 
 test("the words a diagnostic suggests are read from its message", () => {
   assert.deepEqual(suggestedWords("'sitts' is not an action in the motion library; did you mean 'sit'?"), ["sit"]);
@@ -11,4 +11,11 @@ test("the words a diagnostic suggests are read from its message", () => {
 test("a missing object is named from the message", () => {
   assert.equal(missingObject("Eve sits on the armchair but there is no armchair in the scene"), "armchair");
   assert.equal(missingObject("the animation does not show this: Eve is not at the door"), null);
+});
+
+test("an action suggestion keeps the writer's third person", () => {
+  const msg = "'sitts' is not an action in the motion library; did you mean 'sit'?";
+  assert.equal(inflectLike("sit", "sitts", msg), "sits");
+  assert.equal(inflectLike("carry", "carrys", "'carrys' is not an action"), "carries");
+  assert.equal(inflectLike("chair", "chiars", "'chiars' is not in the object catalog"), "chair");
 });

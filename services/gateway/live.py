@@ -13,6 +13,7 @@ import asyncio
 import collections
 import dataclasses
 import logging
+import secrets
 import time
 from concurrent.futures import Executor
 from dataclasses import dataclass, field
@@ -43,6 +44,7 @@ class Client:
 
     ws: WebSocket
     lock: asyncio.Lock = field(default_factory=asyncio.Lock)
+    client_id: str = field(default_factory=lambda: secrets.token_hex(4))  # names its caret for the others
     holdings: Holdings = field(default_factory=Holdings)
 
     async def _send_text(self, text: str) -> bool:
@@ -118,6 +120,15 @@ class DocumentChannel:
 
     def detach(self, client: Client) -> None:
         self.clients.discard(client)
+
+    async def relay_presence(self, client: Client, version: int, anchor: int, head: int | None) -> None:
+        """Tell the other clients where this client's selection is (head None: it left)."""
+        message: dict[str, Any] = {"type": "presence", "client": client.client_id, "version": version}
+        if head is None:
+            message["gone"] = True
+        else:
+            message.update(anchor=anchor, head=head)
+        await self.broadcast(message, exclude=client)
 
     async def broadcast(self, message: dict[str, Any], *, exclude: Client | None = None) -> None:
         """Send one message to every client (but `exclude`), encoded once."""

@@ -123,6 +123,10 @@ def test_undo_after_a_remote_edit_undoes_only_the_local_change(browser: Any, tmp
         a.keyboard.type(AT_START)
         assert settled_text(a) == AT_START + BASE
         b.wait_for_function(f"() => wana.pane.getText() === {AT_START + BASE!r}")
+        # B shows A's caret where A left it
+        b.wait_for_selector(".cm-remote-caret", state="attached", timeout=10_000)
+        caret_at = "() => wana.pane.view.posAtDOM(document.querySelector('.cm-remote-caret'))"
+        b.wait_for_function(f"() => ({caret_at})() === {len(AT_START)}", timeout=10_000)
         put_caret(b, "end")
         b.keyboard.type(AT_END)
         a.wait_for_function(f"() => wana.pane.getText() === {AT_START + BASE + AT_END!r}")
