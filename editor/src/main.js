@@ -30,6 +30,7 @@ const pane = new TextPane({
   parent: $("text"),
   list: $("diagnostics"),
   onInput: () => {
+    state.lastInput = performance.now();
     state.live?.flush();
     updateExports();
   },
@@ -247,9 +248,19 @@ document.addEventListener("keydown", (e) => {
   }
 });
 
+// While the writer types, the 3D view draws at most every TYPING_FRAME_MS so keystrokes stay responsive;
+// the clock keeps running, so playback stays in time and catches up at once when typing stops.
+const TYPING_QUIET_MS = 400;
+const TYPING_FRAME_MS = 150;
+state.lastInput = -Infinity;
+state.lastDraw = 0;
 function frameLoop(now) {
-  timeline.tick(now);
-  viewer.render();
+  const typing = now - state.lastInput < TYPING_QUIET_MS;
+  if (!typing || now - state.lastDraw >= TYPING_FRAME_MS) {
+    state.lastDraw = now;
+    timeline.tick(now); // poses the figures and highlights the sentences playing
+    viewer.render();
+  }
   requestAnimationFrame(frameLoop);
 }
 requestAnimationFrame(frameLoop);
