@@ -1,7 +1,7 @@
 // The wana editor: text on the left, the live animation on the right, one WebSocket per document.
 
 import "./style.css";
-import { createDocument, downloadExport, fetchExport, getDocument, listDocuments } from "./api.js";
+import { createDocument, deleteDocument, downloadExport, fetchExport, getDocument, listDocuments } from "./api.js";
 import { directorCamera } from "./directorcam.js";
 import { fillExamples, renderHelp } from "./help.js";
 import { VOCABULARY } from "./vocabulary.js";
@@ -87,11 +87,14 @@ function onMessage(msg) {
   switch (msg.type) {
     case "state":
       $("doc-version").textContent = `v${msg.version}`;
+      showPickerVersion(msg.version);
       $("export-status").textContent = "";
       updateExports();
       break;
     case "ack":
+    case "remote_edit":
       $("doc-version").textContent = `v${msg.version}`;
+      showPickerVersion(msg.version);
       break;
     case "progress":
       state.progress = msg;
@@ -135,6 +138,12 @@ async function open(docId) {
   await refreshPicker();
 }
 
+/** The open document's entry in the picker shows its live version. */
+function showPickerVersion(version) {
+  const option = [...$("doc-picker").options].find((o) => o.value === state.docId);
+  if (option) option.textContent = `${option.dataset.title} (v${version})`;
+}
+
 async function refreshPicker() {
   const picker = $("doc-picker");
   const docs = await listDocuments().catch(() => []);
@@ -142,13 +151,24 @@ async function refreshPicker() {
   for (const d of docs) {
     const option = document.createElement("option");
     option.value = d.doc_id;
-    option.textContent = `${d.title || d.doc_id} (v${d.version})`;
+    option.dataset.title = d.title || d.doc_id;
+    option.textContent = `${option.dataset.title} (v${d.doc_id === state.docId && state.live?.version != null ? state.live.version : d.version})`;
     option.selected = d.doc_id === state.docId;
     picker.appendChild(option);
   }
 }
 
 $("doc-picker").addEventListener("change", (e) => open(e.target.value));
+$("delete-doc").addEventListener("click", async () => {
+  const title = $("doc-picker").selectedOptions[0]?.dataset.title ?? state.docId;
+  if (!state.docId || !window.confirm(`Delete "${title}"? This cannot be undone.`)) return;
+  const gone = state.docId;
+  state.live?.close();
+  await deleteDocument(gone).catch(() => null);
+  const docs = await listDocuments().catch(() => []);
+  const next = docs.find((d) => d.doc_id !== gone) ?? (await createDocument("", "untitled"));
+  await open(next.doc_id);
+});
 $("new-doc").addEventListener("click", async () => {
   const doc = await createDocument("", `untitled ${new Date().toLocaleString()}`);
   await open(doc.doc_id);

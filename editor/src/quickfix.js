@@ -8,6 +8,11 @@ export function suggestedWords(message) {
   return [...m[1].matchAll(/'([^']+)'|"([^"]+)"/g)].map((x) => x[1] ?? x[2]);
 }
 
+/** The word a message quotes as unknown ("unknown action word: 'sitts' is not an action ..."). */
+export function unknownWord(message) {
+  return /'([^']+)' is not/.exec(message)?.[1] ?? "";
+}
+
 /** An object the message says is missing from the scene ("no armchair in the scene"), or null. */
 export function missingObject(message) {
   const m = /\bno (?:free )?([a-z][a-z ]*?) (?:in the scene|in the room|to sit on|is in the scene)/i.exec(message);
@@ -29,7 +34,7 @@ export function inflectLike(suggestion, unknown, message) {
  */
 export function quickFixes(d) {
   const actions = [];
-  const unknown = /^'([^']+)'/.exec(d.message)?.[1] ?? "";
+  const unknown = unknownWord(d.message);
   for (const suggestion of suggestedWords(d.message)) {
     const word = inflectLike(suggestion, unknown, d.message);
     actions.push({
@@ -37,7 +42,6 @@ export function quickFixes(d) {
       apply(view, from, to) {
         // replace the word the message quotes ("'sitts' is not an action ..."), else the first word marked
         const text = view.state.sliceDoc(from, to);
-        const unknown = /^'([^']+)'/.exec(d.message)?.[1];
         const index = unknown ? text.indexOf(unknown) : -1;
         const m = index >= 0 ? { index, 0: unknown } : /[A-Za-z][\w'-]*/.exec(text);
         const at = m ? from + m.index : from;

@@ -1,6 +1,6 @@
 import assert from "node:assert/strict";
 import { test } from "node:test";
-import { inflectLike, missingObject, suggestedWords } from "../src/quickfix.js";
+import { inflectLike, missingObject, suggestedWords, unknownWord } from "../src/quickfix.js";
 
 test("the words a diagnostic suggests are read from its message", () => {
   assert.deepEqual(suggestedWords("'sitts' is not an action in the motion library; did you mean 'sit'?"), ["sit"]);
@@ -18,4 +18,9 @@ test("an action suggestion keeps the writer's third person", () => {
   assert.equal(inflectLike("sit", "sitts", msg), "sits");
   assert.equal(inflectLike("carry", "carrys", "'carrys' is not an action"), "carries");
   assert.equal(inflectLike("chair", "chiars", "'chiars' is not in the object catalog"), "chair");
+});
+
+test("the unknown word is the one the message quotes", () => {
+  assert.equal(unknownWord("unknown action word: 'sitts' is not an action in the motion library; did you mean 'sit'?"), "sitts");
+  assert.equal(unknownWord("sentence has no verb"), "");
 });

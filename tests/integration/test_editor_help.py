@@ -97,6 +97,15 @@ def test_exports_are_disabled_on_an_empty_document_and_an_example_loads(browser:
     assert page.evaluate("() => document.querySelector('#exports button[data-format=glb]').disabled") is False
     page.click("#help-toggle")
     assert page.is_visible("#help") and "ending in $" in page.text_content("#help")
+    # the picker shows the open document's live version; Delete removes it and opens another
+    example_doc = page.evaluate("() => wana.state.docId")
+    page.wait_for_function(
+        "() => document.querySelector('#doc-picker').selectedOptions[0].textContent.endsWith('(v' + wana.state.live.version + ')')"
+    )
+    page.once("dialog", lambda d: d.accept())
+    page.click("#delete-doc")
+    page.wait_for_function(f"() => wana.state.docId !== {example_doc!r} && wana.state.live.ready")
+    assert httpx.get(f"{gateway.base_url}/api/documents/{example_doc}").status_code == 404
     assert not errors, errors
     page.close()
 
