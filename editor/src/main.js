@@ -9,6 +9,7 @@ import { LiveDocument } from "./connection.js";
 import { Holdings } from "./holdings.js";
 import { TextPane } from "./textpane.js";
 import { Timeline } from "./timeline.js";
+import { Tracks } from "./tracks.js";
 import { Viewer } from "./viewer.js";
 
 const $ = (id) => document.getElementById(id);
@@ -46,9 +47,33 @@ const timeline = new Timeline({
   label: $("time"),
   onFrame: (f) => {
     viewer.setFrame(f);
+    tracks.setFrame(f);
     pane.setActive(viewer.characters.flatMap((c) => c.activeSentences(f)));
   },
 });
+
+const tracks = new Tracks($("tracks"), {
+  seek: (frame) => {
+    timeline.pause();
+    timeline.seek(frame / (state.animation?.fps || 30));
+  },
+  selectSentence: (sid) => {
+    const s = state.diagnostics?.sentences.find((x) => x.id === sid);
+    if (s) pane.select(s.start, s.end);
+  },
+});
+$("speed").addEventListener("change", (e) => {
+  timeline.speed = Number(e.target.value);
+});
+$("loop").addEventListener("change", (e) => {
+  timeline.loop = e.target.checked;
+});
+
+/** A sentence's text (code points of the text the diagnostics were computed for), "" when unknown. */
+function sentenceText(sid) {
+  const s = state.diagnostics?.sentences.find((x) => x.id === sid);
+  return s ? Array.from(pane.getText()).slice(s.start, s.end).join("") : "";
+}
 
 function showProgress(msg) {
   const fraction = msg.total ? msg.done / msg.total : 1;
@@ -75,6 +100,7 @@ function showAnimation(received) {
   if (state.directorOn) loadDirector();
   viewer.invalidate();
   timeline.setLength(msg.frames, msg.fps);
+  tracks.render(msg, sentenceText);
   updateExports();
   $("progress-bar").style.width = "0";
   $("progress-text").textContent = msg.characters.length || msg.objects.length

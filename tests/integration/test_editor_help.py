@@ -9,6 +9,7 @@ Skips as test_editor_browser does.
 
 from __future__ import annotations
 
+import re
 from typing import Any
 
 import httpx
@@ -16,7 +17,7 @@ import pytest
 
 from services.gateway.server import GatewayThread
 from services.gateway.settings import Settings
-from tests.integration.test_editor_browser import ARTIFACTS, DIST, browser  # noqa: F401
+from tests.integration.test_editor_browser import ARTIFACTS, DIST, REPO, browser  # noqa: F401
 
 pytestmark = [pytest.mark.browser, pytest.mark.slow, pytest.mark.integration]
 
@@ -138,5 +139,40 @@ def test_the_phone_layout_stacks_and_diagnostics_are_reached_by_keyboard(browser
         "() => { const s = wana.pane.view.state; const r = s.selection.main; return s.sliceDoc(r.from, r.to); }"
     )
     assert "sitts" in selected
+    assert not errors, errors
+    page.close()
+
+
+def test_the_timeline_has_a_track_per_character_and_a_clip_seeks_and_selects_its_sentence(
+    browser: Any,  # noqa: F811
+    gateway: Any,
+) -> None:
+    story = (REPO / "examples" / "office.txt").read_text(encoding="utf-8")
+    errors: list[str] = []
+    page = open_doc(browser, gateway, story, {"width": 1280, "height": 800}, errors)
+    page.wait_for_function(
+        "() => wana.state.animation && wana.state.animation.characters.length >= 2 && document.querySelector('#tracks .clip')",
+        timeout=180_000,
+    )
+    names = page.evaluate(
+        "() => [...document.querySelectorAll('#tracks .track-name')].map(e => e.textContent)"
+    )
+    characters = page.evaluate("() => wana.state.animation.characters.map(c => c.name)")
+    assert names[: len(characters)] == characters and names[-1] == "camera"
+    clip = page.locator("#tracks .clip", has_text=re.compile(r"^wave.*: Tom waves")).first
+    clip.focus()
+    page.keyboard.press("Enter")  # keyboard reaches the timeline
+    start = page.evaluate(
+        """() => { const c = wana.state.animation.characters.find(c => c.name === 'Tom');
+            return c.segments.find(s => s.action.startsWith('wave')).start_frame; }"""
+    )
+    assert page.evaluate("() => wana.timeline.frame") == start
+    selected = page.evaluate(
+        "() => { const s = wana.pane.view.state; const r = s.selection.main; return s.sliceDoc(r.from, r.to); }"
+    )
+    assert selected.strip() == "Tom waves at Eve."
+    page.screenshot(path=str(ARTIFACTS / "editor-timeline.png"))
+    page.select_option("#speed", "2")
+    assert page.evaluate("() => wana.timeline.speed") == 2
     assert not errors, errors
     page.close()
