@@ -76,11 +76,18 @@ export async function fetchExport(docId, format) {
 }
 
 /** Download an export; resolves to a message for the status line. */
-export async function downloadExport(docId, format, character = "") {
+export async function downloadExport(docId, format, character = "", signal = undefined) {
   const query = character ? `?character=${encodeURIComponent(character)}` : "";
-  const response = await fetch(apiUrl(`/api/documents/${encodeURIComponent(docId)}/export/${format}${query}`), {
-    headers: authHeaders(),
-  });
+  let response;
+  try {
+    response = await fetch(apiUrl(`/api/documents/${encodeURIComponent(docId)}/export/${format}${query}`), {
+      headers: authHeaders(),
+      signal,
+    });
+  } catch (err) {
+    if (err.name === "AbortError") return `${format.toUpperCase()} cancelled`;
+    throw err;
+  }
   if (!response.ok) {
     let message = `${format.toUpperCase()} export failed (${response.status})`;
     try {

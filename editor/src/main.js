@@ -203,12 +203,12 @@ $("new-doc").addEventListener("click", async () => {
 /** Exports need something to export: a non-empty text (and, for BVH, a character). */
 function updateExports() {
   const empty = !pane.getText().trim();
-  for (const button of document.querySelectorAll("#exports button")) {
+  for (const button of document.querySelectorAll("#exports button[data-format]")) {
     const noCharacters = button.dataset.format === "bvh" && !(state.animation?.characters ?? []).length;
     button.disabled = empty || noCharacters;
   }
 }
-for (const button of document.querySelectorAll("#exports button")) {
+for (const button of document.querySelectorAll("#exports button[data-format]")) {
   button.addEventListener("click", async () => {
     const format = button.dataset.format;
     const docId = state.docId;
@@ -225,7 +225,24 @@ for (const button of document.querySelectorAll("#exports button")) {
       if (docId === state.docId) status.textContent = done.join("; ");
       return;
     }
-    const message = await downloadExport(docId, format);
+    // MP4 and GLB render on the server: show the time it has taken, and let the writer cancel
+    const abort = new AbortController();
+    const started = performance.now();
+    const cancel = $("export-cancel");
+    cancel.hidden = false;
+    cancel.onclick = () => abort.abort();
+    const ticker = setInterval(() => {
+      if (docId === state.docId) status.textContent = `${format.toUpperCase()} rendering… ${((performance.now() - started) / 1000).toFixed(0)} s`;
+    }, 500);
+    let message;
+    try {
+      message = await downloadExport(docId, format, "", abort.signal);
+    } catch (err) {
+      message = String(err.message || err);
+    } finally {
+      clearInterval(ticker);
+      cancel.hidden = true;
+    }
     if (docId === state.docId) status.textContent = message;
   });
 }

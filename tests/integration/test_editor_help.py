@@ -92,10 +92,16 @@ def test_completion_offers_characters_and_actions(browser: Any, gateway: Any) ->
 def test_exports_are_disabled_on_an_empty_document_and_an_example_loads(browser: Any, gateway: Any) -> None:  # noqa: F811
     errors: list[str] = []
     page = open_doc(browser, gateway, "", {"width": 1280, "height": 720}, errors)
-    assert page.evaluate("() => [...document.querySelectorAll('#exports button')].every(b => b.disabled)")
+    assert page.evaluate("() => [...document.querySelectorAll('#exports button[data-format]')].every(b => b.disabled)")
     page.select_option("#example-picker", index=1)
     page.wait_for_function("() => wana.pane.getText().includes('$')", timeout=30_000)
     assert page.evaluate("() => document.querySelector('#exports button[data-format=glb]').disabled") is False
+    # an MP4 shows its progress and can be cancelled
+    page.click("#exports button[data-format=mp4]")
+    page.wait_for_selector("#export-cancel", state="visible")
+    page.click("#export-cancel")
+    page.wait_for_function("() => document.getElementById('export-status').textContent === 'MP4 cancelled'")
+    assert page.is_hidden("#export-cancel")
     page.click("#help-toggle")
     assert page.is_visible("#help") and "ending in $" in page.text_content("#help")
     # the picker shows the open document's live version; Delete removes it and opens another
