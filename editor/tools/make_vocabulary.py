@@ -50,7 +50,9 @@ def build() -> dict[str, object]:
         "commands": [f"camera {c.replace('_', ' ')}" for c in camera]
         + sorted(set(commands.WEATHER_VALUES.values()))
         + ["wait 2 seconds", "faster", "slower"],
-        "examples": [{"title": t, "text": p.read_text(encoding="utf-8").strip()} for t, p in EXAMPLES if p.is_file()],
+        "examples": [
+            {"title": t, "text": p.read_text(encoding="utf-8").strip()} for t, p in EXAMPLES if p.is_file()
+        ],
     }
 
 

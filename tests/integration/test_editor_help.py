@@ -92,7 +92,9 @@ def test_completion_offers_characters_and_actions(browser: Any, gateway: Any) ->
 def test_exports_are_disabled_on_an_empty_document_and_an_example_loads(browser: Any, gateway: Any) -> None:  # noqa: F811
     errors: list[str] = []
     page = open_doc(browser, gateway, "", {"width": 1280, "height": 720}, errors)
-    assert page.evaluate("() => [...document.querySelectorAll('#exports button[data-format]')].every(b => b.disabled)")
+    assert page.evaluate(
+        "() => [...document.querySelectorAll('#exports button[data-format]')].every(b => b.disabled)"
+    )
     page.select_option("#example-picker", index=1)
     page.wait_for_function("() => wana.pane.getText().includes('$')", timeout=30_000)
     assert page.evaluate("() => document.querySelector('#exports button[data-format=glb]').disabled") is False
