@@ -63,6 +63,7 @@ async function call(method, path, body) {
 
 export const listDocuments = () => call("GET", "/api/documents");
 export const createDocument = (text = "", title = "") => call("POST", "/api/documents", { text, title });
+export const deleteDocument = (docId) => call("DELETE", `/api/documents/${encodeURIComponent(docId)}`);
 export const getDocument = (docId) => call("GET", `/api/documents/${encodeURIComponent(docId)}`);
 
 /** An export's bytes (ArrayBuffer), e.g. scene.glb with the director's camera; throws on failure. */
@@ -75,10 +76,18 @@ export async function fetchExport(docId, format) {
 }
 
 /** Download an export; resolves to a message for the status line. */
-export async function downloadExport(docId, format) {
-  const response = await fetch(apiUrl(`/api/documents/${encodeURIComponent(docId)}/export/${format}`), {
-    headers: authHeaders(),
-  });
+export async function downloadExport(docId, format, character = "", signal = undefined) {
+  const query = character ? `?character=${encodeURIComponent(character)}` : "";
+  let response;
+  try {
+    response = await fetch(apiUrl(`/api/documents/${encodeURIComponent(docId)}/export/${format}${query}`), {
+      headers: authHeaders(),
+      signal,
+    });
+  } catch (err) {
+    if (err.name === "AbortError") return `${format.toUpperCase()} cancelled`;
+    throw err;
+  }
   if (!response.ok) {
     let message = `${format.toUpperCase()} export failed (${response.status})`;
     try {

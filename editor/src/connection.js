@@ -1,24 +1,35 @@
-// The live document: keeps the text in sync with the gateway over the document WebSocket.
+// The live document: CodeMirror's collab extension against the gateway, which is the authority on versions.
 //
-// One edit is in flight at a time, always based on the last acknowledged version, so edits typed while
-// waiting are coalesced into the next one. A `stale` reply or a `remote_edit` from another client is
-// rebased; on reconnect the client resumes with its last version and rebases onto the server's text.
+// The gateway orders every edit (version N+1 is applied to version N); this client sends its unconfirmed
+// CodeMirror updates as one edit against the last version it has, at most one edit in flight. Acks and
+// other tabs' `remote_edit`s may arrive out of order (each is sent by its own coroutine), so they are
+// buffered by version and applied strictly in order through `receiveUpdates`, which rebases the local
+// unconfirmed changes over remote ones, maps carets and keeps the undo history per client (remote changes
+// are not added to it). A `stale` reply carries the edits this client missed; it resends after applying them.
+// On reconnect the server's whole text is rebased onto as one remote change.
 
+import { getClientID, receiveUpdates, sendableUpdates } from "@codemirror/collab";
 import { liveUrl } from "./api.js";
-import { applyChanges, diff, rebase } from "./textdiff.js";
+import { fromWire, toWire } from "./collabwire.js";
+import { applyChanges, diff } from "./textdiff.js";
+
+const SERVER_ID = "gateway"; // the clientID of every change that is not this tab's own
 
 export class LiveDocument {
   /**
    * @param {string} docId
-   * @param {{getText: () => string, setText: (text: string, change: object|null) => void,
+   * @param {{view: () => import("@codemirror/view").EditorView, reset: (text: string) => void,
+   *          selection: () => {anchor: number, head: number}, onPresence: (msg: object, confirmed: string) => void,
    *          onMessage: (msg: object) => void, onStatus: (status: string) => void}} hooks
    */
   constructor(docId, hooks) {
     this.docId = docId;
     this.hooks = hooks;
-    this.version = null; // last version acknowledged by the server
+    this.version = null; // last version applied here (the server's numbering)
     this.confirmed = ""; // the text at `version`
-    this.inFlight = null; // {text, seq} of the edit awaiting its ack
+    this.inFlight = null; // {count, seq, changes, text} of the edit awaiting its ack
+    this.pending = new Map(); // version -> {own} | {changes}: received ahead of their turn
+    this.waitFor = 0; // after a stale reply: send nothing until this version has been applied
     this.seq = 0;
     this.ready = false;
     this.closed = false;
@@ -60,66 +71,128 @@ export class LiveDocument {
     this.ws?.close();
   }
 
-  /** Call after every local change of the text; sends it when no edit is in flight. */
-  flush() {
-    if (!this.ready || this.inFlight || this.ws.readyState !== WebSocket.OPEN) return;
-    const text = this.hooks.getText();
-    const change = diff(this.confirmed, text);
-    if (!change) return;
-    this.seq += 1;
-    this.inFlight = { text, seq: this.seq };
-    this.ws.send(JSON.stringify({ type: "edit", base_version: this.version, changes: [change], client_seq: this.seq }));
+  /** Local changes not yet acknowledged (CodeMirror updates, oldest first). */
+  unconfirmed() {
+    return sendableUpdates(this.hooks.view().state);
   }
 
-  adopt(serverText, version) {
-    const local = this.hooks.getText();
-    const { text, local: change } = rebase(this.confirmed, local, serverText);
-    this.confirmed = serverText;
+  /** Call after every local change of the text; sends the unconfirmed changes when no edit is in flight. */
+  flush() {
+    if (!this.ready || this.inFlight || this.ws?.readyState !== WebSocket.OPEN) return;
+    if (this.version < this.waitFor) return;
+    const updates = this.unconfirmed();
+    if (!updates.length) return;
+    const composed = updates.slice(1).reduce((a, u) => a.compose(u.changes), updates[0].changes);
+    const changes = toWire(composed, this.confirmed);
+    this.seq += 1;
+    this.inFlight = { count: updates.length, seq: this.seq, changes, text: applyChanges(this.confirmed, changes) };
+    this.ws.send(JSON.stringify({ type: "edit", base_version: this.version, changes, client_seq: this.seq }));
+  }
+
+  /** Tell the other tabs where the selection is, once nothing local is unconfirmed (throttled). */
+  sendPresence() {
+    if (this.presenceTimer) return;
+    this.presenceTimer = setTimeout(() => {
+      this.presenceTimer = null;
+      if (!this.ready || this.ws?.readyState !== WebSocket.OPEN) return;
+      if (this.inFlight || this.unconfirmed().length) return; // sent again once acknowledged
+      const sel = this.hooks.selection();
+      const key = `${this.version}:${sel.anchor}:${sel.head}`;
+      if (key === this.presenceSent) return;
+      this.presenceSent = key;
+      this.ws.send(JSON.stringify({ type: "presence", version: this.version, anchor: sel.anchor, head: sel.head }));
+    }, 80);
+  }
+
+  /** Apply the buffered versions that are next in line. */
+  drain() {
+    const view = this.hooks.view();
+    while (this.pending.has(this.version + 1)) {
+      const next = this.pending.get(this.version + 1);
+      this.pending.delete(this.version + 1);
+      if (next.own) {
+        const own = this.unconfirmed().slice(0, this.inFlight.count);
+        const clientID = getClientID(view.state);
+        view.dispatch(receiveUpdates(view.state, own.map((u) => ({ changes: u.changes, clientID }))));
+        this.confirmed = this.inFlight.text;
+        this.inFlight = null;
+      } else {
+        const changes = fromWire(next.changes, this.confirmed);
+        view.dispatch(receiveUpdates(view.state, [{ changes, clientID: SERVER_ID }]));
+        this.confirmed = applyChanges(this.confirmed, next.changes);
+      }
+      this.version += 1;
+    }
+    for (const v of this.pending.keys()) if (v <= this.version) this.pending.delete(v);
+  }
+
+  /** Move to the server's whole text at `version`, as one remote change (local changes rebased over it). */
+  jump(text, version) {
+    const change = diff(this.confirmed, text);
+    if (change) {
+      const view = this.hooks.view();
+      const changes = fromWire([change], this.confirmed);
+      view.dispatch(receiveUpdates(view.state, [{ changes, clientID: SERVER_ID }]));
+    }
+    this.confirmed = text;
     this.version = version;
-    if (text !== local) this.hooks.setText(text, change);
+    for (const v of this.pending.keys()) if (v <= version) this.pending.delete(v);
+    this.drain();
   }
 
   receive(msg) {
     switch (msg.type) {
       case "state": {
-        if (this.inFlight && msg.text === this.inFlight.text) {
-          this.confirmed = msg.text; // the edit in flight when the connection dropped was acknowledged
-          this.version = msg.version;
-        } else if (this.version === null) {
+        if (this.version === null) {
           this.confirmed = msg.text;
           this.version = msg.version;
-          this.hooks.setText(msg.text, null);
-        } else {
-          this.adopt(msg.text, msg.version);
+          this.hooks.reset(msg.text);
+        } else if (this.inFlight && msg.text === this.inFlight.text && msg.version === this.version + 1) {
+          this.pending.set(msg.version, { own: true }); // the edit in flight when the connection dropped landed
+          this.drain();
+        } else if (msg.version !== this.version || msg.text !== this.confirmed) {
+          this.inFlight = null;
+          this.jump(msg.text, msg.version);
         }
         this.inFlight = null;
+        this.waitFor = 0;
         this.ready = true;
         break;
       }
       case "ack": {
         if (this.inFlight && msg.client_seq === this.inFlight.seq) {
-          this.confirmed = this.inFlight.text;
-          this.version = msg.version;
-          this.inFlight = null;
+          this.pending.set(msg.version, { own: true });
+          this.drain();
+        }
+        break;
+      }
+      case "remote_edit": {
+        if (this.version !== null && msg.version > this.version) {
+          this.pending.set(msg.version, { changes: msg.changes });
+          this.drain();
         }
         break;
       }
       case "stale": {
-        this.inFlight = null;
-        this.adopt(msg.text, msg.current_version);
+        if (this.inFlight && msg.client_seq === this.inFlight.seq) this.inFlight = null;
+        this.waitFor = Math.max(this.waitFor, msg.current_version);
+        if (msg.updates) {
+          for (const u of msg.updates) if (u.version > this.version) this.pending.set(u.version, { changes: u.changes });
+          this.drain();
+        } else if (msg.current_version > this.version) {
+          this.jump(msg.text, msg.current_version);
+        }
         break;
       }
-      case "remote_edit": {
-        if (msg.base_version === this.version && !this.inFlight) {
-          this.adopt(applyChanges(this.confirmed, msg.changes), msg.version);
-        }
-        // with an edit in flight, the server answers it `stale` and we rebase then
+      case "presence": {
+        if (msg.gone || msg.version === this.version) this.hooks.onPresence(msg, this.confirmed);
         break;
       }
       case "error": {
         if (this.inFlight && msg.client_seq === this.inFlight.seq) {
-          this.inFlight = null; // refused (too large, bad range): go back to the server's text
-          this.hooks.setText(this.confirmed, null);
+          // refused (too large, bad range): drop the local changes, back to the server's text
+          this.inFlight = null;
+          this.hooks.reset(this.confirmed);
         }
         break;
       }
@@ -127,6 +200,9 @@ export class LiveDocument {
         break;
     }
     this.hooks.onMessage(msg);
-    queueMicrotask(() => this.flush());
+    queueMicrotask(() => {
+      this.flush();
+      if (msg.type === "ack" || msg.type === "state") this.sendPresence();
+    });
   }
 }

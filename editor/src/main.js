@@ -1,12 +1,15 @@
 // The wana editor: text on the left, the live animation on the right, one WebSocket per document.
 
 import "./style.css";
-import { createDocument, downloadExport, fetchExport, getDocument, listDocuments } from "./api.js";
+import { createDocument, deleteDocument, downloadExport, fetchExport, getDocument, listDocuments } from "./api.js";
 import { directorCamera } from "./directorcam.js";
+import { fillExamples, renderHelp } from "./help.js";
+import { VOCABULARY } from "./vocabulary.js";
 import { LiveDocument } from "./connection.js";
 import { Holdings } from "./holdings.js";
 import { TextPane } from "./textpane.js";
 import { Timeline } from "./timeline.js";
+import { Tracks } from "./tracks.js";
 import { Viewer } from "./viewer.js";
 
 const $ = (id) => document.getElementById(id);
@@ -25,10 +28,18 @@ const state = {
 
 const viewer = new Viewer($("viewport"));
 const pane = new TextPane({
-  textarea: $("text"),
-  backdrop: $("backdrop"),
+  parent: $("text"),
   list: $("diagnostics"),
-  onInput: () => state.live?.flush(),
+  onInput: () => {
+    state.lastInput = performance.now();
+    state.live?.flush();
+    updateExports();
+  },
+  onSelection: () => state.live?.sendPresence(),
+  vocabulary: () => ({
+    characters: (state.animation?.characters ?? []).map((c) => c.name),
+    sceneObjects: (state.animation?.objects ?? []).map((o) => o.category),
+  }),
 });
 const timeline = new Timeline({
   playButton: $("play"),
@@ -36,9 +47,33 @@ const timeline = new Timeline({
   label: $("time"),
   onFrame: (f) => {
     viewer.setFrame(f);
+    tracks.setFrame(f);
     pane.setActive(viewer.characters.flatMap((c) => c.activeSentences(f)));
   },
 });
+
+const tracks = new Tracks($("tracks"), {
+  seek: (frame) => {
+    timeline.pause();
+    timeline.seek(frame / (state.animation?.fps || 30));
+  },
+  selectSentence: (sid) => {
+    const s = state.diagnostics?.sentences.find((x) => x.id === sid);
+    if (s) pane.select(s.start, s.end);
+  },
+});
+$("speed").addEventListener("change", (e) => {
+  timeline.speed = Number(e.target.value);
+});
+$("loop").addEventListener("change", (e) => {
+  timeline.loop = e.target.checked;
+});
+
+/** A sentence's text (code points of the text the diagnostics were computed for), "" when unknown. */
+function sentenceText(sid) {
+  const s = state.diagnostics?.sentences.find((x) => x.id === sid);
+  return s ? Array.from(pane.getText()).slice(s.start, s.end).join("") : "";
+}
 
 function showProgress(msg) {
   const fraction = msg.total ? msg.done / msg.total : 1;
@@ -65,6 +100,8 @@ function showAnimation(received) {
   if (state.directorOn) loadDirector();
   viewer.invalidate();
   timeline.setLength(msg.frames, msg.fps);
+  tracks.render(msg, sentenceText);
+  updateExports();
   $("progress-bar").style.width = "0";
   $("progress-text").textContent = msg.characters.length || msg.objects.length
     ? `v${msg.version}: ${msg.objects.length} objects, ${msg.characters.length} characters, ${msg.stats.total_ms ?? msg.stats.compute_ms} ms`
@@ -76,9 +113,14 @@ function onMessage(msg) {
   switch (msg.type) {
     case "state":
       $("doc-version").textContent = `v${msg.version}`;
+      showPickerVersion(msg.version);
+      $("export-status").textContent = "";
+      updateExports();
       break;
     case "ack":
+    case "remote_edit":
       $("doc-version").textContent = `v${msg.version}`;
+      showPickerVersion(msg.version);
       break;
     case "progress":
       state.progress = msg;
@@ -104,10 +146,14 @@ async function open(docId) {
   state.docId = docId;
   state.version = null;
   state.holdings = new Holdings();
+  state.animation = null;
+  updateExports();
   if (location.hash !== `#doc=${docId}`) history.replaceState(null, "", `#doc=${docId}`);
   state.live = new LiveDocument(docId, {
-    getText: () => pane.getText(),
-    setText: (text, change) => pane.setText(text, change),
+    view: () => pane.view,
+    reset: (text) => pane.reset(text),
+    selection: () => pane.selectionCp(),
+    onPresence: (msg, confirmed) => pane.showRemoteCaret(msg, confirmed),
     onMessage,
     onStatus: (status) => {
       const badge = $("connection");
@@ -118,6 +164,12 @@ async function open(docId) {
   await refreshPicker();
 }
 
+/** The open document's entry in the picker shows its live version. */
+function showPickerVersion(version) {
+  const option = [...$("doc-picker").options].find((o) => o.value === state.docId);
+  if (option) option.textContent = `${option.dataset.title} (v${version})`;
+}
+
 async function refreshPicker() {
   const picker = $("doc-picker");
   const docs = await listDocuments().catch(() => []);
@@ -125,24 +177,104 @@ async function refreshPicker() {
   for (const d of docs) {
     const option = document.createElement("option");
     option.value = d.doc_id;
-    option.textContent = `${d.title || d.doc_id} (v${d.version})`;
+    option.dataset.title = d.title || d.doc_id;
+    option.textContent = `${option.dataset.title} (v${d.doc_id === state.docId && state.live?.version != null ? state.live.version : d.version})`;
     option.selected = d.doc_id === state.docId;
     picker.appendChild(option);
   }
 }
 
 $("doc-picker").addEventListener("change", (e) => open(e.target.value));
+$("delete-doc").addEventListener("click", async () => {
+  const title = $("doc-picker").selectedOptions[0]?.dataset.title ?? state.docId;
+  if (!state.docId || !window.confirm(`Delete "${title}"? This cannot be undone.`)) return;
+  const gone = state.docId;
+  state.live?.close();
+  await deleteDocument(gone).catch(() => null);
+  const docs = await listDocuments().catch(() => []);
+  const next = docs.find((d) => d.doc_id !== gone) ?? (await createDocument("", "untitled"));
+  await open(next.doc_id);
+});
 $("new-doc").addEventListener("click", async () => {
   const doc = await createDocument("", `untitled ${new Date().toLocaleString()}`);
   await open(doc.doc_id);
-  $("text").focus();
+  pane.view.focus();
 });
-for (const button of document.querySelectorAll("#exports button")) {
+/** Exports need something to export: a non-empty text (and, for BVH, a character). */
+function updateExports() {
+  const empty = !pane.getText().trim();
+  for (const button of document.querySelectorAll("#exports button[data-format]")) {
+    const noCharacters = button.dataset.format === "bvh" && !(state.animation?.characters ?? []).length;
+    button.disabled = empty || noCharacters;
+  }
+}
+for (const button of document.querySelectorAll("#exports button[data-format]")) {
   button.addEventListener("click", async () => {
-    $("export-status").textContent = `${button.dataset.format.toUpperCase()}…`;
-    $("export-status").textContent = await downloadExport(state.docId, button.dataset.format);
+    const format = button.dataset.format;
+    const docId = state.docId;
+    const status = $("export-status");
+    status.textContent = `${format.toUpperCase()}…`;
+    if (format === "bvh") {
+      // one BVH per character of the animation shown
+      const names = (state.animation?.characters ?? []).map((c) => c.name);
+      const done = [];
+      for (const name of names) {
+        status.textContent = `BVH ${name} (${done.length + 1}/${names.length})…`;
+        done.push(await downloadExport(docId, "bvh", name));
+      }
+      if (docId === state.docId) status.textContent = done.join("; ");
+      return;
+    }
+    // MP4 and GLB render on the server: show the time it has taken, and let the writer cancel
+    const abort = new AbortController();
+    const started = performance.now();
+    const cancel = $("export-cancel");
+    cancel.hidden = false;
+    cancel.onclick = () => abort.abort();
+    const ticker = setInterval(() => {
+      if (docId === state.docId) status.textContent = `${format.toUpperCase()} rendering… ${((performance.now() - started) / 1000).toFixed(0)} s`;
+    }, 500);
+    let message;
+    try {
+      message = await downloadExport(docId, format, "", abort.signal);
+    } catch (err) {
+      message = String(err.message || err);
+    } finally {
+      clearInterval(ticker);
+      cancel.hidden = true;
+    }
+    if (docId === state.docId) status.textContent = message;
   });
 }
+$("help-toggle").addEventListener("click", () => {
+  const help = $("help");
+  help.hidden = !help.hidden;
+  $("help-toggle").setAttribute("aria-expanded", String(!help.hidden));
+  if (!help.hidden) help.querySelector("summary")?.focus();
+});
+renderHelp($("help"));
+fillExamples($("example-picker"));
+$("example-picker").addEventListener("change", async (e) => {
+  const example = VOCABULARY.examples[Number(e.target.value)];
+  e.target.value = "";
+  if (!example) return;
+  const doc = await createDocument(example.text, example.title);
+  await open(doc.doc_id);
+});
+$("viewport").addEventListener("keydown", (e) => {
+  const step = Math.PI / 18;
+  const moves = { ArrowLeft: [step, 0], ArrowRight: [-step, 0], ArrowUp: [0, step], ArrowDown: [0, -step] };
+  const move = moves[e.key];
+  if (move) {
+    e.preventDefault();
+    viewer.orbitBy(...move);
+  } else if (e.key === "f") {
+    viewer.frameCharacters();
+  } else if (e.key === " ") {
+    e.preventDefault();
+    timeline.toggle();
+  }
+});
 $("focus").addEventListener("click", () => viewer.frameCharacters());
 
 // "Director" plays the camera the MP4 is rendered with (read from the render service's scene.glb);
@@ -170,7 +302,7 @@ directorButton.addEventListener("click", () => {
   loadDirector();
 });
 document.addEventListener("keydown", (e) => {
-  if (e.target !== document.body) return; // typing in the text area
+  if (e.target !== document.body) return; // typing in the text
   if (e.code === "Space") {
     e.preventDefault();
     timeline.toggle();
@@ -179,9 +311,19 @@ document.addEventListener("keydown", (e) => {
   }
 });
 
+// While the writer types, the 3D view draws at most every TYPING_FRAME_MS so keystrokes stay responsive;
+// the clock keeps running, so playback stays in time and catches up at once when typing stops.
+const TYPING_QUIET_MS = 400;
+const TYPING_FRAME_MS = 150;
+state.lastInput = -Infinity;
+state.lastDraw = 0;
 function frameLoop(now) {
-  timeline.tick(now);
-  viewer.render();
+  const typing = now - state.lastInput < TYPING_QUIET_MS;
+  if (!typing || now - state.lastDraw >= TYPING_FRAME_MS) {
+    state.lastDraw = now;
+    timeline.tick(now); // poses the figures and highlights the sentences playing
+    viewer.render();
+  }
   requestAnimationFrame(frameLoop);
 }
 requestAnimationFrame(frameLoop);

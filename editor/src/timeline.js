@@ -11,6 +11,8 @@ export class Timeline {
     this.time = 0; // seconds
     this.playing = true;
     this.last = null;
+    this.speed = 1; // playback rate
+    this.loop = true; // at the end: start again, or stop
     playButton.addEventListener("click", () => this.toggle());
     scrub.addEventListener("input", () => {
       this.pause();
@@ -57,9 +59,15 @@ export class Timeline {
   tick(now) {
     if (this.playing && this.frames > 1) {
       const dt = this.last === null ? 0 : (now - this.last) / 1000;
-      let t = this.time + Math.min(dt, 0.25);
+      let t = this.time + Math.min(dt, 0.25) * this.speed;
       const length = this.frames / this.fps;
-      if (t >= length) t = t % length;
+      if (t >= length) {
+        if (this.loop) t = t % length;
+        else {
+          t = Math.max(length - 1 / this.fps, 0);
+          this.pause();
+        }
+      }
       this.seek(t);
     }
     this.last = now;

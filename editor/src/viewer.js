@@ -242,6 +242,18 @@ export class Viewer {
   }
 
   /** Aim the camera at the characters (or the room centre) from where it stands. */
+  /** Orbit the free camera by keyboard: azimuth and elevation steps in radians (the director's is left alone). */
+  orbitBy(azimuth, elevation) {
+    if (this.director) return;
+    const offset = this.camera.position.clone().sub(this.controls.target);
+    const s = new THREE.Spherical().setFromVector3(offset);
+    s.theta += azimuth;
+    s.phi = Math.min(Math.max(s.phi - elevation, 0.05), Math.PI / 2 - 0.02);
+    this.camera.position.copy(this.controls.target).add(new THREE.Vector3().setFromSpherical(s));
+    this.camera.lookAt(this.controls.target);
+    this.invalidate();
+  }
+
   frameCharacters() {
     if (!this.characters.length) return this.cameraPreset("");
     const centre = new THREE.Vector3();

@@ -10,8 +10,10 @@ waits for intermediate versions.
 from __future__ import annotations
 
 import asyncio
+import collections
 import dataclasses
 import logging
+import secrets
 import time
 from concurrent.futures import Executor
 from dataclasses import dataclass, field
@@ -29,6 +31,7 @@ from services.orchestrator.session import Orchestrator, Session
 log = logging.getLogger(__name__)
 
 PROGRESS_INTERVAL_S = 0.05  # at most one progress message per stage per interval (plus the last one)
+EDIT_LOG_LENGTH = 1000  # recent edits kept per channel, so a stale client catches up by changes, not text
 
 
 @dataclass(eq=False)
@@ -41,6 +44,7 @@ class Client:
 
     ws: WebSocket
     lock: asyncio.Lock = field(default_factory=asyncio.Lock)
+    client_id: str = field(default_factory=lambda: secrets.token_hex(4))  # names its caret for the others
     holdings: Holdings = field(default_factory=Holdings)
 
     async def _send_text(self, text: str) -> bool:
@@ -84,6 +88,9 @@ class DocumentChannel:
         self._dirty = False
         self._task: asyncio.Task[None] | None = None
         self._progress_sent: dict[str, float] = {}
+        # version -> its changes (base offsets of version - 1), newest last: a client whose edit was stale
+        # gets the edits it missed as they were made, so it rebases its own (CodeMirror collab) exactly.
+        self.edit_log: collections.OrderedDict[int, list[dict[str, Any]]] = collections.OrderedDict()
 
     @property
     def version(self) -> int:
@@ -113,6 +120,15 @@ class DocumentChannel:
 
     def detach(self, client: Client) -> None:
         self.clients.discard(client)
+
+    async def relay_presence(self, client: Client, version: int, anchor: int, head: int | None) -> None:
+        """Tell the other clients where this client's selection is (head None: it left)."""
+        message: dict[str, Any] = {"type": "presence", "client": client.client_id, "version": version}
+        if head is None:
+            message["gone"] = True
+        else:
+            message.update(anchor=anchor, head=head)
+        await self.broadcast(message, exclude=client)
 
     async def broadcast(self, message: dict[str, Any], *, exclude: Client | None = None) -> None:
         """Send one message to every client (but `exclude`), encoded once."""
@@ -146,10 +162,14 @@ class DocumentChannel:
                 "base_version": exc.base_version,
                 "current_version": state["version"],
                 "text": state["text"],
+                "updates": self.missed_edits(exc.base_version, state["version"]),
             }
         except BadEdit as exc:
             return {"type": "error", "code": ErrorCode.INVALID_INPUT, "message": str(exc)}
         changes_json = [{"start": c.start, "end": c.end, "text": c.text} for c in changes]
+        self.edit_log[ack.version] = changes_json
+        while len(self.edit_log) > EDIT_LOG_LENGTH:
+            self.edit_log.popitem(last=False)
         await self.broadcast(
             {
                 "type": "remote_edit",
@@ -162,6 +182,14 @@ class DocumentChannel:
         self.request_compute()
         metrics.EDIT_ACK_SECONDS.observe(time.perf_counter() - arrived)
         return {"type": "ack", "version": ack.version, "changed": list(ack.changed)}
+
+    def missed_edits(self, since: int, until: int) -> list[dict[str, Any]] | None:
+        """The edits after version `since` up to `until` as `remote_edit`-like entries, or None when the
+        log no longer holds them all (the client then rebases onto the stale reply's text)."""
+        wanted = range(since + 1, until + 1)
+        if since > until or any(v not in self.edit_log for v in wanted):
+            return None
+        return [{"base_version": v - 1, "version": v, "changes": self.edit_log[v]} for v in wanted]
 
     # -- computing -----------------------------------------------------------------------------------
     def request_compute(self) -> None:

@@ -33,5 +33,13 @@ class Ping(msgspec.Struct, frozen=True, kw_only=True, tag="ping", tag_field="typ
     nonce: str = ""
 
 
-ClientMessage = Union[Edit, Resume, Ping]  # noqa: UP007 - runtime union for the decoder
+class Presence(msgspec.Struct, frozen=True, kw_only=True, tag="presence", tag_field="type"):
+    """Where this client's selection is (code points of `version`): relayed to the document's other clients."""
+
+    version: int
+    anchor: int
+    head: int
+
+
+ClientMessage = Union[Edit, Resume, Ping, Presence]  # noqa: UP007 - runtime union for the decoder
 decoder = msgspec.json.Decoder(ClientMessage)

@@ -66,7 +66,7 @@ def wait_synced(page: Any, timeout_ms: int = 120_000) -> dict[str, Any]:
     """Wait until the text is acknowledged and the animation of that version arrived; returns its summary."""
     page.wait_for_function(
         """() => { const s = window.wana && window.wana.state; return s && s.live && s.live.ready && !s.live.inFlight
-            && s.live.confirmed === document.getElementById('text').value && s.animation
+            && s.live.confirmed === wana.pane.getText() && !wana.state.live.unconfirmed().length && s.animation
             && s.animation.version === s.live.version; }""",
         timeout=timeout_ms,
     )
@@ -93,7 +93,7 @@ def test_typing_a_story_shows_the_character_and_an_edit_updates_it(browser: Any,
         page.on("pageerror", lambda e: errors.append(str(e)))
         page.goto(f"{gw.base_url}/#doc={doc_id}")
         page.wait_for_function("() => window.wana && window.wana.state.live && window.wana.state.live.ready")
-        page.click("#text")
+        page.click("#text .cm-content")
         page.keyboard.type(SCENE + ACTIONS)
         first = wait_synced(page)
         assert httpx.get(f"{gw.base_url}/api/documents/{doc_id}").json()["text"] == SCENE + ACTIONS
@@ -126,14 +126,16 @@ def test_typing_a_story_shows_the_character_and_an_edit_updates_it(browser: Any,
         # Edit one sentence in one input event: Eve "walks" -> "runs"; a new version animates, her motion
         # changes, and Tom (when both animate) comes as unchanged: his figure is kept, not rebuilt.
         page.evaluate("() => { for (const c of wana.viewer.characters) c.group.userData.before = true; }")
-        text = page.input_value("#text")
+        text = page.evaluate("() => wana.pane.getText()")
         at = text.index("Eve walks") + len("Eve ")
-        page.focus("#text")
-        page.evaluate(f"() => document.getElementById('text').setSelectionRange({at}, {at + len('walks')})")
+        page.focus("#text .cm-content")
+        page.evaluate(
+            f"() => wana.pane.view.dispatch({{selection: {{anchor: {at}, head: {at + len('walks')}}}}})"
+        )
         page.keyboard.insert_text("runs")
         second = wait_synced(page)
         assert second["version"] > first["version"]
-        assert page.input_value("#text") == text[:at] + "runs" + text[at + len("walks") :]
+        assert page.evaluate("() => wana.pane.getText()") == text[:at] + "runs" + text[at + len("walks") :]
         assert (
             second["characters"][0]["root"] != first["characters"][0]["root"]
             or second["characters"][0]["actions"] != first["characters"][0]["actions"]

@@ -33,7 +33,7 @@ def test_the_director_toggle_plays_the_exported_camera(browser: Any, tmp_path: P
         page.on("pageerror", lambda e: errors.append(str(e)))
         page.goto(f"{gw.base_url}/#doc={doc_id}")
         page.wait_for_function("() => window.wana && window.wana.state.live && window.wana.state.live.ready")
-        page.click("#text")
+        page.click("#text .cm-content")
         page.keyboard.type(SCENE + ACTIONS)
         first = wait_synced(page)
         if not first["characters"]:

@@ -7,7 +7,7 @@ from fastapi import APIRouter, WebSocket, WebSocketDisconnect
 
 from proto.common import ErrorCode
 from services.gateway.live import Client, LiveHub
-from services.gateway.protocol import Edit, Ping, Resume, decoder
+from services.gateway.protocol import Edit, Ping, Presence, Resume, decoder
 from services.gateway.security import origin_ok, server_port, token_ok
 from services.gateway.settings import Settings
 from services.orchestrator.document import TextChange
@@ -87,7 +87,10 @@ async def live(websocket: WebSocket, doc_id: str, version: int | None = None) ->
                     await channel.attach(client, message.version)
                 case Ping():
                     await client.send({"type": "pong", "nonce": message.nonce, "version": channel.version})
+                case Presence():
+                    await channel.relay_presence(client, message.version, message.anchor, message.head)
     except WebSocketDisconnect:
         pass
     finally:
         channel.detach(client)
+        await channel.relay_presence(client, channel.version, 0, None)

@@ -80,6 +80,37 @@ def test_a_stale_edit_gets_the_current_version_and_text_to_rebase_on(gateway) ->
     assert gateway.http.get(f"/api/documents/{doc_id}").json()["text"] == "Ann walks."
 
 
+def test_a_stale_edit_gets_the_edits_it_missed_as_they_were_made(gateway) -> None:
+    doc_id = new_doc(gateway, "Eve walks.")
+    with connect(f"{gateway.ws_base}/api/documents/{doc_id}/live") as ws:
+        edit(ws, 0, 0, 3, "Tom")
+        receive_until(ws, lambda m: m["type"] == "ack")
+        edit(ws, 1, 10, 10, " Ann sits.")
+        receive_until(ws, lambda m: m["type"] == "ack")
+        edit(ws, 0, 0, 0, "x")
+        stale = receive_until(ws, lambda m: m["type"] == "stale")[-1]
+        assert stale["updates"] == [
+            {"base_version": 0, "version": 1, "changes": [{"start": 0, "end": 3, "text": "Tom"}]},
+            {"base_version": 1, "version": 2, "changes": [{"start": 10, "end": 10, "text": " Ann sits."}]},
+        ]
+        edit(ws, 2, 0, 0, "x")  # nothing missed: no stale
+        assert receive_until(ws, lambda m: m["type"] in ("ack", "stale"))[-1]["type"] == "ack"
+
+
+def test_a_clients_selection_is_relayed_to_the_others_and_its_leaving_too(gateway) -> None:
+    doc_id = new_doc(gateway, "Eve walks.")
+    url = f"{gateway.ws_base}/api/documents/{doc_id}/live"
+    with connect(url) as a, connect(url) as b:
+        receive_until(a, lambda m: m["type"] == "state")
+        receive_until(b, lambda m: m["type"] == "state")
+        a.send(json.dumps({"type": "presence", "version": 0, "anchor": 4, "head": 9}))
+        seen = receive_until(b, lambda m: m["type"] == "presence")[-1]
+        assert (seen["version"], seen["anchor"], seen["head"]) == (0, 4, 9) and seen["client"]
+        a.close()
+        gone = receive_until(b, lambda m: m["type"] == "presence" and m.get("gone"))[-1]
+        assert gone["client"] == seen["client"]
+
+
 def test_bad_messages_get_errors_and_the_connection_keeps_serving(gateway) -> None:
     doc_id = new_doc(gateway, "Eve walks.")
     with connect(f"{gateway.ws_base}/api/documents/{doc_id}/live") as ws:
