@@ -10,6 +10,8 @@ that a story with one character per object plans as before.
 
 from __future__ import annotations
 
+import hashlib
+from collections import OrderedDict
 from dataclasses import dataclass, field
 
 import msgspec
@@ -79,7 +81,7 @@ class Slotting:
     @property
     def grid(self) -> OccupancyGrid:
         if self._grid is None:
-            self._grid = occupancy_grid(self.scene.room, scene_footprints(self.scene), radius=0.2, cell=0.05)
+            self._grid = _stand_grid(self.scene)
         return self._grid
 
     def claim(self, who: str, action: ActionNode) -> Claim:
@@ -165,6 +167,24 @@ class Slotting:
         if taken is None or taken == names[0]:
             return Claim(action)
         return Claim(action, spot=spots[int(taken)])
+
+
+_GRIDS: OrderedDict[bytes, OccupancyGrid] = OrderedDict()
+
+
+def _stand_grid(scene: Scene) -> OccupancyGrid:
+    """Where a person may stand in the room (cached by the scene's content: every compute of an unchanged
+    layout, and the draft and final passes over it, share one grid)."""
+    key = hashlib.blake2b(msgspec.msgpack.encode(scene), digest_size=16).digest()
+    grid = _GRIDS.get(key)
+    if grid is None:
+        grid = occupancy_grid(scene.room, scene_footprints(scene), radius=0.2, cell=0.05)
+        _GRIDS[key] = grid
+        if len(_GRIDS) > 32:
+            _GRIDS.popitem(last=False)
+    else:
+        _GRIDS.move_to_end(key)
+    return grid
 
 
 __all__ = ["Claim", "Slotting", "find_object"]
