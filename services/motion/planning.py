@@ -24,6 +24,7 @@ from proto.scene import PlacedObject, Scene
 from proto.ssg import ActionNode, CharacterNode
 from services.motion.synthesis import MotionPlan, PlannedSegment
 from wana.domain.actions import ActionClip, contact_targets, get_clip, load_library
+from wana.domain.object_geometry import find_object
 
 RouteFn = Callable[..., np.ndarray]  # (scene, start_xz, goal_xz[, ignore: frozenset[str]]) -> (N, 2)
 SPEEDS = {
@@ -100,18 +101,6 @@ def _fallback_geometry(placed: PlacedObject):
     front = np.array([np.sin(placed.yaw), np.cos(placed.yaw)])
     stand = np.array([placed.position[0], placed.position[2]]) + front * 0.6
     return stand, {}
-
-
-def _find_object(scene: Scene, ref: str) -> PlacedObject | None:
-    if not ref:
-        return None
-    for o in scene.objects:
-        if o.id == ref:
-            return o
-    for o in scene.objects:
-        if o.id.split("#")[0] == ref or o.category == ref:
-            return o
-    return None
 
 
 def seat_slots(placed: PlacedObject, kind: str) -> list[tuple[float, float, float]]:
@@ -228,7 +217,7 @@ def _other_character(
             return ref
     touching = clip is not None and clip.interaction is not None and clip.interaction.object == "person"
     candidates = [n for n in others if n != me]
-    if touching and len(candidates) == 1 and _find_object(scene, node.target or node.destination) is None:
+    if touching and len(candidates) == 1 and find_object(scene, node.target or node.destination) is None:
         return candidates[0]
     return ""
 
@@ -395,7 +384,7 @@ def plan_actions(
             )
             continue
         if "locomotion" in clip.tags:
-            obj = _find_object(scene, node.destination or node.target)
+            obj = find_object(scene, node.destination or node.target)
             if obj is not None:
                 geo = _object_geometry(obj) or _fallback_geometry(obj)
                 goal = geo[0]
@@ -428,7 +417,7 @@ def plan_actions(
         # The first of target, instrument, destination that names an object ("falls asleep on the sofa":
         # a target word that is no object leaves the sofa).
         obj = next(
-            (o for r in (node.target, node.instrument, node.destination) if (o := _find_object(scene, r))),
+            (o for r in (node.target, node.instrument, node.destination) if (o := find_object(scene, r))),
             None,
         )
         seat_pick: tuple[PlacedObject, tuple[float, float, float]] | None = None

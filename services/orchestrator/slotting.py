@@ -20,7 +20,7 @@ import numpy as np
 from proto.scene import PlacedObject, Scene
 from proto.ssg import ActionNode
 from wana.domain.actions import ActionClip, get_clip
-from wana.domain.object_geometry import scene_footprints
+from wana.domain.object_geometry import find_object, scene_footprints
 from wana.domain.routes import OccupancyGrid, occupancy_grid
 from wana.domain.slots import SlotBook, seat_slots, stand_slots
 
@@ -37,19 +37,6 @@ class Claim:
     action: ActionNode
     seat: str = ""
     spot: tuple[float, float] | None = None
-
-
-def find_object(scene: Scene, ref: str) -> PlacedObject | None:
-    """The object an action names, as the motion planner resolves it (id, then base id or category)."""
-    if not ref:
-        return None
-    for o in scene.objects:
-        if o.id == ref:
-            return o
-    for o in scene.objects:
-        if o.id.split("#")[0] == ref or o.category == ref:
-            return o
-    return None
 
 
 def _clip(action: ActionNode) -> ActionClip | None:
@@ -187,4 +174,4 @@ def _stand_grid(scene: Scene) -> OccupancyGrid:
     return grid
 
 
-__all__ = ["Claim", "Slotting", "find_object"]
+__all__ = ["Claim", "Slotting"]

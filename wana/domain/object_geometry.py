@@ -17,6 +17,22 @@ from proto.scene import PlacedObject, Scene
 from wana.domain.routes import Footprints
 
 
+def find_object(scene: Scene, ref: str) -> PlacedObject | None:
+    """The object an action names: by id, else by base id ("chair" for "chair#2") or category; None if none.
+
+    One rule for the motion planner and the orchestrator's slot book, so both resolve a name alike.
+    """
+    if not ref:
+        return None
+    for o in scene.objects:
+        if o.id == ref:
+            return o
+    for o in scene.objects:
+        if o.id.split("#")[0] == ref or o.category == ref:
+            return o
+    return None
+
+
 class CatalogUnavailable(RuntimeError):
     """The asset catalog (wana.assets.catalog) cannot be imported."""
 
