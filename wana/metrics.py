@@ -18,6 +18,7 @@ import threading
 from collections.abc import Iterator
 from typing import Any
 
+import zmq
 from prometheus_client import CollectorRegistry, start_http_server
 from prometheus_client.core import CounterMetricFamily, GaugeMetricFamily, HistogramMetricFamily
 from prometheus_client.registry import Collector
@@ -128,7 +129,11 @@ def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
     stop = threading.Event()
     signal.signal(signal.SIGTERM, lambda *_: stop.set())
-    server, collector = serve(args.broker, host=args.host, port=args.port, keys=args.keys)
+    try:
+        server, collector = serve(args.broker, host=args.host, port=args.port, keys=args.keys)
+    except (zmq.ZMQError, OSError) as exc:  # a malformed broker URL, a port in use, unreadable keys
+        print(f"wana metrics: cannot start with --broker {args.broker!r}: {exc}", file=sys.stderr)
+        return 2
     print(
         f"wana metrics: http://{args.host}:{server.server_port}/metrics (broker {args.broker})",
         file=sys.stderr,

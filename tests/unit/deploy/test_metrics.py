@@ -155,3 +155,17 @@ def test_wana_metrics_serves_until_sigterm_and_then_exits_cleanly(bus):
     finally:
         if proc.poll() is None:
             proc.kill()
+
+
+def test_wana_metrics_with_a_malformed_broker_url_says_so_and_exits_2():
+    import subprocess
+    import sys
+
+    proc = subprocess.run(
+        [sys.executable, "-m", "wana.metrics", "--broker", "notaurl", "--port", "0"],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert proc.returncode == 2
+    assert "cannot start with --broker 'notaurl'" in proc.stderr and "Traceback" not in proc.stderr
