@@ -10,8 +10,14 @@ path replayed through the controller; skipped when the data is absent).
 JSON keys: foot_slide_cm, path_error_cm, contact_cm, jerk, spine_bend_p95_deg (trunk from upright while a
 standing hand reaches a target), prop_grip_error_cm (worst held frame: a prop's grip point to its hand),
 actions, scenarios, cmu_clips, ...
+Liveliness (issue 23): frozen_share (share of on-stage frames in which no joint turns more than 0.1 degree
+in the world since the frame before), measured on the composed motion of whole stories run through the
+orchestrator (examples/office.txt; the full run adds the Fountain examples) and on the scenarios with
+the idle layer; clips: per library clip, jerk (mean joint jerk, m/s^3), energy (mean joint angular
+speed, deg/s) and frozen_share of the clip alone; clips_highest_jerk / clips_lowest_energy list 20
+each for review.
 Targets: foot_slide_cm <= 1.0 (cm per frame while a foot is in contact), contact_cm <= 3.0,
-spine_bend_p95_deg <= 30, prop_grip_error_cm <= 1.
+spine_bend_p95_deg <= 30, prop_grip_error_cm <= 1, frozen_share <= 0.05.
 """
 
 from __future__ import annotations
@@ -118,13 +124,93 @@ def jerk(pos: np.ndarray) -> float:
     return float(np.linalg.norm(np.diff(pos, n=3, axis=0) * 30**3, axis=-1).mean())
 
 
+FROZEN_DEG = 0.1  # degrees a joint must turn between two frames for the frame to count as moving
+
+
+def joint_turn_deg(global_rot: np.ndarray) -> np.ndarray:
+    """(T-1, J) degrees each joint's world orientation turns between consecutive frames."""
+    dot = np.clip(np.abs(np.sum(global_rot[1:] * global_rot[:-1], axis=-1)), 0.0, 1.0)
+    return np.degrees(2 * np.arccos(dot))
+
+
+def frozen_share(global_rot: np.ndarray, present: np.ndarray | None = None) -> float:
+    """Share of frames (on stage, both this and the previous one) in which no joint turns > FROZEN_DEG."""
+    if len(global_rot) < 2:
+        return 0.0
+    frozen = joint_turn_deg(global_rot).max(axis=1) <= FROZEN_DEG
+    on = np.ones(len(frozen), bool) if present is None else (present[1:] > 0) & (present[:-1] > 0)
+    return float(frozen[on].mean()) if on.any() else 0.0
+
+
+def clip_review(limit: int = 20) -> dict:
+    """Per library clip: jerk, motion energy and frozen share of the clip alone (neutral root, 30 fps)."""
+    from wana.domain.actions import get_clip
+    from wana.domain.skeleton import REST_OFFSETS, forward_kinematics
+
+    rows = {}
+    for name in sorted(load_library()):
+        clip = get_clip(name)
+        rot, offs, _ = clip.sample(30, max(clip.duration_s, 3.0) if clip.looping else clip.duration_s)
+        root = offs + np.array([0.0, REST_OFFSETS[0, 1], 0.0])
+        pos, grot = forward_kinematics(rot, root)
+        turn = joint_turn_deg(grot) if len(rot) > 1 else np.zeros((1, rot.shape[1]))
+        rows[name] = {
+            "jerk": round(jerk(pos), 2),
+            "energy_deg_s": round(float(turn.mean() * 30), 2),
+            "frozen_share": round(frozen_share(grot), 3),
+            "seconds": round(len(rot) / 30, 2),
+        }
+    by_jerk = sorted(rows, key=lambda n: -rows[n]["jerk"])[:limit]
+    by_energy = sorted(rows, key=lambda n: rows[n]["energy_deg_s"])[:limit]
+    return {
+        "clips": rows,
+        "clips_highest_jerk": [[n, rows[n]["jerk"]] for n in by_jerk],
+        "clips_lowest_energy": [[n, rows[n]["energy_deg_s"]] for n in by_energy],
+        "clip_frozen_share": round(float(np.mean([r["frozen_share"] for r in rows.values()])), 4),
+    }
+
+
+STAGED_STORIES = ("office.txt", "office_morning.fountain", "kitchen_night.fountain")
+
+
+def staged_frozen(quick: bool) -> dict:
+    """frozen_share of every character on stage in whole stories run through the orchestrator in-process."""
+    import tempfile
+
+    from services.orchestrator.backend import InProcessBackend
+    from services.orchestrator.session import Orchestrator
+    from wana.domain.skeleton import forward_kinematics
+
+    examples = Path(__file__).resolve().parents[1] / "examples"
+    out: dict = {}
+    frozen, total = 0.0, 0
+    for story in STAGED_STORIES[:1] if quick else STAGED_STORIES:
+        text = (examples / story).read_text()
+        with tempfile.TemporaryDirectory(prefix="wana-eval-motion-") as tmp:
+            orch = Orchestrator(Path(tmp) / "sessions.db", InProcessBackend(), seed=0)
+            try:
+                result = orch.create(text, doc_id=story).compute()
+            finally:
+                orch.close()
+        for name, m in result.motions.items():
+            rot = from_wire(m.rotations).astype(np.float64)
+            _, grot = forward_kinematics(rot, from_wire(m.root_position).astype(np.float64))
+            present = from_wire(m.present) if m.present is not None else np.ones(len(rot), np.uint8)
+            share = frozen_share(grot, present)
+            n = int(((present[1:] > 0) & (present[:-1] > 0)).sum())
+            out[f"{story}:{name}"] = round(share, 4)
+            frozen += share * n
+            total += n
+    return {"frozen_share": round(frozen / max(total, 1), 4), "frozen_share_by_character": out}
+
+
 def run_scenario(character: CharacterNode, scene: Scene, start) -> dict:
     plan = plan_actions(character, scene, start)
     motion, pieces, _ = synthesise(plan)
     root = from_wire(motion.root_position).astype(np.float64)
     rot = from_wire(motion.rotations).astype(np.float64)
     contacts = from_wire(motion.foot_contact)
-    pos, _ = global_transforms(rot, root)
+    pos, grot = global_transforms(rot, root)
     slides = foot_slide(pos, contacts)
     paths, contact = [], []
     f0 = 0
@@ -148,7 +234,20 @@ def run_scenario(character: CharacterNode, scene: Scene, start) -> dict:
         "frames": len(root),
         "spine": spine_bends(pos, pieces),
         "grip": grip_errors(pos, motion),
+        "frozen": frozen_share(grot),
+        "frozen_idle": _frozen_with_idle(motion),
     }
+
+
+def _frozen_with_idle(motion) -> float:  # noqa: ANN001 - proto Motion
+    """frozen_share of a scenario's motion with the idle layer the orchestrator applies (wana.domain.idle)."""
+    from wana.domain.idle import enliven_motion
+
+    m = enliven_motion(motion)
+    _, grot = global_transforms(
+        from_wire(m.rotations).astype(np.float64), from_wire(m.root_position).astype(np.float64)
+    )
+    return frozen_share(grot)
 
 
 def spine_bends(pos: np.ndarray, pieces: list) -> list[float]:
@@ -245,6 +344,7 @@ def main(argv: list[str] | None = None) -> int:
     t0 = time.time()
     n = 10 if args.quick else 36
     slides, paths, contact, jerks, frames, spine, grip = [], [], [], [], 0, [], []
+    frozen, frozen_idle = [], []
     for _name, ch, scene, start in scenarios(n, args.seed):
         r = run_scenario(ch, scene, start)
         slides += r["slides"]
@@ -254,6 +354,8 @@ def main(argv: list[str] | None = None) -> int:
         frames += r["frames"]
         spine += r["spine"]
         grip += r["grip"]
+        frozen.append(r["frozen"])
+        frozen_idle.append(r["frozen_idle"])
     cmu = cmu_heldout(args.quick)
     result = {
         "foot_slide_cm": round(float(np.mean(slides)), 4) if slides else 0.0,
@@ -273,12 +375,17 @@ def main(argv: list[str] | None = None) -> int:
         "cmu_foot_slide_raw_cm": round(float(np.mean([c["foot_slide_raw_cm"] for c in cmu])), 4)
         if cmu
         else None,
+        "scenario_frozen_share_raw": round(float(np.mean(frozen)), 4),
+        "scenario_frozen_share": round(float(np.mean(frozen_idle)), 4),
+        **staged_frozen(args.quick),
+        **clip_review(),
         "seed": args.seed,
         "seconds": round(time.time() - t0, 2),
     }
     print(f"{'metric':24s} value")
     for k, v in result.items():
-        print(f"{k:24s} {v}")
+        if k != "clips":
+            print(f"{k:24s} {v}")
     if args.json:
         args.json.parent.mkdir(parents=True, exist_ok=True)
         args.json.write_text(json.dumps(result, indent=2) + "\n")

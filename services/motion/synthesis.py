@@ -22,6 +22,7 @@ from proto.motion_data import Motion, PropTrack, Segment
 from services.motion.blend import fade_from, layer, upper_body_mask
 from services.motion.ik import joint_globals, lean_needed, lean_spine, lock_feet, two_bone_ik
 from services.motion.locomotion import locomote
+from services.motion.style import apply_style, resample_fps, style_of
 from wana.arrays import to_wire
 from wana.domain import quat
 from wana.domain.actions import JOIN_FRAMES, ActionClip, get_clip, neutral_rotations
@@ -97,6 +98,10 @@ class PlannedSegment:
     prop_joint: str = "RightHand"  # the joint holding it
     prop_grip: tuple[float, float, float] = (0.0, 0.0, 0.0)  # its grip point, object frame, metres
     prop_yaw: float = 0.0  # its yaw as placed (radians): the orientation it is picked up in
+    mood: tuple[float, float] = (
+        0.0,
+        0.0,
+    )  # valence, arousal in [-1, 1]: the style it is played in (style.py)
 
 
 @dataclass(frozen=True)
@@ -172,7 +177,16 @@ def _action_piece(seg: PlannedSegment, state: SegmentState) -> tuple[MotionPiece
         if seg.duration_s > 0
         else (max(clip.duration_s, 3.0) if clip.looping else clip.duration_s)
     )
-    rot, offs, yaw_track = clip.sample(FPS, dur)
+    style = style_of(*seg.mood)
+    plain = clip.interaction is None  # contact clips keep their timing (windows are in clip time)
+    if plain and style.tempo != 1.0:
+        rate = resample_fps(FPS, style)
+        rot, offs, yaw_track = clip.sample(
+            rate, dur * FPS / rate if seg.duration_s > 0 or clip.looping else dur
+        )
+        dur = len(rot) / FPS
+    else:
+        rot, offs, yaw_track = clip.sample(FPS, dur)
     t = len(rot)
     posture = state.posture
     new_posture = POSTURE_AFTER.get(clip.name, posture)
@@ -186,7 +200,7 @@ def _action_piece(seg: PlannedSegment, state: SegmentState) -> tuple[MotionPiece
         base = np.repeat(base_rot[None], t, 0)
         rot = layer(base, rot, upper_body_mask())
         root, heading = _to_world(state, np.repeat(base_off[None], t, 0), np.zeros(t))
-    rot = rot.copy()
+    rot = apply_style(rot, posture_pose(posture)[0], style, amplitude=plain)
     rot[:, 0] = quat.mul(quat.yaw(heading), rot[:, 0])
     start_rot, start_off = posture_pose(posture)
     start_pose = start_rot.copy()
@@ -335,7 +349,8 @@ def _locomotion_piece(seg: PlannedSegment, state: SegmentState) -> tuple[MotionP
         else wps
     )
     loco = locomote(wps, seg.speed, state.yaw, seg.face_yaw, state.phase)
-    rot = fade_from(_standing_pose(state.yaw), loco.rotations, FADE)
+    rot = apply_style(loco.rotations, _standing_pose(state.yaw), style_of(*seg.mood))
+    rot = fade_from(_standing_pose(state.yaw), rot, FADE)
     rot = lock_feet(rot, loco.root_position, loco.contacts)
     piece = MotionPiece(loco.root_position, rot, loco.contacts, seg)
     # The character comes to rest at the goal, so the next walk starts from a standing pose at phase 0: the end

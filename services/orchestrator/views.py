@@ -85,6 +85,26 @@ def social_distances(plan: SocialPlan | None) -> dict[tuple[str, int], dict[str,
     return out
 
 
+MOOD_STEP = 0.25  # valence / arousal are sent in steps of this (sampling noise below it changes nothing)
+
+
+def social_moods(
+    plan: SocialPlan | None, characters: dict[str, tuple[CharacterNode, list[str]]]
+) -> dict[tuple[str, int], tuple[float, float]]:
+    """(character, action index) -> (valence, arousal) of the emotion the social plan samples at that action's
+    sentence, in MOOD_STEP steps; neutral moods are left out (their motion is played as authored)."""
+    out: dict[tuple[str, int], tuple[float, float]] = {}
+    for entry in plan.characters if plan is not None else []:
+        at = {e.sentence_id: e.vad for e in entry.emotions}
+        for k, sid in enumerate(characters.get(entry.name, (None, []))[1]):
+            if sid not in at:
+                continue
+            v, a = (round(round(x / MOOD_STEP) * MOOD_STEP, 2) for x in at[sid][:2])
+            if v or a:
+                out[(entry.name, k)] = (v, a)
+    return out
+
+
 def characters_of(
     graphs: Sequence[SentenceGraph], sentence_ids: Sequence[str]
 ) -> dict[str, tuple[CharacterNode, list[str]]]:

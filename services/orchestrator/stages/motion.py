@@ -43,9 +43,17 @@ from services.orchestrator.staging import (
     spot_near,
 )
 from services.orchestrator.timeline import Beat, assemble, schedule
-from services.orchestrator.views import characters_of, others, scene_view, social_distances
+from services.orchestrator.views import (
+    characters_of,
+    others,
+    scene_view,
+    social_distances,
+    social_moods,
+)
 from wana.arrays import from_wire, to_wire
 from wana.domain.actions import get_clip
+from wana.domain.idle import attention, enliven_motion
+from wana.domain.object_geometry import find_object
 
 Characters = dict[str, tuple[CharacterNode, list[str]]]  # name -> (its actions in order, their sentence ids)
 Distances = dict[tuple[str, int], dict[str, float]]  # (name, k) -> {other: metres}
@@ -73,6 +81,7 @@ def synthesise(
     seats: dict[int, str] | None = None,
     spots: dict[int, tuple[float, float]] | None = None,
     occupied: list[tuple[float, float]] | None = None,
+    moods: dict[int, tuple[float, float]] | None = None,
 ) -> SynthesizeReply:
     request = SynthesizeRequest(
         header=ctx.header(),
@@ -86,6 +95,7 @@ def synthesise(
         seats=seats or {},
         spots=spots or {},
         occupied=occupied or [],
+        moods=moods or {},
     )
     return content_of(ctx.backend.call(request))
 
@@ -132,6 +142,7 @@ def segments(
     door: Doorway | None = None,
     hidden: set[str] | None = None,
     notes: list[tuple[str, str]] | None = None,
+    moods: dict[tuple[str, int], tuple[float, float]] | None = None,
 ) -> dict[str, list[Motion]]:
     """Every character's motion, one query node `<kind>:<name>:<k>` per action, in document order.
 
@@ -143,6 +154,7 @@ def segments(
     ``hidden``: the characters waiting outside ``door`` (services/orchestrator/staging.py): their next action
     comes in through it, and an exit walks out through it.
     ``notes`` collects (sentence id, what the motion service said) ("no free seat ...: Zoe stands instead").
+    ``moods``: (name, k) -> the social plan's (valence, arousal) at action k (views.social_moods): its style.
     """
     states = {name: SegmentEndState(x=st[0], z=st[1], yaw=st[2]) for name, st in starts.items()}
     outside = set(hidden or ())
@@ -180,6 +192,7 @@ def segments(
         near_them = others(action, name, states, object_ids)
         near = {o: d for o, d in (distances or {}).get((name, k), {}).items() if o in near_them}
         seated = seated_others(action, name, states)
+        mood = {len(asked) - 1: moods[(name, k)]} if moods and (name, k) in moods else {}
 
         def run(
             single: CharacterNode = single,
@@ -191,15 +204,20 @@ def segments(
             seats: dict[int, str] = seats,
             spots: dict[int, tuple[float, float]] = spots,
             seated: list[tuple[float, float]] = seated,
+            mood: dict[int, tuple[float, float]] = mood,
         ) -> SynthesizeReply:
             start = (state.x, state.z, state.yaw)
-            return synthesise(ctx, single, view, state, start, near_them, near, routes, seats, spots, seated)
+            return synthesise(
+                ctx, single, view, state, start, near_them, near, routes, seats, spots, seated, mood
+            )
 
         inputs = [single, view, state, near_them, near] if near else [single, view, state, near_them]
         if routes or seats or spots:
             inputs.append([routes, sorted(seats.items()), sorted(spots.items())])
         if seated:  # only a seat-taking action depends on where the others sit
             inputs.append(seated)
+        if mood:  # only an action with a mood depends on the social plan's emotions
+            inputs.append(sorted(mood.items()))
         reply = ctx.engine.query(f"{kind}:{name}:{k}", inputs, run)
         placed = [
             msgspec.structs.replace(seg, action_index=k, sentence_id=sids[k]) for seg in reply.motion.segments
@@ -292,6 +310,7 @@ def animate(
     done, total = 0, len(interactions) + len(characters)
     last = {name: max([k for n, k, _ in interactions if n == name], default=-1) for name in characters}
     near = social_distances(plan)
+    moods = social_moods(plan, characters)
     drafts = segments(
         ctx,
         "draft",
@@ -303,6 +322,7 @@ def animate(
         distances=near,
         door=door,
         hidden=hidden,
+        moods=moods,
     )
     for name, k, action in interactions:
         tick("optimise", done, total)
@@ -337,6 +357,7 @@ def animate(
         door=door,
         hidden=hidden,
         notes=notes,
+        moods=moods,
     )
     spans = {s.id: Span(s.start, s.end) for s in sentences}
     for sid, why in dict.fromkeys(notes):
@@ -372,6 +393,24 @@ def animate(
         if door is not None and not on.all():
             motion = _wait_outside(motion, on, door.outside(waiting_place[name]))
         out.motions[name] = motion
+    out.motions = _enlivened(scene, characters, out.motions)
+    return out
+
+
+def _enlivened(scene: Scene, characters: Characters, motions: dict[str, Motion]) -> dict[str, Motion]:
+    """Every motion with the idle layer (wana.domain.idle): breathing, weight shifts and a gaze at whoever
+    acts, or at what the character's next action uses, wherever the time line holds a pose."""
+    out = {}
+    for name, motion in motions.items():
+        upcoming: dict[int, tuple[float, float, float] | str] = {}
+        for k, action in enumerate(characters[name][0].actions if name in characters else []):
+            goal = action.target or action.instrument or action.destination
+            placed = find_object(scene, goal) if goal else None
+            if placed is not None:
+                upcoming[k] = (placed.position[0], max(placed.position[1], 0.5), placed.position[2])
+            elif goal in motions:
+                upcoming[k] = goal
+        out[name] = enliven_motion(motion, attention(name, motions, upcoming))
     return out
 
 
