@@ -1,11 +1,9 @@
-"""Authored gestures and social actions (aimed at another character or at nobody)."""
+"""Authored social actions (aimed at another character or at nobody); the gestures keyed as curves
+(wave, point, nod, shrug, laugh...) are in action_specs_gestures.py."""
 
 from __future__ import annotations
 
-import numpy as np
-
 from tools.authoring.author_actions import Spec, cycle, hold, loop, seq
-from wana.domain import quat
 from wana.domain.posing import arm, arms, head, legs, merge, neutral, spine
 
 N = neutral()
@@ -31,34 +29,6 @@ def P(contacts: list[str], window: tuple[float, float]) -> dict:
 def specs() -> list[Spec]:
     s: list[Spec] = []
     add = s.append
-    wave_a = _r((0.7, 0.6, 0.1), (0.05, 1.0, 0.1))
-    wave_b = _r((0.7, 0.6, 0.1), (0.6, 0.8, 0.1))
-    add(
-        Spec(
-            "wave",
-            ["greet", "gesture", "social"],
-            ["wave at", "wave hello", "greet", "say hello", "say goodbye", "hail", "wave goodbye"],
-            cycle(wave_a, wave_b, 0.5, 3),
-        )
-    )
-    add(
-        Spec(
-            "wave_left_hand",
-            ["greet", "gesture"],
-            ["wave with the left hand"],
-            cycle(_l((0.7, 0.6, 0.1), (0.05, 1.0, 0.1)), _l((0.7, 0.6, 0.1), (0.6, 0.8, 0.1)), 0.5, 3),
-        )
-    )
-    both_a = _b((0.5, 0.8, 0.1), (-0.1, 1.0, 0.0))
-    both_b = _b((0.5, 0.8, 0.1), (0.6, 0.8, 0.0))
-    add(
-        Spec(
-            "wave_hands",
-            ["greet", "gesture", "happy", "social"],
-            ["wave both hands", "wave both arms", "signal", "flag down"],
-            cycle(both_a, both_b, 0.6, 3),
-        )
-    )
     five = _r((0.4, 0.7, 0.5), (0.1, 1.0, 0.3))
     add(
         Spec(
@@ -179,75 +149,6 @@ def specs() -> list[Spec]:
             cycle(clap_b, clap_a, 0.4, 6),
         )
     )
-    point = _r((0.2, 0.1, 1.0), (0.0, 0.1, 1.0), (0, 0, 0))
-    add(
-        Spec(
-            "point",
-            ["gesture", "social"],
-            ["point at", "point to", "indicate", "show"],
-            hold(point, 2.0, 0.4),
-        )
-    )
-    add(
-        Spec(
-            "point_left",
-            ["gesture"],
-            ["point to the left"],
-            hold(merge(_l((0.9, 0.1, 0.3), (1.0, 0.1, 0.2)), head(0, 40)), 2.0),
-        )
-    )
-    add(
-        Spec(
-            "point_right",
-            ["gesture"],
-            ["point to the right"],
-            hold(merge(_r((0.9, 0.1, 0.3), (1.0, 0.1, 0.2)), head(0, -40)), 2.0),
-        )
-    )
-    add(
-        Spec(
-            "point_up",
-            ["gesture"],
-            ["point upward", "point at the sky"],
-            hold(merge(_r((0.3, 0.9, 0.3), (0.1, 1.0, 0.2)), head(-30)), 2.0),
-        )
-    )
-    add(
-        Spec(
-            "point_down",
-            ["gesture"],
-            ["point at the floor", "point downward"],
-            hold(merge(_r((0.2, -0.5, 0.9), (0.0, -0.7, 0.7)), head(30)), 2.0),
-        )
-    )
-    add(
-        Spec(
-            "nod",
-            ["gesture", "agree", "head"],
-            ["agree", "nod yes", "nod the head", "say yes", "accept"],
-            cycle(head(15), head(-5), 0.45, 3),
-            body_parts=["head"],
-        )
-    )
-    add(
-        Spec(
-            "shake_head",
-            ["gesture", "disagree", "head"],
-            ["say no", "refuse", "disagree", "deny", "decline"],
-            cycle(head(0, 25), head(0, -25), 0.45, 3),
-            body_parts=["head"],
-        )
-    )
-    shrug = merge(
-        _b((0.3, -0.8, 0.3), (0.5, -0.1, 0.8), (0, 0, 70)),
-        spine(0, 0, 0),
-        head(0, 0, 10),
-        {
-            "LeftShoulder": quat.from_euler("XYZ", np.array([0.0, 0.0, 15.0])),
-            "RightShoulder": quat.from_euler("XYZ", np.array([0.0, 0.0, -15.0])),
-        },
-    )
-    add(Spec("shrug", ["gesture", "doubt"], ["shrug shoulders", "not know"], hold(shrug, 1.6, 0.4)))
     salute = _r((0.8, 0.1, 0.5), (-0.6, 0.7, 0.0), (0, 0, -20))
     add(
         Spec(
@@ -305,15 +206,6 @@ def specs() -> list[Spec]:
             ["sad", "emotion"],
             ["weep", "sob", "be sad", "mourn"],
             cycle(cry, merge(cry, spine(20), head(35)), 0.8, 4),
-        )
-    )
-    laugh = merge(N, spine(-8), head(-20), arms((0.2, -0.9, 0.3), (-0.4, -0.1, 0.9)))
-    add(
-        Spec(
-            "laugh",
-            ["happy", "emotion"],
-            ["giggle", "chuckle", "smile", "be amused"],
-            cycle(laugh, merge(laugh, spine(8), head(0)), 0.5, 4),
         )
     )
     add(

@@ -39,13 +39,32 @@ class Spec:
         return float(self.keys[-1][0])
 
 
+HOLD_OVERSHOOT = 1.06  # a held pose arrives this far past its mark (upper body) and settles through the hold
+
+
+def overshoot(pose: Pose, amount: float = HOLD_OVERSHOOT) -> Pose:
+    """The pose carried a little past itself from neutral, joint by joint (upper body only: feet stay put)."""
+    n = neutral()
+    out = dict(pose)
+    for name, q in pose.items():
+        if name == "Hips" or "Leg" in name or "Foot" in name or "Toe" in name:
+            continue
+        base = n.get(name, quat.identity())
+        out[name] = quat.slerp(base, np.asarray(q, dtype=np.float64), amount)
+    return out
+
+
 def hold(pose: Pose, dur: float = 2.0, ramp: float = 0.4, root=(0.0, 0.0, 0.0)) -> list[tuple]:
-    """Neutral -> pose (ramp s) -> hold -> neutral at dur."""
+    """Neutral -> pose (ramp s) -> a moving hold -> neutral at dur.
+
+    The pose arrives a little past its mark and settles back through the hold (follow-through; a hold
+    that never stops moving reads as alive, a dead one as a mannequin).
+    """
     n = neutral()
     return [
         (0.0, n, "linear"),
-        (ramp, pose, "in_out", root),
-        (dur - ramp, pose, "linear", root),
+        (ramp, overshoot(pose), "out", root),
+        (dur - ramp, pose, "in_out", root),
         (dur, n, "in_out"),
     ]
 
@@ -130,9 +149,19 @@ def spec_to_dict(spec: Spec) -> dict:
 
 
 def all_specs() -> list[Spec]:
-    from tools.authoring import action_specs_body, action_specs_objects, action_specs_social
+    from tools.authoring import (
+        action_specs_body,
+        action_specs_gestures,
+        action_specs_objects,
+        action_specs_social,
+    )
 
-    specs = action_specs_objects.specs() + action_specs_social.specs() + action_specs_body.specs()
+    specs = (
+        action_specs_objects.specs()
+        + action_specs_social.specs()
+        + action_specs_gestures.specs()
+        + action_specs_body.specs()
+    )
     names = [s.name for s in specs]
     dupes = {n for n in names if names.count(n) > 1}
     if dupes:

@@ -39,6 +39,7 @@ SHIFT_M = 0.022  # metres the hips travel sideways toward the loaded foot
 PELVIS_DEG = 3.0  # pelvis roll toward the loaded side (contrapposto), degrees
 GAZE_YAW_MAX = np.radians(70.0)  # radians the head turns at most (beyond: the chest helps)
 GAZE_PITCH_MAX = np.radians(30.0)
+MICRO_DEG = 1.0  # degrees: radius of the head's steady micro-motion (what keeps a busy body from freezing)
 GAZE_OMEGA = 9.0  # rad/s, natural frequency of the critically damped gaze follow (about 0.35 s to settle)
 IDLE_ACTIONS = frozenset({"hold", "wait", "idle"})  # segment actions that are idle stretches
 
@@ -255,9 +256,16 @@ def enliven(
     else:
         yaw, pitch = np.zeros(t_count), np.zeros(t_count)
     wander = np.radians(6.0) * _smooth_noise(rng, t, (5.3, 8.9))
+    # Small quick adjustments on top (the eyes re-aim and the head follows): never quite still.
+    # A small circle (yaw and pitch in quadrature) turns the head at a steady speed whatever the rest does.
+    circle = 2 * np.pi * t / rng.uniform(1.4, 1.8) + rng.uniform(0, 2 * np.pi)
+    jitter_yaw = np.radians(MICRO_DEG) * np.sin(circle)
+    jitter_pitch = np.radians(MICRO_DEG) * np.cos(circle)
     looking = np.abs(yaw) > 1e-6
-    yaw = (_follow(np.where(looking, yaw, wander)) + 0.3 * wander * looking) * hw * (1 - lying)
-    pitch = _follow(np.where(looking, pitch, np.radians(2.0) * _smooth_noise(rng, t, (4.7, 7.1)))) * hw
+    yaw = (_follow(np.where(looking, yaw, wander)) + 0.3 * wander * looking + jitter_yaw) * hw * (1 - lying)
+    pitch = (
+        _follow(np.where(looking, pitch, np.radians(2.0) * _smooth_noise(rng, t, (4.7, 7.1)))) + jitter_pitch
+    ) * hw
     chest = np.sign(yaw) * np.maximum(np.abs(yaw) - np.radians(35.0), 0.0) * 0.5 * w
     _post(rot, "Spine2", (0, 1, 0), np.degrees(chest))
     head_yaw = np.degrees(yaw - chest)
@@ -298,7 +306,7 @@ def with_blinks(face: np.ndarray, names: Sequence[str], seed: int) -> np.ndarray
 
 
 STILL_DEG = 0.05  # degrees: a frame whose joints all turn less than this from the last one is still
-STILL_MIN_S = 0.5  # seconds of stillness inside a segment that count as an idle stretch
+STILL_MIN_S = 0.3  # seconds of stillness inside a segment that count as an idle stretch
 CALM_CONTACTS = frozenset({"seat", "bed"})  # interactions whose contact the layer cannot break (hips)
 
 
@@ -333,12 +341,13 @@ def _calm(action: str) -> bool:
 
 
 def _head_free(action: str) -> bool:
-    """True when a segment leaves the head to the gaze: no walk, no clip that moves the head or touches a person."""
+    """True when a segment leaves the head to the gaze: no walk, no clip that moves the head, touches a person
+    or brings something held to the face."""
     try:
         clip = get_clip(action)
     except KeyError:
         return action in IDLE_ACTIONS
-    touches_person = clip.interaction is not None and clip.interaction.object == "person"
+    touches_person = clip.interaction is not None and clip.interaction.object in ("person", "handheld")
     moves_head = "head" in clip.body_parts or "head" in clip.tags or "look" in clip.tags
     return not (touches_person or moves_head or "locomotion" in clip.tags or clip.drives_lower_body)
 

@@ -13,6 +13,7 @@ from proto.ssg import SentenceGraph
 from services.orchestrator.stages import StageContext, content_of
 from services.orchestrator.views import social_part
 from wana.arrays import from_wire, to_wire
+from wana.domain.idle import seed_of, with_blinks
 
 
 def social_plan(ctx: StageContext, graphs: Sequence[SentenceGraph]) -> SocialPlan:
@@ -73,5 +74,6 @@ def faces(ctx: StageContext, plan: SocialPlan, motions: dict[str, Motion]) -> di
             track,
         )
         face = fit_frames(from_wire(reply.expression), frame_count(motion))
+        face = with_blinks(face, plan.expression_names, seed_of(entry.name))  # the eyes blink now and then
         out[entry.name] = msgspec.structs.replace(motion, expression=to_wire(face))
     return out
