@@ -57,9 +57,6 @@ class SynthesizeRequest(Request["SynthesizeReply"], frozen=True, kw_only=True, t
     occupied: list[
         tuple[float, float]
     ] = []  # x, z (metres, world) of other characters seated by then: seat slots there are not free
-    moods: dict[
-        int, tuple[float, float]
-    ] = {}  # action index -> (valence, arousal) in [-1, 1], the social model's emotion: the motion's style
 
 
 class SynthesizeReply(msgspec.Struct, frozen=True, kw_only=True, tag="synthesize_reply"):

@@ -31,8 +31,6 @@ def handle_synthesize(req: SynthesizeRequest) -> SynthesizeReply:
             raise InvalidInput(f"others[{name!r}] must be finite (x, z)")
     if not all(np.isfinite(xz).all() for xz in req.occupied):
         raise InvalidInput("occupied must be finite (x, z) pairs")
-    if not all(np.isfinite(m).all() and np.all(np.abs(m) <= 1.0) for m in req.moods.values()):
-        raise InvalidInput("moods must be (valence, arousal) pairs in [-1, 1]")
     routes = list(req.routes)
     route_diags: list[str] = []
 
@@ -61,7 +59,6 @@ def handle_synthesize(req: SynthesizeRequest) -> SynthesizeReply:
         seats=dict(req.seats),
         spots={k: (float(v[0]), float(v[1])) for k, v in req.spots.items()},
         occupied=[(float(x), float(z)) for x, z in req.occupied],
-        moods={k: (float(v[0]), float(v[1])) for k, v in req.moods.items()},
     )
     if req.from_segment < 0 or req.from_segment > len(plan.segments):
         raise InvalidInput(f"from_segment {req.from_segment} outside 0..{len(plan.segments)}")

@@ -238,14 +238,12 @@ def _short_of(pos: np.ndarray, other: np.ndarray, distance: float) -> np.ndarray
     return other - d / n * distance
 
 
-def _with_moods(
-    segs: list[PlannedSegment], character: CharacterNode, moods: dict[int, tuple[float, float]]
-) -> list[PlannedSegment]:
-    """Each segment with the mood of the action it serves (manner word first, then the social emotion)."""
+def _with_moods(segs: list[PlannedSegment], character: CharacterNode) -> list[PlannedSegment]:
+    """Each segment with the mood its action's manner word gives ("angrily": services/motion/style.py)."""
     out = []
     for seg in segs:
         node = character.actions[seg.action_index] if 0 <= seg.action_index < len(character.actions) else None
-        mood = mood_of(node.manner if node else "", moods.get(seg.action_index))
+        mood = mood_of(node.manner if node else "")
         out.append(dataclasses.replace(seg, mood=mood) if mood != (0.0, 0.0) else seg)
     return out
 
@@ -261,7 +259,6 @@ def plan_actions(
     seats: dict[int, str] | None = None,
     spots: dict[int, tuple[float, float]] | None = None,
     occupied: list[tuple[float, float]] | None = None,
-    moods: dict[int, tuple[float, float]] | None = None,
 ) -> MotionPlan:
     """Turn a character's ordered actions into a MotionPlan.
 
@@ -279,8 +276,6 @@ def plan_actions(
         seats: action index -> the object's contact point to sit or lie on (its slot: "sit_0" on a sofa).
         spots: action index -> x, z where it stands at or walks to its object (its stand slot).
         occupied: (x, z) metres, world, of other characters already seated: seat slots there are taken.
-        moods: action index -> (valence, arousal), the social model's emotion at that action; with the
-            action's manner word it sets the style each segment is played in (services/motion/style.py).
 
     Returns:
         the plan; unknown actions become a 1 s wait and a diagnostic.
@@ -367,8 +362,7 @@ def plan_actions(
                 add(kind="wait", action="idle", duration_s=1.0, action_index=ai)
                 continue
         clip = lib[name]
-        mood = mood_of(node.manner, (moods or {}).get(ai))
-        speed_k = MANNER_SPEED.get(node.manner, 1.0) * style_of(*mood).tempo
+        speed_k = MANNER_SPEED.get(node.manner, 1.0) * style_of(*mood_of(node.manner)).tempo
         person = _other_character(node, clip, others, scene, character.name)
         if person:
             there = np.asarray(others[person], dtype=float)
@@ -567,7 +561,7 @@ def plan_actions(
             action_index=ai,
             **held,
         )
-    segs = _with_moods(segs, character, moods or {})
+    segs = _with_moods(segs, character)
     return MotionPlan(
         character=character.name,
         start=(float(x), float(z), float(start[2])),

@@ -54,6 +54,18 @@ def lerp_dir(a: Sequence[float], b: Sequence[float], u: float) -> tuple[float, f
     return float(v[0]), float(v[1]), float(v[2])
 
 
+def arc_dir(
+    a: Sequence[float], via: Sequence[float], b: Sequence[float], u: float
+) -> tuple[float, float, float]:
+    """Direction from a (u = 0) through via (u = 0.5) to b (u = 1): an arc that avoids the body."""
+    if u <= 0.5:
+        return lerp_dir(a, via, 2.0 * u)
+    return lerp_dir(via, b, 2.0 * u - 1.0)
+
+
+FORE_FRONT = (0.3, 0.05, 0.95)  # the forearm held out in front: the way from hanging to raised
+
+
 def turn(pitch: float = 0.0, yaw: float = 0.0, roll: float = 0.0) -> np.ndarray:
     """A local rotation from degrees (pitch > 0 bends forward / looks down, yaw > 0 turns left)."""
     return quat.from_euler("YXZ", np.array([yaw, pitch, roll]))
@@ -118,7 +130,7 @@ def wave_pose(
         upper[1] - 0.05 * dip,
         upper[2] - 0.25 * dip,
     )
-    fore = lerp_dir((0.2, -0.5, 0.8), (0.05, 1.0, 0.2), r_fore) if r_fore > 0.02 else REST_FORE
+    fore = arc_dir(REST_FORE, FORE_FRONT, (0.05, 1.0, 0.2), r_fore)
     fore = (fore[0] + env * (0.08 + 0.42 * np.sin(phase)), fore[1], fore[2])
     hand = (0.0, 28.0 * env * np.sin(phase - 0.9), -10.0 * r)  # trails the forearm side to side
     lift = 7.0 * r - 3.0 * dip
@@ -135,15 +147,15 @@ def wave_pose(
 
 
 def wave(side: str = "R", cycles: int = 3, period: float = 0.52) -> list[tuple]:
-    start = 0.45
+    start = 0.6
     end = start + cycles * period + 0.12
-    duration = end + 0.55
+    duration = end + 0.6
     raise_at = curve(
         [
             (0.0, 0.0),
             (0.12, -0.05),
-            (0.5, 1.08),
-            (0.65, 1.0),
+            (0.65, 1.08),
+            (0.8, 1.0),
             (end, 0.98),
             (end + 0.45, -0.03),
             (duration, 0.0),
@@ -154,15 +166,15 @@ def wave(side: str = "R", cycles: int = 3, period: float = 0.52) -> list[tuple]:
 
 def wave_both(cycles: int = 3, period: float = 0.6) -> list[tuple]:
     """Both arms wave overhead-wide (signalling), mirrored, the body bouncing with the swings."""
-    start = 0.5
+    start = 0.65
     end = start + cycles * period + 0.1
-    duration = end + 0.6
+    duration = end + 0.65
     raise_at = curve(
         [
             (0.0, 0.0),
             (0.15, -0.06),
-            (0.55, 1.06),
-            (0.7, 1.0),
+            (0.7, 1.06),
+            (0.85, 1.0),
             (end, 0.97),
             (end + 0.5, -0.03),
             (duration, 0.0),
@@ -174,7 +186,7 @@ def wave_both(cycles: int = 3, period: float = 0.6) -> list[tuple]:
         env = _ramp(t, start, start + 0.3) * (1.0 - _ramp(t, end - 0.3, end))
         phase = 2 * np.pi * (t - start) / period
         upper = lerp_dir(REST_UPPER, (0.6, 0.75, 0.2), r)
-        fore = lerp_dir((0.2, -0.5, 0.8), (0.0, 1.0, 0.1), rf) if rf > 0.02 else REST_FORE
+        fore = arc_dir(REST_FORE, FORE_FRONT, (0.0, 1.0, 0.1), rf)
         out: Pose = {}
         for side, s in (("L", 1.0), ("R", -1.0)):
             f = (fore[0] + 0.5 * env * np.sin(phase), fore[1], fore[2])
@@ -205,31 +217,16 @@ def point(
     upper_aim = lerp_dir(aim_v, (aim_v[0], aim_v[1] - 0.35, aim_v[2]), 1.0)  # elbow a little below the line
     fore_aim = lerp_dir(aim_v, (aim_v[0], aim_v[1] + 0.12, aim_v[2]), 1.0)
     hold_end = duration - 0.6
-    reach = curve(
-        [
-            (0.0, 0.0),
-            (0.1, 0.0),
-            (0.25, -0.12),
-            (0.55, 1.07),
-            (0.7, 1.0),
-            (hold_end, 0.96),
-            (duration - 0.05, 0.0),
-            (duration, 0.0),
-        ]
-    )
+    reach = curve([(0.0, 0.0), (0.2, 0.0), (0.68, 1.07), (0.85, 1.0), (hold_end, 0.96), (duration, 0.0)])
     look = curve([(0.0, 0.0), (0.3, 1.0), (hold_end, 1.0), (duration - 0.15, 0.0), (duration, 0.0)])
-    body = curve([(0.0, 0.0), (0.2, -0.15), (0.6, 1.05), (0.8, 1.0), (hold_end + 0.05, 1.0), (duration, 0.0)])
+    body = curve([(0.0, 0.0), (0.2, -0.15), (0.7, 1.05), (0.9, 1.0), (hold_end + 0.05, 1.0), (duration, 0.0)])
 
     def pose(t: float) -> Pose:
         r, rf, b, lk = reach(t), reach(t - 0.07), body(t), look(t)
         drift = 0.02 * np.sin(2 * np.pi * t / 1.3) * min(r, 1.0)
-        pull = max(-r, 0.0) / 0.12  # anticipation: elbow back and bent
-        if r >= 0:
-            upper = lerp_dir(REST_UPPER, upper_aim, r)
-            fore = lerp_dir(REST_FORE, fore_aim, rf) if rf >= 0 else REST_FORE
-        else:
-            upper = lerp_dir(REST_UPPER, (0.2, -0.9, -0.35), pull)
-            fore = lerp_dir(REST_FORE, (0.15, -0.35, 0.9), pull)
+        pull = _bump(t, 0.0, 0.45)  # anticipation: the elbow draws back and bends before the thrust
+        upper = lerp_dir(lerp_dir(REST_UPPER, upper_aim, max(r, 0.0)), (0.2, -0.9, -0.35), 0.6 * pull)
+        fore = lerp_dir(lerp_dir(REST_FORE, fore_aim, max(rf, 0.0)), (0.15, -0.35, 0.9), 0.6 * pull)
         upper = (upper[0], upper[1] + drift, upper[2])
         s = 1.0 if side == "L" else -1.0
         free = "R" if side == "L" else "L"

@@ -158,7 +158,7 @@ def specs() -> list[Spec]:
             hold(merge(salute, head(-3)), 2.0, 0.4),
         )
     )
-    cheer = _b((0.4, 1.0, 0.1), (0.2, 1.0, 0.0))
+    cheer = _b((0.4, 1.0, 0.1), (0.05, 1.0, 0.25))  # elbows soft: a cheer, not a held straight arm
     add(
         Spec(
             "celebrate",

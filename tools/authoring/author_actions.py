@@ -63,7 +63,7 @@ def hold(pose: Pose, dur: float = 2.0, ramp: float = 0.4, root=(0.0, 0.0, 0.0)) 
     n = neutral()
     return [
         (0.0, n, "linear"),
-        (ramp, overshoot(pose), "out", root),
+        (ramp, overshoot(pose), "in_out", root),
         (dur - ramp, pose, "in_out", root),
         (dur, n, "in_out"),
     ]

@@ -54,6 +54,7 @@ from wana.arrays import from_wire, to_wire
 from wana.domain.actions import get_clip
 from wana.domain.idle import attention, enliven_motion
 from wana.domain.object_geometry import find_object
+from wana.domain.style import MANNER_MOOD, restyle_motion
 
 Characters = dict[str, tuple[CharacterNode, list[str]]]  # name -> (its actions in order, their sentence ids)
 Distances = dict[tuple[str, int], dict[str, float]]  # (name, k) -> {other: metres}
@@ -81,7 +82,6 @@ def synthesise(
     seats: dict[int, str] | None = None,
     spots: dict[int, tuple[float, float]] | None = None,
     occupied: list[tuple[float, float]] | None = None,
-    moods: dict[int, tuple[float, float]] | None = None,
 ) -> SynthesizeReply:
     request = SynthesizeRequest(
         header=ctx.header(),
@@ -95,7 +95,6 @@ def synthesise(
         seats=seats or {},
         spots=spots or {},
         occupied=occupied or [],
-        moods=moods or {},
     )
     return content_of(ctx.backend.call(request))
 
@@ -142,7 +141,6 @@ def segments(
     door: Doorway | None = None,
     hidden: set[str] | None = None,
     notes: list[tuple[str, str]] | None = None,
-    moods: dict[tuple[str, int], tuple[float, float]] | None = None,
 ) -> dict[str, list[Motion]]:
     """Every character's motion, one query node `<kind>:<name>:<k>` per action, in document order.
 
@@ -154,7 +152,6 @@ def segments(
     ``hidden``: the characters waiting outside ``door`` (services/orchestrator/staging.py): their next action
     comes in through it, and an exit walks out through it.
     ``notes`` collects (sentence id, what the motion service said) ("no free seat ...: Zoe stands instead").
-    ``moods``: (name, k) -> the social plan's (valence, arousal) at action k (views.social_moods): its style.
     """
     states = {name: SegmentEndState(x=st[0], z=st[1], yaw=st[2]) for name, st in starts.items()}
     outside = set(hidden or ())
@@ -192,7 +189,6 @@ def segments(
         near_them = others(action, name, states, object_ids)
         near = {o: d for o, d in (distances or {}).get((name, k), {}).items() if o in near_them}
         seated = seated_others(action, name, states)
-        mood = {len(asked) - 1: moods[(name, k)]} if moods and (name, k) in moods else {}
 
         def run(
             single: CharacterNode = single,
@@ -204,20 +200,15 @@ def segments(
             seats: dict[int, str] = seats,
             spots: dict[int, tuple[float, float]] = spots,
             seated: list[tuple[float, float]] = seated,
-            mood: dict[int, tuple[float, float]] = mood,
         ) -> SynthesizeReply:
             start = (state.x, state.z, state.yaw)
-            return synthesise(
-                ctx, single, view, state, start, near_them, near, routes, seats, spots, seated, mood
-            )
+            return synthesise(ctx, single, view, state, start, near_them, near, routes, seats, spots, seated)
 
         inputs = [single, view, state, near_them, near] if near else [single, view, state, near_them]
         if routes or seats or spots:
             inputs.append([routes, sorted(seats.items()), sorted(spots.items())])
         if seated:  # only a seat-taking action depends on where the others sit
             inputs.append(seated)
-        if mood:  # only an action with a mood depends on the social plan's emotions
-            inputs.append(sorted(mood.items()))
         reply = ctx.engine.query(f"{kind}:{name}:{k}", inputs, run)
         placed = [
             msgspec.structs.replace(seg, action_index=k, sentence_id=sids[k]) for seg in reply.motion.segments
@@ -322,7 +313,6 @@ def animate(
         distances=near,
         door=door,
         hidden=hidden,
-        moods=moods,
     )
     for name, k, action in interactions:
         tick("optimise", done, total)
@@ -357,7 +347,6 @@ def animate(
         door=door,
         hidden=hidden,
         notes=notes,
-        moods=moods,
     )
     spans = {s.id: Span(s.start, s.end) for s in sentences}
     for sid, why in dict.fromkeys(notes):
@@ -393,7 +382,20 @@ def animate(
         if door is not None and not on.all():
             motion = _wait_outside(motion, on, door.outside(waiting_place[name]))
         out.motions[name] = motion
-    out.motions = _enlivened(scene, characters, out.motions)
+    out.motions = _enlivened(scene, characters, _in_moods(characters, out.motions, moods))
+    return out
+
+
+def _in_moods(
+    characters: Characters, motions: dict[str, Motion], moods: dict[tuple[str, int], tuple[float, float]]
+) -> dict[str, Motion]:
+    """Every motion played in the social plan's emotions (wana.domain.style), except for actions whose manner
+    word already set their mood (the motion service played those)."""
+    out = {}
+    for name, motion in motions.items():
+        actions = characters[name][0].actions if name in characters else []
+        mine = {k: m for (n, k), m in moods.items() if n == name and actions[k].manner not in MANNER_MOOD}
+        out[name] = restyle_motion(motion, mine)
     return out
 
 

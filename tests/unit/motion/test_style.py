@@ -3,21 +3,25 @@
 from __future__ import annotations
 
 import numpy as np
-import pytest
 
-from proto.common import Header
-from proto.motion import SynthesizeRequest
+from proto.motion_data import Motion, Segment
 from proto.scene import Room, Scene
 from proto.ssg import ActionNode, CharacterNode
-from services.motion.handlers import handle_synthesize
 from services.motion.ik import global_transforms
 from services.motion.planning import plan_actions
 from services.motion.style import Style, apply_style, mood_of, style_of
-from services.motion.synthesis import PlannedSegment, SegmentState, synthesise, synthesise_segment
-from wana.bus.service import InvalidInput
+from services.motion.synthesis import (
+    MotionPiece,
+    PlannedSegment,
+    SegmentState,
+    synthesise,
+    synthesise_segment,
+)
+from wana.arrays import from_wire, to_wire
 from wana.domain import quat
 from wana.domain.actions import neutral_rotations
 from wana.domain.skeleton import JOINT_INDEX
+from wana.domain.style import restyle_motion
 
 ANGRY = (-0.7, 0.8)
 SAD = (-0.7, -0.5)
@@ -104,15 +108,54 @@ def test_the_style_keeps_the_legs_and_amplifies_only_the_departure_from_rest():
     assert not np.allclose(out[:, JOINT_INDEX["Spine1"]], rot[:, JOINT_INDEX["Spine1"]])  # posture
 
 
-def test_the_social_emotion_reaches_the_motion_through_the_request():
-    node = ActionNode(verb="wave", action="wave")
+def _composed(action: str) -> Motion:
+    """One action then a hold, as the orchestrator's time line lays them out."""
+    piece, _ = _piece(action)
+    n = len(piece.root)
+    rot = np.concatenate([piece.rotations, np.repeat(piece.rotations[-1:], 30, 0)])
+    root = np.concatenate([piece.root, np.repeat(piece.root[-1:], 30, 0)])
+    return Motion(
+        character="c",
+        root_position=to_wire(root.astype(np.float32)),
+        rotations=to_wire(rot.astype(np.float32)),
+        segments=[
+            Segment(index=0, action=action, start_frame=0, end_frame=n, action_index=0),
+            Segment(index=1, action="hold", start_frame=n, end_frame=n + 30),
+        ],
+    )
 
-    def frames(moods: dict[int, tuple[float, float]]) -> int:
-        request = SynthesizeRequest(
-            header=Header(), character=CharacterNode(name="c", actions=[node]), scene=EMPTY, moods=moods
-        )
-        return int(handle_synthesize(request).motion.root_position.shape[0])
 
-    assert frames({0: ANGRY}) < frames({})
-    with pytest.raises(InvalidInput):
-        frames({0: (2.0, 0.0)})
+def test_the_social_emotion_restyles_the_composed_motion_without_a_pop():
+    plain = _composed("wave")
+    angry = restyle_motion(plain, {0: ANGRY})
+    sad = restyle_motion(plain, {0: SAD})
+    assert restyle_motion(plain, {}) is plain
+    hand = JOINT_INDEX["RightHand"]
+    heights, steps = {}, {}
+    for name, m in (("plain", plain), ("angry", angry), ("sad", sad)):
+        pos, _ = global_transforms(from_wire(m.rotations).astype(np.float64), from_wire(m.root_position))
+        heights[name] = pos[:, hand, 1].max()
+        steps[name] = np.linalg.norm(np.diff(pos, axis=0), axis=-1).max()
+    # metres per frame: the mood eases in, no joint jumps more than the (amplified) gesture itself moves
+    assert steps["angry"] < 1.35 * steps["plain"] + 0.01 and steps["sad"] < steps["plain"] + 0.01
+    assert heights["angry"] > heights["plain"] + 0.02 > heights["sad"] + 0.02
+    sad_piece = MotionPiece(from_wire(sad.root_position), from_wire(sad.rotations), None, None)  # type: ignore[arg-type]
+    assert (
+        _gaze_drop(sad_piece)
+        > _gaze_drop(MotionPiece(from_wire(plain.root_position), from_wire(plain.rotations), None, None))
+        + 0.05
+    )  # type: ignore[arg-type]
+
+
+def test_a_mood_keeps_the_hands_on_what_they_touch():
+    plain = _composed("type")
+    sad = restyle_motion(plain, {0: SAD})
+    pos_p, _ = global_transforms(
+        from_wire(plain.rotations).astype(np.float64), from_wire(plain.root_position)
+    )
+    pos_s, _ = global_transforms(from_wire(sad.rotations).astype(np.float64), from_wire(sad.root_position))
+    n = plain.segments[0].end_frame
+    for j in ("LeftHandMiddle1", "RightHandMiddle1"):
+        assert np.abs(pos_s[20 : n - 20, JOINT_INDEX[j]] - pos_p[20 : n - 20, JOINT_INDEX[j]]).max() < 0.005
+    head = JOINT_INDEX["Head"]
+    assert not np.allclose(from_wire(sad.rotations)[:, head], from_wire(plain.rotations)[:, head])
