@@ -94,6 +94,7 @@ def test_a_sheet_is_drawn_for_a_clip():
     assert img.width == 4 * 150 and flags == []
 
 
+@pytest.mark.slow
 def test_the_committed_clips_are_what_the_authoring_script_writes():
     for spec in all_specs():
         committed = json.loads((ACTIONS_DIR / f"{spec.name}.json").read_text())
