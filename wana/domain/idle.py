@@ -11,7 +11,8 @@ whatever deserves attention: who acts or walks nearby, the object the next actio
 The layer is zero at the edges of every idle stretch and eases in over ``RAMP_S``, so it never
 touches an action's frames and never pops. Frames where a prop is held are left alone (the prop
 follows the hand). Lives in the domain library because it works on the assembled time line the
-orchestrator builds, after the motion service has made every piece.
+orchestrator builds, after the motion service has made every piece. Over 400 lines because it keeps the
+layer, the stretches it covers, attention and blinks together: they share one timing and seeding rule.
 """
 
 from __future__ import annotations
