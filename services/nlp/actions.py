@@ -321,6 +321,7 @@ def extract_actions(sent: SpacySpan, builder: GraphBuilder) -> int:
         chars = [c for c in (character_of(s, builder) for s in subjects) if c is not None]
         chars = _distinct_names(chars)  # "Mr" and "Smith" both read as the subject "Mr Smith"
         if subjects and not chars:
+            arguments(verb, builder)  # "It rolls under the sofa": no action, but the sofa is in the story
             continue  # an object does something ("the lamp hangs"): not a character action
         action, social_verb = _action(verb, builder)
         if not chars:

@@ -203,8 +203,12 @@ TITLES = frozenset(
     "mr mrs ms miss mx dr doctor prof professor uncle aunt auntie grandma granny grandpa grandad nana "
     "sir madam madame lady lord captain capt officer detective det inspector sergeant sgt coach nurse "
     "mister master king queen prince princess father brother sister mother saint st judge mayor "
-    "agent general colonel major lieutenant lt chef".split()
+    "agent general colonel major lieutenant lt chef little old young big".split()
 )
+# A word's category when a verb says which thing it is: the bag a boxer punches is the punching bag.
+VERB_SENSES: dict[tuple[str, str], str] = {
+    ("handbag", verb): "boxing_bag" for verb in ("punch", "hit", "kick", "jab", "strike", "box", "pound")
+}
 
 MANNER_STOP = frozenset(
     "then now first finally again also still just later soon already next there here away back home in out "

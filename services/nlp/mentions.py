@@ -217,6 +217,7 @@ def object_mention(head: Token) -> ObjectMention | None:
         used = len(words) - 1
     if category is None:
         return None
+    category = lexicon.VERB_SENSES.get((category, _governing_verb(head)), category)
     _attributes(mods[:used], attributes)
     # Attribute words the category's own synonym swallowed ("wooden table" is a synonym of table).
     for m in mods[used:]:
@@ -243,6 +244,13 @@ def object_mention(head: Token) -> ObjectMention | None:
         end=head.idx + len(head.text),
         definite=definite,
     )
+
+
+def _governing_verb(head: Token) -> str:
+    """Lemma of the verb whose object or oblique ``head`` is ("punch" of "punches the bag"), or ""."""
+    if head.dep_ in ("obj", "obl", "iobj") and head.head.pos_ == "VERB":
+        return head.head.lemma_.lower()
+    return ""
 
 
 def quantity_target(head: Token) -> tuple[Token, int] | None:

@@ -197,6 +197,9 @@ def _titled_doc(nlp: Language, text: str) -> Doc:
     """The tokenized sentence with no sentence break inside a titled name: the parser would otherwise end
     a sentence at the abbreviation's period ("Prof. | Kim waves")."""
     doc = nlp.make_doc(text)
+    for tok in doc[1:]:  # the splitter already cut the text: no break but after . ! ? ("hands | Tom the cup")
+        if not (doc[tok.i - 1].text[-1:] in ".!?;" or doc[tok.i - 1].text in ('"', "'", ")")):
+            tok.is_sent_start = False
     for tok in doc[:-1]:
         if tok.text[:1].isupper() and tok.lower_.rstrip(".") in TITLES and doc[tok.i + 1].text[:1].isupper():
             doc[tok.i + 1].is_sent_start = False
@@ -259,10 +262,11 @@ def _extract(doc: Doc, text: str, kind: str, diagnostics: list[Diagnostic]) -> S
     builder.diagnostics.extend(diagnostics)
     is_scene = kind == "scene"
     sents = list(doc.sents) or [doc[:]]
-    if not is_scene and all(is_scene_like(s) for s in sents):
-        is_scene = True
+    # repaired first: "In the evening, Jack lights/NOUN a candle/ROOT" reads as a scene sentence otherwise
     if not is_scene and any([repair_character_sentence(s) for s in sents]):
         sents = list(doc.sents) or [doc[:]]
+    if not is_scene and all(is_scene_like(s) for s in sents):
+        is_scene = True
     for sent in sents:
         if is_scene:
             extract_scene(sent, builder)

@@ -57,10 +57,26 @@ def _unknown_name(tok: Token) -> bool:
     return nxt.lower_.endswith("s") and bool(action_reading(nxt.lower_))
 
 
+def _lead_in_end(sent: SpacySpan) -> int:
+    """Index after a leading time or linking phrase and its comma ("In the evening, ", "Then, "), else
+    the sentence start."""
+    from services.nlp.timephrase import time_light
+
+    for tok in sent[:7]:
+        if tok.text == ",":
+            lead = sent.doc[sent.start : tok.i]
+            if lead and (
+                any(time_light(t) is not None for t in lead) or all(t.pos_ in ("ADV", "SCONJ") for t in lead)
+            ):
+                return tok.i + 1
+            break
+    return sent.start
+
+
 def _subject_group(sent: SpacySpan) -> list[Token]:
     """Leading tokens that name who acts: "Tom and Mary", "The man and the woman", "They"."""
     group: list[Token] = []
-    for tok in sent:
+    for tok in sent.doc[_lead_in_end(sent) : sent.end]:
         if (
             _is_person(tok)
             or _unknown_name(tok)
@@ -110,6 +126,12 @@ def _repair_verbless(sent: SpacySpan) -> bool:
             continue
         tok.head = subject
         tok.dep_ = "conj" if _is_person(tok) else ("cc" if tok.pos_ == "CCONJ" else tok.dep_)
+    lead = range(sent.start, group[0].i)  # "In the evening ,": when, under the verb
+    for i in lead:
+        tok = sent.doc[i]
+        if tok.head.i not in lead or tok.head.i == tok.i:
+            tok.head = verb
+            tok.dep_ = "punct" if tok.is_punct else ("obl" if any(c.dep_ == "case" for c in tok.children) else "advmod")
     has_object = False
     for i in after:
         tok = sent.doc[i]
@@ -192,6 +214,55 @@ def _repair_verb_as_subject(sent: SpacySpan) -> bool:
     return False
 
 
+def _clause_verb(tok: Token) -> Token | None:
+    """The verb a noun hangs under, through objects, obliques and compounds ("bench" of "sits on a bench")."""
+    for _ in range(4):
+        if tok.pos_ == "VERB":
+            return tok
+        if tok.dep_ not in ("obj", "obl", "nmod", "compound", "conj", "nmod:unmarked") or tok.head.i == tok.i:
+            return None
+        tok = tok.head
+    return None
+
+
+def _repair_noun_conjunct_verb(sent: SpacySpan) -> bool:
+    """ "sits on a bench and drinks/NNS water", "draws his sword and charges/NNS": a verb the parser
+    coordinated with the noun before it -> a conjunct of the clause's verb, taking what follows as its
+    arguments. Only for a bare plural-looking word right after "and" whose verb reading is an action."""
+    changed = False
+    for tok in sent:
+        if tok.dep_ != "conj" or tok.pos_ not in ("NOUN", "VERB") or tok.head.pos_ not in ("NOUN", "PROPN"):
+            continue
+        if not tok.lower_.endswith("s") or tok.i == 0 or tok.doc[tok.i - 1].lower_ not in ("and", "then"):
+            continue
+        if any(c.dep_ in ("det", "nmod:poss", "amod", "nummod") for c in tok.children):
+            continue  # "and the cups", "and two drinks": a noun
+        noun = tok.head
+        verb = _clause_verb(noun)
+        lemma = action_reading(tok.lower_)
+        if verb is None or not lemma:
+            continue
+        tok.pos_, tok.tag_, tok.lemma_ = "VERB", "VBZ", lemma
+        tok.head, tok.dep_ = verb, "conj"
+        if noun.dep_ == "compound" and noun.head.i > tok.i:  # "bench/compound and drinks water"
+            after = noun.head
+            noun.head = verb
+            noun.dep_ = "obl" if any(c.dep_ == "case" for c in noun.children) else "obj"
+            after.head, after.dep_ = tok, "obj"
+        for t in sent.doc[tok.i + 1 : sent.end]:
+            if t.head.i < tok.i and not t.is_punct and t.dep_ in ("obj", "obl", "nmod", "advmod", "compound"):
+                t.head = tok
+                if t.dep_ == "compound":
+                    t.dep_ = "obj"
+                elif t.dep_ == "nmod":
+                    t.dep_ = "obl"
+        for c in tok.children:
+            if c.dep_ == "nmod" and any(g.dep_ == "case" for g in c.children):
+                c.dep_ = "obl"
+        changed = True
+    return changed
+
+
 def repair_character_sentence(sent: SpacySpan) -> bool:
     """Repair the tree of one character sentence in place; True when something changed."""
     return (
@@ -199,4 +270,5 @@ def repair_character_sentence(sent: SpacySpan) -> bool:
         | _repair_verbless(sent)
         | _repair_conjoined_verb(sent)
         | _repair_verb_as_subject(sent)
+        | _repair_noun_conjunct_verb(sent)
     )

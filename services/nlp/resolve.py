@@ -119,14 +119,44 @@ def _resolve_ref(
         return "each other" if not others else ""  # "the children whisper to each other": among them
     if lower in lexicon.OBJECT_PRONOUNS and lower != "them":
         ids = [o.id for o in graph.objects if before < 0 or o.span.end <= before]
-        return ids[-1] if ids else state.last_object
+        return ids[-1] if ids else (_thing_before(graph, state, before) or state.last_object)
+    if lower == "them" and (thing := _thing_before(graph, state, before)):
+        return thing  # "chops the onions and fries them"
     pron = _pronoun_of(lower)
     if pron:
         names = state.pronoun(pron, exclude=actor)
-        return names[0] if names else ""
+        return names[0] if names else (state.last_object if lower == "them" else "")
     if lower in state.spelling:
         return state.spelling[lower]
     return value
+
+
+def _is_thing(value: str, state: _State) -> bool:
+    """A target that is a thing: an object id, or a word no character, pronoun or body part is
+    ("the drink" the catalog lacks: "it" in the next sentence may still mean it)."""
+    if value in state.object_categories:
+        return True
+    lower = value.lower()
+    return bool(value) and not (
+        value[0].isupper()
+        or lower in state.spelling
+        or lower in lexicon.PRONOUNS
+        or lower in lexicon.OBJECT_PRONOUNS
+        or lower in lexicon.BODY_PARTS
+        or lower in lexicon.RECIPROCAL_PHRASES
+        or lower in lexicon.PERSON_NOUNS
+    )
+
+
+def _thing_before(graph: SentenceGraph, state: _State, before: int) -> str:
+    """The last thing acted upon earlier in the same sentence, or "" ("fries them" after "the onions")."""
+    things = [
+        (a.span.start, a.target)
+        for c in graph.characters
+        for a in c.actions
+        if (before < 0 or a.span.end <= before) and _is_thing(a.target, state)
+    ]
+    return max(things)[1] if things else ""
 
 
 def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> list[SentenceGraph]:
@@ -228,8 +258,13 @@ def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> li
                 state.last_actor = c.name
         if len(sentence_names) >= 2:
             state.last_group = sentence_names
-        targets = [a.target or a.destination for c in characters for a in c.actions]
-        targets = [t for t in targets if t in state.object_categories]
+        # what was last acted upon: a thing targeted (in the catalog or not), else a catalog destination
+        targets = [
+            a.target if _is_thing(a.target, state) else a.destination
+            for c in characters
+            for a in c.actions
+            if _is_thing(a.target, state) or a.destination in state.object_categories
+        ]
         if targets:
             state.last_object = targets[-1]  # "it" in the next sentence: what was last acted upon
         elif graph.objects:
