@@ -379,6 +379,10 @@ ACTION_OVERRIDES: dict[tuple[str, str], str] = {
     ("water", "plant"): "water_plants",
     ("listen", "headphones"): "listen_with_headphones",
     ("listen", "music"): "listen_with_headphones",
+    ("listen", "song"): "listen_with_headphones",
+    ("listen", "earphones"): "listen_with_headphones",
+    ("listen", "podcast"): "listen_with_headphones",
+    ("listen", "headphone"): "listen_with_headphones",
     ("take", "photo_frame"): "take_photo",
     ("take", "picture"): "take_photo",
     ("take", "photo"): "take_photo",
@@ -413,6 +417,7 @@ ACTION_OVERRIDES: dict[tuple[str, str], str] = {
 }
 # Verb lemma alone -> action name where the library's synonym table points elsewhere.
 VERB_OVERRIDES: dict[str, str] = {
+    "listen": "look_at",  # listening to someone is attending to them; "to music" is the headphones clip
     "stand": "stand",
     "sleep": "sleep",
     "be": "",

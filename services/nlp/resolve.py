@@ -46,6 +46,7 @@ class _State:
         self.last_actor = ""
         self.last_object = ""
         self.object_categories: dict[str, str] = {}
+        self.seat_of: dict[str, str] = {}  # character -> the object it last sat or lay on
 
     def mention(self, name: str, recent: bool = True) -> str:
         """Register a mention; ``recent=False`` (an object of a verb) keeps the subject the most recent."""
@@ -339,7 +340,25 @@ def _astuple(span: Span) -> tuple[int, int]:
     return span.start, span.end
 
 
+SEAT_ACTIONS = frozenset({"sit", "lie_down", "sleep"})
+
+
 def _resolve_action(
+    action: ActionNode, state: _State, actor: str, graph: SentenceGraph, group: tuple[str, ...] = ()
+) -> ActionNode:
+    action = _resolve_refs(action, state, actor, graph, group)
+    if action.action in SEAT_ACTIONS:
+        if action.target in state.object_categories:
+            state.seat_of[actor] = action.target
+        elif action.target and (action.target[0].isupper() or action.target.lower() in state.spelling):
+            # "sits next to Omar": on Omar's seat when he sat on one (a sofa, a bench, or a chair beside
+            # it), else near him: a body is nothing to sit on
+            seat = state.seat_of.get(action.target, "")
+            action = msgspec.structs.replace(action, target=seat, destination=action.destination or action.target)
+    return action
+
+
+def _resolve_refs(
     action: ActionNode, state: _State, actor: str, graph: SentenceGraph, group: tuple[str, ...] = ()
 ) -> ActionNode:
     target = _resolve_ref(action.target, state, actor, graph, action.span.start, group)
