@@ -63,7 +63,7 @@ def _subject_tokens(verb: Token) -> list[Token]:
             for s in subj:  # "Peter and Kate walk": the parser may mark both as subjects
                 out += [t for t in _with_conj_people(s) if t not in out]
             return out
-        if v.dep_ in ("conj", "xcomp", "advcl") and v.head.i != v.i:
+        if v.dep_ in ("conj", "xcomp", "advcl", "parataxis") and v.head.i != v.i:
             climbed_from_conj = True
             v = v.head
             continue
@@ -114,6 +114,11 @@ def _clause_verbs(sent: SpacySpan) -> list[Token]:
             continue
         if tok.dep_ == "xcomp" and tok.head.lemma_.lower() not in lexicon.ASPECT_VERBS:
             continue
+        if tok.dep_ == "ccomp" and _reports(tok.head):
+            continue  # "announces that they qualified": what is said or thought, not done here
+        if tok.tag_ == "VBN" and not any(c.dep_ in ("aux", "aux:pass", *SUBJECT_DEPS) for c in tok.children):
+            if tok.dep_ != "ROOT" and not lexicon.is_known_verb(verb_lemma(tok)):
+                continue  # "exhausted but grinning": a state, not an action
         if tok.lemma_.lower() in lexicon.ASPECT_VERBS and any(
             c.dep_ == "xcomp" and c.pos_ == "VERB" for c in tok.children
         ):
@@ -126,6 +131,13 @@ def _clause_verbs(sent: SpacySpan) -> list[Token]:
             continue  # "looks angry": an emotion, handled by _social
         verbs.append(tok)
     return verbs
+
+
+def _reports(verb: Token) -> bool:
+    """A verb of saying or thinking, whose clausal complement is content ("says that", "knows that")."""
+    lemma = verb_lemma(verb)
+    action = lexicon.action_for(lemma)
+    return action in ("talk", "whisper", "shout", "think", "nod") or bool(verbs.not_animatable_reason(lemma))
 
 
 def _glued_subject(tok: Token) -> Token | None:
@@ -215,6 +227,8 @@ def _action(verb: Token, builder: GraphBuilder) -> tuple[ActionNode, str]:
         )
     else:
         action = lexicon.action_for(lemma, particle, obj_words, prep, direction, person)
+    if any(c.lower_ in lexicon.REFLEXIVE_PRONOUNS and c.dep_ in ("obj", "iobj") for c in verb.children):
+        action = verbs.VERB_ACTIONS.get(f"{lemma} oneself", action)  # "lowers himself into the chair"
     social_verb = lemma
     if lemma in lexicon.LIGHT_VERBS and primary is not None and primary.word and not primary.body_part:
         # "gives Mary a hug", "has a quarrel with Tom", "takes a bow": the event noun is the action,

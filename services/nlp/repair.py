@@ -101,18 +101,32 @@ def _repair_verbless(sent: SpacySpan) -> bool:
     if not group or group[-1].i + 1 >= sent.end:
         return False
     verb = sent.doc[group[-1].i + 1]
-    if any(t.pos_ in ("VERB", "AUX") for t in sent) and not (verb.i == sent.root.i and verb.pos_ == "NOUN"):
+    appositive: list[Token] = []
+    if verb.text == ",":  # "Her apprentice, a lanky teenager named Hugo, stumbles/NOUN in"
+        close = next((t for t in sent.doc[verb.i + 1 : min(sent.end, verb.i + 10)] if t.text == ","), None)
+        if close is not None and close.i + 1 < sent.end:
+            appositive = list(sent.doc[verb.i : close.i + 1])
+            verb = sent.doc[close.i + 1]
+    root_is_noun = sent.root.pos_ in ("NOUN", "PROPN", "ADJ")
+    misread = verb.pos_ == "NOUN" and verb.tag_ == "NNS" and root_is_noun  # "Ada kneads/NNS dough/ROOT"
+    if (
+        any(t.pos_ in ("VERB", "AUX") for t in sent)
+        and not (verb.i == sent.root.i and verb.pos_ == "NOUN")
+        and not misread
+    ):
         return False  # a verb elsewhere is the root; but "The hero sprints/NOUN/ROOT ... and kicks" is not
     if verb.pos_ in _NOT_VERBS or verb.is_punct:
         return False
     lemma = action_reading(verb.lower_)
     if not lemma:
         return False
+    old_root = sent.root
     people = [t for t in group if _is_person(t) or _unknown_name(t)]
     for t in people:
         if _unknown_name(t):
             t.pos_ = "PROPN"  # the name it is
-    subject = people[0]
+    # "Her apprentice": the noun is who acts, the possessive hangs under it
+    subject = next((t for t in people if t.tag_ != "PRP$" and t.dep_ != "nmod:poss"), people[0])
     in_group = {t.i for t in group}
     after = range(verb.i + 1, sent.end)
     verb.pos_ = "VERB"
@@ -132,6 +146,9 @@ def _repair_verbless(sent: SpacySpan) -> bool:
         if tok.head.i not in lead or tok.head.i == tok.i:
             tok.head = verb
             tok.dep_ = "punct" if tok.is_punct else ("obl" if any(c.dep_ == "case" for c in tok.children) else "advmod")
+    for tok in appositive:
+        if tok.head.i not in {t.i for t in appositive}:
+            tok.head, tok.dep_ = subject, ("punct" if tok.is_punct else "appos")
     has_object = False
     for i in after:
         tok = sent.doc[i]
@@ -147,6 +164,12 @@ def _repair_verbless(sent: SpacySpan) -> bool:
             has_object = True
         elif tok.pos_ == "ADV":
             tok.dep_ = "advmod"
+    if old_root.i != verb.i and old_root.i in after:  # what hung under the noun the parser made the root
+        for tok in list(old_root.children):
+            if tok.dep_ in ("advcl", "parataxis") or (tok.dep_ == "conj" and tok.pos_ == "VERB"):
+                tok.head = verb
+            elif tok.dep_ == "nmod" and any(c.dep_ == "case" for c in tok.children) and tok.i > old_root.i:
+                tok.head, tok.dep_ = verb, "obl"
     return True
 
 
@@ -219,7 +242,7 @@ def _clause_verb(tok: Token) -> Token | None:
     for _ in range(4):
         if tok.pos_ == "VERB":
             return tok
-        if tok.dep_ not in ("obj", "obl", "nmod", "compound", "conj", "nmod:unmarked") or tok.head.i == tok.i:
+        if tok.dep_ not in ("obj", "obl", "nmod", "compound", "conj", "nmod:unmarked", "amod") or tok.head.i == tok.i:
             return None
         tok = tok.head
     return None
@@ -231,9 +254,16 @@ def _repair_noun_conjunct_verb(sent: SpacySpan) -> bool:
     arguments. Only for a bare plural-looking word right after "and" whose verb reading is an action."""
     changed = False
     for tok in sent:
-        if tok.dep_ != "conj" or tok.pos_ not in ("NOUN", "VERB") or tok.head.pos_ not in ("NOUN", "PROPN"):
+        if tok.dep_ != "conj" or tok.pos_ not in ("NOUN", "VERB") or tok.head.pos_ not in ("NOUN", "PROPN", "ADJ"):
             continue
-        if not tok.lower_.endswith("s") or tok.i == 0 or tok.doc[tok.i - 1].lower_ not in ("and", "then"):
+        before = tok.doc[tok.i - 1].lower_ if tok.i > 0 else ""
+        if before in ("and", "then"):
+            if not tok.lower_.endswith("s"):
+                continue
+        elif before == ",":  # "a backpack, hesitates, then", "the door, beaming,": never a catalog noun
+            if not (tok.lower_.endswith("s") or tok.tag_ == "VBG") or exact_category([tok.lower_]) is not None:
+                continue
+        else:
             continue
         if any(c.dep_ in ("det", "nmod:poss", "amod", "nummod") for c in tok.children):
             continue  # "and the cups", "and two drinks": a noun
@@ -242,8 +272,9 @@ def _repair_noun_conjunct_verb(sent: SpacySpan) -> bool:
         lemma = action_reading(tok.lower_)
         if verb is None or not lemma:
             continue
-        tok.pos_, tok.tag_, tok.lemma_ = "VERB", "VBZ", lemma
-        tok.head, tok.dep_ = verb, "conj"
+        participle = tok.tag_ == "VBG"
+        tok.pos_, tok.tag_, tok.lemma_ = "VERB", ("VBG" if participle else "VBZ"), lemma
+        tok.head, tok.dep_ = verb, ("advcl" if participle else "conj")
         if noun.dep_ == "compound" and noun.head.i > tok.i:  # "bench/compound and drinks water"
             after = noun.head
             noun.head = verb

@@ -156,7 +156,7 @@ whiteboard | board | white board, dry erase board, marker board, wall board | cl
 projector_screen | board | projection screen, pull down screen, movie screen | classroom meeting_room | SC | wall
 flip_chart | board | flipchart, easel pad, flip board, flip chart stand | meeting_room office classroom | SC | floor
 globe | teaching_equipment | world globe, terrestrial globe, earth globe | classroom library home_office | SCT | surface
-book | stationery | books, novel, textbook, paperback, hardcover, magazine, encyclopedia, dictionary | library classroom living_room bedroom office | SCTX | surface
+book | stationery | books, novel, textbook, paperback, hardcover, magazine, encyclopedia, dictionary, album, photo album, comic book, storybook | library classroom living_room bedroom office | SCTX | surface
 notebook | stationery | exercise book, notepad, jotter, copybook, note book, diary, journal | classroom office home_office | SCX | surface
 paper | stationery | papers, document, documents, sheet of paper, stack of paper, report, letter, file | office home_office classroom meeting_room | SX | surface
 pen | stationery | pencil, ballpoint, marker, biro, ballpoint pen, crayon, chalk | office classroom home_office | SC | surface
@@ -199,7 +199,7 @@ mug | drinkware | coffee mug, beer mug, tankard, travel mug | kitchen office caf
 glass | drinkware | drinking glass, tumbler, wine glass, wineglass, goblet, water glass | kitchen dining_room cafe | SCT | surface
 bottle | drinkware | water bottle, wine bottle, flask, beer bottle, plastic bottle | kitchen dining_room gym office | SCTM | surface
 soda_can | drinkware | can, soda, coke, cola, soft drink, drink can, beer can, tin can, soda pop | kitchen living_room office | SC | surface
-plate | tableware | dish, dinner plate, saucer, platter | kitchen dining_room cafe | SCM | surface
+plate | tableware | dish, dinner plate, saucer, platter, tray, serving tray, baking tray, tea tray | kitchen dining_room cafe | SCM | surface
 bowl | tableware | salad bowl, soup bowl, fruit bowl, cereal bowl | kitchen dining_room | SCM | surface
 pan | cookware | frying pan, skillet, wok, saucepan, fry pan | kitchen | SCM | surface
 pot | cookware | cooking pot, stockpot, casserole, stew pot | kitchen | SCM | surface
@@ -210,7 +210,7 @@ bathtub | bathroom_fixture | bath, tub, bath tub, jacuzzi, hot tub | bathroom | 
 shower | bathroom_fixture | shower cabin, shower stall, shower cubicle, shower booth | bathroom | STC | floor
 bathroom_sink | sink | washbasin, wash basin, basin, lavatory sink, vanity sink, hand basin, washstand | bathroom | STC | floor
 towel_rack | bathroom_fixture | towel rail, towel holder, towel bar, towel stand | bathroom | SCM | floor
-towel | textile | bath towel, hand towel, towels | bathroom gym | SCX | surface
+towel | textile | bath towel, hand towel, towels, shirt, shirts, t-shirt, clothes, clothing, garment, sweater, tea towel, rag, cloth | bathroom gym | SCX | surface
 washing_machine | appliance | washer, laundry machine, tumble dryer, dryer, washer dryer | bathroom kitchen | SC | floor
 toothbrush | toiletry | tooth brush, toothpaste | bathroom | SC | surface
 soap | toiletry | soap bar, soap dispenser, bar of soap, shampoo | bathroom kitchen | SC | surface
