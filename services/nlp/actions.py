@@ -71,6 +71,11 @@ def _subject_tokens(verb: Token) -> list[Token]:
             v = v.head  # "opens the door and leaves": "leaves" hangs under "door"
             continue
         break
+    if climbed_from_conj and v is not verb and v.pos_ == "VERB":
+        # "Sofia/compound stuffs the clothes ... and slams the lid": the name hung on the first verb
+        lead = [c for c in v.children if c.dep_ in ("compound", "flat") and c.i < v.i and c.pos_ == "PROPN"]
+        if lead and character_mention(lead[0]) is not None:
+            return _with_conj_people(lead[0])
     return []
 
 
@@ -116,9 +121,14 @@ def _clause_verbs(sent: SpacySpan) -> list[Token]:
             continue
         if tok.dep_ == "ccomp" and _reports(tok.head):
             continue  # "announces that they qualified": what is said or thought, not done here
-        if tok.tag_ == "VBN" and not any(c.dep_ in ("aux", "aux:pass", *SUBJECT_DEPS) for c in tok.children):
-            if tok.dep_ != "ROOT" and not lexicon.is_known_verb(verb_lemma(tok)):
-                continue  # "exhausted but grinning": a state, not an action
+        if tok.tag_ == "VBN" and not lexicon.is_known_verb(verb_lemma(tok)):
+            if not any(c.dep_ in ("aux", "aux:pass", *SUBJECT_DEPS) for c in tok.children):
+                if tok.dep_ != "ROOT":
+                    continue  # "exhausted but grinning": a state, not an action
+            elif not any(c.dep_ in ("obj", "obl") for c in tok.children) and any(
+                c.dep_ in ("aux", "aux:pass", "cop") and c.lemma_.lower() == "be" for c in tok.children
+            ):
+                continue  # "when he is done": a state
         if tok.lemma_.lower() in lexicon.ASPECT_VERBS and any(
             c.dep_ == "xcomp" and c.pos_ == "VERB" for c in tok.children
         ):
@@ -227,6 +237,12 @@ def _action(verb: Token, builder: GraphBuilder) -> tuple[ActionNode, str]:
         )
     else:
         action = lexicon.action_for(lemma, particle, obj_words, prep, direction, person)
+    if lemma in verbs.WITH_THING and primary is not None and primary.object_id and not person:
+        action = verbs.WITH_THING[lemma]  # "balances three plates"
+    if action in ("lie_down", "sleep") and lemma in verbs.DOZE_VERBS and not destination and (
+        not target or target in lexicon.BODY_PARTS
+    ):
+        action = "look_down"  # "dozes off with his head against the window": asleep where he sits
     if any(c.lower_ in lexicon.REFLEXIVE_PRONOUNS and c.dep_ in ("obj", "iobj") for c in verb.children):
         action = verbs.VERB_ACTIONS.get(f"{lemma} oneself", action)  # "lowers himself into the chair"
     social_verb = lemma
@@ -338,6 +354,10 @@ def extract_actions(sent: SpacySpan, builder: GraphBuilder) -> int:
             arguments(verb, builder)  # "It rolls under the sofa": no action, but the sofa is in the story
             continue  # an object does something ("the lamp hangs"): not a character action
         action, social_verb = _action(verb, builder)
+        if not action.action and verbs.not_animatable_reason(verb_lemma(verb)):
+            for cm in chars:  # "she hums", "he remembers": W113 says why; who it is still counts
+                builder.character(cm.name, cm.mention, cm.pronoun)
+            continue
         if not chars:
             chars = [CharacterMention(head=verb, name="", mention="")]  # imperative: the current character
         _add_action(chars, action, social_verb, builder)

@@ -53,8 +53,14 @@ NON_OBJECT_NOUNS = frozenset(
     "song tune match game race fight lesson class meeting party break rest dream idea thought question "
     "answer reply news dust dirt soil mud sand flour dough water air smoke steam darkness shadow "
     "everything something nothing anything thing things piece pieces bit bits band crowd team family "
-    "way time surface surfaces".split()
+    "way time surface surfaces clipping clippings crumb crumbs".split()
+) | frozenset(
+    # what a character wears: on the body, not in the room
+    "shoe shoes boot boots sock socks slipper slippers coat jacket hat cap scarf dress suit tie uniform "
+    "sleeve sleeves apron spectacles".split()
 )
+# Parts of a thing: "slams the lid" acts on the thing last named (the washing machine).
+PART_NOUNS = frozenset("lid handle knob cover edge hinge".split())
 COUNT_WORDS = {
     "one": 1,
     "two": 2,

@@ -237,7 +237,7 @@ def object_mention(head: Token) -> ObjectMention | None:
     return ObjectMention(
         head=head,
         category=category,
-        word=word.lower(),
+        word=word.lower().replace("_", " "),  # "trash_can" as the parser read it
         attributes=attributes,
         count=count,
         start=doc[start_tok].idx,

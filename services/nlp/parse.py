@@ -91,10 +91,24 @@ def _masked_speech(text: str) -> str:
     return out
 
 
+_CAN_COMPOUND = re.compile(r"\b([A-Za-z]+) (cans?)\b")
+
+
+def _glued_cans(text: str) -> str:
+    """ "a trash can", "a watering can" -> "trash_can": else the parser reads the modal "can" (same length)."""
+    from wana.assets import vocabulary
+
+    def glue(m: re.Match[str]) -> str:
+        phrase = f"{m.group(1).lower()} {m.group(2).lower()}"
+        return f"{m.group(1)}_{m.group(2)}" if vocabulary.lookup(phrase) not in (None, "soda_can") else m.group(0)
+
+    return _CAN_COMPOUND.sub(glue, text) if " can" in text else text
+
+
 def _parser_text(text: str) -> str:
     """The sentence as the parser reads it: a terminal "$" becomes "." and quoted speech is masked
     (same length, same offsets)."""
-    chars = list(_masked_speech(text))
+    chars = list(_glued_cans(_masked_speech(text)))
     i = len(chars) - 1
     while i >= 0 and (chars[i] in ".!?$ " or chars[i] in "\"')"):
         if chars[i] == "$":

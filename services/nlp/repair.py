@@ -102,7 +102,15 @@ def _repair_verbless(sent: SpacySpan) -> bool:
         return False
     verb = sent.doc[group[-1].i + 1]
     appositive: list[Token] = []
-    if verb.text == ",":  # "Her apprentice, a lanky teenager named Hugo, stumbles/NOUN in"
+    for k, tok in enumerate(group[:-1]):  # "Vincent, the barber, sweeps/NOUN": "the barber" is Vincent
+        if tok.text == "," and group[k + 1].pos_ == "DET":
+            appositive = group[k:]
+            group = group[:k]
+            break
+    if appositive and verb.text == ",":
+        appositive.append(verb)
+        verb = sent.doc[verb.i + 1]
+    elif verb.text == ",":  # "Her apprentice, a lanky teenager named Hugo, stumbles/NOUN in"
         close = next((t for t in sent.doc[verb.i + 1 : min(sent.end, verb.i + 10)] if t.text == ","), None)
         if close is not None and close.i + 1 < sent.end:
             appositive = list(sent.doc[verb.i : close.i + 1])
@@ -147,7 +155,7 @@ def _repair_verbless(sent: SpacySpan) -> bool:
             tok.head = verb
             tok.dep_ = "punct" if tok.is_punct else ("obl" if any(c.dep_ == "case" for c in tok.children) else "advmod")
     for tok in appositive:
-        if tok.head.i not in {t.i for t in appositive}:
+        if tok.head.i not in {t.i for t in appositive} or tok.head.i == tok.i:
             tok.head, tok.dep_ = subject, ("punct" if tok.is_punct else "appos")
     has_object = False
     for i in after:

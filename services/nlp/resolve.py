@@ -47,6 +47,8 @@ class _State:
         self.last_object = ""
         self.object_categories: dict[str, str] = {}
         self.seat_of: dict[str, str] = {}  # character -> the object it last sat or lay on
+        self.multiword: dict[str, str] = {}  # last word of an object named in several words -> its id
+        self.resolved_words: set[str] = set()  # words of this sentence that turned out to name an object
 
     def mention(self, name: str, recent: bool = True) -> str:
         """Register a mention; ``recent=False`` (an object of a verb) keeps the subject the most recent."""
@@ -118,6 +120,12 @@ def _resolve_ref(
         if len(others) == 1:
             return others[0]
         return "each other" if not others else ""  # "the children whisper to each other": among them
+    if lower in lexicon.PART_NOUNS and state.last_object in state.object_categories:
+        state.resolved_words.add(lower)
+        return state.last_object  # "slams the lid": of the machine just filled
+    if lower in state.multiword:
+        state.resolved_words.add(lower)
+        return state.multiword[lower]  # "into the machine" after "a washing machine"
     if lower in lexicon.OBJECT_PRONOUNS and lower != "them":
         ids = [o.id for o in graph.objects if before < 0 or o.span.end <= before]
         return ids[-1] if ids else (_thing_before(graph, state, before) or state.last_object)
@@ -130,6 +138,42 @@ def _resolve_ref(
     if lower in state.spelling:
         return state.spelling[lower]
     return value
+
+
+def _same_thing(
+    graph: SentenceGraph, named: dict[str, str], state: _State, offset: int | None
+) -> SentenceGraph:
+    """ "the can" after "a watering can": the object already named, not a new one of the word's own
+    category (a soda can); only for a definite one-word mention."""
+    renames: dict[str, str] = {}
+    for o in graph.objects:
+        earlier = named.get(o.word)
+        if earlier is None or earlier == o.id or " " in o.word or o.id in state.object_categories:
+            continue
+        local = o.span.start - offset if offset is not None else graph.text.lower().find(o.word)
+        words = (graph.text[: max(0, local)].lower().split()[-1:] + graph.text[max(0, local) :].lower().split())[:3]
+        if any(w in ("the", "his", "her", "their") for w in words[:2]):
+            renames[o.id] = earlier
+    if not renames:
+        return graph
+
+    def mv(a: ActionNode) -> ActionNode:
+        return msgspec.structs.replace(
+            a,
+            target=renames.get(a.target, a.target),
+            destination=renames.get(a.destination, a.destination),
+            instrument=renames.get(a.instrument, a.instrument),
+        )
+
+    return msgspec.structs.replace(
+        graph,
+        objects=[o for o in graph.objects if o.id not in renames],
+        characters=[msgspec.structs.replace(c, actions=[mv(a) for a in c.actions]) for c in graph.characters],
+        relations=[
+            msgspec.structs.replace(r, subject=renames.get(r.subject, r.subject), object=renames.get(r.object, r.object))
+            for r in graph.relations
+        ],
+    )
 
 
 def _is_thing(value: str, state: _State) -> bool:
@@ -174,9 +218,15 @@ def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> li
     graphs = distinct_objects(graphs, offsets)
     state = _State()
     out: list[SentenceGraph] = []
+    multiword = state.multiword  # "can" -> the watering can
     for gi, graph in enumerate(graphs):
         offset = offsets[gi] if offsets is not None and gi < len(offsets) else None
+        if graph.kind == "action":
+            graph = _same_thing(graph, multiword, state, offset)
         for o in graph.objects:
+            words = o.word.split()
+            if len(words) >= 2:
+                multiword.setdefault(words[-1], o.id)
             state.object_categories.setdefault(o.id, o.category)
         diagnostics: list[Diagnostic] = list(graph.diagnostics)
         sentence_names: list[str] = []
@@ -246,6 +296,13 @@ def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> li
                 if r not in sentence_names:
                     sentence_names.append(r)
             social.append(msgspec.structs.replace(node, subjects=subjects))
+        if state.resolved_words:  # "the lid", "the machine": no unknown object after all
+            diagnostics = [
+                d
+                for d in diagnostics
+                if not (d.code == "W101" and any(f"'{w}' is not in" in d.message.lower() for w in state.resolved_words))
+            ]
+            state.resolved_words = set()
         named = [a.span for acts in merged.values() for a in acts if a.action]
         diagnostics = [
             d

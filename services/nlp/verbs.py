@@ -54,8 +54,8 @@ sit: flop, flop onto, slump onto, lower oneself, seat, sink into, plonk, plop, s
 sit_on_floor: sit cross-legged
 stand: stand up, get up, rise, arise, straighten up, jump to one's feet, spring up, stand still,
     wake up, get to one's feet
-lie_down: lie, lay down, lie back, stretch out, sprawl, recline on, go to bed, sleep, nap, doze, snooze,
-    doze off, fall asleep, drift off, slumber, rest on
+lie_down: lie, lay down, lie back, stretch out, sprawl, recline on, go to bed, sleep, nap, snooze,
+    doze, doze off, drift off, fall asleep, slumber, rest on
 kneel: kneel down, get down, genuflect, drop to one's knees
 squat: dive, dodge, crouch, stoop down, hunker down, duck, bend down, huddle
 hide: cower, take cover, duck behind, hide behind, lurk, conceal oneself
@@ -79,11 +79,11 @@ catch: receive, grab the ball, intercept, catch hold
 dribble: bounce the ball, play basketball
 shoot_basket: shoot, dunk, score, shoot hoops
 block: defend, guard, parry, fend off, shield, protect
-pick_up: pick, take, grab, seize, snatch, collect, gather, fetch, retrieve, lift, raise, hold up,
+pick_up: fumble, fumble for, reach for, pick, take, grab, seize, snatch, collect, gather, fetch, retrieve, lift, raise, hold up,
     pick out, take out, get out, take down, take off, take away, get, obtain, scoop, scoop up,
     grasp, clutch, lift up, unpack, pluck, grip, find, pocket
 pull: pull out
-put_down: lower, put, place, set, lay, drop, deposit, leave, set down, lay down, put away, put back, put in,
+put_down: stuff, shove in, lower, put, place, set, lay, drop, deposit, leave, set down, lay down, put away, put back, put in,
     put on, pack, stow, store, hang up, plant, position, arrange, stack, pile, load, unload
 carry: hold, bring, take along, haul, lug, deliver, transport, carry in, carry out, bring in, keep
 pull: drag, tug, yank, heave, draw, pull back, pull up, tow, pull over
@@ -155,7 +155,7 @@ look_at: look, watch, see, observe, notice, stare, gaze, glance, peer, peek, pee
     look into, look for, search for, seek, follow with eyes, face
 look_around: search, explore, scan, survey, look about, glance around, peer around, look round
 look_up: look upward, gaze up, glance up
-look_down: look downward, gaze down, glance down, bow one's head, hang one's head
+look_down: nod off, look downward, gaze down, glance down, bow one's head, hang one's head
 look_left: glance left
 look_right: glance right
 read: peruse, skim, scan a page, read through, browse, leaf through, flip through, study a book, learn,
@@ -235,7 +235,7 @@ a state of mind: know, believe, remember, forget, understand, realize, realise, 
 owning or being: own, have, possess, belong, contain, include, consist, exist, seem, appear, become,
     remain silent, matter, cost, weigh, equal, lack, resemble
 time passing: happen, occur, begin, start, end, finish, last, elapse, pass by, continue on, qualify
-a sound, not a movement: hum, purr, tick, ring out, echo, creak, rattle, curse
+a sound: hum, purr, tick, ring out, echo, creak, rattle, curse
 """
 )
 
@@ -315,6 +315,13 @@ def verb_action(verb: str, particle: str = "") -> str | None:
     if verb in NOT_ANIMATABLE:
         return ""
     return None
+
+
+# A verb whose clip differs when it holds a thing: balancing plates is carrying them, not a yoga pose.
+WITH_THING: dict[str, str] = {"balance": "carry", "cradle": "carry", "clutch": "carry"}
+
+# Falling asleep with nothing to lie on: the head drops where one sits or stands.
+DOZE_VERBS = frozenset({"doze", "nod", "drift", "fall", "nap", "snooze"})
 
 
 def not_animatable_reason(verb: str) -> str:

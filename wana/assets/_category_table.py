@@ -135,7 +135,7 @@ camera | electronics | photo camera, video camera, camcorder, dslr, webcam | gal
 game_console | electronics | console, video game console, playstation, xbox, gaming console | living_room kids_room | SC | surface
 clock | decoration | wall clock, timepiece, clock face | classroom office kitchen living_room meeting_room | STCM | wall
 fan | appliance | electric fan, desk fan, standing fan, floor fan, ventilator | office bedroom gym | SCT | floor
-water_cooler | appliance | water dispenser, drinking fountain, water fountain | office lobby gym | SC | floor
+water_cooler | appliance | water dispenser, drinking fountain, water fountain, dispenser, cooler | office lobby gym | SC | floor
 radiator | appliance | heater, space heater, heating, heating radiator | living_room bedroom office bathroom | SC | floor
 piano | keyboard_instrument | upright piano, pianoforte, acoustic piano | music_studio living_room classroom | STCM | floor
 grand_piano | piano | grand, baby grand, concert grand, concert piano | music_studio lobby | STCM | floor
@@ -192,7 +192,7 @@ dishwasher | kitchen_appliance | dish washer, dish washing machine | kitchen | S
 kitchen_sink | sink | sink, kitchen basin, sink unit | kitchen | STC | floor
 toaster | kitchen_appliance | toaster oven, sandwich maker | kitchen | SC | surface
 coffee_maker | kitchen_appliance | coffee machine, espresso machine, coffeemaker, percolator, coffee pot | kitchen cafe office | SCT | surface
-kettle | kitchen_appliance | electric kettle, water kettle, tea kettle | kitchen office | SCT | surface
+kettle | kitchen_appliance | electric kettle, water kettle, tea kettle, watering can | kitchen office | SCT | surface
 teapot | tableware | tea pot, tea set | kitchen dining_room cafe living_room | STCM | surface
 cup | drinkware | teacup, tea cup, coffee cup, cups, paper cup | kitchen dining_room cafe office | SCTM | surface
 mug | drinkware | coffee mug, beer mug, tankard, travel mug | kitchen office cafe | SCT | surface
@@ -210,7 +210,7 @@ bathtub | bathroom_fixture | bath, tub, bath tub, jacuzzi, hot tub | bathroom | 
 shower | bathroom_fixture | shower cabin, shower stall, shower cubicle, shower booth | bathroom | STC | floor
 bathroom_sink | sink | washbasin, wash basin, basin, lavatory sink, vanity sink, hand basin, washstand | bathroom | STC | floor
 towel_rack | bathroom_fixture | towel rail, towel holder, towel bar, towel stand | bathroom | SCM | floor
-towel | textile | bath towel, hand towel, towels, shirt, shirts, t-shirt, clothes, clothing, garment, sweater, tea towel, rag, cloth | bathroom gym | SCX | surface
+towel | textile | bath towel, hand towel, towels, blanket, blankets, quilt, duvet, bedspread, shirt, shirts, t-shirt, clothes, clothing, garment, sweater, tea towel, rag, cloth | bathroom gym | SCX | surface
 washing_machine | appliance | washer, laundry machine, tumble dryer, dryer, washer dryer | bathroom kitchen | SC | floor
 toothbrush | toiletry | tooth brush, toothpaste | bathroom | SC | surface
 soap | toiletry | soap bar, soap dispenser, bar of soap, shampoo | bathroom kitchen | SC | surface
