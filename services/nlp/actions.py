@@ -239,8 +239,11 @@ def _action(verb: Token, builder: GraphBuilder) -> tuple[ActionNode, str]:
         action = lexicon.action_for(lemma, particle, obj_words, prep, direction, person)
     if lemma in verbs.WITH_THING and primary is not None and primary.object_id and not person:
         action = verbs.WITH_THING[lemma]  # "balances three plates"
-    if action in ("lie_down", "sleep") and lemma in verbs.DOZE_VERBS and not destination and (
-        not target or target in lexicon.BODY_PARTS
+    if (
+        action in ("lie_down", "sleep")
+        and lemma in verbs.DOZE_VERBS
+        and not destination
+        and (not target or target in lexicon.BODY_PARTS)
     ):
         action = "look_down"  # "dozes off with his head against the window": asleep where he sits
     if any(c.lower_ in lexicon.REFLEXIVE_PRONOUNS and c.dep_ in ("obj", "iobj") for c in verb.children):

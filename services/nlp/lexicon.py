@@ -33,31 +33,36 @@ PERSON_NOUNS = frozenset(
     "reporter journalist photographer mechanic plumber electrician gardener housekeeper nanny "
     "caretaker porter bellboy concierge owner landlord landlady tenant".split()
 )
-NON_OBJECT_NOUNS = frozenset(
-    "room floor wall ceiling corner middle center centre side left right front back top bottom end time "
-    "second seconds minute minutes moment hour hours day night way place area space home house building "
-    "street garden yard outside inside ground music song morning evening afternoon noon midnight dawn "
-    "dusk sunrise sunset twilight while week weekend month year today tomorrow yesterday meantime "
-    "instant daytime nighttime".split()
-) | frozenset(
-    # places a story is set in that are no room type and no furniture: never an unknown object
-    "attic loft basement cellar greenhouse ward carriage compartment cabin bakery park beach forest "
-    "field meadow hill river lake sea shore street road alley path lane corridor stairs staircase "
-    "stairway steps landing elevator lift lifts platform station village town city castle tower cottage "
-    "hut barn stable shop store market square courtyard balcony terrace porch patio roof rooftop sky "
-    "threshold row aisle centre".split()
-) | frozenset(
-    # what is said, felt, done or made of, not a thing to put in the room
-    "word words groan sigh smile grin frown laugh laughter tears breath care work job task speech toast "
-    "joke jokes story apology thanks greeting handshake hug kiss nod glance look silence noise sound "
-    "song tune match game race fight lesson class meeting party break rest dream idea thought question "
-    "answer reply news dust dirt soil mud sand flour dough water air smoke steam darkness shadow "
-    "everything something nothing anything thing things piece pieces bit bits band crowd team family "
-    "way time surface surfaces clipping clippings crumb crumbs".split()
-) | frozenset(
-    # what a character wears: on the body, not in the room
-    "shoe shoes boot boots sock socks slipper slippers coat jacket hat cap scarf dress suit tie uniform "
-    "sleeve sleeves apron spectacles".split()
+NON_OBJECT_NOUNS = (
+    frozenset(
+        "room floor wall ceiling corner middle center centre side left right front back top bottom end time "
+        "second seconds minute minutes moment hour hours day night way place area space home house building "
+        "street garden yard outside inside ground music song morning evening afternoon noon midnight dawn "
+        "dusk sunrise sunset twilight while week weekend month year today tomorrow yesterday meantime "
+        "instant daytime nighttime".split()
+    )
+    | frozenset(
+        # places a story is set in that are no room type and no furniture: never an unknown object
+        "attic loft basement cellar greenhouse ward carriage compartment cabin bakery park beach forest "
+        "field meadow hill river lake sea shore street road alley path lane corridor stairs staircase "
+        "stairway steps landing elevator lift lifts platform station village town city castle tower cottage "
+        "hut barn stable shop store market square courtyard balcony terrace porch patio roof rooftop sky "
+        "threshold row aisle centre".split()
+    )
+    | frozenset(
+        # what is said, felt, done or made of, not a thing to put in the room
+        "word words groan sigh smile grin frown laugh laughter tears breath care work job task speech toast "
+        "joke jokes story apology thanks greeting handshake hug kiss nod glance look silence noise sound "
+        "song tune match game race fight lesson class meeting party break rest dream idea thought question "
+        "answer reply news dust dirt soil mud sand flour dough water air smoke steam darkness shadow "
+        "everything something nothing anything thing things piece pieces bit bits band crowd team family "
+        "way time surface surfaces clipping clippings crumb crumbs".split()
+    )
+    | frozenset(
+        # what a character wears: on the body, not in the room
+        "shoe shoes boot boots sock socks slipper slippers coat jacket hat cap scarf dress suit tie uniform "
+        "sleeve sleeves apron spectacles".split()
+    )
 )
 # Parts of a thing: "slams the lid" acts on the thing last named (the washing machine).
 PART_NOUNS = frozenset("lid handle knob cover edge hinge".split())

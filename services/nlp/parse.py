@@ -100,7 +100,11 @@ def _glued_cans(text: str) -> str:
 
     def glue(m: re.Match[str]) -> str:
         phrase = f"{m.group(1).lower()} {m.group(2).lower()}"
-        return f"{m.group(1)}_{m.group(2)}" if vocabulary.lookup(phrase) not in (None, "soda_can") else m.group(0)
+        return (
+            f"{m.group(1)}_{m.group(2)}"
+            if vocabulary.lookup(phrase) not in (None, "soda_can")
+            else m.group(0)
+        )
 
     return _CAN_COMPOUND.sub(glue, text) if " can" in text else text
 

@@ -153,7 +153,11 @@ def _repair_verbless(sent: SpacySpan) -> bool:
         tok = sent.doc[i]
         if tok.head.i not in lead or tok.head.i == tok.i:
             tok.head = verb
-            tok.dep_ = "punct" if tok.is_punct else ("obl" if any(c.dep_ == "case" for c in tok.children) else "advmod")
+            tok.dep_ = (
+                "punct"
+                if tok.is_punct
+                else ("obl" if any(c.dep_ == "case" for c in tok.children) else "advmod")
+            )
     for tok in appositive:
         if tok.head.i not in {t.i for t in appositive} or tok.head.i == tok.i:
             tok.head, tok.dep_ = subject, ("punct" if tok.is_punct else "appos")
@@ -250,7 +254,10 @@ def _clause_verb(tok: Token) -> Token | None:
     for _ in range(4):
         if tok.pos_ == "VERB":
             return tok
-        if tok.dep_ not in ("obj", "obl", "nmod", "compound", "conj", "nmod:unmarked", "amod") or tok.head.i == tok.i:
+        if (
+            tok.dep_ not in ("obj", "obl", "nmod", "compound", "conj", "nmod:unmarked", "amod")
+            or tok.head.i == tok.i
+        ):
             return None
         tok = tok.head
     return None
@@ -262,14 +269,21 @@ def _repair_noun_conjunct_verb(sent: SpacySpan) -> bool:
     arguments. Only for a bare plural-looking word right after "and" whose verb reading is an action."""
     changed = False
     for tok in sent:
-        if tok.dep_ != "conj" or tok.pos_ not in ("NOUN", "VERB") or tok.head.pos_ not in ("NOUN", "PROPN", "ADJ"):
+        if (
+            tok.dep_ != "conj"
+            or tok.pos_ not in ("NOUN", "VERB")
+            or tok.head.pos_ not in ("NOUN", "PROPN", "ADJ")
+        ):
             continue
         before = tok.doc[tok.i - 1].lower_ if tok.i > 0 else ""
         if before in ("and", "then"):
             if not tok.lower_.endswith("s"):
                 continue
         elif before == ",":  # "a backpack, hesitates, then", "the door, beaming,": never a catalog noun
-            if not (tok.lower_.endswith("s") or tok.tag_ == "VBG") or exact_category([tok.lower_]) is not None:
+            if (
+                not (tok.lower_.endswith("s") or tok.tag_ == "VBG")
+                or exact_category([tok.lower_]) is not None
+            ):
                 continue
         else:
             continue

@@ -151,7 +151,9 @@ def _same_thing(
         if earlier is None or earlier == o.id or " " in o.word or o.id in state.object_categories:
             continue
         local = o.span.start - offset if offset is not None else graph.text.lower().find(o.word)
-        words = (graph.text[: max(0, local)].lower().split()[-1:] + graph.text[max(0, local) :].lower().split())[:3]
+        words = (
+            graph.text[: max(0, local)].lower().split()[-1:] + graph.text[max(0, local) :].lower().split()
+        )[:3]
         if any(w in ("the", "his", "her", "their") for w in words[:2]):
             renames[o.id] = earlier
     if not renames:
@@ -170,7 +172,9 @@ def _same_thing(
         objects=[o for o in graph.objects if o.id not in renames],
         characters=[msgspec.structs.replace(c, actions=[mv(a) for a in c.actions]) for c in graph.characters],
         relations=[
-            msgspec.structs.replace(r, subject=renames.get(r.subject, r.subject), object=renames.get(r.object, r.object))
+            msgspec.structs.replace(
+                r, subject=renames.get(r.subject, r.subject), object=renames.get(r.object, r.object)
+            )
             for r in graph.relations
         ],
     )
@@ -300,7 +304,10 @@ def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> li
             diagnostics = [
                 d
                 for d in diagnostics
-                if not (d.code == "W101" and any(f"'{w}' is not in" in d.message.lower() for w in state.resolved_words))
+                if not (
+                    d.code == "W101"
+                    and any(f"'{w}' is not in" in d.message.lower() for w in state.resolved_words)
+                )
             ]
             state.resolved_words = set()
         named = [a.span for acts in merged.values() for a in acts if a.action]
@@ -411,7 +418,9 @@ def _resolve_action(
             # "sits next to Omar": on Omar's seat when he sat on one (a sofa, a bench, or a chair beside
             # it), else near him: a body is nothing to sit on
             seat = state.seat_of.get(action.target, "")
-            action = msgspec.structs.replace(action, target=seat, destination=action.destination or action.target)
+            action = msgspec.structs.replace(
+                action, target=seat, destination=action.destination or action.target
+            )
     return action
 
 

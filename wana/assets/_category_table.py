@@ -248,7 +248,18 @@ umbrella_stand | container | umbrella, umbrella holder, brolly stand | lobby | S
 # Room types -> synonyms people write ("working shop" is how the paper names a workshop).
 ROOM_ROWS: dict[str, tuple[str, ...]] = {
     "living_room": ("living room", "lounge", "sitting room", "family room", "parlour", "parlor", "den"),
-    "bedroom": ("bed room", "sleeping room", "master bedroom", "guest room"),
+    "bedroom": (
+        "bed room",
+        "sleeping room",
+        "master bedroom",
+        "guest room",
+        "hotel room",
+        "motel room",
+        "hotel suite",
+        "hospital room",
+        "hospital ward",
+        "dormitory",
+    ),
     "kids_room": ("kids room", "children's room", "childrens room", "nursery", "playroom", "child's room"),
     "kitchen": ("kitchenette", "cookhouse"),
     "dining_room": ("dining room", "dining hall", "dinner room"),

@@ -180,7 +180,9 @@ def test_a_fountain_screenplay_becomes_the_story_it_tells(gateway) -> None:
     assert text.splitlines()[:2] == ["In the kitchen$.", "night"]
     assert "Ada walks to the fridge." in text and 'Ada angrily says "Where is the milk"' in text
     doc_id = r.json()["doc_id"]
-    replaced = gateway.http.put(f"/api/documents/{doc_id}/text", json={"text": FOUNTAIN.replace("ADA walks", "ADA runs")})
+    replaced = gateway.http.put(
+        f"/api/documents/{doc_id}/text", json={"text": FOUNTAIN.replace("ADA walks", "ADA runs")}
+    )
     assert "Ada runs to the fridge." in replaced.json()["text"]
     plain = gateway.http.post("/api/documents", json={"text": "ADA walks to the fridge.", "title": "notes"})
     assert plain.json()["text"] == "ADA walks to the fridge."  # no heading, no cue: kept as written
