@@ -26,6 +26,7 @@ from services.nlp.arguments import (
     event_action,
     event_phrase,
     object_words,
+    unknown_capitalised_subject,
     verb_lemma,
 )
 from services.nlp.builder import GraphBuilder
@@ -48,11 +49,11 @@ def _subject_tokens(verb: Token) -> list[Token]:
         lead = [
             c
             for c in verb.children
-            if c.dep_ in ("compound", "flat", "nmod:desc", "dep")
+            if c.dep_ in ("compound", "flat", "nmod:desc", "dep", "amod")
             and c.i < verb.i
-            and c.pos_ in ("PROPN", "NOUN")
+            and c.pos_ in ("PROPN", "NOUN", "ADJ")
         ]
-        if lead and character_mention(lead[0]) is not None:
+        if lead and (character_mention(lead[0]) is not None or unknown_capitalised_subject(lead[0])):
             return _with_conj_people(lead[0])
     v = verb
     climbed_from_conj = False

@@ -123,7 +123,7 @@ def _resolve_ref(
     if lower in lexicon.PART_NOUNS and state.last_object in state.object_categories:
         state.resolved_words.add(lower)
         return state.last_object  # "slams the lid": of the machine just filled
-    if lower in state.multiword:
+    if lower in state.multiword and value not in state.object_categories:
         state.resolved_words.add(lower)
         return state.multiword[lower]  # "into the machine" after "a washing machine"
     if lower in lexicon.OBJECT_PRONOUNS and lower != "them":
@@ -411,6 +411,10 @@ def _resolve_action(
     action: ActionNode, state: _State, actor: str, graph: SentenceGraph, group: tuple[str, ...] = ()
 ) -> ActionNode:
     action = _resolve_refs(action, state, actor, graph, group)
+    if action.verb == "listen" and action.action == "look_at" and not action.target:
+        # "Ms Lee listens": to whoever acted last before her (the one talking to her)
+        speaker = next((c for c in reversed(state.characters) if c != actor), "")
+        action = msgspec.structs.replace(action, target=speaker) if speaker else action
     if action.action in SEAT_ACTIONS:
         if action.target in state.object_categories:
             state.seat_of[actor] = action.target

@@ -116,3 +116,16 @@ def test_a_sound_is_no_action_and_says_why() -> None:
 )
 def test_places_feelings_and_clothes_are_no_unknown_objects(text) -> None:
     assert "W101" not in codes(parse_document(text))
+
+
+def test_a_capitalised_subject_no_dictionary_knows_is_a_name() -> None:
+    graphs = parse_document("Forrest sits on the bench. A nurse walks in and sits next to him. Forrest eats.")
+    assert acts(graphs)[0] == ("Forrest", "sit", "bench")
+    assert acts(graphs)[-1] == ("Forrest", "eat", "")
+    nurse_sits = graphs[1].characters[0].actions[-1]
+    assert (nurse_sits.target, nurse_sits.destination) == ("bench", "Forrest")  # beside him, on his bench
+
+
+def test_a_listener_looks_at_whoever_spoke_to_them() -> None:
+    graphs = parse_document("Dr. Jones talks to Ms Lee. Ms Lee listens and nods.")
+    assert acts(graphs)[1:] == [("Ms Lee", "look_at", "Dr. Jones"), ("Ms Lee", "nod", "")]
