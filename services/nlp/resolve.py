@@ -405,6 +405,7 @@ def _astuple(span: Span) -> tuple[int, int]:
 
 
 SEAT_ACTIONS = frozenset({"sit", "lie_down", "sleep"})
+SHARED_SEATS = frozenset({"sofa", "loveseat"})  # seats for two or more the text may share
 
 
 def _resolve_action(
@@ -419,12 +420,11 @@ def _resolve_action(
         if action.target in state.object_categories:
             state.seat_of[actor] = action.target
         elif action.target and (action.target[0].isupper() or action.target.lower() in state.spelling):
-            # "sits next to Omar": on Omar's seat when he sat on one (a sofa, a bench, or a chair beside
-            # it), else near him: a body is nothing to sit on
+            # "sits next to Omar": a body is nothing to sit on. On a sofa Omar shares, else on a free seat
+            # the motion service picks (it walking up to Omar first, or onto his full bench, ends on air)
             seat = state.seat_of.get(action.target, "")
-            action = msgspec.structs.replace(
-                action, target=seat, destination=action.destination or action.target
-            )
+            shared = seat if state.object_categories.get(seat, "") in SHARED_SEATS else ""
+            action = msgspec.structs.replace(action, target=shared, destination="")
     return action
 
 

@@ -89,7 +89,9 @@ def test_parts_and_short_names_mean_the_object_named_before() -> None:
 def test_sitting_next_to_someone_takes_a_seat_beside_them() -> None:
     graphs = parse_document("There is a sofa$. Omar sits on the sofa. Eve sits next to Omar.")
     last = graphs[-1].characters[0].actions[0]
-    assert (last.action, last.target, last.destination) == ("sit", "sofa", "Omar")
+    assert (last.action, last.target, last.destination) == ("sit", "sofa", "")
+    (alone,) = parse_document("Eve sits next to Omar.")[0].characters[0].actions
+    assert (alone.target, alone.destination) == ("", "")  # a body is nothing to sit on
 
 
 def test_weather_said_as_a_sentence_is_a_light_command() -> None:
@@ -123,7 +125,7 @@ def test_a_capitalised_subject_no_dictionary_knows_is_a_name() -> None:
     assert acts(graphs)[0] == ("Forrest", "sit", "bench")
     assert acts(graphs)[-1] == ("Forrest", "eat", "")
     nurse_sits = graphs[1].characters[0].actions[-1]
-    assert (nurse_sits.target, nurse_sits.destination) == ("bench", "Forrest")  # beside him, on his bench
+    assert (nurse_sits.target, nurse_sits.destination) == ("", "")  # a free seat, not on Forrest
 
 
 def test_a_listener_looks_at_whoever_spoke_to_them() -> None:
