@@ -64,6 +64,11 @@ NON_OBJECT_NOUNS = (
         "sleeve sleeves apron spectacles".split()
     )
 )
+# What things do in a scene sentence ("a lamp glows"), which the tagger may read as plural nouns.
+SCENE_VERBS = frozenset(
+    "glow hum buzz flicker shine gleam sparkle hang stand sit lie lean rest wait crowd line fill run "
+    "stretch dust cover smell tick creak rattle loom tower overlook face hover dangle sway".split()
+)
 # Parts of a thing: "slams the lid" acts on the thing last named (the washing machine).
 PART_NOUNS = frozenset("lid handle knob cover edge hinge".split())
 COUNT_WORDS = {

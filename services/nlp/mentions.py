@@ -278,6 +278,8 @@ def is_unknown_object_word(head: Token) -> bool:
         return False
     if lexicon.room_of(head.lower_) or lexicon.room_of(lemma):
         return False
+    if head.tag_ == "NNS" and head.lower_.endswith("s") and head.lower_[:-1] in lexicon.SCENE_VERBS:
+        return False  # "a lamp glows", "the fridge hums": the verb of a scene sentence, not a thing
     return object_mention(head) is None
 
 

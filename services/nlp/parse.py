@@ -26,7 +26,7 @@ from services.nlp.builder import GraphBuilder
 from services.nlp.commands import looks_like_command, parse_command, unknown_camera_detail
 from services.nlp.errors import MAX_SENTENCE_CHARS, diagnostic
 from services.nlp.lexicon import TITLES
-from services.nlp.repair import repair_character_sentence
+from services.nlp.repair import repair_character_sentence, repair_scene_sentence
 from services.nlp.scene import extract_scene, is_scene_like
 from services.nlp.segment import kind_hint as _kind_hint
 from services.nlp.segment import quote_spans, split_sentences
@@ -287,6 +287,7 @@ def _extract(doc: Doc, text: str, kind: str, diagnostics: list[Diagnostic]) -> S
         is_scene = True
     for sent in sents:
         if is_scene:
+            repair_scene_sentence(sent)
             extract_scene(sent, builder)
         else:
             extract_actions(sent, builder)

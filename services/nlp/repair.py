@@ -325,3 +325,25 @@ def repair_character_sentence(sent: SpacySpan) -> bool:
         | _repair_verb_as_subject(sent)
         | _repair_noun_conjunct_verb(sent)
     )
+
+
+_POSTURE_VERBS = frozenset("hang stand sit lie lean rest".split())
+
+
+def repair_scene_sentence(sent: SpacySpan) -> bool:
+    """ "... and the oven/compound glows/NNS": a scene verb the tagger read as a plural noun, its thing
+    hung under it as a compound -> the verb, with the thing as its subject (then the oven is an object)."""
+    changed = False
+    for tok in sent:
+        verb = tok.lower_[:-1]
+        if tok.tag_ != "NNS" or not tok.lower_.endswith("s") or verb not in lexicon.SCENE_VERBS:
+            continue
+        if verb in lexicon.RELATION_VERBS or verb in _POSTURE_VERBS:
+            continue  # "hangs above", "stands near": the scene reader's own relations
+        things = [c for c in tok.children if c.dep_ == "compound" and c.i < tok.i and c.pos_ == "NOUN"]
+        if not things or exact_category([things[-1].lower_]) is None:
+            continue
+        tok.pos_, tok.tag_, tok.lemma_ = "VERB", "VBZ", tok.lower_[:-1]
+        things[-1].dep_ = "nsubj"
+        changed = True
+    return changed

@@ -123,6 +123,8 @@ def _resolve_ref(
     if lower in lexicon.PART_NOUNS and state.last_object in state.object_categories:
         state.resolved_words.add(lower)
         return state.last_object  # "slams the lid": of the machine just filled
+    if lower in ("everything", "all") and state.last_object:
+        return state.last_object  # "folds everything": what was just handled (the clothes)
     if lower in state.multiword and value not in state.object_categories:
         state.resolved_words.add(lower)
         return state.multiword[lower]  # "into the machine" after "a washing machine"

@@ -52,7 +52,7 @@ spin: twirl, pivot, rotate, whirl around, pirouette around
 sit: flop, flop onto, slump onto, lower oneself, seat, sink into, plonk, plop, sink down, sit down, be seated, take a seat, settle, settle down, perch, plop down, flop down, squat down on,
     relax, rest, lounge, sit back, sit up, slouch, recline
 sit_on_floor: sit cross-legged
-stand: jolt awake, start awake, snap awake, jerk awake, jolt up, stand up, get up, rise, arise, straighten up, jump to one's feet, spring up, stand still,
+stand: awake, awaken, jolt awake, start awake, snap awake, jerk awake, jolt up, stand up, get up, rise, arise, straighten up, jump to one's feet, spring up, stand still,
     wake up, get to one's feet
 lie_down: lie, lay down, lie back, stretch out, sprawl, recline on, go to bed, sleep, nap, snooze,
     doze, doze off, drift off, fall asleep, slumber, rest on

@@ -131,3 +131,15 @@ def test_a_capitalised_subject_no_dictionary_knows_is_a_name() -> None:
 def test_a_listener_looks_at_whoever_spoke_to_them() -> None:
     graphs = parse_document("Dr. Jones talks to Ms Lee. Ms Lee listens and nods.")
     assert acts(graphs)[1:] == [("Ms Lee", "look_at", "Dr. Jones"), ("Ms Lee", "nod", "")]
+
+
+def test_a_scene_verb_read_as_a_noun_keeps_its_thing() -> None:
+    (graph,) = parse_document("A big oak table fills the centre of the room and the oven glows$.")
+    assert sorted(o.category for o in graph.objects) == ["stove", "table"]
+    assert "W101" not in codes([graph])  # "glows" is no unknown object
+
+
+def test_everything_means_what_was_just_handled_and_awake_is_getting_up() -> None:
+    graphs = parse_document("A basket of clothes is on the floor$. Sofia folds everything neatly.")
+    assert acts(graphs) == [("Sofia", "fold_clothes", "towel")]
+    assert acts(parse_document("Daniel, still dressed, jolts awake."))[0][1] == "stand"
