@@ -151,6 +151,8 @@ def predicted(graphs: list[SentenceGraph]) -> dict[str, Counter]:
     for g in graphs:
         for c in g.characters:
             for a in c.actions:
+                if not a.action:
+                    continue  # a verb no clip shows ("knits"): its diagnostic says so, it is no action
                 where = a.target or a.destination
                 out["actions"][(c.name, a.action, categories.get(where, where))] += 1
                 if a.manner:

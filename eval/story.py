@@ -261,8 +261,14 @@ def _compute(text: str, doc_id: str, seed: int) -> Any:
 
 
 def evaluate_story(path: Path, seed: int = 0, gallery: Path | None = None) -> dict[str, Any]:
-    """One story file (read as `wana animate` reads it: undecodable bytes replaced)."""
-    return evaluate_text(path.stem, path.read_text(encoding="utf-8", errors="replace"), seed, gallery)
+    """One story file (read as `wana animate` reads it: undecodable bytes replaced, a Fountain screenplay
+    turned into the story it tells)."""
+    text = path.read_text(encoding="utf-8", errors="replace")
+    from wana.screenplay import looks_like_fountain, to_story
+
+    if looks_like_fountain(text, str(path)):
+        text = to_story(text)
+    return evaluate_text(path.stem, text, seed, gallery)
 
 
 def evaluate_text(story: str, text: str, seed: int = 0, gallery: Path | None = None) -> dict[str, Any]:

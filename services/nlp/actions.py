@@ -26,6 +26,7 @@ from services.nlp.arguments import (
     event_action,
     event_phrase,
     object_words,
+    unknown_capitalised_subject,
     verb_lemma,
 )
 from services.nlp.builder import GraphBuilder
@@ -48,11 +49,11 @@ def _subject_tokens(verb: Token) -> list[Token]:
         lead = [
             c
             for c in verb.children
-            if c.dep_ in ("compound", "flat", "nmod:desc", "dep")
+            if c.dep_ in ("compound", "flat", "nmod:desc", "dep", "amod")
             and c.i < verb.i
-            and c.pos_ in ("PROPN", "NOUN")
+            and c.pos_ in ("PROPN", "NOUN", "ADJ")
         ]
-        if lead and character_mention(lead[0]) is not None:
+        if lead and (character_mention(lead[0]) is not None or unknown_capitalised_subject(lead[0])):
             return _with_conj_people(lead[0])
     v = verb
     climbed_from_conj = False
@@ -63,7 +64,7 @@ def _subject_tokens(verb: Token) -> list[Token]:
             for s in subj:  # "Peter and Kate walk": the parser may mark both as subjects
                 out += [t for t in _with_conj_people(s) if t not in out]
             return out
-        if v.dep_ in ("conj", "xcomp", "advcl") and v.head.i != v.i:
+        if v.dep_ in ("conj", "xcomp", "advcl", "parataxis") and v.head.i != v.i:
             climbed_from_conj = True
             v = v.head
             continue
@@ -71,6 +72,11 @@ def _subject_tokens(verb: Token) -> list[Token]:
             v = v.head  # "opens the door and leaves": "leaves" hangs under "door"
             continue
         break
+    if climbed_from_conj and v is not verb and v.pos_ == "VERB":
+        # "Sofia/compound stuffs the clothes ... and slams the lid": the name hung on the first verb
+        lead = [c for c in v.children if c.dep_ in ("compound", "flat") and c.i < v.i and c.pos_ == "PROPN"]
+        if lead and character_mention(lead[0]) is not None:
+            return _with_conj_people(lead[0])
     return []
 
 
@@ -114,6 +120,16 @@ def _clause_verbs(sent: SpacySpan) -> list[Token]:
             continue
         if tok.dep_ == "xcomp" and tok.head.lemma_.lower() not in lexicon.ASPECT_VERBS:
             continue
+        if tok.dep_ == "ccomp" and _reports(tok.head):
+            continue  # "announces that they qualified": what is said or thought, not done here
+        if tok.tag_ == "VBN" and not lexicon.is_known_verb(verb_lemma(tok)):
+            if not any(c.dep_ in ("aux", "aux:pass", *SUBJECT_DEPS) for c in tok.children):
+                if tok.dep_ != "ROOT":
+                    continue  # "exhausted but grinning": a state, not an action
+            elif not any(c.dep_ in ("obj", "obl") for c in tok.children) and any(
+                c.dep_ in ("aux", "aux:pass", "cop") and c.lemma_.lower() == "be" for c in tok.children
+            ):
+                continue  # "when he is done": a state
         if tok.lemma_.lower() in lexicon.ASPECT_VERBS and any(
             c.dep_ == "xcomp" and c.pos_ == "VERB" for c in tok.children
         ):
@@ -126,6 +142,13 @@ def _clause_verbs(sent: SpacySpan) -> list[Token]:
             continue  # "looks angry": an emotion, handled by _social
         verbs.append(tok)
     return verbs
+
+
+def _reports(verb: Token) -> bool:
+    """A verb of saying or thinking, whose clausal complement is content ("says that", "knows that")."""
+    lemma = verb_lemma(verb)
+    action = lexicon.action_for(lemma)
+    return action in ("talk", "whisper", "shout", "think", "nod") or bool(verbs.not_animatable_reason(lemma))
 
 
 def _glued_subject(tok: Token) -> Token | None:
@@ -215,6 +238,17 @@ def _action(verb: Token, builder: GraphBuilder) -> tuple[ActionNode, str]:
         )
     else:
         action = lexicon.action_for(lemma, particle, obj_words, prep, direction, person)
+    if lemma in verbs.WITH_THING and primary is not None and primary.object_id and not person:
+        action = verbs.WITH_THING[lemma]  # "balances three plates"
+    if (
+        action in ("lie_down", "sleep")
+        and lemma in verbs.DOZE_VERBS
+        and not destination
+        and (not target or target in lexicon.BODY_PARTS)
+    ):
+        action = "look_down"  # "dozes off with his head against the window": asleep where he sits
+    if any(c.lower_ in lexicon.REFLEXIVE_PRONOUNS and c.dep_ in ("obj", "iobj") for c in verb.children):
+        action = verbs.VERB_ACTIONS.get(f"{lemma} oneself", action)  # "lowers himself into the chair"
     social_verb = lemma
     if lemma in lexicon.LIGHT_VERBS and primary is not None and primary.word and not primary.body_part:
         # "gives Mary a hug", "has a quarrel with Tom", "takes a bow": the event noun is the action,
@@ -321,8 +355,13 @@ def extract_actions(sent: SpacySpan, builder: GraphBuilder) -> int:
         chars = [c for c in (character_of(s, builder) for s in subjects) if c is not None]
         chars = _distinct_names(chars)  # "Mr" and "Smith" both read as the subject "Mr Smith"
         if subjects and not chars:
+            arguments(verb, builder)  # "It rolls under the sofa": no action, but the sofa is in the story
             continue  # an object does something ("the lamp hangs"): not a character action
         action, social_verb = _action(verb, builder)
+        if not action.action and verbs.not_animatable_reason(verb_lemma(verb)):
+            for cm in chars:  # "she hums", "he remembers": W113 says why; who it is still counts
+                builder.character(cm.name, cm.mention, cm.pronoun)
+            continue
         if not chars:
             chars = [CharacterMention(head=verb, name="", mention="")]  # imperative: the current character
         _add_action(chars, action, social_verb, builder)

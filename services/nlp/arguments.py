@@ -70,9 +70,29 @@ def duration_of(tok: Token) -> float | None:
 
 def character_of(tok: Token, builder: GraphBuilder) -> CharacterMention | None:
     cm = character_mention(tok)
-    if cm is None and tok.pos_ == "PROPN" and object_mention(tok) is None and not is_title(tok):
-        cm = CharacterMention(head=tok, name=tok.text, mention=tok.text)
+    if cm is None and (tok.pos_ == "PROPN" or unknown_capitalised_subject(tok)):
+        if object_mention(tok) is None and not is_title(tok):
+            cm = CharacterMention(head=tok, name=tok.text, mention=tok.text)
     return cm
+
+
+def unknown_capitalised_subject(tok: Token) -> bool:
+    """ "Forrest/ADJ eats": a capitalised subject that is no English word the treebank knows: a name."""
+    from services.nlp.compounds import _english_words
+
+    lead = (
+        tok.dep_ in ("amod", "compound") and tok.head.pos_ == "VERB" and tok.i < tok.head.i
+    )  # "Forrest/amod sits"
+    return (
+        (tok.dep_ in ("nsubj", "nsubj:pass") or lead)
+        and tok.pos_ in ("ADJ", "NOUN", "X")
+        and tok.text[:1].isupper()
+        and tok.text[1:].islower()
+        and tok.is_alpha
+        and len(tok.text) >= 3
+        and tok.lower_ not in _english_words()
+        and not lexicon.room_of(tok.lower_)
+    )
 
 
 _SALIENCE = {"obj": 0, "nsubj": 1, "nsubj:pass": 1, "obl": 2, "nmod": 3}

@@ -110,6 +110,12 @@ WEATHER_VALUES = {
     "snow": "snowy",
     "snowing": "snowy",
     "snows": "snowy",
+    "pour": "rainy",
+    "pours": "rainy",
+    "pouring": "rainy",
+    "drizzle": "rainy",
+    "drizzles": "rainy",
+    "drizzling": "rainy",
 }
 SPEED_VALUES = {
     "faster": "faster",
@@ -131,6 +137,12 @@ _OVER_SHOULDER = re.compile(
 )
 _FOLLOW = re.compile(r"^follow\s+([A-Z][\w'-]*)$")  # "Follow Anna." (an imperative, not "Tom follows Anna")
 _WEATHER = re.compile(r"^(?:(?:weather|light|lighting|time)\s*:?\s+|it\s+is\s+|it's\s+)?([a-z]+)$")
+# "It starts to pour outside.", "It is raining.", "It snows": the weather, said as a sentence
+_WEATHER_SENTENCE = re.compile(
+    r"^(?:then\s+|suddenly\s+|outside\s+)?it\s+(?:(?:starts|begins|started|began)\s+(?:to\s+)?|is\s+|was\s+|'s\s+)?"
+    r"(rain|rains|raining|pour|pours|pouring|drizzle|drizzles|drizzling|snow|snows|snowing)"
+    r"(?:\s+(?:outside|again|heavily|hard|softly|gently))*$"
+)
 
 
 def _clean(text: str) -> str:
@@ -187,6 +199,8 @@ def parse_command(text: str, offset: int = 0) -> Command | None:
                 return None
             seconds = n * UNIT_SECONDS[unit]
         return Command(kind="wait", value="", seconds=seconds, span=span)
+    if m := _WEATHER_SENTENCE.match(lower.replace("it's", "it 's")):
+        return Command(kind="weather", value=WEATHER_VALUES[m.group(1)], span=span)
     if m := _WEATHER.match(lower):
         value = WEATHER_VALUES.get(m.group(1))
         if value is not None:

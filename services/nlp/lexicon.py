@@ -26,15 +26,51 @@ PERSON_NOUNS = frozenset(
     "servant maid butler clerk receptionist librarian scientist professor janitor cleaner mayor judge "
     "lawyer shopkeeper baker grandmother grandfather granny uncle aunt parent parents teenager "
     "traveller traveler stranger giant dwarf elf merchant innkeeper bartender actor actress audience "
-    "crowd duke duchess lord lady servant messenger twin twins".split()
+    "crowd duke duchess lord lady servant messenger twin twins captain intern apprentice patient barber "
+    "dentist hairdresser cashier passenger conductor tourist neighbour neighbor toddler grandson "
+    "granddaughter niece nephew fiance fiancee bride groom host hostess chief commander sheriff "
+    "teammates player players spectator spectators performer drummer bassist vocalist "
+    "reporter journalist photographer mechanic plumber electrician gardener housekeeper nanny "
+    "caretaker porter bellboy concierge owner landlord landlady tenant".split()
 )
-NON_OBJECT_NOUNS = frozenset(
-    "room floor wall ceiling corner middle center centre side left right front back top bottom end time "
-    "second seconds minute minutes moment hour hours day night way place area space home house building "
-    "street garden yard outside inside ground music song morning evening afternoon noon midnight dawn "
-    "dusk sunrise sunset twilight while week weekend month year today tomorrow yesterday meantime "
-    "instant daytime nighttime".split()
+NON_OBJECT_NOUNS = (
+    frozenset(
+        "room floor wall ceiling corner middle center centre side left right front back top bottom end time "
+        "second seconds minute minutes moment hour hours day night way place area space home house building "
+        "street garden yard outside inside ground music song morning evening afternoon noon midnight dawn "
+        "dusk sunrise sunset twilight while week weekend month year today tomorrow yesterday meantime "
+        "instant daytime nighttime".split()
+    )
+    | frozenset(
+        # places a story is set in that are no room type and no furniture: never an unknown object
+        "attic loft basement cellar greenhouse ward carriage compartment cabin bakery park beach forest "
+        "field meadow hill river lake sea shore street road alley path lane corridor stairs staircase "
+        "stairway steps landing elevator lift lifts platform station village town city castle tower cottage "
+        "hut barn stable shop store market square courtyard balcony terrace porch patio roof rooftop sky "
+        "threshold row aisle centre".split()
+    )
+    | frozenset(
+        # what is said, felt, done or made of, not a thing to put in the room
+        "word words groan sigh smile grin frown laugh laughter tears breath care work job task speech toast "
+        "joke jokes story apology thanks greeting handshake hug kiss nod glance look silence noise sound "
+        "song tune match game race fight lesson class meeting party break rest dream idea thought question "
+        "answer reply news dust dirt soil mud sand flour dough water air smoke steam darkness shadow "
+        "everything something nothing anything thing things piece pieces bit bits band crowd team family "
+        "way time surface surfaces clipping clippings crumb crumbs".split()
+    )
+    | frozenset(
+        # what a character wears: on the body, not in the room
+        "shoe shoes boot boots sock socks slipper slippers coat jacket hat cap scarf dress suit tie uniform "
+        "sleeve sleeves apron spectacles".split()
+    )
 )
+# What things do in a scene sentence ("a lamp glows"), which the tagger may read as plural nouns.
+SCENE_VERBS = frozenset(
+    "glow hum buzz flicker shine gleam sparkle hang stand sit lie lean rest wait crowd line fill run "
+    "stretch dust cover smell tick creak rattle loom tower overlook face hover dangle sway".split()
+)
+# Parts of a thing: "slams the lid" acts on the thing last named (the washing machine).
+PART_NOUNS = frozenset("lid handle knob cover edge hinge".split())
 COUNT_WORDS = {
     "one": 1,
     "two": 2,
@@ -203,8 +239,12 @@ TITLES = frozenset(
     "mr mrs ms miss mx dr doctor prof professor uncle aunt auntie grandma granny grandpa grandad nana "
     "sir madam madame lady lord captain capt officer detective det inspector sergeant sgt coach nurse "
     "mister master king queen prince princess father brother sister mother saint st judge mayor "
-    "agent general colonel major lieutenant lt chef".split()
+    "agent general colonel major lieutenant lt chef little old young big".split()
 )
+# A word's category when a verb says which thing it is: the bag a boxer punches is the punching bag.
+VERB_SENSES: dict[tuple[str, str], str] = {
+    ("handbag", verb): "boxing_bag" for verb in ("punch", "hit", "kick", "jab", "strike", "box", "pound")
+}
 
 MANNER_STOP = frozenset(
     "then now first finally again also still just later soon already next there here away back home in out "
@@ -298,7 +338,8 @@ LIGHT_VERBS = frozenset("give have make take do share".split())
 # name, never its target or an unknown object.
 BODY_PARTS = frozenset(
     "hand hands arm arms head fist fists finger fingers thumb thumbs shoulder shoulders hair teeth face "
-    "foot feet leg legs cheek cheeks eye eyes".split()
+    "foot feet leg legs cheek cheeks eye eyes forehead brow knee knees lip lips mouth nose ear ears neck "
+    "belly stomach chin wrist wrists elbow elbows toe toes eyebrows".split()
 )
 REFLEXIVE_PRONOUNS = frozenset(
     "himself herself themselves itself myself yourself ourselves yourselves oneself".split()
@@ -375,6 +416,10 @@ ACTION_OVERRIDES: dict[tuple[str, str], str] = {
     ("water", "plant"): "water_plants",
     ("listen", "headphones"): "listen_with_headphones",
     ("listen", "music"): "listen_with_headphones",
+    ("listen", "song"): "listen_with_headphones",
+    ("listen", "earphones"): "listen_with_headphones",
+    ("listen", "podcast"): "listen_with_headphones",
+    ("listen", "headphone"): "listen_with_headphones",
     ("take", "photo_frame"): "take_photo",
     ("take", "picture"): "take_photo",
     ("take", "photo"): "take_photo",
@@ -409,6 +454,8 @@ ACTION_OVERRIDES: dict[tuple[str, str], str] = {
 }
 # Verb lemma alone -> action name where the library's synonym table points elsewhere.
 VERB_OVERRIDES: dict[str, str] = {
+    "listen": "look_at",
+    "hum": "",  # a sound, not a movement (the library's "hum" holds a microphone)  # listening to someone is attending to them; "to music" is the headphones clip
     "stand": "stand",
     "sleep": "sleep",
     "be": "",

@@ -217,6 +217,7 @@ def object_mention(head: Token) -> ObjectMention | None:
         used = len(words) - 1
     if category is None:
         return None
+    category = lexicon.VERB_SENSES.get((category, _governing_verb(head)), category)
     _attributes(mods[:used], attributes)
     # Attribute words the category's own synonym swallowed ("wooden table" is a synonym of table).
     for m in mods[used:]:
@@ -236,13 +237,20 @@ def object_mention(head: Token) -> ObjectMention | None:
     return ObjectMention(
         head=head,
         category=category,
-        word=word.lower(),
+        word=word.lower().replace("_", " "),  # "trash_can" as the parser read it
         attributes=attributes,
         count=count,
         start=doc[start_tok].idx,
         end=head.idx + len(head.text),
         definite=definite,
     )
+
+
+def _governing_verb(head: Token) -> str:
+    """Lemma of the verb whose object or oblique ``head`` is ("punch" of "punches the bag"), or ""."""
+    if head.dep_ in ("obj", "obl", "iobj") and head.head.pos_ == "VERB":
+        return head.head.lemma_.lower()
+    return ""
 
 
 def quantity_target(head: Token) -> tuple[Token, int] | None:
@@ -270,6 +278,8 @@ def is_unknown_object_word(head: Token) -> bool:
         return False
     if lexicon.room_of(head.lower_) or lexicon.room_of(lemma):
         return False
+    if head.tag_ == "NNS" and head.lower_.endswith("s") and head.lower_[:-1] in lexicon.SCENE_VERBS:
+        return False  # "a lamp glows", "the fridge hums": the verb of a scene sentence, not a thing
     return object_mention(head) is None
 
 

@@ -26,7 +26,7 @@ from services.nlp.builder import GraphBuilder
 from services.nlp.commands import looks_like_command, parse_command, unknown_camera_detail
 from services.nlp.errors import MAX_SENTENCE_CHARS, diagnostic
 from services.nlp.lexicon import TITLES
-from services.nlp.repair import repair_character_sentence
+from services.nlp.repair import repair_character_sentence, repair_scene_sentence
 from services.nlp.scene import extract_scene, is_scene_like
 from services.nlp.segment import kind_hint as _kind_hint
 from services.nlp.segment import quote_spans, split_sentences
@@ -91,10 +91,28 @@ def _masked_speech(text: str) -> str:
     return out
 
 
+_CAN_COMPOUND = re.compile(r"\b([A-Za-z]+) (cans?)\b")
+
+
+def _glued_cans(text: str) -> str:
+    """ "a trash can", "a watering can" -> "trash_can": else the parser reads the modal "can" (same length)."""
+    from wana.assets import vocabulary
+
+    def glue(m: re.Match[str]) -> str:
+        phrase = f"{m.group(1).lower()} {m.group(2).lower()}"
+        return (
+            f"{m.group(1)}_{m.group(2)}"
+            if vocabulary.lookup(phrase) not in (None, "soda_can")
+            else m.group(0)
+        )
+
+    return _CAN_COMPOUND.sub(glue, text) if " can" in text else text
+
+
 def _parser_text(text: str) -> str:
     """The sentence as the parser reads it: a terminal "$" becomes "." and quoted speech is masked
     (same length, same offsets)."""
-    chars = list(_masked_speech(text))
+    chars = list(_glued_cans(_masked_speech(text)))
     i = len(chars) - 1
     while i >= 0 and (chars[i] in ".!?$ " or chars[i] in "\"')"):
         if chars[i] == "$":
@@ -197,6 +215,9 @@ def _titled_doc(nlp: Language, text: str) -> Doc:
     """The tokenized sentence with no sentence break inside a titled name: the parser would otherwise end
     a sentence at the abbreviation's period ("Prof. | Kim waves")."""
     doc = nlp.make_doc(text)
+    for tok in doc[1:]:  # the splitter already cut the text: no break but after . ! ? ("hands | Tom the cup")
+        if not (doc[tok.i - 1].text[-1:] in ".!?;" or doc[tok.i - 1].text in ('"', "'", ")")):
+            tok.is_sent_start = False
     for tok in doc[:-1]:
         if tok.text[:1].isupper() and tok.lower_.rstrip(".") in TITLES and doc[tok.i + 1].text[:1].isupper():
             doc[tok.i + 1].is_sent_start = False
@@ -259,12 +280,14 @@ def _extract(doc: Doc, text: str, kind: str, diagnostics: list[Diagnostic]) -> S
     builder.diagnostics.extend(diagnostics)
     is_scene = kind == "scene"
     sents = list(doc.sents) or [doc[:]]
-    if not is_scene and all(is_scene_like(s) for s in sents):
-        is_scene = True
+    # repaired first: "In the evening, Jack lights/NOUN a candle/ROOT" reads as a scene sentence otherwise
     if not is_scene and any([repair_character_sentence(s) for s in sents]):
         sents = list(doc.sents) or [doc[:]]
+    if not is_scene and all(is_scene_like(s) for s in sents):
+        is_scene = True
     for sent in sents:
         if is_scene:
+            repair_scene_sentence(sent)
             extract_scene(sent, builder)
         else:
             extract_actions(sent, builder)

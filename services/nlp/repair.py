@@ -57,10 +57,26 @@ def _unknown_name(tok: Token) -> bool:
     return nxt.lower_.endswith("s") and bool(action_reading(nxt.lower_))
 
 
+def _lead_in_end(sent: SpacySpan) -> int:
+    """Index after a leading time or linking phrase and its comma ("In the evening, ", "Then, "), else
+    the sentence start."""
+    from services.nlp.timephrase import time_light
+
+    for tok in sent[:7]:
+        if tok.text == ",":
+            lead = sent.doc[sent.start : tok.i]
+            if lead and (
+                any(time_light(t) is not None for t in lead) or all(t.pos_ in ("ADV", "SCONJ") for t in lead)
+            ):
+                return tok.i + 1
+            break
+    return sent.start
+
+
 def _subject_group(sent: SpacySpan) -> list[Token]:
     """Leading tokens that name who acts: "Tom and Mary", "The man and the woman", "They"."""
     group: list[Token] = []
-    for tok in sent:
+    for tok in sent.doc[_lead_in_end(sent) : sent.end]:
         if (
             _is_person(tok)
             or _unknown_name(tok)
@@ -85,18 +101,40 @@ def _repair_verbless(sent: SpacySpan) -> bool:
     if not group or group[-1].i + 1 >= sent.end:
         return False
     verb = sent.doc[group[-1].i + 1]
-    if any(t.pos_ in ("VERB", "AUX") for t in sent) and not (verb.i == sent.root.i and verb.pos_ == "NOUN"):
+    appositive: list[Token] = []
+    for k, tok in enumerate(group[:-1]):  # "Vincent, the barber, sweeps/NOUN": "the barber" is Vincent
+        if tok.text == "," and group[k + 1].pos_ == "DET":
+            appositive = group[k:]
+            group = group[:k]
+            break
+    if appositive and verb.text == ",":
+        appositive.append(verb)
+        verb = sent.doc[verb.i + 1]
+    elif verb.text == ",":  # "Her apprentice, a lanky teenager named Hugo, stumbles/NOUN in"
+        close = next((t for t in sent.doc[verb.i + 1 : min(sent.end, verb.i + 10)] if t.text == ","), None)
+        if close is not None and close.i + 1 < sent.end:
+            appositive = list(sent.doc[verb.i : close.i + 1])
+            verb = sent.doc[close.i + 1]
+    root_is_noun = sent.root.pos_ in ("NOUN", "PROPN", "ADJ")
+    misread = verb.pos_ == "NOUN" and verb.tag_ == "NNS" and root_is_noun  # "Ada kneads/NNS dough/ROOT"
+    if (
+        any(t.pos_ in ("VERB", "AUX") for t in sent)
+        and not (verb.i == sent.root.i and verb.pos_ == "NOUN")
+        and not misread
+    ):
         return False  # a verb elsewhere is the root; but "The hero sprints/NOUN/ROOT ... and kicks" is not
     if verb.pos_ in _NOT_VERBS or verb.is_punct:
         return False
     lemma = action_reading(verb.lower_)
     if not lemma:
         return False
+    old_root = sent.root
     people = [t for t in group if _is_person(t) or _unknown_name(t)]
     for t in people:
         if _unknown_name(t):
             t.pos_ = "PROPN"  # the name it is
-    subject = people[0]
+    # "Her apprentice": the noun is who acts, the possessive hangs under it
+    subject = next((t for t in people if t.tag_ != "PRP$" and t.dep_ != "nmod:poss"), people[0])
     in_group = {t.i for t in group}
     after = range(verb.i + 1, sent.end)
     verb.pos_ = "VERB"
@@ -110,6 +148,19 @@ def _repair_verbless(sent: SpacySpan) -> bool:
             continue
         tok.head = subject
         tok.dep_ = "conj" if _is_person(tok) else ("cc" if tok.pos_ == "CCONJ" else tok.dep_)
+    lead = range(sent.start, group[0].i)  # "In the evening ,": when, under the verb
+    for i in lead:
+        tok = sent.doc[i]
+        if tok.head.i not in lead or tok.head.i == tok.i:
+            tok.head = verb
+            tok.dep_ = (
+                "punct"
+                if tok.is_punct
+                else ("obl" if any(c.dep_ == "case" for c in tok.children) else "advmod")
+            )
+    for tok in appositive:
+        if tok.head.i not in {t.i for t in appositive} or tok.head.i == tok.i:
+            tok.head, tok.dep_ = subject, ("punct" if tok.is_punct else "appos")
     has_object = False
     for i in after:
         tok = sent.doc[i]
@@ -125,6 +176,12 @@ def _repair_verbless(sent: SpacySpan) -> bool:
             has_object = True
         elif tok.pos_ == "ADV":
             tok.dep_ = "advmod"
+    if old_root.i != verb.i and old_root.i in after:  # what hung under the noun the parser made the root
+        for tok in list(old_root.children):
+            if tok.dep_ in ("advcl", "parataxis") or (tok.dep_ == "conj" and tok.pos_ == "VERB"):
+                tok.head = verb
+            elif tok.dep_ == "nmod" and any(c.dep_ == "case" for c in tok.children) and tok.i > old_root.i:
+                tok.head, tok.dep_ = verb, "obl"
     return True
 
 
@@ -192,6 +249,73 @@ def _repair_verb_as_subject(sent: SpacySpan) -> bool:
     return False
 
 
+def _clause_verb(tok: Token) -> Token | None:
+    """The verb a noun hangs under, through objects, obliques and compounds ("bench" of "sits on a bench")."""
+    for _ in range(4):
+        if tok.pos_ == "VERB":
+            return tok
+        if (
+            tok.dep_ not in ("obj", "obl", "nmod", "compound", "conj", "nmod:unmarked", "amod")
+            or tok.head.i == tok.i
+        ):
+            return None
+        tok = tok.head
+    return None
+
+
+def _repair_noun_conjunct_verb(sent: SpacySpan) -> bool:
+    """ "sits on a bench and drinks/NNS water", "draws his sword and charges/NNS": a verb the parser
+    coordinated with the noun before it -> a conjunct of the clause's verb, taking what follows as its
+    arguments. Only for a bare plural-looking word right after "and" whose verb reading is an action."""
+    changed = False
+    for tok in sent:
+        if (
+            tok.dep_ != "conj"
+            or tok.pos_ not in ("NOUN", "VERB")
+            or tok.head.pos_ not in ("NOUN", "PROPN", "ADJ")
+        ):
+            continue
+        before = tok.doc[tok.i - 1].lower_ if tok.i > 0 else ""
+        if before in ("and", "then"):
+            if not tok.lower_.endswith("s"):
+                continue
+        elif before == ",":  # "a backpack, hesitates, then", "the door, beaming,": never a catalog noun
+            if (
+                not (tok.lower_.endswith("s") or tok.tag_ == "VBG")
+                or exact_category([tok.lower_]) is not None
+            ):
+                continue
+        else:
+            continue
+        if any(c.dep_ in ("det", "nmod:poss", "amod", "nummod") for c in tok.children):
+            continue  # "and the cups", "and two drinks": a noun
+        noun = tok.head
+        verb = _clause_verb(noun)
+        lemma = action_reading(tok.lower_)
+        if verb is None or not lemma:
+            continue
+        participle = tok.tag_ == "VBG"
+        tok.pos_, tok.tag_, tok.lemma_ = "VERB", ("VBG" if participle else "VBZ"), lemma
+        tok.head, tok.dep_ = verb, ("advcl" if participle else "conj")
+        if noun.dep_ == "compound" and noun.head.i > tok.i:  # "bench/compound and drinks water"
+            after = noun.head
+            noun.head = verb
+            noun.dep_ = "obl" if any(c.dep_ == "case" for c in noun.children) else "obj"
+            after.head, after.dep_ = tok, "obj"
+        for t in sent.doc[tok.i + 1 : sent.end]:
+            if t.head.i < tok.i and not t.is_punct and t.dep_ in ("obj", "obl", "nmod", "advmod", "compound"):
+                t.head = tok
+                if t.dep_ == "compound":
+                    t.dep_ = "obj"
+                elif t.dep_ == "nmod":
+                    t.dep_ = "obl"
+        for c in tok.children:
+            if c.dep_ == "nmod" and any(g.dep_ == "case" for g in c.children):
+                c.dep_ = "obl"
+        changed = True
+    return changed
+
+
 def repair_character_sentence(sent: SpacySpan) -> bool:
     """Repair the tree of one character sentence in place; True when something changed."""
     return (
@@ -199,4 +323,27 @@ def repair_character_sentence(sent: SpacySpan) -> bool:
         | _repair_verbless(sent)
         | _repair_conjoined_verb(sent)
         | _repair_verb_as_subject(sent)
+        | _repair_noun_conjunct_verb(sent)
     )
+
+
+_POSTURE_VERBS = frozenset("hang stand sit lie lean rest".split())
+
+
+def repair_scene_sentence(sent: SpacySpan) -> bool:
+    """ "... and the oven/compound glows/NNS": a scene verb the tagger read as a plural noun, its thing
+    hung under it as a compound -> the verb, with the thing as its subject (then the oven is an object)."""
+    changed = False
+    for tok in sent:
+        verb = tok.lower_[:-1]
+        if tok.tag_ != "NNS" or not tok.lower_.endswith("s") or verb not in lexicon.SCENE_VERBS:
+            continue
+        if verb in lexicon.RELATION_VERBS or verb in _POSTURE_VERBS:
+            continue  # "hangs above", "stands near": the scene reader's own relations
+        things = [c for c in tok.children if c.dep_ == "compound" and c.i < tok.i and c.pos_ == "NOUN"]
+        if not things or exact_category([things[-1].lower_]) is None:
+            continue
+        tok.pos_, tok.tag_, tok.lemma_ = "VERB", "VBZ", tok.lower_[:-1]
+        things[-1].dep_ = "nsubj"
+        changed = True
+    return changed

@@ -46,6 +46,9 @@ class _State:
         self.last_actor = ""
         self.last_object = ""
         self.object_categories: dict[str, str] = {}
+        self.seat_of: dict[str, str] = {}  # character -> the object it last sat or lay on
+        self.multiword: dict[str, str] = {}  # last word of an object named in several words -> its id
+        self.resolved_words: set[str] = set()  # words of this sentence that turned out to name an object
 
     def mention(self, name: str, recent: bool = True) -> str:
         """Register a mention; ``recent=False`` (an object of a verb) keeps the subject the most recent."""
@@ -117,16 +120,94 @@ def _resolve_ref(
         if len(others) == 1:
             return others[0]
         return "each other" if not others else ""  # "the children whisper to each other": among them
+    if lower in lexicon.PART_NOUNS and state.last_object in state.object_categories:
+        state.resolved_words.add(lower)
+        return state.last_object  # "slams the lid": of the machine just filled
+    if lower in ("everything", "all") and state.last_object:
+        return state.last_object  # "folds everything": what was just handled (the clothes)
+    if lower in state.multiword and value not in state.object_categories:
+        state.resolved_words.add(lower)
+        return state.multiword[lower]  # "into the machine" after "a washing machine"
     if lower in lexicon.OBJECT_PRONOUNS and lower != "them":
         ids = [o.id for o in graph.objects if before < 0 or o.span.end <= before]
-        return ids[-1] if ids else state.last_object
+        return ids[-1] if ids else (_thing_before(graph, state, before) or state.last_object)
+    if lower == "them" and (thing := _thing_before(graph, state, before)):
+        return thing  # "chops the onions and fries them"
     pron = _pronoun_of(lower)
     if pron:
         names = state.pronoun(pron, exclude=actor)
-        return names[0] if names else ""
+        return names[0] if names else (state.last_object if lower == "them" else "")
     if lower in state.spelling:
         return state.spelling[lower]
     return value
+
+
+def _same_thing(
+    graph: SentenceGraph, named: dict[str, str], state: _State, offset: int | None
+) -> SentenceGraph:
+    """ "the can" after "a watering can": the object already named, not a new one of the word's own
+    category (a soda can); only for a definite one-word mention."""
+    renames: dict[str, str] = {}
+    for o in graph.objects:
+        earlier = named.get(o.word)
+        if earlier is None or earlier == o.id or " " in o.word or o.id in state.object_categories:
+            continue
+        local = o.span.start - offset if offset is not None else graph.text.lower().find(o.word)
+        words = (
+            graph.text[: max(0, local)].lower().split()[-1:] + graph.text[max(0, local) :].lower().split()
+        )[:3]
+        if any(w in ("the", "his", "her", "their") for w in words[:2]):
+            renames[o.id] = earlier
+    if not renames:
+        return graph
+
+    def mv(a: ActionNode) -> ActionNode:
+        return msgspec.structs.replace(
+            a,
+            target=renames.get(a.target, a.target),
+            destination=renames.get(a.destination, a.destination),
+            instrument=renames.get(a.instrument, a.instrument),
+        )
+
+    return msgspec.structs.replace(
+        graph,
+        objects=[o for o in graph.objects if o.id not in renames],
+        characters=[msgspec.structs.replace(c, actions=[mv(a) for a in c.actions]) for c in graph.characters],
+        relations=[
+            msgspec.structs.replace(
+                r, subject=renames.get(r.subject, r.subject), object=renames.get(r.object, r.object)
+            )
+            for r in graph.relations
+        ],
+    )
+
+
+def _is_thing(value: str, state: _State) -> bool:
+    """A target that is a thing: an object id, or a word no character, pronoun or body part is
+    ("the drink" the catalog lacks: "it" in the next sentence may still mean it)."""
+    if value in state.object_categories:
+        return True
+    lower = value.lower()
+    return bool(value) and not (
+        value[0].isupper()
+        or lower in state.spelling
+        or lower in lexicon.PRONOUNS
+        or lower in lexicon.OBJECT_PRONOUNS
+        or lower in lexicon.BODY_PARTS
+        or lower in lexicon.RECIPROCAL_PHRASES
+        or lower in lexicon.PERSON_NOUNS
+    )
+
+
+def _thing_before(graph: SentenceGraph, state: _State, before: int) -> str:
+    """The last thing acted upon earlier in the same sentence, or "" ("fries them" after "the onions")."""
+    things = [
+        (a.span.start, a.target)
+        for c in graph.characters
+        for a in c.actions
+        if (before < 0 or a.span.end <= before) and _is_thing(a.target, state)
+    ]
+    return max(things)[1] if things else ""
 
 
 def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> list[SentenceGraph]:
@@ -143,9 +224,15 @@ def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> li
     graphs = distinct_objects(graphs, offsets)
     state = _State()
     out: list[SentenceGraph] = []
+    multiword = state.multiword  # "can" -> the watering can
     for gi, graph in enumerate(graphs):
         offset = offsets[gi] if offsets is not None and gi < len(offsets) else None
+        if graph.kind == "action":
+            graph = _same_thing(graph, multiword, state, offset)
         for o in graph.objects:
+            words = o.word.split()
+            if len(words) >= 2:
+                multiword.setdefault(words[-1], o.id)
             state.object_categories.setdefault(o.id, o.category)
         diagnostics: list[Diagnostic] = list(graph.diagnostics)
         sentence_names: list[str] = []
@@ -215,6 +302,16 @@ def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> li
                 if r not in sentence_names:
                     sentence_names.append(r)
             social.append(msgspec.structs.replace(node, subjects=subjects))
+        if state.resolved_words:  # "the lid", "the machine": no unknown object after all
+            diagnostics = [
+                d
+                for d in diagnostics
+                if not (
+                    d.code == "W101"
+                    and any(f"'{w}' is not in" in d.message.lower() for w in state.resolved_words)
+                )
+            ]
+            state.resolved_words = set()
         named = [a.span for acts in merged.values() for a in acts if a.action]
         diagnostics = [
             d
@@ -228,8 +325,13 @@ def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> li
                 state.last_actor = c.name
         if len(sentence_names) >= 2:
             state.last_group = sentence_names
-        targets = [a.target or a.destination for c in characters for a in c.actions]
-        targets = [t for t in targets if t in state.object_categories]
+        # what was last acted upon: a thing targeted (in the catalog or not), else a catalog destination
+        targets = [
+            a.target if _is_thing(a.target, state) else a.destination
+            for c in characters
+            for a in c.actions
+            if _is_thing(a.target, state) or a.destination in state.object_categories
+        ]
         if targets:
             state.last_object = targets[-1]  # "it" in the next sentence: what was last acted upon
         elif graph.objects:
@@ -304,7 +406,31 @@ def _astuple(span: Span) -> tuple[int, int]:
     return span.start, span.end
 
 
+SEAT_ACTIONS = frozenset({"sit", "lie_down", "sleep"})
+SHARED_SEATS = frozenset({"sofa", "loveseat"})  # seats for two or more the text may share
+
+
 def _resolve_action(
+    action: ActionNode, state: _State, actor: str, graph: SentenceGraph, group: tuple[str, ...] = ()
+) -> ActionNode:
+    action = _resolve_refs(action, state, actor, graph, group)
+    if action.verb == "listen" and action.action == "look_at" and not action.target:
+        # "Ms Lee listens": to whoever acted last before her (the one talking to her)
+        speaker = next((c for c in reversed(state.characters) if c != actor), "")
+        action = msgspec.structs.replace(action, target=speaker) if speaker else action
+    if action.action in SEAT_ACTIONS:
+        if action.target in state.object_categories:
+            state.seat_of[actor] = action.target
+        elif action.target and (action.target[0].isupper() or action.target.lower() in state.spelling):
+            # "sits next to Omar": a body is nothing to sit on. On a sofa Omar shares, else on a free seat
+            # the motion service picks (it walking up to Omar first, or onto his full bench, ends on air)
+            seat = state.seat_of.get(action.target, "")
+            shared = seat if state.object_categories.get(seat, "") in SHARED_SEATS else ""
+            action = msgspec.structs.replace(action, target=shared, destination="")
+    return action
+
+
+def _resolve_refs(
     action: ActionNode, state: _State, actor: str, graph: SentenceGraph, group: tuple[str, ...] = ()
 ) -> ActionNode:
     target = _resolve_ref(action.target, state, actor, graph, action.span.start, group)

@@ -422,6 +422,11 @@ def is_scene_like(sent: SpacySpan) -> bool:
     root = sent.root
     if any(c.dep_ == "expl" for c in root.children):
         return True
+    if not any(t.pos_ in ("VERB", "AUX") for t in sent):
+        # "A king-size bed, a minibar, heavy curtains.": a screenplay's set, a list of things
+        nouns = [t for t in sent if t.pos_ in ("NOUN", "PROPN") and t.dep_ != "compound"]  # not "king"-size
+        if nouns and root.pos_ == "NOUN" and not any(character_mention(t) is not None for t in nouns):
+            return any(object_mention(t) is not None for t in nouns)
     subj = [c for c in root.children if c.dep_ in SUBJECT_DEPS]
     if subj:
         m: ObjectMention | None = object_mention(subj[0])

@@ -25,7 +25,7 @@ def _table(rows: str) -> dict[str, str]:
 
 VERB_ACTIONS: dict[str, str] = _table(
     """
-walk: amble, stroll, pace, wander, roam, head, proceed, advance, return, leave, exit, enter, cross, go,
+walk: squeeze in, squeeze through, squeeze past, weave, disappear, vanish, make one's way, stroll out, head down, wander down, burst through, burst in, amble, stroll, pace, wander, roam, head, proceed, advance, return, leave, exit, enter, cross, go,
     come, arrive, depart, follow, lead, stride, strut, trek, hike, patrol, travel, move, walk over,
     walk in, walk out, walk away, walk up, come in, come back, come over, go back, go out, go in,
     go over, get in, get out, head back, head out, make way, step in, step out, move over, accompany,
@@ -49,15 +49,15 @@ climb: clamber, scramble, ascend, climb up, climb down, climb over, climb in, mo
 fall_down: fall, collapse, tumble, faint, topple, drop down, fall over, keel over, pass out, slump
 turn_around: turn, turn back, turn round, spin round, whirl, wheel round, about-face, look back
 spin: twirl, pivot, rotate, whirl around, pirouette around
-sit: sit down, be seated, take a seat, settle, settle down, perch, plop down, flop down, squat down on,
+sit: flop, flop onto, slump onto, lower oneself, seat, sink into, plonk, plop, sink down, sit down, be seated, take a seat, settle, settle down, perch, plop down, flop down, squat down on,
     relax, rest, lounge, sit back, sit up, slouch, recline
 sit_on_floor: sit cross-legged
-stand: stand up, get up, rise, arise, straighten up, jump to one's feet, spring up, stand still,
+stand: awake, awaken, jolt awake, start awake, snap awake, jerk awake, jolt up, stand up, get up, rise, arise, straighten up, jump to one's feet, spring up, stand still,
     wake up, get to one's feet
-lie_down: lie, lay down, lie back, stretch out, sprawl, recline on, go to bed, sleep, nap, doze, snooze,
-    doze off, fall asleep, drift off, slumber, rest on
+lie_down: lie, lay down, lie back, stretch out, sprawl, recline on, go to bed, sleep, nap, snooze,
+    doze, doze off, drift off, fall asleep, slumber, rest on
 kneel: kneel down, get down, genuflect, drop to one's knees
-squat: dodge, crouch, stoop down, hunker down, duck, bend down, huddle
+squat: dive, dodge, crouch, stoop down, hunker down, duck, bend down, huddle
 hide: cower, take cover, duck behind, hide behind, lurk, conceal oneself
 lean_on_wall: lean, lean against, lean back, lean on, rest against, prop oneself
 idle: wait around, stand around, linger, loiter, pause, stay, remain, freeze, hesitate, stop, halt,
@@ -79,11 +79,11 @@ catch: receive, grab the ball, intercept, catch hold
 dribble: bounce the ball, play basketball
 shoot_basket: shoot, dunk, score, shoot hoops
 block: defend, guard, parry, fend off, shield, protect
-pick_up: pick, take, grab, seize, snatch, collect, gather, fetch, retrieve, lift, raise, hold up,
+pick_up: fumble, fumble for, reach for, pick, take, grab, seize, snatch, collect, gather, fetch, retrieve, lift, raise, hold up,
     pick out, take out, get out, take down, take off, take away, get, obtain, scoop, scoop up,
     grasp, clutch, lift up, unpack, pluck, grip, find, pocket
 pull: pull out
-put_down: put, place, set, lay, drop, deposit, leave, set down, lay down, put away, put back, put in,
+put_down: stuff, shove in, lower, put, place, set, lay, drop, deposit, leave, set down, lay down, put away, put back, put in,
     put on, pack, stow, store, hang up, plant, position, arrange, stack, pile, load, unload
 carry: hold, bring, take along, haul, lug, deliver, transport, carry in, carry out, bring in, keep
 pull: drag, tug, yank, heave, draw, pull back, pull up, tow, pull over
@@ -92,7 +92,7 @@ push_person: push away, shove away, shove aside, knock over
 present: give, hand, pass, offer, hand over, pass over, give back, hand out, pass on, show, display,
     demonstrate, reveal, hold out, present, serve, share, lend, return something, donate, pay
 introduce: introduce oneself
-talk: say, tell, speak, reply, answer, respond, ask, explain, discuss, chat, converse, mention, state,
+talk: give a speech, make a speech, speechify, say, tell, speak, reply, answer, respond, ask, explain, discuss, chat, converse, mention, state,
     announce, declare, add, continue, remark, comment, suggest, insist, admit, confess, promise, warn,
     report, describe, inform, joke, chatter, babble, ramble, gossip, lecture, preach, recite, narrate,
     read aloud, propose, demand, order, command, call, exclaim, interrupt, repeat, speak up, talk back,
@@ -110,12 +110,12 @@ hug: embrace, cuddle, hold close, squeeze, snuggle, clasp
 kiss_cheek: kiss, peck, smooch
 blow_kiss: blow a kiss
 shake_hands: shake, handshake, congratulate, welcome, meet
-hold_hands: take hands, hold hand
+hold_hands: take by the hand, lead by the hand, take hands, hold hand
 high_five: high-five, highfive, slap hands
 wave: greet, hail, salute with hand, wave hello, wave goodbye, say goodbye, say hello, bid farewell,
     wave back, signal to
 wave_hands: flag down, signal, gesture wildly, flail
-beckon: summon, call over, motion, gesture, invite, wave over
+beckon: call in, usher, wave in, summon, call over, motion, gesture, invite, wave over
 point: indicate, point out, gesture at, aim, direct, signpost
 point_up: raise a hand, raise one's hand, put up a hand
 bow: thank, curtsy, curtsey, bow down, take a bow, kowtow
@@ -131,7 +131,7 @@ fist_pump: punch the air, pump a fist
 laugh: smile, grin, giggle, chuckle, chortle, beam, smirk, snicker, guffaw, cackle, titter, laugh at,
     crack up, burst out laughing
 cry: weep, sob, wail, bawl, whimper, mourn, grieve, sniffle, tear up, break down, burst into tears
-cover_face: blush, hide one's face, cringe, despair
+cover_face: bury one's face, blush, hide one's face, cringe, despair
 facepalm: sigh, groan
 scratch_head: wonder, puzzle, ponder aloud, be puzzled, frown, scowl
 think: ponder, consider, contemplate, reflect, daydream, muse, brood, meditate on, plan, imagine,
@@ -155,7 +155,7 @@ look_at: look, watch, see, observe, notice, stare, gaze, glance, peer, peek, pee
     look into, look for, search for, seek, follow with eyes, face
 look_around: search, explore, scan, survey, look about, glance around, peer around, look round
 look_up: look upward, gaze up, glance up
-look_down: look downward, gaze down, glance down, bow one's head, hang one's head
+look_down: nod off, look downward, gaze down, glance down, bow one's head, hang one's head
 look_left: glance left
 look_right: glance right
 read: peruse, skim, scan a page, read through, browse, leaf through, flip through, study a book, learn,
@@ -178,7 +178,7 @@ watch_tv: watch television, channel-surf
 listen_with_headphones: listen, hear, listen in, overhear, eavesdrop
 cook: fry, bake, boil, grill, roast, stir, simmer, saute, prepare, heat, toast, microwave, season,
     mix, whisk, knead, scramble eggs, make breakfast, make dinner, make lunch, make tea, make coffee
-chop: slice, dice, cut, carve, mince, peel, grate, trim, cut up, chop up
+chop: snip, shear, slice, dice, cut, carve, mince, peel, grate, trim, cut up, chop up
 pour: fill, pour out, serve drinks, spill, refill, empty, top up
 eat: dine, feast, consume, devour, chew, gobble, swallow, taste, nibble on, have breakfast,
     have lunch, have dinner, lunch, breakfast, sup
@@ -215,7 +215,7 @@ play_guitar: strum, pluck the guitar, play guitar, jam
 play_violin: fiddle, play the violin, bow the violin
 play_drums: drum, beat the drums, play the drums
 play_flute: pipe, play the flute, blow the flute
-sing_with_microphone: sing, hum, croon, chant, serenade, rap, perform, sing along, whistle, yodel
+sing_with_microphone: sing, croon, chant, serenade, rap, perform, sing along, whistle, yodel
 conduct: wave a baton, direct the orchestra
 dance: boogie, groove, waltz, tango, shimmy, sway, jive, twist, rock, dance around, bop, salsa, disco
 dance_ballet: pirouette, plie, twirl gracefully
@@ -234,7 +234,8 @@ a state of mind: know, believe, remember, forget, understand, realize, realise, 
     notice silently, feel, sense, fear, trust, mind, care, regret, deserve, learn silently
 owning or being: own, have, possess, belong, contain, include, consist, exist, seem, appear, become,
     remain silent, matter, cost, weigh, equal, lack, resemble
-time passing: happen, occur, begin, start, end, finish, last, elapse, pass by, continue on
+time passing: happen, occur, begin, start, end, finish, last, elapse, pass by, continue on, qualify
+a sound: hum, purr, tick, ring out, echo, creak, rattle, curse
 """
 )
 
@@ -268,6 +269,7 @@ BODY_PART_ACTIONS: dict[tuple[str, str], str] = {
     ("stretch", "arms"): "stretch",
     ("stretch", "legs"): "stretch",
     ("cover", "face"): "cover_face",
+    ("bury", "face"): "cover_face",
     ("hide", "face"): "cover_face",
     ("scratch", "head"): "scratch_head",
     ("tap", "foot"): "tap_foot",
@@ -313,6 +315,13 @@ def verb_action(verb: str, particle: str = "") -> str | None:
     if verb in NOT_ANIMATABLE:
         return ""
     return None
+
+
+# A verb whose clip differs when it holds a thing: balancing plates is carrying them, not a yoga pose.
+WITH_THING: dict[str, str] = {"balance": "carry", "cradle": "carry", "clutch": "carry"}
+
+# Falling asleep with nothing to lie on: the head drops where one sits or stands.
+DOZE_VERBS = frozenset({"doze", "nod", "drift", "fall", "nap", "snooze"})
 
 
 def not_animatable_reason(verb: str) -> str:

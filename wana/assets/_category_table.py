@@ -135,7 +135,7 @@ camera | electronics | photo camera, video camera, camcorder, dslr, webcam | gal
 game_console | electronics | console, video game console, playstation, xbox, gaming console | living_room kids_room | SC | surface
 clock | decoration | wall clock, timepiece, clock face | classroom office kitchen living_room meeting_room | STCM | wall
 fan | appliance | electric fan, desk fan, standing fan, floor fan, ventilator | office bedroom gym | SCT | floor
-water_cooler | appliance | water dispenser, drinking fountain, water fountain | office lobby gym | SC | floor
+water_cooler | appliance | water dispenser, drinking fountain, water fountain, dispenser, cooler | office lobby gym | SC | floor
 radiator | appliance | heater, space heater, heating, heating radiator | living_room bedroom office bathroom | SC | floor
 piano | keyboard_instrument | upright piano, pianoforte, acoustic piano | music_studio living_room classroom | STCM | floor
 grand_piano | piano | grand, baby grand, concert grand, concert piano | music_studio lobby | STCM | floor
@@ -156,7 +156,7 @@ whiteboard | board | white board, dry erase board, marker board, wall board | cl
 projector_screen | board | projection screen, pull down screen, movie screen | classroom meeting_room | SC | wall
 flip_chart | board | flipchart, easel pad, flip board, flip chart stand | meeting_room office classroom | SC | floor
 globe | teaching_equipment | world globe, terrestrial globe, earth globe | classroom library home_office | SCT | surface
-book | stationery | books, novel, textbook, paperback, hardcover, magazine, encyclopedia, dictionary | library classroom living_room bedroom office | SCTX | surface
+book | stationery | books, novel, textbook, paperback, hardcover, magazine, encyclopedia, dictionary, album, photo album, comic book, storybook | library classroom living_room bedroom office | SCTX | surface
 notebook | stationery | exercise book, notepad, jotter, copybook, note book, diary, journal | classroom office home_office | SCX | surface
 paper | stationery | papers, document, documents, sheet of paper, stack of paper, report, letter, file | office home_office classroom meeting_room | SX | surface
 pen | stationery | pencil, ballpoint, marker, biro, ballpoint pen, crayon, chalk | office classroom home_office | SC | surface
@@ -192,14 +192,14 @@ dishwasher | kitchen_appliance | dish washer, dish washing machine | kitchen | S
 kitchen_sink | sink | sink, kitchen basin, sink unit | kitchen | STC | floor
 toaster | kitchen_appliance | toaster oven, sandwich maker | kitchen | SC | surface
 coffee_maker | kitchen_appliance | coffee machine, espresso machine, coffeemaker, percolator, coffee pot | kitchen cafe office | SCT | surface
-kettle | kitchen_appliance | electric kettle, water kettle, tea kettle | kitchen office | SCT | surface
+kettle | kitchen_appliance | electric kettle, water kettle, tea kettle, watering can | kitchen office | SCT | surface
 teapot | tableware | tea pot, tea set | kitchen dining_room cafe living_room | STCM | surface
 cup | drinkware | teacup, tea cup, coffee cup, cups, paper cup | kitchen dining_room cafe office | SCTM | surface
 mug | drinkware | coffee mug, beer mug, tankard, travel mug | kitchen office cafe | SCT | surface
 glass | drinkware | drinking glass, tumbler, wine glass, wineglass, goblet, water glass | kitchen dining_room cafe | SCT | surface
 bottle | drinkware | water bottle, wine bottle, flask, beer bottle, plastic bottle | kitchen dining_room gym office | SCTM | surface
 soda_can | drinkware | can, soda, coke, cola, soft drink, drink can, beer can, tin can, soda pop | kitchen living_room office | SC | surface
-plate | tableware | dish, dinner plate, saucer, platter | kitchen dining_room cafe | SCM | surface
+plate | tableware | dish, dinner plate, saucer, platter, tray, serving tray, baking tray, tea tray | kitchen dining_room cafe | SCM | surface
 bowl | tableware | salad bowl, soup bowl, fruit bowl, cereal bowl | kitchen dining_room | SCM | surface
 pan | cookware | frying pan, skillet, wok, saucepan, fry pan | kitchen | SCM | surface
 pot | cookware | cooking pot, stockpot, casserole, stew pot | kitchen | SCM | surface
@@ -210,7 +210,7 @@ bathtub | bathroom_fixture | bath, tub, bath tub, jacuzzi, hot tub | bathroom | 
 shower | bathroom_fixture | shower cabin, shower stall, shower cubicle, shower booth | bathroom | STC | floor
 bathroom_sink | sink | washbasin, wash basin, basin, lavatory sink, vanity sink, hand basin, washstand | bathroom | STC | floor
 towel_rack | bathroom_fixture | towel rail, towel holder, towel bar, towel stand | bathroom | SCM | floor
-towel | textile | bath towel, hand towel, towels | bathroom gym | SCX | surface
+towel | textile | bath towel, hand towel, towels, blanket, blankets, quilt, duvet, bedspread, shirt, shirts, t-shirt, clothes, clothing, garment, sweater, tea towel, rag, cloth | bathroom gym | SCX | surface
 washing_machine | appliance | washer, laundry machine, tumble dryer, dryer, washer dryer | bathroom kitchen | SC | floor
 toothbrush | toiletry | tooth brush, toothpaste | bathroom | SC | surface
 soap | toiletry | soap bar, soap dispenser, bar of soap, shampoo | bathroom kitchen | SC | surface
@@ -248,7 +248,18 @@ umbrella_stand | container | umbrella, umbrella holder, brolly stand | lobby | S
 # Room types -> synonyms people write ("working shop" is how the paper names a workshop).
 ROOM_ROWS: dict[str, tuple[str, ...]] = {
     "living_room": ("living room", "lounge", "sitting room", "family room", "parlour", "parlor", "den"),
-    "bedroom": ("bed room", "sleeping room", "master bedroom", "guest room"),
+    "bedroom": (
+        "bed room",
+        "sleeping room",
+        "master bedroom",
+        "guest room",
+        "hotel room",
+        "motel room",
+        "hotel suite",
+        "hospital room",
+        "hospital ward",
+        "dormitory",
+    ),
     "kids_room": ("kids room", "children's room", "childrens room", "nursery", "playroom", "child's room"),
     "kitchen": ("kitchenette", "cookhouse"),
     "dining_room": ("dining room", "dining hall", "dinner room"),

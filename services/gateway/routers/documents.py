@@ -57,6 +57,19 @@ class DocumentOut(BaseModel):
     exports: dict[str, str] = Field(description="format -> download path (mp4, glb, bvh)")
 
 
+def _story_text(text: str, title: str = "") -> str:
+    """A Fountain screenplay (a ``.fountain`` title, or a scene heading in the text) becomes the story it
+    tells (wana.screenplay), as `wana animate` reads it; any other text is kept as written."""
+    from wana.screenplay import looks_like_fountain, to_story
+
+    if text and looks_like_fountain(text, title):
+        try:
+            return to_story(text)
+        except ImportError:  # screenplain missing: the text as written, its sentences say what fails
+            return text
+    return text
+
+
 def _title(orch: Any, doc_id: str) -> str:
     return next((str(d["title"]) for d in orch.list() if d["doc_id"] == doc_id), "")
 
@@ -88,7 +101,8 @@ def _out(orch: Any, doc_id: str) -> DocumentOut:
 @router.post("", status_code=201, response_model=DocumentOut, summary="Create a document")
 async def create_document(body: DocumentCreate, orch: OrchestratorDep) -> DocumentOut:
     try:
-        session = await run_in_threadpool(orch.create, body.text, doc_id=body.doc_id, title=body.title)
+        text = _story_text(body.text, body.title)
+        session = await run_in_threadpool(orch.create, text, doc_id=body.doc_id, title=body.title)
     except ValueError as exc:
         raise error(409, ErrorCode.INVALID_INPUT, str(exc)) from None
     return await run_in_threadpool(_out, orch, session.doc_id)
@@ -118,7 +132,7 @@ async def replace_text(doc_id: str, body: TextReplace, orch: OrchestratorDep, hu
         raise error(404, ErrorCode.INVALID_INPUT, f"no document {doc_id!r}") from None
     current = channel.session.doc
     base = current.version if body.base_version is None else body.base_version
-    change = TextChange(start=0, end=len(current.text), text=body.text)
+    change = TextChange(start=0, end=len(current.text), text=_story_text(body.text, _title(orch, doc_id)))
     try:
         reply = await channel.edit(base, [change])
     except (StaleEdit, BadEdit) as exc:  # pragma: no cover - channel.edit turns these into replies

@@ -160,3 +160,29 @@ def test_a_chunked_body_over_the_size_cap_is_refused_with_413(gateway_factory) -
 
     r = gw.http.post("/api/documents", content=chunks(), headers={"Content-Type": "application/json"})
     assert r.status_code == 413 and r.json()["detail"]["code"] == "E002"
+
+
+FOUNTAIN = """INT. KITCHEN - NIGHT
+
+ADA walks to the fridge.
+
+ADA
+(angrily)
+Where is the milk?
+"""
+
+
+def test_a_fountain_screenplay_becomes_the_story_it_tells(gateway) -> None:
+    pytest.importorskip("screenplain")
+    r = gateway.http.post("/api/documents", json={"text": FOUNTAIN, "title": "milk.fountain"})
+    assert r.status_code == 201
+    text = r.json()["text"]
+    assert text.splitlines()[:2] == ["In the kitchen$.", "night"]
+    assert "Ada walks to the fridge." in text and 'Ada angrily says "Where is the milk"' in text
+    doc_id = r.json()["doc_id"]
+    replaced = gateway.http.put(
+        f"/api/documents/{doc_id}/text", json={"text": FOUNTAIN.replace("ADA walks", "ADA runs")}
+    )
+    assert "Ada runs to the fridge." in replaced.json()["text"]
+    plain = gateway.http.post("/api/documents", json={"text": "ADA walks to the fridge.", "title": "notes"})
+    assert plain.json()["text"] == "ADA walks to the fridge."  # no heading, no cue: kept as written
