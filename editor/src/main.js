@@ -290,8 +290,12 @@ async function loadDirector() {
   if (!state.directorOn || !state.docId) return viewer.useDirector(null);
   const version = state.version;
   try {
-    const cam = directorCamera(await fetchExport(state.docId, "glb"));
-    if (state.directorOn && version === state.version) viewer.useDirector(cam);
+    const glb = await fetchExport(state.docId, "glb");
+    const cam = directorCamera(glb);
+    if (!state.directorOn || version !== state.version) return;
+    viewer.useDirector(cam);
+    // Preview = export: the MP4's own skinned characters, room and objects under the MP4's camera.
+    await viewer.useExport(glb, version);
   } catch (err) {
     $("export-status").textContent = String(err.message || err);
   }
