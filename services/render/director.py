@@ -539,7 +539,7 @@ def _cut_away(who: str, start: int, beats: list[_Beat]) -> int:
     """Where a close-up or follow shot of ``who`` from ``start`` cuts away: at the first sentence of
     someone else that begins in its scope (held at least MIN_SHOT_FRAMES, so the command shows), since
     the issue wants every acting character seen; a large number when nobody else begins a sentence."""
-    others = [b.start for b in beats if b.lead != who and b.start > start]
+    others = [b.start for b in beats if b.lead != who and b.start >= start]
     return max(min(others), start + MIN_SHOT_FRAMES) if others else 1 << 30
 
 
