@@ -43,8 +43,10 @@ export class Viewer {
     Object.assign(this.sun.shadow.camera, { left: -6, right: 6, top: 6, bottom: -6, far: 30 });
     this.scene.add(this.hemi, this.sun);
     // While the export plays: a light from the lens, as the video's renderer lights what it sees.
-    this.headlight = new THREE.DirectionalLight(0xffffff, 0.7);
-    this.ambient = new THREE.AmbientLight(0xffffff, 0.4);
+    // Intensities times pi: three.js divides diffuse light by pi (physical units); the video's Phong
+    // light gives a surface facing the lens about 1.3 times its colour and one seen edge-on about half.
+    this.headlight = new THREE.DirectionalLight(0xffffff, 0.8 * Math.PI);
+    this.ambient = new THREE.AmbientLight(0xffffff, 0.5 * Math.PI);
     this.ambient.visible = false;
     this.scene.add(this.ambient);
     this.headlight.position.set(0, 0, 1);
@@ -368,11 +370,13 @@ export class Viewer {
     this.roomGroup.visible = this.objectGroup.visible = this.characterGroup.visible = live;
     this.sun.visible = this.hemi.visible = live;
     this.ambient.visible = !live;
-    // The video's clear colour behind its room (sRGB values, as the MP4 stores them).
+    // The video's renderer lights the GLB's colours as they are stored and writes the result unencoded
+    // (fixed Phong lights, no sRGB transfer): so does the preview, on the video's clear colour.
+    this.renderer.outputColorSpace = live ? THREE.SRGBColorSpace : THREE.LinearSRGBColorSpace;
     if (live && this.liveBackground) this.scene.background = this.liveBackground;
     if (!live) {
       this.liveBackground = this.liveBackground || this.scene.background;
-      this.scene.background = new THREE.Color().setRGB(...VIDEO_BACKGROUND, THREE.SRGBColorSpace);
+      this.scene.background = new THREE.Color(...VIDEO_BACKGROUND);
     } else {
       this.liveBackground = null;
     }
