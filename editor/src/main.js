@@ -98,6 +98,7 @@ function showAnimation(received) {
   viewer.setCharacters(msg.characters); // rebuilds only the figures whose hash changed
   viewer.setCommands(msg.commands);
   if (state.directorOn) loadDirector();
+  else if (viewer.exportScene && viewer.exportVersion !== msg.version) viewer.useExport(null); // stale
   viewer.invalidate();
   timeline.setLength(msg.frames, msg.fps);
   tracks.render(msg, sentenceText);

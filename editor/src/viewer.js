@@ -319,7 +319,7 @@ export class Viewer {
     if (cam) {
       this.applyDirector();
     } else {
-      this.useExport(null);
+      // The export's scene stays (orbit round the MP4's own characters) until a new version replaces it.
       this.camera.fov = 50;
       this.camera.updateProjectionMatrix();
       this.cameraKey = null;
