@@ -17,7 +17,11 @@ Each shot is framed by measuring: among candidate sides, turns, heights and dist
 (SHOT_CHOICES; a commanded view only rises, turns a little or comes closer: COMMAND_CHOICES) the one
 whose camera shows the shot's acting characters best over sample frames wins, measured as the
 ``in_view`` check measures the video (services.render.coverage: body points in the picture, unhidden by
-furniture, walls seen from inside and other bodies); the planned camera is played as it is. Walls
+furniture, walls seen from inside and other bodies), per sentence: each (sentence, acting character)
+in the shot counts by its own frames and counts double once it would pass the check, so a short action
+inside a long shot is not averaged away (services.render.camera_checks judges each one alone). A closer
+shot whose best framing still leaves one of them unseen becomes a wide shot when that shows more. The
+planned camera is played as it is. Walls
 between the camera and the room are cut away (one-sided, culled from behind), so a camera may stand
 outside the room; a small cost per metre outside keeps views inside when they see as well.
 
