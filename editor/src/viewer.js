@@ -304,7 +304,8 @@ export class Viewer {
       sunny: [0x87b8e8, 1.6, 2.2, null],
     };
     const [bg, hemi, sun, fog] = looks[value] || [0x2a2f38, 1.4, 1.6, null];
-    this.scene.background = new THREE.Color(bg);
+    if (this.exportScene) this.liveBackground = new THREE.Color(bg); // the video's colour stays while it plays
+    else this.scene.background = new THREE.Color(bg);
     this.hemi.intensity = hemi;
     this.sun.intensity = sun;
     this.scene.fog = fog ? new THREE.Fog(...fog) : null;
