@@ -14,7 +14,9 @@ that crashes the pipeline is a failed story (with the traceback's last line), ne
 
 JSON keys: sentence_fidelity (share of sentences whose every check passes), story_fidelity (share of stories
 with every sentence ok), checks (check name -> sentences failing it), stories, sentences, per_story (each
-sentence's verdict and failed reasons), seed, split; also verdicts, crashed, unchecked and timings.
+sentence's verdict and failed reasons), seed, split; also verdicts, crashed, unchecked and timings;
+acting_in_frame_share and occluded_share (of all acting characters' action frames: in the picture, and in
+it but less than 70 % unhidden; issue 16).
 A failed sentence gets a contact sheet of its frames, the failing ones marked, under out/eval/story/<story>/.
 Over 400 lines because the corpus description and split rule (what kinds a story covers) live here too, so
 that one file both describes and measures the corpus.
@@ -283,9 +285,12 @@ def evaluate_text(story: str, text: str, seed: int = 0, gallery: Path | None = N
         camera_checks = camera_api()
         sentences = [(s.id, s.kind) for s in result.sentences]
         body = story_checks(sentences, result.graphs, result.scene, result.motions, result.unavailable)
+        tally: list[Any] = []  # services.render.camera_checks.ViewTally per in_view check
         camera = camera_checks(
-            result.scene, result.motions, result.commands, result.sentences, width=WIDTH, height=HEIGHT
-        )
+            result.scene, result.motions, result.commands, result.sentences, width=WIDTH, height=HEIGHT,
+            tally=tally,
+        )  # fmt: skip
+        row["view"] = {k: sum(getattr(t, k) for t in tally) for k in ("frames", "in_frame", "occluded")}
         verdict = verdicts(body, extra=camera)
         row["checks_s"] = time.perf_counter() - t0 - row["compute_s"]
     except Exception:
@@ -405,8 +410,12 @@ def summarise(rows: Sequence[dict[str, Any]], seed: int, split: str) -> dict[str
     checked = {n: sum(n in s["checks"] for s in sentences) for n in names}
     failures = {n: sum(any(f["name"] == n for f in s["failed"]) for s in sentences) for n in names}
     compute = [r["compute_s"] for r in rows]
+    view = {k: sum(r.get("view", {}).get(k, 0) for r in rows) for k in ("frames", "in_frame", "occluded")}
     return {
         "sentence_fidelity": sum(s["verdict"] == "ok" for s in sentences) / max(len(sentences), 1),
+        # of every acting character's action frames: in the picture; in it but under 70 % unhidden
+        "acting_in_frame_share": view["in_frame"] / max(view["frames"], 1),
+        "occluded_share": view["occluded"] / max(view["frames"], 1),
         "story_fidelity": sum(r["ok"] for r in rows) / max(len(rows), 1),
         "checks": failures,
         "checked": checked,
@@ -434,7 +443,7 @@ def print_tables(summary: dict[str, Any]) -> None:
             bad = [s for s in r["per_sentence"] if s["verdict"] != "ok"]
             print(f"{r['story']:32s} {len(bad):3d}/{r['sentences']:<3d} not ok  {r['error']}")
     print()
-    for key in ("sentence_fidelity", "story_fidelity"):
+    for key in ("sentence_fidelity", "story_fidelity", "acting_in_frame_share", "occluded_share"):
         print(f"{key:20s} {summary[key]:.3f}")
     print(
         f"{'stories':20s} {summary['stories']} ({summary['crashed']} crashed), sentences {summary['sentences']}"

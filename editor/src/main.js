@@ -98,6 +98,7 @@ function showAnimation(received) {
   viewer.setCharacters(msg.characters); // rebuilds only the figures whose hash changed
   viewer.setCommands(msg.commands);
   if (state.directorOn) loadDirector();
+  else if (viewer.exportScene && viewer.exportVersion !== msg.version) viewer.useExport(null); // stale
   viewer.invalidate();
   timeline.setLength(msg.frames, msg.fps);
   tracks.render(msg, sentenceText);
@@ -290,8 +291,12 @@ async function loadDirector() {
   if (!state.directorOn || !state.docId) return viewer.useDirector(null);
   const version = state.version;
   try {
-    const cam = directorCamera(await fetchExport(state.docId, "glb"));
-    if (state.directorOn && version === state.version) viewer.useDirector(cam);
+    const glb = await fetchExport(state.docId, "glb");
+    const cam = directorCamera(glb);
+    if (!state.directorOn || version !== state.version) return;
+    viewer.useDirector(cam);
+    // Preview = export: the MP4's own skinned characters, room and objects under the MP4's camera.
+    await viewer.useExport(glb, version);
   } catch (err) {
     $("export-status").textContent = String(err.message || err);
   }

@@ -9,6 +9,8 @@ import { cameraAt } from "./directorcam.js";
 import { apiUrl, authHeaders } from "./api.js";
 import { CharacterFigure } from "./character.js";
 
+// The MP4's clear colour in its default light (services/render/weather.py, LOOKS' default background).
+const VIDEO_BACKGROUND = [0.62, 0.78, 0.95];
 const CATEGORY_COLOURS = [0x8d6e63, 0x90a4ae, 0xa1887f, 0x78909c, 0xbcaaa4, 0x607d8b];
 
 function hashColour(category) {
@@ -40,6 +42,22 @@ export class Viewer {
     this.sun.shadow.normalBias = 0.02;
     Object.assign(this.sun.shadow.camera, { left: -6, right: 6, top: 6, bottom: -6, far: 30 });
     this.scene.add(this.hemi, this.sun);
+    // While the export plays: a light from the lens, as the video's renderer lights what it sees.
+    // Intensities times pi: three.js divides diffuse light by pi (physical units); the video's Phong
+    // light gives a surface facing the lens about 1.3 times its colour and one seen edge-on about half.
+    this.headlight = new THREE.DirectionalLight(0xffffff, 0.8 * Math.PI);
+    this.ambient = new THREE.AmbientLight(0xffffff, 0.5 * Math.PI);
+    this.ambient.visible = false;
+    this.scene.add(this.ambient);
+    this.headlight.position.set(0, 0, 1);
+    this.headlight.target.position.set(0, 0, -1);
+    this.headlight.visible = false;
+    this.camera.add(this.headlight, this.headlight.target);
+    this.scene.add(this.camera);
+    this.exportScene = null;
+    this.exportMixer = null;
+    this.exportCharacters = [];
+    this.exportVersion = null;
     this.roomGroup = new THREE.Group();
     this.roomGroup.name = "room";
     this.objectGroup = new THREE.Group();
@@ -69,8 +87,19 @@ export class Viewer {
   resize() {
     const { clientWidth: w, clientHeight: h } = this.container;
     if (!w || !h) return;
-    this.renderer.setSize(w, h, false);
-    this.camera.aspect = w / h;
+    const aspect = this.director?.aspect;
+    if (aspect) {
+      // The video's picture: its aspect, as large as fits, centred (the MP4's framing, not a crop of it).
+      const fw = Math.min(w, Math.round(h * aspect));
+      const fh = Math.min(h, Math.round(fw / aspect));
+      this.renderer.setSize(fw, fh, true);
+      this.camera.aspect = fw / fh;
+    } else {
+      this.renderer.setSize(w, h, false);
+      this.renderer.domElement.style.width = this.renderer.domElement.style.height = "";
+      this.camera.aspect = w / h;
+    }
+    this.container.classList.toggle("video", Boolean(aspect));
     this.camera.updateProjectionMatrix();
     this.invalidate();
   }
@@ -275,7 +304,8 @@ export class Viewer {
       sunny: [0x87b8e8, 1.6, 2.2, null],
     };
     const [bg, hemi, sun, fog] = looks[value] || [0x2a2f38, 1.4, 1.6, null];
-    this.scene.background = new THREE.Color(bg);
+    if (this.exportScene) this.liveBackground = new THREE.Color(bg); // the video's colour stays while it plays
+    else this.scene.background = new THREE.Color(bg);
     this.hemi.intensity = hemi;
     this.sun.intensity = sun;
     this.scene.fog = fog ? new THREE.Fog(...fog) : null;
@@ -286,15 +316,78 @@ export class Viewer {
   useDirector(cam) {
     this.director = cam;
     this.controls.enabled = !cam;
+    this.resize(); // the video's aspect while the director plays
     if (cam) {
       this.applyDirector();
     } else {
+      // The export's scene stays (orbit round the MP4's own characters) until a new version replaces it.
       this.camera.fov = 50;
       this.camera.updateProjectionMatrix();
       this.cameraKey = null;
       this.setCommands(this.lastCommands || []);
     }
     this.invalidate();
+  }
+
+  /**
+   * Show the render service's own scene.glb (an ArrayBuffer) in place of the live figures: the skinned
+   * characters, the room with its one-sided walls and the objects the MP4 is drawn from, played by its
+   * animation at the current frame, lit by a light that travels with the camera as the video's renderer
+   * lights its picture. null: back to the live room, objects and figures.
+   * @returns {Promise<void>} resolved once the scene is shown
+   */
+  async useExport(buffer, version = null) {
+    if (this.exportScene) {
+      this.scene.remove(this.exportScene);
+      this.exportScene.traverse((o) => o.geometry?.dispose());
+    }
+    this.exportScene = null;
+    this.exportMixer = null;
+    this.exportCharacters = [];
+    this.exportVersion = null;
+    this.headlight.visible = false;
+    if (buffer) {
+      const gltf = await this.loader.parseAsync(buffer, "");
+      const root = gltf.scene;
+      root.name = "export";
+      root.traverse((o) => {
+        if (o.isSkinnedMesh) this.exportCharacters.push(o);
+        if (o.isMesh) o.frustumCulled = !o.isSkinnedMesh; // a skinned body's bounds are its rest pose
+      });
+      const clip = gltf.animations[0];
+      if (clip) {
+        this.exportMixer = new THREE.AnimationMixer(root);
+        const action = this.exportMixer.clipAction(clip);
+        action.setLoop(THREE.LoopOnce, 1);
+        action.clampWhenFinished = true;
+        action.play();
+      }
+      this.exportScene = root;
+      this.exportVersion = version;
+      this.scene.add(root);
+      this.headlight.visible = true;
+    }
+    const live = !this.exportScene;
+    this.roomGroup.visible = this.objectGroup.visible = this.characterGroup.visible = live;
+    this.sun.visible = this.hemi.visible = live;
+    this.ambient.visible = !live;
+    // The video's renderer lights the GLB's colours as they are stored and writes the result unencoded
+    // (fixed Phong lights, no sRGB transfer): so does the preview, on the video's clear colour.
+    this.renderer.outputColorSpace = live ? THREE.SRGBColorSpace : THREE.LinearSRGBColorSpace;
+    if (live && this.liveBackground) this.scene.background = this.liveBackground;
+    if (!live) {
+      this.liveBackground = this.liveBackground || this.scene.background;
+      this.scene.background = new THREE.Color(...VIDEO_BACKGROUND);
+    } else {
+      this.liveBackground = null;
+    }
+    this.poseExport();
+    this.invalidate();
+  }
+
+  poseExport() {
+    if (!this.exportMixer) return;
+    this.exportMixer.setTime(Math.max(0, this.frame) / 30);
   }
 
   applyDirector() {
@@ -311,6 +404,7 @@ export class Viewer {
     this.frame = f;
     this.invalidate();
     for (const c of this.characters) c.setFrame(f);
+    this.poseExport();
     if (this.director) {
       this.applyDirector();
     } else if (this.follow && this.characters.length) {

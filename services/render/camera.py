@@ -198,12 +198,10 @@ def _mode_pose(
             eye=chest - facing * 2.6 + np.array([0, 0.8, 0]), target=chest + facing * 0.8, up=up, fov_deg=55.0
         )
     if mode == "close":
-        return CameraPose(
-            eye=head + facing * 0.9 + np.array([0, 0.02, 0]),
-            target=head - np.array([0, 0.05, 0]),
-            up=up,
-            fov_deg=40.0,
-        )
+        # The director's close-up (head to knees, services.render.shots): a face-only picture would show
+        # too little of the character for anyone watching to read what it does (the in_view check).
+        eye, target, fov = single_pose("close_up", hips, face, 1)
+        return CameraPose(eye=eye, target=target, up=up, fov_deg=fov)
     if mode == "top":
         return CameraPose(
             eye=hips + np.array([0.0, 5.5, 0.01]), target=hips, up=np.array([0.0, 0.0, -1.0]), fov_deg=55.0
@@ -360,7 +358,7 @@ def camera_at(
             pts = []
             for t in framed:
                 hips, _, head = t.smoothed(g)
-                pts.append(sight_points(hips, head)[:1] if k.mode == "close" else sight_points(hips, head))
+                pts.append(sight_points(hips, head))
             people = np.array([person_box(t.at(g)[0], t.at(g)[2]) for t in others]).reshape(-1, 2, 3)
             views.append((p.eye, p.target, np.concatenate(pts), people))
         choices = ADJUSTMENTS

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 from collections import Counter
 from collections.abc import Iterable, Mapping
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -40,6 +41,24 @@ FRAME_SHARE = 0.9  # of the action's frames that must show the character
 MIN_COMMAND_FRAMES = COMMAND_HOLD_FRAMES  # 1.5 s: what the render timeline holds the last command for
 
 
+@dataclass(frozen=True)
+class ViewTally:
+    """Frame counts behind one in_view check, for shares over a corpus (eval/story.py).
+
+    Attributes:
+        sentence_id, character: the check's sentence and acting character.
+        frames: the character's action frames in the sentence.
+        in_frame: frames with at least VISIBLE_SHARE of its body points inside the picture.
+        occluded: of those, frames where less than VISIBLE_SHARE of its body points is unhidden.
+    """
+
+    sentence_id: str
+    character: str
+    frames: int
+    in_frame: int
+    occluded: int
+
+
 def camera_checks(
     scene: Scene,
     motions: Iterable[Motion] | Mapping[str, Motion],
@@ -48,6 +67,7 @@ def camera_checks(
     *,
     width: int = 640,
     height: int = 480,
+    tally: list[ViewTally] | None = None,
 ) -> dict[str, list[Check]]:
     """The in_view and command_visible checks of the video ``write_outputs`` would make.
 
@@ -57,6 +77,7 @@ def camera_checks(
         commands: as ``write_outputs`` takes them (``Command``, ``(sentence_id, Command)`` or ``TimedCommand``).
         sentences: the document's sentences in order (see services.render.timeline.as_sentences).
         width, height: the video's size in pixels.
+        tally: when given, one ViewTally per in_view check is appended (frame counts for corpus shares).
 
     Returns:
         Sentence id -> its checks (sentences with no action and no command have none).
@@ -64,7 +85,7 @@ def camera_checks(
     mlist = as_motion_list(motions)
     sents = list(sentences or [])
     stage = Staging.build(scene, mlist, place_commands(commands, sents, mlist))
-    return staged_checks(stage, sents, width=width, height=height)
+    return staged_checks(stage, sents, width=width, height=height, tally=tally)
 
 
 def staged_checks(
@@ -74,10 +95,11 @@ def staged_checks(
     width: int,
     height: int,
     track: CameraTrack | None = None,
+    tally: list[ViewTally] | None = None,
 ) -> dict[str, list[Check]]:
     """The camera checks of a staged video (the renderer's own ``staging``); ``track`` when already planned."""
     track = track if track is not None else stage.camera_track(width, height)
-    out = in_view_checks(stage, track, sentences, width=width, height=height)
+    out = in_view_checks(stage, track, sentences, width=width, height=height, tally=tally)
     for sid, checks in command_checks(stage.commands, stage.n_frames).items():
         out.setdefault(sid, []).extend(checks)
     return out
@@ -110,8 +132,10 @@ def in_view_checks(
     *,
     width: int,
     height: int,
+    tally: list[ViewTally] | None = None,
 ) -> dict[str, list[Check]]:
-    """One ``in_view`` check per (action sentence, acting character), sentence id -> checks."""
+    """One ``in_view`` check per (action sentence, acting character), sentence id -> checks (and, with
+    ``tally``, its frame counts appended there)."""
     refs = {s.id: s for s in as_sentences(sentences)}
     joints = {name: rig.joint_positions for name, rig in stage.rigs.items()}
     furniture = Furniture.from_scene(stage.scene)
@@ -126,6 +150,17 @@ def in_view_checks(
             view = body_view(who, frames, joints, track, furniture, stage.scene.room, width, height, radii)
             shown = view.visible.mean(axis=1) >= VISIBLE_SHARE
             share = float(shown.mean())
+            if tally is not None:
+                framed = view.in_frame.mean(axis=1) >= VISIBLE_SHARE
+                tally.append(
+                    ViewTally(
+                        sentence_id=sid,
+                        character=who,
+                        frames=len(frames),
+                        in_frame=int(framed.sum()),
+                        occluded=int((framed & ~shown).sum()),
+                    )
+                )
             what = _quote(refs.get(sid), f"its action in sentence {sid}")
             ok = share >= FRAME_SHARE
             if ok:

@@ -72,6 +72,17 @@ class Coverage:
         names = [w for w in who if w in self.joints]
         if not names or not len(frames):
             return 1.0
+        return float(self.shown_each(poses, frames, names).mean())
+
+    def shown_each(
+        self, poses: Sequence[CameraPose], frames: Sequence[int], who: Sequence[str]
+    ) -> np.ndarray:
+        """(F, C) True where the camera of frame i shows character ``who[j]`` (C = len(who); a name
+        without a skeleton counts as shown)."""
+        out = np.ones((len(frames), len(who)), dtype=bool)
+        names = [w for w in who if w in self.joints]
+        if not names or not len(frames):
+            return out
         idx = np.asarray(frames, dtype=np.int64)
         local = {n: j[np.clip(idx, 0, len(j) - 1)] for n, j in self.joints.items()}
         track = CameraTrack(
@@ -83,11 +94,10 @@ class Coverage:
             height=self.height,
         )
         steps = np.arange(len(idx))
-        shown = [
-            body_view(
-                n, steps, local, track, self.furniture, self.room, self.width, self.height, self.radii
-            ).visible.mean(axis=1)
-            >= VISIBLE_SHARE
-            for n in names
-        ]
-        return float(np.mean(shown))
+        for j, n in enumerate(who):
+            if n in self.joints:
+                view = body_view(
+                    n, steps, local, track, self.furniture, self.room, self.width, self.height, self.radii
+                )
+                out[:, j] = view.visible.mean(axis=1) >= VISIBLE_SHARE
+        return out

@@ -17,7 +17,11 @@ Each shot is framed by measuring: among candidate sides, turns, heights and dist
 (SHOT_CHOICES; a commanded view only rises, turns a little or comes closer: COMMAND_CHOICES) the one
 whose camera shows the shot's acting characters best over sample frames wins, measured as the
 ``in_view`` check measures the video (services.render.coverage: body points in the picture, unhidden by
-furniture, walls seen from inside and other bodies); the planned camera is played as it is. Walls
+furniture, walls seen from inside and other bodies), per sentence: each (sentence, acting character)
+in the shot counts by its own frames and counts double once it would pass the check, so a short action
+inside a long shot is not averaged away (services.render.camera_checks judges each one alone). A closer
+shot whose best framing still leaves one of them unseen becomes a wide shot when that shows more. The
+planned camera is played as it is. Walls
 between the camera and the room are cut away (one-sided, culled from behind), so a camera may stand
 outside the room; a small cost per metre outside keeps views inside when they see as well.
 
@@ -26,7 +30,8 @@ chose (the 180° rule), whatever a candidate on the other side would show.
 
 A camera command replaces the director from its frame until the next camera command; ``close`` and
 ``follow`` only until their subject's next action ends (at least MIN_SHOT_FRAMES), then the director
-resumes. A view command (front, back, left, right, top) that named nobody turns to whoever acts in each
+resumes; they also cut away when someone else begins a sentence in their scope (after MIN_SHOT_FRAMES),
+so that a close-up of Ben does not leave Anna's wave off-screen. A view command (front, back, left, right, top) that named nobody turns to whoever acts in each
 sentence of its scope (a pair: their middle). Shots are what ``report.json`` lists.
 
 This module is over 400 lines because the shot rules, the framing search and the command scopes are
@@ -278,11 +283,16 @@ COMMAND_CHOICES = (
     Adjust(scale=0.75),
     *(Adjust(turn=np.radians(a) * sg, rise=0.8) for a in (20, 40) for sg in (1, -1)),
     Adjust(rise=1.0, scale=0.7),
+    *(Adjust(turn=np.radians(60) * sg, rise=0.8) for sg in (1, -1)),  # last: a three-quarter view
 )
 LINE_CHOICE_TURN = np.radians(60.0)  # two-person shots keep to their side of the line
 SAMPLES = 8  # frames of a shot measured per candidate, at least
 SAMPLE_STEP = 15  # frames between measured frames of a long shot (at most MAX_SAMPLES)
 MAX_SAMPLES = 24
+UNIT_SAMPLES = 12  # frames measured per sentence's part of a shot, at most
+PASS_SHARE = 0.95  # a sentence's sampled frames shown at least this much pass its check with a margin
+PASS_BONUS = 1.0  # what passing a sentence's check is worth beyond its share of frames shown
+WIDE_GAIN = 0.02  # how much more a wide shot must show to replace a closer shot that leaves someone unseen
 LONGEST_HOLD = (
     150  # frames: same-framing sentences join into one shot up to 5 s; beyond, the cut changes angle
 )
@@ -293,14 +303,72 @@ OUTSIDE = 0.02  # score per metre the eye stands outside the room (readable view
 
 
 class Scorer(Protocol):
-    """What a candidate camera shows (services.render.coverage.Coverage.shown), over sample frames."""
+    """What a candidate camera shows (services.render.coverage.Coverage), over sample frames."""
 
     def shown(self, poses: Sequence[CameraPose], frames: Sequence[int], who: Sequence[str]) -> float: ...
 
+    def shown_each(
+        self, poses: Sequence[CameraPose], frames: Sequence[int], who: Sequence[str]
+    ) -> np.ndarray: ...
 
-def _samples(s: Shot) -> list[int]:
+
+@dataclass(frozen=True)
+class _Unit:
+    """One sentence's frames of one acting character: what one ``in_view`` check judges."""
+
+    who: str
+    frames: np.ndarray  # (F,) sorted story frames
+
+
+def _units(motions: Mapping[str, Motion], n_frames: int) -> list[_Unit]:
+    """Every (sentence, acting character) with its frames, as services.render.camera_checks counts them."""
+    spans: dict[tuple[str, str], set[int]] = {}
+    for name, m in motions.items():
+        for seg in m.segments:
+            if seg.sentence_id:
+                lo, hi = max(0, seg.start_frame), min(seg.end_frame, n_frames)
+                spans.setdefault((seg.sentence_id, name), set()).update(range(lo, hi))
+    return [_Unit(who, np.array(sorted(f), dtype=np.int64)) for (_, who), f in sorted(spans.items()) if f]
+
+
+def _samples(s: Shot, units: Sequence[_Unit] = ()) -> list[int]:
+    """Frames a candidate is measured on: spread over the shot, and over each sentence's part of it (a
+    short action inside a long shot is judged on its own frames, as the check judges it)."""
     n = min(max(SAMPLES, (s.end - s.start) // SAMPLE_STEP), MAX_SAMPLES, max(1, s.end - s.start))
-    return sorted({int(round(x)) for x in np.linspace(s.start, max(s.start, s.end - 1), n)})
+    out = {int(round(x)) for x in np.linspace(s.start, max(s.start, s.end - 1), n)}
+    for u in units:
+        inside = u.frames[(u.frames >= s.start) & (u.frames < s.end)]
+        if len(inside):
+            k = min(UNIT_SAMPLES, len(inside))
+            out.update(int(inside[int(round(i))]) for i in np.linspace(0, len(inside) - 1, k))
+    return sorted(out)
+
+
+def _unit_score(
+    shown: np.ndarray, frames: Sequence[int], who: Sequence[str], s: Shot, units: Sequence[_Unit]
+) -> tuple[float | None, bool]:
+    """How well (F, C) ``shown`` passes the shot's sentences' checks, in [0, 1]: each (sentence,
+    character) in the shot counts by the share of its frames the shot holds; its score is the share of
+    its sampled frames shown, plus PASS_BONUS when that share would pass the check with a margin.
+    None when no sentence acts in the shot; and whether every one passes."""
+    col = {w: j for j, w in enumerate(who)}
+    fr = np.asarray(frames, dtype=np.int64)
+    total, weight, passes = 0.0, 0.0, True
+    for u in units:
+        if u.who not in col:
+            continue
+        inside = u.frames[(u.frames >= s.start) & (u.frames < s.end)]
+        if not len(inside):
+            continue
+        mask = np.isin(fr, inside)
+        if not mask.any():
+            continue
+        share = float(shown[mask, col[u.who]].mean())
+        w = len(inside) / len(u.frames)
+        passes &= share >= PASS_SHARE
+        total += w * (share + PASS_BONUS * (share >= PASS_SHARE)) / (1.0 + PASS_BONUS)
+        weight += w
+    return (total / weight if weight > 0 else None), passes
 
 
 def _candidates(s: Shot, fixed_side: int | None) -> list[tuple[int, Adjust]]:
@@ -316,11 +384,16 @@ def _candidates(s: Shot, fixed_side: int | None) -> list[tuple[int, Adjust]]:
 
 
 def _framed(
-    shots: list[Shot], tracks: Mapping[str, CharacterTrack], room: Room, scorer: Scorer | None
+    shots: list[Shot],
+    tracks: Mapping[str, CharacterTrack],
+    room: Room,
+    scorer: Scorer | None,
+    units: Sequence[_Unit] = (),
 ) -> list[Shot]:
     """Each shot's side and framing: the candidate that shows its acting characters best (with a scorer),
     else the side whose eye stays in the room; a pair keeps the side of its first shot (180° rule), and
-    a cut to the same subject never lands on a near-identical view (no jump cut)."""
+    a cut to the same subject never lands on a near-identical view (no jump cut). A director's shot whose
+    best framing still leaves a sentence's character unseen becomes a wide shot when one shows more."""
     pair_side: dict[tuple[str, str], int] = {}
     track_map = dict(tracks)
     out: list[Shot] = []
@@ -331,37 +404,74 @@ def _framed(
             last = None
             continue
         pair = (min(s.subject, s.partner), max(s.subject, s.partner)) if s.partner else None
-        frames = _samples(s)
-        best, best_score, best_pose = (1, Adjust()), -np.inf, None
-        for rank, (side, adj) in enumerate(_candidates(s, pair_side.get(pair) if pair else None)):
-            key = CameraKey(
-                frame=s.start, mode=s.kind, character=s.subject, partner=s.partner, side=side, adjust=adj
-            )
-            poses = [_pose(key, track_map, room, f) for f in frames]
-            if any(p is None for p in poses):
-                break
-            if last is not None and s.start == last[0].end and _jump(last, s, poses[0], track_map):
-                continue
-            outside = float(np.mean([_outside(room, p.eye) for p in poses]))
-            if scorer is None:
-                score = -outside
-            else:
-                score = scorer.shown(poses, frames, list(s.acting or (s.subject,))) - OUTSIDE * outside
-            score -= PREFERENCE * rank
-            if score > best_score + 1e-12:
-                best, best_score = (side, adj), score
-                key_end = replace(key, frame=s.start)
-                best_pose = _pose(key_end, track_map, room, max(s.start, s.end - 1))
-            if scorer is None and rank >= 1:
-                break  # without measuring, only the side is chosen
-            if scorer is not None and best_score >= 1.0 - PREFERENCE * rank - 1e-9 and rank == 0:
-                break  # the preferred framing shows everyone: nothing to improve
+        found = _search(s, pair_side.get(pair) if pair else None, track_map, room, scorer, units, last)
+        if scorer is not None and not found.passes and s.source == "director" and s.kind != "wide":
+            wide = replace(s, kind="wide", subject="", partner="")
+            other = _search(wide, None, track_map, room, scorer, units, last)
+            if other.score > found.score + WIDE_GAIN:
+                s, found, pair = wide, other, None
         if pair is not None:
-            pair_side.setdefault(pair, best[0])
-        framed = replace(s, side=best[0], adjust=best[1] if scorer is not None else None)
+            pair_side.setdefault(pair, found.side)
+        framed = replace(s, side=found.side, adjust=found.adjust if scorer is not None else None)
         out.append(framed)
-        last = (framed, best_pose) if best_pose is not None else None
+        last = (framed, found.end_pose) if found.end_pose is not None else None
     return out
+
+
+@dataclass(frozen=True)
+class _Found:
+    """The best candidate of one shot: its side and adjustment, its score, its camera on its last frame,
+    and whether it shows every sentence's character in the shot well enough to pass the check."""
+
+    side: int
+    adjust: Adjust
+    score: float
+    end_pose: Any
+    passes: bool
+
+
+def _search(
+    s: Shot,
+    fixed_side: int | None,
+    tracks: dict[str, CharacterTrack],
+    room: Room,
+    scorer: Scorer | None,
+    units: Sequence[_Unit],
+    last: tuple[Shot, Any] | None,
+) -> _Found:
+    """Measure a shot's candidates (preferred first) and keep the one that shows most."""
+    frames = _samples(s, units)
+    inside = [u for u in units if u.who in tracks and ((u.frames >= s.start) & (u.frames < s.end)).any()]
+    who = list(dict.fromkeys([*(s.acting or (s.subject,)), *(u.who for u in inside)]))
+    best = _Found(1, Adjust(), -np.inf, None, False)
+    for rank, (side, adj) in enumerate(_candidates(s, fixed_side)):
+        key = CameraKey(
+            frame=s.start, mode=s.kind, character=s.subject, partner=s.partner, side=side, adjust=adj
+        )
+        poses = [_pose(key, tracks, room, f) for f in frames]
+        if any(p is None for p in poses):
+            break
+        if last is not None and s.start == last[0].end and _jump(last, s, poses[0], tracks):
+            continue
+        outside = float(np.mean([_outside(room, p.eye) for p in poses]))
+        passes = True
+        if scorer is None:
+            score = -outside
+        else:
+            seen = scorer.shown_each(poses, frames, who)
+            by_unit, passes = _unit_score(seen, frames, who, s, inside)
+            acting = [who.index(w) for w in (s.acting or (s.subject,)) if w in who]
+            fallback = float(seen[:, acting].mean()) if acting else 1.0
+            score = (fallback if by_unit is None else by_unit) - OUTSIDE * outside
+        score -= PREFERENCE * rank
+        if score > best.score + 1e-12:
+            end_pose = _pose(key, tracks, room, max(s.start, s.end - 1))
+            best = _Found(side, adj, score, end_pose, passes)
+        if scorer is None and rank >= 1:
+            break  # without measuring, only the side is chosen
+        if scorer is not None and best.score >= 1.0 - PREFERENCE * rank - 1e-9 and rank == 0:
+            break  # the preferred framing shows everyone: nothing to improve
+    return best
 
 
 def _jump(last: tuple[Shot, Any], s: Shot, first: Any, tracks: Mapping[str, CharacterTrack]) -> bool:
@@ -413,6 +523,7 @@ def _command_shots(
             nxt = [s.end_frame for s in motions[who].segments if s.sentence_id and s.end_frame > start]
             if nxt:
                 end = min(end, max(min(nxt), start + MIN_SHOT_FRAMES))
+            end = min(end, _cut_away(who, start, beats))
         end = min(max(end, start), n_frames)
         if end <= start:
             continue
@@ -426,6 +537,14 @@ def _command_shots(
         else:
             out.append(shot)
     return out
+
+
+def _cut_away(who: str, start: int, beats: list[_Beat]) -> int:
+    """Where a close-up or follow shot of ``who`` from ``start`` cuts away: at the first sentence of
+    someone else that begins in its scope (held at least MIN_SHOT_FRAMES, so the command shows), since
+    the issue wants every acting character seen; a large number when nobody else begins a sentence."""
+    others = [b.start for b in beats if b.lead != who and b.start >= start]
+    return max(min(others), start + MIN_SHOT_FRAMES) if others else 1 << 30
 
 
 def _per_beat(shot: Shot, beats: list[_Beat], tracks: Mapping[str, CharacterTrack]) -> list[Shot]:
@@ -488,7 +607,8 @@ def plan_shots(
     n = max(1, n_frames)
     beats = _beats(motions, n)
     commanded = _command_shots(commands, motions, tracks, n, beats)
-    return _framed(_overlay(director_shots(motions, tracks, n), commanded), tracks, room, scorer)
+    shots = _overlay(director_shots(motions, tracks, n), commanded)
+    return _framed(shots, tracks, room, scorer, _units(motions, n))
 
 
 def shot_keys(shots: Iterable[Shot]) -> list[CameraKey]:

@@ -137,18 +137,24 @@ class FrameRenderer:
                 f"shadow:{name}", sv, shadow_faces(faces) if new else None, np.tile(colour, (len(sv), 1))
             )
 
-    def render(self, frame: int, pose: CameraPose | None = None) -> np.ndarray:
-        """One frame (H, W, 3) uint8; ``pose`` overrides the commanded camera (tests, previews)."""
+    def render(
+        self, frame: int, pose: CameraPose | None = None, *, hide_characters: bool = False
+    ) -> np.ndarray:
+        """One frame (H, W, 3) uint8; ``pose`` overrides the commanded camera (tests, previews);
+        ``hide_characters`` leaves the bodies out but keeps everything else, their shadows included (the
+        difference of the two pictures is the characters' silhouette, which the preview test compares)."""
         if not 0 <= frame < self.n_frames:
             raise ValueError(f"frame {frame} is outside the animation's [0, {self.n_frames})")
         posed = {name: rig.vertices([frame])[0] for name, rig in self.rigs.items()}
-        return self._draw(frame, posed, pose)
+        return self._draw(frame, posed, pose, hide_characters)
 
-    def _draw(self, f: int, verts: dict[str, np.ndarray], pose: CameraPose | None = None) -> np.ndarray:
+    def _draw(
+        self, f: int, verts: dict[str, np.ndarray], pose: CameraPose | None = None, hide: bool = False
+    ) -> np.ndarray:
         c = self._open()
         look = look_at(f, self.weather_keys)
         for name, v in verts.items():
-            c.set_mesh(f"char:{name}", v)
+            c.set_mesh(f"char:{name}", v + np.array([0.0, -1000.0, 0.0]) if hide else v)  # far below
         for oid, (placed, mesh) in self._props.items():  # held props move with the hand
             m = prop_pose(placed, self._motions, f)
             key = f"prop:{oid}"

@@ -279,3 +279,17 @@ def test_the_summary_counts_failing_sentences_per_check_and_the_two_shares(story
     assert (summary["stories"], summary["sentences"], summary["seed"], summary["split"]) == (2, 5, 3, "dev")
     assert summary["verdicts"] == {"ok": 3, "partial": 1, "failed": 1} and summary["unchecked"] == 1
     assert summary["compute_s_max"] == 3.0 and json.loads(json.dumps(summary)) == summary
+
+
+def test_the_summary_shares_of_action_frames_in_the_picture_and_hidden_sum_over_stories(story_eval):
+    rows = [
+        {"story": s, "ok": True, "error": "", "compute_s": 1.0, "sentences": 0, "per_sentence": [], "view": v}
+        for s, v in (
+            ("a", {"frames": 100, "in_frame": 90, "occluded": 10}),
+            ("b", {"frames": 300, "in_frame": 300, "occluded": 30}),
+        )
+    ]
+    rows.append({**rows[0], "story": "crashed", "view": {}})  # a crashed story has no frames to count
+    summary = story_eval.summarise(rows, seed=0, split="dev")
+    assert summary["acting_in_frame_share"] == pytest.approx(390 / 400)
+    assert summary["occluded_share"] == pytest.approx(40 / 400)

@@ -264,3 +264,17 @@ def test_sight_lines_beside_a_desk_leg_are_clear_though_they_cross_its_voxels():
     assert not (by_mesh & ~by_voxels).any()  # the voxels are conservative
     assert (by_voxels & ~by_mesh).sum() >= 4  # beside the legs: clear in the picture
     assert by_mesh.any() and not by_mesh.all()
+
+
+def test_the_tally_counts_each_in_view_checks_frames_in_the_picture_and_hidden():
+    from services.render.camera_checks import ViewTally
+
+    scene = Scene(room=ROOM, objects=[WARDROBE])
+    stage = Staging.build(scene, [standing("Eve", 0.0, 0.0)])
+    behind = fixed_camera((0.0, 1.3, 2.4), (0.0, 1.0, 0.0))  # the wardrobe between lens and Eve
+    away = fixed_camera((0.0, 1.3, 2.4), (3.0, 1.0, 2.4))  # looking along the wall, Eve out of the picture
+    for track, want in ((behind, (N, N, N)), (away, (N, 0, 0))):
+        tally: list[ViewTally] = []
+        staged_checks(stage, [("s1", "Eve waves.")], width=320, height=240, track=track, tally=tally)
+        assert [(t.sentence_id, t.character) for t in tally] == [("s1", "Eve")]
+        assert (tally[0].frames, tally[0].in_frame, tally[0].occluded) == want
