@@ -33,6 +33,7 @@ from services.motion.pfnn_layout import (
     SLICE_CONTACT,
     SLICE_DPHASE,
     SLICE_POSE,
+    SLICE_ROOT,
     SLICE_ROT,
 )
 from wana.domain import quat
@@ -55,6 +56,9 @@ class Locomotion:
     heading: np.ndarray
     phase: np.ndarray
     source: str  # "pfnn" or "procedural"
+    # The network's own root speed (T,) m/s from its root-velocity output (the root follows the plan, so this
+    # only measures whether the gait it chose fits the commanded speed); None for the procedural gait.
+    network_speed: np.ndarray | None = None
 
 
 def _wrap(a: np.ndarray | float) -> np.ndarray:
@@ -247,6 +251,7 @@ def locomote(
     phase0: float = 0.0,
     occupied=None,
     use_network: bool = True,
+    rollout: RolloutRuntime | None = None,
 ) -> Locomotion:
     """Walk (or run) along waypoints and stop at the last one, facing face_yaw when given.
 
@@ -258,9 +263,10 @@ def locomote(
         phase0: gait phase to continue from.
         occupied: optional callable xz (N, 2) -> bool (N,) for the occupancy sensor.
         use_network: False forces the procedural gait.
+        rollout: the network runtime to use (default: the shared one; eval/gait.py passes another model's).
     """
     pos, heading, spd = plan_root(waypoints, speed, start_heading, face_yaw)
-    rt = runtime() if use_network else None
+    rt = (rollout or runtime()) if use_network else None
     if rt is None:
         g = synthesize_gait(pos, heading, spd, phase0=phase0)
         return Locomotion(
@@ -279,4 +285,5 @@ def locomote(
     # Standing still: both feet down whatever the network says.
     contacts[spd < 0.05] = 1
     phase = np.mod(phase0 + np.cumsum(np.clip(y[:, SLICE_DPHASE][:, 0], 0, 0.5)), 1.0)
-    return Locomotion(root, rot, contacts, heading, phase, "pfnn")
+    net_speed = np.linalg.norm(y[:, SLICE_ROOT][:, :2].astype(np.float64), axis=1) * FPS
+    return Locomotion(root, rot, contacts, heading, phase, "pfnn", net_speed)

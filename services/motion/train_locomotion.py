@@ -17,6 +17,7 @@ import csv
 import json
 import os
 import time
+from itertools import chain
 from pathlib import Path
 
 import numpy as np
@@ -83,11 +84,27 @@ def label_phase(contacts: np.ndarray) -> np.ndarray:
     return np.mod(ph, 1.0)
 
 
+def annotate(root: np.ndarray, rot: np.ndarray):
+    """Heading (smoothed hips yaw), phase and foot contacts of a retargeted clip: the training tuple."""
+    from wana.domain.skeleton import JOINT_INDEX, forward_kinematics
+
+    fwd = quat.rotate(rot[:, 0], np.broadcast_to([0.0, 0.0, 1.0], (len(rot), 3)))
+    heading = np.unwrap(np.arctan2(fwd[:, 0], fwd[:, 2]))
+    heading = np.convolve(np.pad(heading, 7, mode="edge"), np.ones(15) / 15, mode="valid")
+    pos, _ = forward_kinematics(rot, root)
+    contacts = np.zeros((len(rot), 2), np.uint8)
+    for k, name in enumerate(("LeftFoot", "RightFoot")):
+        f = pos[:, JOINT_INDEX[name]]
+        v = np.zeros(len(f))
+        v[1:] = np.linalg.norm(np.diff(f, axis=0), axis=1) * FPS
+        contacts[:, k] = ((f[:, 1] < f[:, 1].min() + 0.05) & (v < 0.6)).astype(np.uint8)
+    return root, rot, heading, label_phase(contacts), contacts, None
+
+
 def cmu_corpus(shared: Path = SHARED):
     """Retargeted CMU locomotion clips (skeleton variant A) with heading, phase and contacts."""
     from services.motion.retarget import retarget_clip
     from wana.domain.bvh import read_bvh
-    from wana.domain.skeleton import JOINT_INDEX, forward_kinematics
 
     labels = shared / "cmu_mocap_iclone" / "labels.csv"
     if not labels.is_file():
@@ -99,18 +116,72 @@ def cmu_corpus(shared: Path = SHARED):
             if r["category"] == "locomotion" and r["skeleton_variant"].startswith("A")
         ]
     for r in held_in(rows):
-        root, rot = retarget_clip(read_bvh(shared / "cmu_mocap_iclone" / r["file"]))
-        fwd = quat.rotate(rot[:, 0], np.broadcast_to([0.0, 0.0, 1.0], (len(rot), 3)))
-        heading = np.unwrap(np.arctan2(fwd[:, 0], fwd[:, 2]))
-        heading = np.convolve(np.pad(heading, 7, mode="edge"), np.ones(15) / 15, mode="valid")
-        pos, _ = forward_kinematics(rot, root)
-        contacts = np.zeros((len(rot), 2), np.uint8)
-        for k, name in enumerate(("LeftFoot", "RightFoot")):
-            f = pos[:, JOINT_INDEX[name]]
-            v = np.zeros(len(f))
-            v[1:] = np.linalg.norm(np.diff(f, axis=0), axis=1) * FPS
-            contacts[:, k] = ((f[:, 1] < f[:, 1].min() + 0.05) & (v < 0.6)).astype(np.uint8)
-        yield root, rot, heading, label_phase(contacts), contacts, None
+        yield annotate(*retarget_clip(read_bvh(shared / "cmu_mocap_iclone" / r["file"])))
+
+
+# Subjects of ../shared/data/cmu_locomotion_daz kept out of training for eval/gait.py: 2 (walk, run), 5 (walk)
+# and 12 (three walks), 26 s of 121 s. Subject 5 is also out of the iClone set (its only trial, 005_01).
+HELD_OUT_SUBJECTS = (2, 5, 12)
+
+
+def daz_rows(shared: Path = SHARED) -> list[dict]:
+    """labels.csv rows of the Daz-skeleton CMU locomotion trials (empty when the folder is absent)."""
+    labels = shared / "cmu_locomotion_daz" / "labels.csv"
+    if not labels.is_file():
+        return []
+    with labels.open() as fh:
+        return list(csv.DictReader(fh))
+
+
+def daz_clip(path: Path) -> tuple[np.ndarray, np.ndarray]:
+    """One Daz-skeleton trial retargeted to ours at 30 fps: root (T, 3), rotations (T, J, 4).
+
+    Frame 0 of every file in that conversion is its rest T-pose (root at the first captured frame) and the
+    next four blend from it into the capture (the arms sweep down in 1/30 s), so the first 1/20 s is
+    dropped, and so are further leading frames before a root jump (09_10 starts with stray frames).
+    """
+    from services.motion.retarget import DAZ_MAP, retarget_clip
+    from wana.domain.bvh import read_bvh
+
+    clip = read_bvh(path)
+    motion = clip.motion[1 + int(round(0.05 * clip.fps)) :]
+    step = np.linalg.norm(np.diff(motion[:, :3], axis=0), axis=1)  # hip position channels come first
+    jumps = np.where(step[:10] > 5 * np.median(step) + 1e-6)[0]
+    clip.motion = motion[int(jumps[-1]) + 1 if len(jumps) else 0 :]
+    return retarget_clip(clip, DAZ_MAP)
+
+
+def daz_training_rows(shared: Path = SHARED) -> list[dict]:
+    """Daz-skeleton trials for training: not a held-out subject and not a capture the iClone set already has
+    (subjects 3, 6 and 7 are in both conversions: the same takes)."""
+    iclone = shared / "cmu_mocap_iclone" / "labels.csv"
+    seen: set[tuple[int, int]] = set()
+    if iclone.is_file():
+        with iclone.open() as fh:
+            seen = {(int(r["subject"]), int(r["trial"])) for r in csv.DictReader(fh)}
+    return [
+        r
+        for r in daz_rows(shared)
+        if int(r["subject"]) not in HELD_OUT_SUBJECTS and (int(r["subject"]), int(r["trial"])) not in seen
+    ]
+
+
+def daz_heldout_rows(shared: Path = SHARED) -> list[dict]:
+    """Daz-skeleton trials of the held-out subjects (eval/gait.py)."""
+    return [r for r in daz_rows(shared) if int(r["subject"]) in HELD_OUT_SUBJECTS]
+
+
+def daz_corpus(shared: Path = SHARED):
+    """Training tuples of the Daz-skeleton trials of the training subjects (glitching takes left out)."""
+    for r in daz_training_rows(shared):
+        root, rot = daz_clip(shared / "cmu_locomotion_daz" / r["file"])
+        if plausible(root):
+            yield annotate(root, rot)
+
+
+def plausible(root: np.ndarray, max_speed: float = 8.0) -> bool:
+    """False for a take whose root jumps faster than anyone runs (09_10 has a two-frame 9 m/s glitch)."""
+    return bool(len(root) < 2 or np.max(np.linalg.norm(np.diff(root, axis=0), axis=1)) * FPS <= max_speed)
 
 
 def held_in(rows: list[dict]) -> list[dict]:
@@ -130,7 +201,7 @@ def build_dataset(n_sequences: int, seconds: float, use_cmu: bool = True):
         ps.append(p)
         ys.append(y)
     if use_cmu:
-        for seq in cmu_corpus():
+        for seq in chain(cmu_corpus(), daz_corpus()):
             x, p, y = build_xy(*seq)
             for _ in range(3):  # upweight the captured clips
                 xs.append(x)
