@@ -1,7 +1,7 @@
 """Evaluate the locomotion network on people it never saw: foot sliding, speed, and a gait distance.
 
 Usage:
-    .venv/bin/python eval/gait.py [--quick] [--json PATH] [--before-model DIR]
+    .venv/bin/python eval/gait.py [--quick] [--json PATH] [--before-model DIR] [--model DIR]
 
 Held-out people: CMU subjects 2, 5 and 12 of ../shared/data/cmu_locomotion_daz (walks and a jog, 26 s;
 services.motion.train_locomotion.HELD_OUT_SUBJECTS keeps them out of training). Each take is retargeted
@@ -175,6 +175,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--json", type=Path, default=None, help="write the metrics here")
     parser.add_argument(
         "--before-model", type=Path, default=None, help="models/locomotion of the old network"
+    )
+    parser.add_argument(
+        "--model", type=Path, default=None, help="evaluate this model folder (default: the shipped one)"
     )
     args = parser.parse_args(argv)
     t0 = time.time()

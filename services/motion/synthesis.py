@@ -97,6 +97,7 @@ class PlannedSegment:
     prop_joint: str = "RightHand"  # the joint holding it
     prop_grip: tuple[float, float, float] = (0.0, 0.0, 0.0)  # its grip point, object frame, metres
     prop_yaw: float = 0.0  # its yaw as placed (radians): the orientation it is picked up in
+    manner: str = ""  # a locomotion's manner word ("tiredly"): its arm swing and posture
 
 
 @dataclass(frozen=True)
@@ -334,7 +335,7 @@ def _locomotion_piece(seg: PlannedSegment, state: SegmentState) -> tuple[MotionP
         if len(wps) == 0 or np.linalg.norm(wps[0] - [state.x, state.z]) > 1e-3
         else wps
     )
-    loco = locomote(wps, seg.speed, state.yaw, seg.face_yaw, state.phase)
+    loco = locomote(wps, seg.speed, state.yaw, seg.face_yaw, state.phase, manner=seg.manner)
     rot = fade_from(_standing_pose(state.yaw), loco.rotations, FADE)
     rot = lock_feet(rot, loco.root_position, loco.contacts)
     piece = MotionPiece(loco.root_position, rot, loco.contacts, seg)

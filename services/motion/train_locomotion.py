@@ -4,10 +4,12 @@ Usage (CPU, about 5-10 minutes):
     OMP_NUM_THREADS=1 nice -n 10 .venv/bin/python -m services.motion.train_locomotion
 
 Corpus: (a) procedural locomotion from services.motion.gait (walk, run, start, stop, turn,
-side-step at varied speeds, with random obstacles for the occupancy sensor) and (b) the CMU
-locomotion clips of ../shared/data/cmu_mocap_iclone retargeted to the canonical skeleton, when
-that folder exists (training works without it). Writes models/locomotion/{pfnn.pt, pfnn_step.onnx,
-pfnn_rollout.onnx, meta.json}.
+side-step at varied speeds, with random obstacles for the occupancy sensor), (b) the CMU
+locomotion clips of ../shared/data/cmu_mocap_iclone and (c) the CMU walk/run takes of
+../shared/data/cmu_locomotion_daz (Daz skeleton; subjects 8, 9, 10 and the takes the iClone set lacks),
+both retargeted to the canonical skeleton when those folders exist (training works without them).
+Subjects 2, 5 and 12 of (c) are held out for eval/gait.py (HELD_OUT_SUBJECTS). Writes
+models/locomotion/{pfnn.pt, pfnn_step.onnx, pfnn_rollout.onnx, pfnn_fast.onnx, meta.json}.
 """
 
 from __future__ import annotations
@@ -192,7 +194,7 @@ def held_in(rows: list[dict]) -> list[dict]:
 HELD_OUT = ("bvh/007_12.bvh.gz", "bvh/005_01.bvh.gz")
 
 
-def build_dataset(n_sequences: int, seconds: float, use_cmu: bool = True):
+def build_dataset(n_sequences: int, seconds: float, use_cmu: bool = True, cmu_weight: int = 3):
     xs, ps, ys = [], [], []
     n_cmu = 0
     for seq in procedural_corpus(n_sequences, seconds):
@@ -203,7 +205,7 @@ def build_dataset(n_sequences: int, seconds: float, use_cmu: bool = True):
     if use_cmu:
         for seq in chain(cmu_corpus(), daz_corpus()):
             x, p, y = build_xy(*seq)
-            for _ in range(3):  # upweight the captured clips
+            for _ in range(cmu_weight):  # upweight the captured clips
                 xs.append(x)
                 ps.append(p)
                 ys.append(y)
@@ -219,7 +221,7 @@ def train(args: argparse.Namespace) -> dict:
     torch.manual_seed(SEED)
     torch.set_num_threads(args.threads)
     t0 = time.time()
-    x, p, y, n_cmu = build_dataset(args.sequences, args.seconds, not args.no_cmu)
+    x, p, y, n_cmu = build_dataset(args.sequences, args.seconds, not args.no_cmu, args.cmu_weight)
     print(f"corpus: {len(x)} frames ({n_cmu} from CMU) built in {time.time() - t0:.1f}s")
     net = PFNN(hidden=args.hidden)
     x_mean, x_std = x.mean(0), x.std(0) + 1e-3
@@ -345,6 +347,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--threads", type=int, default=1, help="torch CPU threads")
     parser.add_argument("--max-minutes", type=float, default=12.0, help="stop training after this wall time")
     parser.add_argument("--no-cmu", action="store_true", help="procedural corpus only")
+    parser.add_argument("--cmu-weight", type=int, default=3, help="times each captured clip is repeated")
     parser.add_argument("--out", type=Path, default=MODEL_DIR)
     args = parser.parse_args(argv)
     result = train(args)
@@ -355,6 +358,8 @@ def main(argv: list[str] | None = None) -> int:
         "rollout_steps": ROLLOUT_STEPS,
         "sequences": args.sequences,
         "epochs": args.epochs,
+        "cmu_weight": args.cmu_weight,
+        "held_out_subjects": list(HELD_OUT_SUBJECTS),
     }
     (args.out / "meta.json").write_text(json.dumps(meta, indent=2) + "\n")
     print(json.dumps(meta, indent=2))
