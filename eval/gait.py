@@ -56,7 +56,7 @@ from wana.domain.units import FPS  # noqa: E402
 
 # gait_fd_before as measured on the network committed before the Daz takes (models/locomotion at 53ddc0f),
 # `eval/gait.py --json ... --before-model /tmp/gait-before/locomotion`: used when --before-model is not given.
-RECORDED_FD_BEFORE: float | None = None
+RECORDED_FD_BEFORE = 0.7412
 FEATURE_JOINTS = ("Hips", "Head", "LeftHand", "RightHand", "LeftLeg", "RightLeg", "LeftFoot", "RightFoot")
 WINDOW = 30
 HOP = 3
@@ -182,13 +182,21 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     t0 = time.time()
     rows = daz_heldout_rows()
-    if not rows:
-        print(f"no held-out takes under {SHARED / 'cmu_locomotion_daz'}: nothing to evaluate")
-        return 1
     rt = PfnnRuntime(args.model) if args.model else runtime()
-    if rt is None:
-        print("no locomotion network to evaluate (models/locomotion missing or onnxruntime absent)")
-        return 1
+    why = (
+        f"no held-out takes under {SHARED / 'cmu_locomotion_daz'}"
+        if not rows
+        else "no locomotion network (models/locomotion or onnxruntime missing)"
+        if rt is None
+        else ""
+    )
+    if why:  # `make eval` runs on machines without ../shared/data: say so, do not fail
+        print(f"{why}: nothing to evaluate")
+        if args.json:
+            args.json.parent.mkdir(parents=True, exist_ok=True)
+            skipped = {"gait_fd_heldout": None, "gait_fd_before": RECORDED_FD_BEFORE, "skipped": why}
+            args.json.write_text(json.dumps(skipped, indent=2) + "\n")
+        return 0
     now = evaluate(rt, rows)
     before = evaluate(PfnnRuntime(args.before_model), rows) if args.before_model else None
     result = {

@@ -23,8 +23,12 @@ HIP_WIDTH = float(REST_OFFSETS[J["LeftUpLeg"], 0])
 
 
 def gait_frequency(speed: np.ndarray) -> np.ndarray:
-    """Gait cycles per second for a ground speed in m/s (a full cycle is two steps)."""
-    return 0.75 + 0.42 * np.abs(speed)
+    """Gait cycles per second for a ground speed in m/s (a full cycle is two steps).
+
+    Fitted to the captured takes of cmu_locomotion_daz (0.78 Hz at 0.9 m/s, 0.9 at 1.35, 1.3 at 3.4 m/s
+    running); the older 0.75 + 0.42 v stepped half again as fast as any of those people.
+    """
+    return 0.6 + 0.2 * np.abs(speed)
 
 
 def duty_factor(speed: np.ndarray) -> np.ndarray:
