@@ -235,7 +235,8 @@ def build_dataset(n_sequences: int, seconds: float, use_cmu: bool = True, cmu_we
         ys.append(y)
     if use_cmu:
         for seq in chain(cmu_corpus(), daz_corpus()):
-            x, p, y = build_xy(*seq, extrapolate=True)
+            root, rot, heading, phase, contacts, occupied = seq
+            x, p, y = build_xy(root, rot, heading, phase, contacts, occupied, extrapolate=True)
             for _ in range(cmu_weight):  # upweight the captured clips
                 xs.append(x)
                 ps.append(p)
