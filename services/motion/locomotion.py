@@ -25,6 +25,7 @@ from typing import Protocol
 import numpy as np
 
 from services.motion.gait import synthesize_gait
+from services.motion.gait_style import apply_gait_style, gait_style
 from services.motion.locomotion_features import sensor_features, trajectory_features
 from services.motion.pfnn_layout import (
     N_JOINTS,
@@ -33,6 +34,7 @@ from services.motion.pfnn_layout import (
     SLICE_CONTACT,
     SLICE_DPHASE,
     SLICE_POSE,
+    SLICE_ROOT,
     SLICE_ROT,
 )
 from wana.domain import quat
@@ -55,6 +57,9 @@ class Locomotion:
     heading: np.ndarray
     phase: np.ndarray
     source: str  # "pfnn" or "procedural"
+    # The network's own root speed (T,) m/s from its root-velocity output (the root follows the plan, so this
+    # only measures whether the gait it chose fits the commanded speed); None for the procedural gait.
+    network_speed: np.ndarray | None = None
 
 
 def _wrap(a: np.ndarray | float) -> np.ndarray:
@@ -247,6 +252,8 @@ def locomote(
     phase0: float = 0.0,
     occupied=None,
     use_network: bool = True,
+    rollout: RolloutRuntime | None = None,
+    manner: str = "",
 ) -> Locomotion:
     """Walk (or run) along waypoints and stop at the last one, facing face_yaw when given.
 
@@ -258,13 +265,22 @@ def locomote(
         phase0: gait phase to continue from.
         occupied: optional callable xz (N, 2) -> bool (N,) for the occupancy sensor.
         use_network: False forces the procedural gait.
+        rollout: the network runtime to use (default: the shared one; eval/gait.py passes another model's).
+        manner: the story's manner word ("tiredly", "happily"): arm swing and posture (services.motion.gait_style;
+            the planner has already scaled the speed by it).
     """
+    style = gait_style(manner)
     pos, heading, spd = plan_root(waypoints, speed, start_heading, face_yaw)
-    rt = runtime() if use_network else None
+    rt = (rollout or runtime()) if use_network else None
     if rt is None:
         g = synthesize_gait(pos, heading, spd, phase0=phase0)
         return Locomotion(
-            g["root_position"], g["rotations"], g["contacts"], heading, g["phase"], "procedural"
+            g["root_position"],
+            apply_gait_style(g["rotations"], style),
+            g["contacts"],
+            heading,
+            g["phase"],
+            "procedural",
         )
     control = np.concatenate(
         [trajectory_features(pos, heading), sensor_features(pos, heading, occupied)], axis=1
@@ -279,4 +295,5 @@ def locomote(
     # Standing still: both feet down whatever the network says.
     contacts[spd < 0.05] = 1
     phase = np.mod(phase0 + np.cumsum(np.clip(y[:, SLICE_DPHASE][:, 0], 0, 0.5)), 1.0)
-    return Locomotion(root, rot, contacts, heading, phase, "pfnn")
+    net_speed = np.linalg.norm(y[:, SLICE_ROOT][:, :2].astype(np.float64), axis=1) * FPS
+    return Locomotion(root, apply_gait_style(rot, style), contacts, heading, phase, "pfnn", net_speed)

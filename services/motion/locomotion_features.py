@@ -74,6 +74,29 @@ def root_deltas(pos: np.ndarray, heading: np.ndarray) -> np.ndarray:
     return d
 
 
+def extrapolated_trajectory_features(pos: np.ndarray, heading: np.ndarray, fit: int = 10) -> np.ndarray:
+    """trajectory_features of a clip cut out of a longer walk: the path before and after it continues at
+    the velocity and turning rate of its first and last `fit` frames, instead of standing still.
+
+    A captured take starts and ends mid-stride; clamped edges would teach the network that a character
+    who has been standing (the past samples all on one spot) is already walking at full speed.
+    """
+    pad = max(-min(TRAJ_OFFSETS), max(TRAJ_OFFSETS))
+    t = len(pos)
+    k = max(1, min(fit, t - 1))
+    v0, v1 = (pos[k] - pos[0]) / k, (pos[-1] - pos[-1 - k]) / k
+    w0, w1 = (heading[k] - heading[0]) / k, (heading[-1] - heading[-1 - k]) / k
+    steps = np.arange(1, pad + 1)
+    before = pos[0] - v0 * steps[::-1, None]
+    after = pos[-1] + v1 * steps[:, None]
+    h_before = heading[0] - w0 * steps[::-1]
+    h_after = heading[-1] + w1 * steps
+    feats = trajectory_features(
+        np.concatenate([before, pos, after]), np.concatenate([h_before, heading, h_after])
+    )
+    return feats[pad : pad + t]
+
+
 def build_xy(
     root_position: np.ndarray,
     rotations: np.ndarray,
@@ -81,10 +104,19 @@ def build_xy(
     phase: np.ndarray,
     contacts: np.ndarray,
     occupied=None,
+    extrapolate: bool = False,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Training pairs of one sequence: X (T-1, N_IN), phase (T-1, 1) of the previous frame, Y (T-1, N_OUT)."""
+    """Training pairs of one sequence: X (T-1, N_IN), phase (T-1, 1) of the previous frame, Y (T-1, N_OUT).
+
+    extrapolate: the sequence is cut out of a longer walk (a captured take): see
+    extrapolated_trajectory_features. Procedural sequences start and end at rest and keep clamped edges.
+    """
     ground = root_position[:, [0, 2]]
-    traj = trajectory_features(ground, heading)
+    traj = (
+        extrapolated_trajectory_features(ground, heading)
+        if extrapolate
+        else trajectory_features(ground, heading)
+    )
     sensor = sensor_features(ground, heading, occupied)
     pose = pose_features(root_position, rotations, ground, heading)
     rot = rotation_features(rotations, heading)

@@ -23,6 +23,8 @@ import numpy as np
 
 from proto.scene import PlacedObject, Scene
 from proto.ssg import ActionNode, CharacterNode
+from services.motion.gait_style import NEUTRAL as NEUTRAL_GAIT
+from services.motion.gait_style import gait_style
 from services.motion.style import mood_of, style_of
 from services.motion.synthesis import MotionPlan, PlannedSegment
 from wana.domain.actions import ActionClip, contact_targets, get_clip, load_library
@@ -41,7 +43,6 @@ SPEEDS = {
     "sidestep_left": 0.8,
     "sidestep_right": 0.8,
 }
-MANNER_SPEED = {"slowly": 0.6, "slow": 0.6, "quickly": 1.5, "fast": 1.5, "hurriedly": 1.6, "leisurely": 0.7}
 SEAT_BACK = 0.22  # metres the hips travel backwards while sitting down (sit clip)
 REACH = 0.42  # metres from the contact points to where the character stands
 PERSON_DISTANCE = 0.8  # metres between two characters after one walks up to the other
@@ -248,6 +249,13 @@ def _with_moods(segs: list[PlannedSegment], character: CharacterNode) -> list[Pl
     return out
 
 
+def _walk_speed_factor(manner: str) -> float:
+    """The commanded walking speed's factor for a manner word: the captured gaits' for words the gait knows
+    ("slowly", "tiredly"), else the mood's tempo ("angrily"), never both (they would count the word twice)."""
+    gait = gait_style(manner)
+    return gait.speed if gait != NEUTRAL_GAIT else style_of(*mood_of(manner)).tempo
+
+
 def plan_actions(
     character: CharacterNode,
     scene: Scene,
@@ -304,7 +312,13 @@ def plan_actions(
     custom_ignores = route_fn is not None and _takes_ignore(route_fn)
 
     def walk_to(
-        goal: np.ndarray, speed: float, face: float | None, action: str, ai: int, target: str = ""
+        goal: np.ndarray,
+        speed: float,
+        face: float | None,
+        action: str,
+        ai: int,
+        target: str = "",
+        manner: str = "",
     ) -> None:
         nonlocal pos, yaw
         if np.linalg.norm(goal - pos) < 0.05 and face is None:
@@ -323,6 +337,7 @@ def plan_actions(
             face_yaw=face,
             target_id=target,
             action_index=ai,
+            manner=manner,
         )
         if len(wps) > 1:
             d = wps[-1] - wps[-2]
@@ -362,7 +377,7 @@ def plan_actions(
                 add(kind="wait", action="idle", duration_s=1.0, action_index=ai)
                 continue
         clip = lib[name]
-        speed_k = MANNER_SPEED.get(node.manner, 1.0) * style_of(*mood_of(node.manner)).tempo
+        speed_k = _walk_speed_factor(node.manner)
         person = _other_character(node, clip, others, scene, character.name)
         if person:
             there = np.asarray(others[person], dtype=float)
@@ -377,7 +392,7 @@ def plan_actions(
                 goal = _short_of(pos, there, near)
                 face = _yaw_to(goal, there, yaw)
                 if "locomotion" in clip.tags:
-                    walk_to(goal, SPEEDS.get(name, 1.3) * speed_k, face, name, ai, person)
+                    walk_to(goal, SPEEDS.get(name, 1.3) * speed_k, face, name, ai, person, node.manner)
                     continue
                 if np.linalg.norm(goal - pos) > 0.1:
                     walk_to(goal, 1.2, face, "walk", ai, person)
@@ -409,7 +424,7 @@ def plan_actions(
             else:
                 fwd = np.array([np.sin(yaw), np.cos(yaw)])
                 goal = pos + fwd * (2.0 if node.destination or not node.target else 1.5)
-            walk_to(goal, SPEEDS.get(name, 1.3) * speed_k, None, name, ai, obj.id if obj else "")
+            walk_to(goal, SPEEDS.get(name, 1.3) * speed_k, None, name, ai, obj.id if obj else "", node.manner)
             continue
         if name == "stand" and now_posture() == "stand":
             # Already standing: a short hold, not a get-up from a seat that is not there.

@@ -15,7 +15,14 @@ from scipy.spatial.transform import Rotation
 
 from wana.domain import quat
 from wana.domain.bvh import BvhClip
-from wana.domain.skeleton import JOINT_INDEX, N_JOINTS, PARENTS, REST_OFFSETS
+from wana.domain.skeleton import (
+    JOINT_INDEX,
+    N_JOINTS,
+    PARENTS,
+    REST_OFFSETS,
+    forward_kinematics,
+    rest_offsets,
+)
 
 # canonical joint -> source joint, for rigs we know. Unmapped canonical joints follow their parent.
 CC_BASE_MAP: dict[str, str] = {
@@ -71,8 +78,59 @@ CMU_CGSPEED_MAP: dict[str, str] = {
     "RightFoot": "RightFoot",
     "RightToeBase": "RightToeBase",
 }
+# CMU in the Daz/Poser conversion (hip/abdomen/chest..., 42 joints, no toe joints). The source has two
+# trunk joints where we have four, so the lower spine is the midpoint of hip and abdomen ("a|b"), and
+# the toes are the foot's End Site ("name@end").
+DAZ_MAP: dict[str, str] = {
+    "Hips": "hip",
+    "Spine": "hip|abdomen",
+    "Spine1": "abdomen",
+    "Spine2": "chest",
+    "Neck": "neck",
+    "Head": "head",
+    "LeftShoulder": "lCollar",
+    "LeftArm": "lShldr",
+    "LeftForeArm": "lForeArm",
+    "LeftHand": "lHand",
+    "LeftHandMiddle1": "lMid1",
+    "RightShoulder": "rCollar",
+    "RightArm": "rShldr",
+    "RightForeArm": "rForeArm",
+    "RightHand": "rHand",
+    "RightHandMiddle1": "rMid1",
+    "LeftUpLeg": "lThigh",
+    "LeftLeg": "lShin",
+    "LeftFoot": "lFoot",
+    "LeftToeBase": "lFoot@end",
+    "RightUpLeg": "rThigh",
+    "RightLeg": "rShin",
+    "RightFoot": "rFoot",
+    "RightToeBase": "rFoot@end",
+}
 IDENTITY_MAP: dict[str, str] = {n: n for n in JOINT_INDEX}
-KNOWN_MAPS = {"cc_base": CC_BASE_MAP, "cmu": CMU_CGSPEED_MAP, "mixamo": IDENTITY_MAP}
+KNOWN_MAPS = {"cc_base": CC_BASE_MAP, "cmu": CMU_CGSPEED_MAP, "daz": DAZ_MAP, "mixamo": IDENTITY_MAP}
+
+
+def source_joints(spec: str) -> list[str]:
+    """The source joint names a map value reads: "name", "a|b" (their midpoint), "name@end" (its End Site)."""
+    return [part.removesuffix("@end") for part in spec.split("|")]
+
+
+def _source_position(clip: BvhClip, gpos: np.ndarray, grot: np.ndarray, spec: str) -> np.ndarray:
+    """(T, 3) file-unit position of one map value (see source_joints)."""
+    pts = []
+    for part in spec.split("|"):
+        name = part.removesuffix("@end")
+        j = clip.index(name)
+        p = gpos[:, j]
+        if part.endswith("@end"):
+            end = clip.end_sites.get(j)
+            if end is None:
+                raise ValueError(f"joint {name!r} has no End Site")
+            p = p + quat.rotate(grot[:, j], np.broadcast_to(end, p.shape))
+        pts.append(p)
+    return np.mean(pts, axis=0)
+
 
 _LIMBS = (  # (upper, lower, end, end_child, hinge direction at rest)
     ("LeftArm", "LeftForeArm", "LeftHand", "LeftHandMiddle1", (0.0, 0.0, 1.0)),
@@ -87,7 +145,7 @@ def guess_map(names: list[str]) -> dict[str, str]:
     stripped = {n.split(":")[-1]: n for n in names}
     best, best_hits = IDENTITY_MAP, -1
     for m in KNOWN_MAPS.values():
-        hits = sum(1 for v in m.values() if v in names or v in stripped)
+        hits = sum(1 for v in m.values() for n in source_joints(v) if n in names or n in stripped)
         if hits > best_hits:
             best, best_hits = m, hits
     return {k: (v if v in names else stripped.get(v, v)) for k, v in best.items()}
@@ -186,6 +244,29 @@ def _pelvis(side: np.ndarray, up: np.ndarray) -> np.ndarray:
     return _mat_to_quat(np.stack([x, up, z], axis=-1))
 
 
+ANKLE_HEIGHT = 0.06  # metres above the floor of a planted ankle, as the reference skeleton's rest pose
+
+
+def stance_ankle_height(rotations: np.ndarray, root: np.ndarray, fps: float, height: float = 1.75) -> float:
+    """Median height of the lower ankle on frames where it is (nearly) still: where the floor is.
+
+    A clip's lowest ankle frame is no floor (a heel strike or a rolling foot dips below the planted height),
+    so the floor is read from planted frames; a clip without such frames falls back to the 10th percentile.
+    """
+    pos, _ = forward_kinematics(rotations, root, rest_offsets(height))
+    feet = pos[:, [JOINT_INDEX["LeftFoot"], JOINT_INDEX["RightFoot"]]]  # (T, 2, 3)
+    lower = np.argmin(feet[:, :, 1], axis=1)
+    y = feet[np.arange(len(feet)), lower, 1]
+    speed = np.zeros(len(feet))
+    if len(feet) > 1:
+        step = np.linalg.norm(np.diff(feet[:, :, [0, 2]], axis=0), axis=-1)  # (T-1, 2)
+        speed[1:] = step[np.arange(len(step)), lower[1:]]
+    still = speed * fps < 0.3  # m/s
+    if still.sum() >= 3:
+        return float(np.median(y[still]))
+    return float(np.percentile(y, 10))
+
+
 def resample(
     root: np.ndarray, rotations: np.ndarray, src_fps: float, fps: float
 ) -> tuple[np.ndarray, np.ndarray]:
@@ -213,7 +294,8 @@ def retarget_clip(
 
     Args:
         clip: a parsed BVH.
-        joint_map: canonical name -> source name for all 24 canonical joints (default: guessed).
+        joint_map: canonical name -> source name for all 24 canonical joints (default: guessed); a value
+            may also be a midpoint "a|b" or an End Site "name@end".
         units_to_m: file units to metres (default: 0.01 when the hips rest above 3 units, i.e. centimetres).
         fps: output frame rate.
         height: canonical character height in metres (scales the root).
@@ -225,24 +307,38 @@ def retarget_clip(
         ValueError: when the map names joints the clip lacks.
     """
     joint_map = joint_map or guess_map(clip.joint_names)
-    missing = sorted({v for v in joint_map.values() if v not in clip.joint_names})
+    missing = sorted({n for v in joint_map.values() for n in source_joints(v) if n not in clip.joint_names})
     if missing or set(joint_map) != set(JOINT_INDEX):
         lacking = sorted(set(JOINT_INDEX) - set(joint_map))
         raise ValueError(
             f"joint map does not fit this skeleton: source lacks {missing[:8]}, map lacks {lacking[:8]}"
         )
-    gpos = clip.global_positions()
+    gpos, grot = clip.global_transforms()
     if units_to_m is None:
         units_to_m = 0.01 if np.median(gpos[:, clip.index(joint_map["Hips"]), 1]) > 3.0 else 1.0
-    gpos = gpos * units_to_m
-    src = {k: gpos[:, clip.index(v)] for k, v in joint_map.items()}
-    rest_hip_height = float(
-        np.median(src["Hips"][:, 1] - np.minimum(src["LeftFoot"][:, 1], src["RightFoot"][:, 1]))
+    src = {k: _source_position(clip, gpos, grot, v) * units_to_m for k, v in joint_map.items()}
+    # Bone lengths: ours replace the source's (the bones are aimed, not stretched), and the root path is
+    # scaled by the ratio of leg lengths (hip joint to ankle, straight) so that strides fit our legs.
+    src_leg = (
+        np.mean(
+            [
+                np.median(np.linalg.norm(src[a] - src[b], axis=-1))
+                for a, b in (
+                    ("LeftUpLeg", "LeftLeg"),
+                    ("LeftLeg", "LeftFoot"),
+                    ("RightUpLeg", "RightLeg"),
+                    ("RightLeg", "RightFoot"),
+                )
+            ]
+        )
+        * 2
     )
-    canon_hip_height = float(REST_OFFSETS[0, 1] - 0.06) * height / 1.75  # hips above the ankles
-    ratio = canon_hip_height / max(rest_hip_height, 1e-6)
+    canon_leg = float(
+        np.linalg.norm(REST_OFFSETS[JOINT_INDEX["LeftLeg"]])
+        + np.linalg.norm(REST_OFFSETS[JOINT_INDEX["LeftFoot"]])
+    )
+    ratio = canon_leg * height / 1.75 / max(float(src_leg), 1e-6)
     local, _ = retarget_positions(src)
     root = src["Hips"] * ratio
-    foot_floor = np.min(np.minimum(src["LeftFoot"][:, 1], src["RightFoot"][:, 1])) * ratio
-    root[:, 1] -= foot_floor - 0.06 * height / 1.75  # ankle 6 cm above the floor, as the reference skeleton
+    root[:, 1] += ANKLE_HEIGHT * height / 1.75 - stance_ankle_height(local, root, clip.fps, height)
     return resample(root, local, clip.fps, fps)

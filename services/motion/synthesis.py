@@ -20,6 +20,8 @@ import numpy as np
 
 from proto.motion_data import Motion, PropTrack, Segment
 from services.motion.blend import fade_from, layer, upper_body_mask
+from services.motion.gait_style import NEUTRAL as NEUTRAL_GAIT
+from services.motion.gait_style import gait_style
 from services.motion.ik import joint_globals, lean_needed, lean_spine, lock_feet, two_bone_ik
 from services.motion.locomotion import locomote
 from services.motion.style import apply_style, resample_fps, style_of
@@ -102,6 +104,7 @@ class PlannedSegment:
         0.0,
         0.0,
     )  # valence, arousal in [-1, 1]: the style it is played in (style.py)
+    manner: str = ""  # a locomotion's manner word ("tiredly"): its arm swing and posture
 
 
 @dataclass(frozen=True)
@@ -348,8 +351,10 @@ def _locomotion_piece(seg: PlannedSegment, state: SegmentState) -> tuple[MotionP
         if len(wps) == 0 or np.linalg.norm(wps[0] - [state.x, state.z]) > 1e-3
         else wps
     )
-    loco = locomote(wps, seg.speed, state.yaw, seg.face_yaw, state.phase)
-    rot = apply_style(loco.rotations, _standing_pose(state.yaw), style_of(*seg.mood))
+    loco = locomote(wps, seg.speed, state.yaw, seg.face_yaw, state.phase, manner=seg.manner)
+    rot = loco.rotations
+    if gait_style(seg.manner) == NEUTRAL_GAIT:  # a manner the gait has no walk for: the mood's style
+        rot = apply_style(rot, _standing_pose(state.yaw), style_of(*seg.mood))
     rot = fade_from(_standing_pose(state.yaw), rot, FADE)
     rot = lock_feet(rot, loco.root_position, loco.contacts)
     piece = MotionPiece(loco.root_position, rot, loco.contacts, seg)

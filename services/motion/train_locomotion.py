@@ -1,13 +1,15 @@
 """Train the locomotion PFNN and export it to ONNX (normalisation inside the graph).
 
-Usage (CPU, about 5-10 minutes):
+Usage (CPU, one thread: about 2 minutes on an idle core; 296 s for the shipped model on a busy 2-core machine):
     OMP_NUM_THREADS=1 nice -n 10 .venv/bin/python -m services.motion.train_locomotion
 
 Corpus: (a) procedural locomotion from services.motion.gait (walk, run, start, stop, turn,
-side-step at varied speeds, with random obstacles for the occupancy sensor) and (b) the CMU
-locomotion clips of ../shared/data/cmu_mocap_iclone retargeted to the canonical skeleton, when
-that folder exists (training works without it). Writes models/locomotion/{pfnn.pt, pfnn_step.onnx,
-pfnn_rollout.onnx, meta.json}.
+side-step at varied speeds, with random obstacles for the occupancy sensor), (b) the CMU
+locomotion clips of ../shared/data/cmu_mocap_iclone and (c) the CMU walk/run takes of
+../shared/data/cmu_locomotion_daz (Daz skeleton; subjects 8, 9, 10 and the takes the iClone set lacks),
+both retargeted to the canonical skeleton when those folders exist (training works without them).
+Subjects 2, 5 and 12 of (c) are held out for eval/gait.py (HELD_OUT_SUBJECTS). Writes
+models/locomotion/{pfnn.pt, pfnn_step.onnx, pfnn_rollout.onnx, pfnn_fast.onnx, meta.json}.
 """
 
 from __future__ import annotations
@@ -17,6 +19,7 @@ import csv
 import json
 import os
 import time
+from itertools import chain
 from pathlib import Path
 
 import numpy as np
@@ -83,11 +86,56 @@ def label_phase(contacts: np.ndarray) -> np.ndarray:
     return np.mod(ph, 1.0)
 
 
+def annotate(root: np.ndarray, rot: np.ndarray, lock: bool = False):
+    """Heading (smoothed hips yaw), phase and foot contacts of a retargeted clip: the training tuple.
+
+    lock: pin the planted feet (services.motion.ik.lock_feet). Our legs' proportions are not the
+    subject's, so a retargeted planted foot slides about 0.9 cm per frame; locked, 0.06.
+    """
+    from services.motion.retarget import ANKLE_HEIGHT
+    from wana.domain.skeleton import JOINT_INDEX, forward_kinematics
+
+    fwd = quat.rotate(rot[:, 0], np.broadcast_to([0.0, 0.0, 1.0], (len(rot), 3)))
+    heading = np.unwrap(np.arctan2(fwd[:, 0], fwd[:, 2]))
+    heading = np.convolve(np.pad(heading, 7, mode="edge"), np.ones(15) / 15, mode="valid")
+    pos, _ = forward_kinematics(rot, root)
+    speed = (
+        float(np.linalg.norm(np.diff(root[:, [0, 2]], axis=0), axis=1).mean() * FPS) if len(root) > 1 else 0.0
+    )
+    contacts = np.zeros((len(rot), 2), np.uint8)
+    for k, name in enumerate(("LeftFoot", "RightFoot")):
+        f = pos[:, JOINT_INDEX[name]]
+        v = np.zeros(len(f))
+        v[1:] = np.linalg.norm(np.diff(f, axis=0), axis=1) * FPS
+        # The retarget puts a planted ankle at 6 cm (services.motion.retarget.ANKLE_HEIGHT); the foot rolls
+        # from heel to toe, lifting the ankle a few cm while it stays planted. A running stance lasts a few
+        # frames, over which a rolling ankle moves faster than 0.6 m/s.
+        contacts[:, k] = clean_contacts(
+            (f[:, 1] < ANKLE_HEIGHT + 0.05) & (v < max(0.6, 0.3 * speed)), 2 if speed > 2.2 else 3
+        )
+    if lock:
+        from services.motion.ik import lock_feet
+
+        rot = lock_feet(rot, root, contacts)
+    return root, rot, heading, label_phase(contacts), contacts, None
+
+
+def clean_contacts(flags: np.ndarray, shortest: int = 3) -> np.ndarray:
+    """(T,) uint8 contacts without flicker: gaps and then runs shorter than `shortest` frames are removed
+    (a flickering flag gives a touch-down per flicker, and the phase labels would spin)."""
+    c = flags.astype(np.uint8).copy()
+    for value in (0, 1):  # fill short gaps, then drop short runs
+        edges = np.flatnonzero(np.diff(np.concatenate([[1 - value], c, [1 - value]])))
+        for s, e in zip(edges[::2], edges[1::2], strict=True):
+            if e - s < shortest and s > 0 and e < len(c):
+                c[s:e] = 1 - value
+    return c
+
+
 def cmu_corpus(shared: Path = SHARED):
     """Retargeted CMU locomotion clips (skeleton variant A) with heading, phase and contacts."""
     from services.motion.retarget import retarget_clip
     from wana.domain.bvh import read_bvh
-    from wana.domain.skeleton import JOINT_INDEX, forward_kinematics
 
     labels = shared / "cmu_mocap_iclone" / "labels.csv"
     if not labels.is_file():
@@ -99,18 +147,74 @@ def cmu_corpus(shared: Path = SHARED):
             if r["category"] == "locomotion" and r["skeleton_variant"].startswith("A")
         ]
     for r in held_in(rows):
-        root, rot = retarget_clip(read_bvh(shared / "cmu_mocap_iclone" / r["file"]))
-        fwd = quat.rotate(rot[:, 0], np.broadcast_to([0.0, 0.0, 1.0], (len(rot), 3)))
-        heading = np.unwrap(np.arctan2(fwd[:, 0], fwd[:, 2]))
-        heading = np.convolve(np.pad(heading, 7, mode="edge"), np.ones(15) / 15, mode="valid")
-        pos, _ = forward_kinematics(rot, root)
-        contacts = np.zeros((len(rot), 2), np.uint8)
-        for k, name in enumerate(("LeftFoot", "RightFoot")):
-            f = pos[:, JOINT_INDEX[name]]
-            v = np.zeros(len(f))
-            v[1:] = np.linalg.norm(np.diff(f, axis=0), axis=1) * FPS
-            contacts[:, k] = ((f[:, 1] < f[:, 1].min() + 0.05) & (v < 0.6)).astype(np.uint8)
-        yield root, rot, heading, label_phase(contacts), contacts, None
+        yield annotate(*retarget_clip(read_bvh(shared / "cmu_mocap_iclone" / r["file"])), lock=True)
+
+
+# Subjects of ../shared/data/cmu_locomotion_daz kept out of training for eval/gait.py: 2 (walk, run), 5 (walk)
+# and 12 (three walks), 26 s of 121 s. Subject 5 is also out of the iClone set (its only trial, 005_01).
+HELD_OUT_SUBJECTS = (2, 5, 12)
+
+
+def daz_rows(shared: Path = SHARED) -> list[dict]:
+    """labels.csv rows of the Daz-skeleton CMU locomotion trials (empty when the folder is absent)."""
+    labels = shared / "cmu_locomotion_daz" / "labels.csv"
+    if not labels.is_file():
+        return []
+    with labels.open() as fh:
+        return list(csv.DictReader(fh))
+
+
+def daz_clip(path: Path) -> tuple[np.ndarray, np.ndarray]:
+    """One Daz-skeleton trial retargeted to ours at 30 fps: root (T, 3), rotations (T, J, 4).
+
+    Frame 0 of every file in that conversion is its rest T-pose (root at the first captured frame) and the
+    next four blend from it into the capture (the arms sweep down in 1/30 s), so the first 1/20 s is
+    dropped, and so are further leading frames before a root jump (09_10 starts with stray frames).
+    """
+    from services.motion.retarget import DAZ_MAP, retarget_clip
+    from wana.domain.bvh import read_bvh
+
+    clip = read_bvh(path)
+    motion = clip.motion[1 + int(round(0.05 * clip.fps)) :]
+    step = np.linalg.norm(np.diff(motion[:, :3], axis=0), axis=1)  # hip position channels come first
+    jumps = np.where(step[:10] > 5 * np.median(step) + 1e-6)[0]
+    clip.motion = motion[int(jumps[-1]) + 1 if len(jumps) else 0 :]
+    return retarget_clip(clip, DAZ_MAP)
+
+
+def daz_training_rows(shared: Path = SHARED) -> list[dict]:
+    """Daz-skeleton trials for training: not a held-out subject and not a capture the iClone set already has
+    (subjects 3, 6 and 7 are in both conversions: the same takes)."""
+    iclone = shared / "cmu_mocap_iclone" / "labels.csv"
+    seen: set[tuple[int, int]] = set()
+    if iclone.is_file():
+        with iclone.open() as fh:
+            seen = {(int(r["subject"]), int(r["trial"])) for r in csv.DictReader(fh)}
+    return [
+        r
+        for r in daz_rows(shared)
+        if int(r["subject"]) not in HELD_OUT_SUBJECTS
+        and (int(r["subject"]), int(r["trial"])) not in seen
+        and "stride" not in r["description"]  # 08_05, 08_07, 08_11: acted long strides, not a plain walk
+    ]
+
+
+def daz_heldout_rows(shared: Path = SHARED) -> list[dict]:
+    """Daz-skeleton trials of the held-out subjects (eval/gait.py)."""
+    return [r for r in daz_rows(shared) if int(r["subject"]) in HELD_OUT_SUBJECTS]
+
+
+def daz_corpus(shared: Path = SHARED):
+    """Training tuples of the Daz-skeleton trials of the training subjects (glitching takes left out)."""
+    for r in daz_training_rows(shared):
+        root, rot = daz_clip(shared / "cmu_locomotion_daz" / r["file"])
+        if plausible(root):
+            yield annotate(root, rot, lock=True)
+
+
+def plausible(root: np.ndarray, max_speed: float = 8.0) -> bool:
+    """False for a take whose root jumps faster than anyone runs (09_10 has a two-frame 9 m/s glitch)."""
+    return bool(len(root) < 2 or np.max(np.linalg.norm(np.diff(root, axis=0), axis=1)) * FPS <= max_speed)
 
 
 def held_in(rows: list[dict]) -> list[dict]:
@@ -121,7 +225,7 @@ def held_in(rows: list[dict]) -> list[dict]:
 HELD_OUT = ("bvh/007_12.bvh.gz", "bvh/005_01.bvh.gz")
 
 
-def build_dataset(n_sequences: int, seconds: float, use_cmu: bool = True):
+def build_dataset(n_sequences: int, seconds: float, use_cmu: bool = True, cmu_weight: int = 3):
     xs, ps, ys = [], [], []
     n_cmu = 0
     for seq in procedural_corpus(n_sequences, seconds):
@@ -130,9 +234,10 @@ def build_dataset(n_sequences: int, seconds: float, use_cmu: bool = True):
         ps.append(p)
         ys.append(y)
     if use_cmu:
-        for seq in cmu_corpus():
-            x, p, y = build_xy(*seq)
-            for _ in range(3):  # upweight the captured clips
+        for seq in chain(cmu_corpus(), daz_corpus()):
+            root, rot, heading, phase, contacts, occupied = seq
+            x, p, y = build_xy(root, rot, heading, phase, contacts, occupied, extrapolate=True)
+            for _ in range(cmu_weight):  # upweight the captured clips
                 xs.append(x)
                 ps.append(p)
                 ys.append(y)
@@ -148,7 +253,7 @@ def train(args: argparse.Namespace) -> dict:
     torch.manual_seed(SEED)
     torch.set_num_threads(args.threads)
     t0 = time.time()
-    x, p, y, n_cmu = build_dataset(args.sequences, args.seconds, not args.no_cmu)
+    x, p, y, n_cmu = build_dataset(args.sequences, args.seconds, not args.no_cmu, args.cmu_weight)
     print(f"corpus: {len(x)} frames ({n_cmu} from CMU) built in {time.time() - t0:.1f}s")
     net = PFNN(hidden=args.hidden)
     x_mean, x_std = x.mean(0), x.std(0) + 1e-3
@@ -164,6 +269,10 @@ def train(args: argparse.Namespace) -> dict:
     total = steps_per_epoch * args.epochs
     sched = torch.optim.lr_scheduler.OneCycleLR(opt, max_lr=args.lr, total_steps=total)
     gen = torch.Generator().manual_seed(SEED)
+    from services.motion.pfnn_layout import N_SENSOR, N_TRAJ
+
+    noise = torch.full((1, xn.shape[1]), 0.05)
+    noise[:, N_TRAJ + N_SENSOR :] = args.pose_noise
     from tqdm import tqdm
 
     bar = tqdm(total=total, desc="train pfnn", mininterval=5)
@@ -173,9 +282,9 @@ def train(args: argparse.Namespace) -> dict:
         for b in range(steps_per_epoch):
             idx = perm[b * args.batch : (b + 1) * args.batch]
             xb = xn[idx]
-            xb = xb + 0.05 * torch.randn(
-                xb.shape, generator=gen
-            )  # robustness to its own autoregressive drift
+            # robustness to its own autoregressive drift: noise on every input, more on the previous pose
+            # (so that the trajectory, not the pose alone, decides how fast the next step goes)
+            xb = xb + noise * torch.randn(xb.shape, generator=gen)
             pred = net.forward_normalized(xb, pt[idx])
             loss = torch.mean((pred - yn[idx]) ** 2)
             opt.zero_grad()
@@ -274,6 +383,10 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--threads", type=int, default=1, help="torch CPU threads")
     parser.add_argument("--max-minutes", type=float, default=12.0, help="stop training after this wall time")
     parser.add_argument("--no-cmu", action="store_true", help="procedural corpus only")
+    parser.add_argument("--cmu-weight", type=int, default=3, help="times each captured clip is repeated")
+    parser.add_argument(
+        "--pose-noise", type=float, default=0.5, help="noise on the previous pose (normalised)"
+    )
     parser.add_argument("--out", type=Path, default=MODEL_DIR)
     args = parser.parse_args(argv)
     result = train(args)
@@ -284,6 +397,9 @@ def main(argv: list[str] | None = None) -> int:
         "rollout_steps": ROLLOUT_STEPS,
         "sequences": args.sequences,
         "epochs": args.epochs,
+        "cmu_weight": args.cmu_weight,
+        "pose_noise": args.pose_noise,
+        "held_out_subjects": list(HELD_OUT_SUBJECTS),
     }
     (args.out / "meta.json").write_text(json.dumps(meta, indent=2) + "\n")
     print(json.dumps(meta, indent=2))
