@@ -54,6 +54,10 @@ NEAR_ANY = 4.0  # metres from the character to the seat a bare "sits down" uses
 TAKEN = 0.4  # metres from another character to a seat slot that counts as theirs
 SAME_SEAT = 0.35  # metres between the hips and a seat point for a character to count as sitting on it
 HELD_KINDS = ("handheld", "tool")  # interactions played with an object in the hand
+GRASP_TABLE = (
+    "press_switch"  # the clip that reaches out with the right hand (upper body) for a prop on a table
+)
+TABLE_GRASP_M = 0.45  # metres: a grip point this high is reached for; lower, the character bends down for it
 
 
 def straight_route(scene: Scene, start: tuple[float, float], goal: tuple[float, float]) -> np.ndarray:
@@ -221,6 +225,7 @@ def _grasp(placed: PlacedObject) -> tuple[str, tuple[float, float, float], tuple
 
 SET_DOWN_REACH = 1.0  # metres: a surface this near is where a held prop is set down when none is named
 SET_DOWN_MARGIN = 0.08  # metres kept from a surface's edge
+SET_DOWN_CLEAR = 0.15  # metres kept from what already stands on the surface
 
 
 def _set_down_point(
@@ -230,6 +235,13 @@ def _set_down_point(
     one within SET_DOWN_REACH of pos, else the prop's own place in the room."""
     from wana.assets.catalog import world_support_surfaces
 
+    home = _grasp(prop)
+    if (
+        dest is None
+        and home is not None
+        and np.hypot(home[2][0] - pos[0], home[2][2] - pos[1]) <= SET_DOWN_REACH
+    ):
+        return home[2]  # within reach of where it was taken from: back there
     best, best_d = None, np.inf
     for o in [dest] if dest is not None else scene.objects:
         if o is None or o.id == prop.id:
@@ -238,18 +250,26 @@ def _set_down_point(
             surfs = world_support_surfaces(o)
         except Exception:  # noqa: BLE001 - unknown category: nothing to set down on
             continue
+        resting = [
+            np.array([r.position[0], r.position[2]])
+            for r in scene.objects
+            if r.support == o.id and r.id != prop.id
+        ]
         for h, corners in surfs:
             if not 0.3 <= h <= 1.3:
                 continue
             lo, hi = corners.min(axis=0) + SET_DOWN_MARGIN, corners.max(axis=0) - SET_DOWN_MARGIN
             if np.any(hi < lo):
                 lo = hi = (corners.min(axis=0) + corners.max(axis=0)) / 2
-            p = np.clip(pos, lo, hi)
-            d = float(np.linalg.norm(p - pos))
-            if d < best_d:
-                best, best_d = (float(p[0]), float(h), float(p[1])), d
+            grid = np.stack(
+                np.meshgrid(np.linspace(lo[0], hi[0], 7), np.linspace(lo[1], hi[1], 7)), -1
+            ).reshape(-1, 2)
+            free = [g for g in grid if all(np.linalg.norm(g - r) > SET_DOWN_CLEAR for r in resting)]
+            for p in free or [np.clip(pos, lo, hi)]:
+                d = float(np.linalg.norm(p - pos))
+                if d < best_d:
+                    best, best_d = (float(p[0]), float(h), float(p[1])), d
     if best is None or (dest is None and best_d > SET_DOWN_REACH):
-        home = _grasp(prop)
         if home is not None:
             return home[2]
         return (float(prop.position[0]), float(prop.position[1]), float(prop.position[2]))
@@ -446,6 +466,9 @@ def plan_actions(
         clip = lib[name]
         speed_k = MANNER_SPEED.get(node.manner, 1.0)
         person = _other_character(node, clip, others, scene, character.name)
+        sitting_by = ""  # "sits next to her": a seat near that character, not the floor beside her
+        if person and clip.interaction is not None and clip.interaction.object in ("seat", "bed"):
+            sitting_by, person = person, ""
         if person:
             there = np.asarray(others[person], dtype=float)
             touching = clip.interaction is not None and clip.interaction.object == "person"
@@ -497,6 +520,10 @@ def plan_actions(
             # Already standing: a short hold, not a get-up from a seat that is not there.
             add(kind="wait", action=name, duration_s=STAY_S, action_index=ai)
             continue
+        if name in ("turn_left", "turn_right", "turn_around") and now_posture() != "stand":
+            # Seated or lying, the body does not spin on the seat: the posture holds.
+            add(kind="wait", action=name, duration_s=STAY_S, action_index=ai)
+            continue
         if name in ("turn_left", "turn_right", "turn_around"):
             add(kind="action", action=name, action_index=ai)
             yaw += {"turn_left": np.pi / 2, "turn_right": -np.pi / 2, "turn_around": np.pi}[name]
@@ -516,8 +543,9 @@ def plan_actions(
         )
         seat_pick: tuple[PlacedObject, tuple[float, float, float]] | None = None
         if clip.interaction and clip.interaction.object in ("seat", "bed"):
+            near_xz = np.asarray(others[sitting_by], float) if sitting_by and obj is None else pos
             seat_pick = pick_seat(
-                scene, clip.interaction.object, obj, pos, others, character.name, occupied or []
+                scene, clip.interaction.object, obj, near_xz, others, character.name, occupied or []
             )
             if seat_pick is None:
                 what = "bed" if clip.interaction.object == "bed" else "seat"
@@ -578,15 +606,19 @@ def plan_actions(
                 walk_to(spot, 1.2, _yaw_to(spot, here, yaw), "walk", ai, prop_obj.id)
             if np.linalg.norm(here - pos) <= PICK_REACH:  # within reach: it is held from now on
                 reach = _grasp(prop_obj)
-                if reach is not None and now_posture() == "stand" and "pick_up" in lib:
-                    # Reach for it, grasp it, then act with it: it leaves the table at the grasp.
-                    rj, rlocal, rworld = reach
+                # A prop on a table is taken with an arm's reach (upper body: seated too), one on the floor
+                # with a bend down; either way the hand gets there before the prop leaves its place.
+                taker = "" if reach is None else GRASP_TABLE if reach[2][1] >= TABLE_GRASP_M else "pick_up"
+                standing = now_posture() == "stand"
+                if taker in lib and (standing or not lib[taker].drives_lower_body):
+                    rj, rlocal, rworld = reach  # type: ignore[misc]
                     grasp = {"prop": prop_obj.id, "prop_joint": rj, "prop_grip": rlocal,
                              "prop_yaw": float(prop_obj.yaw)}  # fmt: skip
                     face = _yaw_to(pos, here, yaw)
-                    if abs(np.arctan2(np.sin(face - yaw), np.cos(face - yaw))) > TURN_TOLERANCE:
+                    turn = abs(np.arctan2(np.sin(face - yaw), np.cos(face - yaw))) > TURN_TOLERANCE
+                    if standing and turn:
                         walk_to(pos.copy(), 1.0, face, "turn", ai, prop_obj.id)
-                    add(kind="action", action="pick_up", targets=((rj, rworld),), target_id=prop_obj.id,
+                    add(kind="action", action=taker, targets=((rj, rworld),), target_id=prop_obj.id,
                         action_index=ai, prop_span="grasp", **grasp)  # fmt: skip
                     hand.update(grasp)
                     add(kind="action", action=name, duration_s=float(node.duration_s),

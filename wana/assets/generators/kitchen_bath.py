@@ -96,6 +96,7 @@ def bathtub(b: Builder, p: Params) -> None:
     b.box((-w / 2 + wall, y0 + 0.08, -d / 2 + wall), (w / 2 - wall, h - 0.15, d / 2 - wall), p.tone("glass"))
     b.contact("lie", "Hips", (0.0, y0 + 0.15, 0.0))
     b.contact("sit", "Hips", (w * 0.25, y0 + 0.15, 0.0))
+    b.surface(y0 + 0.08, -w / 2 + wall, -d / 2 + wall, w / 2 - wall, d / 2 - wall)  # the tub's floor: lain on
     b.stand = (0.0, 0.0, d / 2 + 0.35)
 
 
