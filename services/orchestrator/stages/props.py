@@ -51,6 +51,7 @@ DEFAULT_PROP = {
 HELD_KINDS = ("handheld", "tool")  # interactions whose object is held in the hand
 TABLE_HEIGHT = (0.35, 1.25)  # metres: surfaces a standing or seated person puts things on
 GAP = 0.03  # metres between an added object and what already stands there
+EDGE = 0.06  # metres an added object keeps from its surface's edge
 FLOOR_RING = (0.35, 0.6, 0.9)  # metres beside the anchor's footprint where a floor object may stand
 
 
@@ -191,13 +192,15 @@ def _on_surface(scene: Scene, anchor: PlacedObject, fp: np.ndarray, height: floa
     """(x, y, z) centre of the base of a free spot on the anchor's surfaces nearest their middle, or None."""
     others = _boxes_xz(scene)
     for h, lo, hi in sorted(_surfaces(anchor), key=lambda s: -float(np.prod(s[2] - s[1]))):
-        mid = (lo + hi) / 2
         size = fp[1] - fp[0]
-        if np.any(hi - lo < size):
-            continue
-        xs = np.linspace(lo[0] - fp[0][0], hi[0] - fp[1][0], 9)
-        zs = np.linspace(lo[1] - fp[0][1], hi[1] - fp[1][1], 9)
-        spots = sorted(((x, z) for x in xs for z in zs), key=lambda p: np.hypot(p[0] - mid[0], p[1] - mid[1]))
+        if np.any(hi - lo < size + 2 * EDGE):
+            lo, hi = lo - EDGE, hi + EDGE  # a small surface: the object may come to its edge
+            if np.any(hi - lo < size + 2 * EDGE):
+                continue
+        xs = np.linspace(lo[0] + EDGE - fp[0][0], hi[0] - EDGE - fp[1][0], 9)
+        zs = np.linspace(lo[1] + EDGE - fp[0][1], hi[1] - EDGE - fp[1][1], 9)
+        # Nearest the room's middle first: the front of a counter against a wall, within a person's reach.
+        spots = sorted(((x, z) for x in xs for z in zs), key=lambda p: np.hypot(p[0], p[1]))
         for x, z in spots:
             a, b = np.array([x, z]) + fp[0], np.array([x, z]) + fp[1]
             if not _overlaps(a, b, h + 0.005, h + height, others):
