@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from types import ModuleType
 
 import numpy as np
 
@@ -64,7 +65,8 @@ class Need:
     near: tuple[str, ...]  # object ids to put it on / beside, best first
 
 
-def _catalog():  # noqa: ANN202 - module object
+def _catalog() -> ModuleType:
+    """The asset catalog, imported on first use (the orchestrator runs without it in some tests)."""
     from wana.assets import catalog
 
     return catalog
@@ -181,7 +183,10 @@ def _boxes_xz(scene: Scene, ids: set[str] | None = None) -> list[tuple[np.ndarra
     return out
 
 
-def _overlaps(lo: np.ndarray, hi: np.ndarray, y0: float, y1: float, boxes) -> bool:  # noqa: ANN001
+def _overlaps(
+    lo: np.ndarray, hi: np.ndarray, y0: float, y1: float, boxes: list[tuple[np.ndarray, float, float]]
+) -> bool:
+    """Whether the box [lo, hi] x [y0, y1] comes within GAP of any of the boxes (xz min/max, bottom, top)."""
     return any(
         np.all(lo < b[1] + GAP) and np.all(hi > b[0] - GAP) and y0 < top and y1 > bottom
         for b, bottom, top in boxes
@@ -253,25 +258,26 @@ def place(scene: Scene, need: Need, seed: int = 0) -> tuple[PlacedObject, str] |
     fp = np.stack([boxes[:, 0, [0, 2]].min(axis=0), boxes[:, 1, [0, 2]].max(axis=0)])
     height = float(boxes[:, 1, 1].max())
     by_id = {o.id: o for o in scene.objects}
-    anchors = [by_id[r] for r in need.near if r in by_id]
-    anchors += [
-        find_object(scene, r) for r in need.near if r not in by_id and find_object(scene, r) is not None
-    ]  # type: ignore[misc]
-    candidates = list({o.id: o for o in [*anchors, *_tables(scene)]}.values())  # by id, first kept
+    anchors = [by_id[r] if r in by_id else find_object(scene, r) for r in need.near]
+    found = [o for o in [*anchors, *_tables(scene)] if o is not None]
+    candidates = list({o.id: o for o in found}.values())  # by id, the first kept
     if _mount(node.category) == "surface":
         for anchor in candidates:
             spot = _on_surface(scene, anchor, fp, height)
             if spot is not None:
                 return _placed(node, attrs, seed, spot, anchor.id), anchor.id
         return None
-    for anchor in [*candidates, None]:
-        spot = _beside(scene, anchor, fp, height)
+    beside: list[PlacedObject | None] = [*candidates, None]
+    for near in beside:
+        spot = _beside(scene, near, fp, height)
         if spot is not None:
-            return _placed(node, attrs, seed, spot, ""), anchor.id if anchor is not None else ""
+            return _placed(node, attrs, seed, spot, ""), near.id if near is not None else ""
     return None
 
 
-def _placed(node: ObjectNode, attrs: dict[str, str], seed: int, spot: tuple, support: str) -> PlacedObject:  # noqa: ANN001
+def _placed(
+    node: ObjectNode, attrs: dict[str, str], seed: int, spot: tuple[float, float, float], support: str
+) -> PlacedObject:
     return PlacedObject(
         id=node.id,
         category=node.category,

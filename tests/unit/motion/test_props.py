@@ -173,7 +173,10 @@ def test_a_prop_leaves_the_table_at_the_grasp_and_stays_in_the_hand_through_a_la
 def test_put_down_on_a_named_surface_releases_the_prop_there():
     scene = Scene(
         room=SCENE.room,
-        objects=[*SCENE.objects, PlacedObject(id="counter", category="kitchen_counter", position=(-1.5, 0.0, 1.5))],
+        objects=[
+            *SCENE.objects,
+            PlacedObject(id="counter", category="kitchen_counter", position=(-1.5, 0.0, 1.5)),
+        ],
     )
     eve = CharacterNode(
         name="Eve",

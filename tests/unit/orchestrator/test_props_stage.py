@@ -38,7 +38,9 @@ def test_an_object_named_only_in_an_action_goes_on_the_surface_the_character_wal
     graphs = [
         _graph("s1", "John", ActionNode(verb="walk", action="walk", destination="desk")),
         _graph(
-            "s2", "John", ActionNode(verb="read", action="read", target="book"),
+            "s2",
+            "John",
+            ActionNode(verb="read", action="read", target="book"),
             objects=(ObjectNode(id="book", category="book", word="book"),),
         ),  # fmt: skip
     ]
@@ -59,10 +61,14 @@ def test_nothing_is_added_for_an_object_the_room_has_or_the_catalog_lacks():
     cup = PlacedObject(id="cup", category="cup", position=(1.5, 0.76, -1.0), support="table")
     graphs = [
         _graph(
-            "s1", "Sam", ActionNode(verb="drink", action="drink", target="cup"),
+            "s1",
+            "Sam",
+            ActionNode(verb="drink", action="drink", target="cup"),
             ActionNode(verb="walk", action="walk", destination="elevator"),
-            objects=(ObjectNode(id="cup", category="cup", word="cup"),
-                     ObjectNode(id="elevator", category="elevator", word="elevator")),
+            objects=(
+                ObjectNode(id="cup", category="cup", word="cup"),
+                ObjectNode(id="elevator", category="elevator", word="elevator"),
+            ),
         )  # fmt: skip
     ]
     assert prop_needs(graphs, ["s1"], Scene(room=ROOM, objects=[TABLE, cup])) == []
@@ -85,7 +91,9 @@ def _story(text: str):
 
 
 def test_coffee_named_only_in_an_action_is_a_cup_on_the_table_held_from_the_grasp_to_the_end():
-    result = _story("In the kitchen there is a table$.\nSam walks to the table.\nSam drinks coffee.\nSam waves.\n")
+    result = _story(
+        "In the kitchen there is a table$.\nSam walks to the table.\nSam drinks coffee.\nSam waves.\n"
+    )
     cups = [o for o in result.scene.objects if o.category == "cup"]
     assert len(cups) == 1 and cups[0].support == "table"
     assert any(d.code == "I202" for ds in result.diagnostics.values() for d in ds)

@@ -7,7 +7,6 @@ import numpy as np
 from wana.assets.generators.registry import register
 from wana.assets.params import Builder, Params
 
-
 # metres from a seat's top to the Hips joint of someone sitting on it: the hip joints ride about a thigh's
 # thickness above the seat (the body's thigh spheres are 6 cm, 5 cm under the Hips joint), so the thighs rest
 # on the seat instead of sinking 7-11 cm into it.
