@@ -178,6 +178,11 @@ def segments(
                 outside.discard(name)
         single = CharacterNode(name=name, actions=asked)
         view = _with_held(scene, scene_view(scene, action), state.holding)
+        in_other_hands = {st.holding for other, st in states.items() if other != name and st.holding}
+        if in_other_hands:  # one prop, one hand: what another character holds is not there to take
+            view = msgspec.structs.replace(
+                view, objects=[o for o in view.objects if o.id not in in_other_hands]
+            )
         near_them = others(action, name, states, object_ids)
         near = {o: d for o, d in (distances or {}).get((name, k), {}).items() if o in near_them}
         seated = seated_others(action, name, states)

@@ -150,8 +150,11 @@ def prop_needs(graphs: Sequence[SentenceGraph], sentence_ids: Sequence[str], sce
 
 
 def _surfaces(placed: PlacedObject) -> list[tuple[float, np.ndarray, np.ndarray]]:
-    """(height, xz min, xz max) of an object's support surfaces at table height, world."""
+    """(height, xz min, xz max) of an object's support surfaces at table height, world; none for a seat or a
+    bed (a cup is not put where someone sits)."""
     try:
+        if any(n.startswith(("sit", "lie")) for n in _catalog().asset_for(placed).contact_points):
+            return []
         surfs = _catalog().world_support_surfaces(placed)
     except Exception:  # noqa: BLE001 - unknown category: nothing to put on
         return []
