@@ -426,7 +426,7 @@ def plan_actions(
                 return ""
         return ""
 
-    def set_down(dest: PlacedObject | None, ai: int) -> None:
+    def set_down(dest: PlacedObject | None, ai: int, clip_name: str = "put_down") -> None:
         """Put the held prop down (reach, release) on dest's surface, else the nearest one, else its place."""
         nonlocal pos
         prop_obj = next((o for o in scene.objects if o.id == hand["prop"]), None)
@@ -449,7 +449,9 @@ def plan_actions(
             and abs(np.arctan2(np.sin(face - yaw), np.cos(face - yaw))) > TURN_TOLERANCE
         ):
             walk_to(pos.copy(), 1.0, face, "turn", ai, prop_obj.id)
-        add(kind="action", action="put_down", targets=((hand["prop_joint"], target),),
+        if clip_name != "put_down" and target[1] < TABLE_GRASP_M:
+            clip_name = "put_down"  # down to the floor: a bend, not an arm's reach
+        add(kind="action", action=clip_name, targets=((hand["prop_joint"], target),),
             target_id=(dest or prop_obj).id, action_index=ai, **hand, prop_span="release")  # fmt: skip
         hand.clear()
 
@@ -591,7 +593,7 @@ def plan_actions(
         grip = prop_grip(scene, name, obj, pos) if kind in HELD_KINDS else None
         taking = grip[0].id if grip is not None else obj.id if name == "pick_up" and obj is not None else ""
         if hand and taking and taking != hand["prop"] and now_posture() == "stand":
-            set_down(None, ai)  # one hand, one prop: the one held goes down first
+            set_down(None, ai, GRASP_TABLE)  # one hand, one prop: the one held goes down first
         if grip is not None:
             prop_obj, joint, local = grip
             here = np.array([prop_obj.position[0], prop_obj.position[2]])

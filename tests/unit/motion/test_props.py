@@ -198,3 +198,20 @@ def test_put_down_on_a_named_surface_releases_the_prop_there():
     lo, hi = corners.min(axis=0), corners.max(axis=0)
     assert abs(end[1] - height) < 0.02  # standing on the counter's top ...
     assert np.all(end[[0, 2]] >= lo - 1e-6) and np.all(end[[0, 2]] <= hi + 1e-6)  # ... inside its rectangle
+
+
+def test_taking_a_second_prop_sets_the_first_one_down_first():
+    eve = CharacterNode(
+        name="Eve",
+        actions=[
+            ActionNode(verb="pick up", action="pick_up", target="cup"),
+            ActionNode(verb="call", action="call_with_phone", target="phone"),
+        ],
+    )
+    plan = plan_actions(eve, SCENE, (-1.0, -1.0, 0.0))
+    released = [i for i, s in enumerate(plan.segments) if s.prop == "cup" and s.prop_span == "release"]
+    taken = [i for i, s in enumerate(plan.segments) if s.prop == "phone" and s.prop_span == "grasp"]
+    assert released and taken and released[0] < taken[0]  # one hand, one prop
+    assert all(s.prop != "cup" for s in plan.segments[released[0] + 1 :])
+    motion, _, _ = synthesise(plan)
+    assert max(_grip_errors(motion)) < 0.01
