@@ -11,6 +11,15 @@ Actions aimed at another character use where that character is (``others``: name
 first planned action starts; held there for the rest of the plan): "walks to Eve" stops
 PERSON_DISTANCE short of her, "shakes hands with / hugs / high-fives Eve" walks up to her first, and
 every action aimed at her ("waves at Eve") turns to face her.
+
+Props: the hand holds at most one small object (``holding`` when planning resumes mid-story). A handheld or
+tool action whose prop is not in the hand walks up to it, reaches for it (an arm's reach for one on a table,
+a bend for one on the floor) and takes it at the reach; it stays in the hand through every later segment
+(PlannedSegment.prop_span "whole") until a put-down sets it on what the sentence names, else the nearest
+surface in reach, else back where it was; taking a second prop sets the first one down first.
+
+Over 400 lines because the posture, seat, person and prop rules all read and change the one running plan
+(position, facing, posture, hand) inside plan_actions; split apart they would pass that state around.
 """
 
 from __future__ import annotations
