@@ -24,6 +24,7 @@ class SegmentEndState(msgspec.Struct, frozen=True, kw_only=True):
     posture: str = "stand"  # stand | sit | lie | sit_floor
     phase: float = 0.0  # gait phase in [0, 1)
     hips_dy: float = 0.0  # metres the hips sit above the posture's rest height (a seat's height); 0 standing
+    holding: str = ""  # id of the scene object in the hand ("" when the hands are empty)
 
 
 class SynthesizeRequest(Request["SynthesizeReply"], frozen=True, kw_only=True, tag="synthesize_request"):

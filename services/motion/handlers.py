@@ -15,7 +15,7 @@ from proto.motion import (
 from proto.scene import Scene
 from services.motion.planning import plan_actions
 from services.motion.routing import scene_route
-from services.motion.synthesis import SegmentState, assemble, synthesise_segment
+from services.motion.synthesis import SegmentState, assemble, holding_after, synthesise_segment
 from wana.bus.service import Contract, InvalidInput
 
 
@@ -54,6 +54,7 @@ def handle_synthesize(req: SynthesizeRequest) -> SynthesizeReply:
         req.start,
         route_fn,
         posture=posture,
+        holding=req.start_state.holding if req.start_state is not None else "",
         others={k: (float(v[0]), float(v[1])) for k, v in req.others.items()},
         distances=dict(req.distances),
         seats=dict(req.seats),
@@ -80,6 +81,7 @@ def handle_synthesize(req: SynthesizeRequest) -> SynthesizeReply:
                 posture=state.posture,
                 phase=state.phase,
                 hips_dy=state.hips_dy,
+                holding=holding_after(plan.segments[k]),
             )
         )
     motion = assemble(req.character.name, pieces, state)

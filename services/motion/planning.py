@@ -11,6 +11,15 @@ Actions aimed at another character use where that character is (``others``: name
 first planned action starts; held there for the rest of the plan): "walks to Eve" stops
 PERSON_DISTANCE short of her, "shakes hands with / hugs / high-fives Eve" walks up to her first, and
 every action aimed at her ("waves at Eve") turns to face her.
+
+Props: the hand holds at most one small object (``holding`` when planning resumes mid-story). A handheld or
+tool action whose prop is not in the hand walks up to it, reaches for it (an arm's reach for one on a table,
+a bend for one on the floor) and takes it at the reach; it stays in the hand through every later segment
+(PlannedSegment.prop_span "whole") until a put-down sets it on what the sentence names, else the nearest
+surface in reach, else back where it was; taking a second prop sets the first one down first.
+
+Over 400 lines because the posture, seat, person and prop rules all read and change the one running plan
+(position, facing, posture, hand) inside plan_actions; split apart they would pass that state around.
 """
 
 from __future__ import annotations
@@ -56,6 +65,11 @@ NEAR_NAMED = 1.6  # metres from a named non-seat ("sits at the desk") to the sea
 NEAR_ANY = 4.0  # metres from the character to the seat a bare "sits down" uses
 TAKEN = 0.4  # metres from another character to a seat slot that counts as theirs
 SAME_SEAT = 0.35  # metres between the hips and a seat point for a character to count as sitting on it
+HELD_KINDS = ("handheld", "tool")  # interactions played with an object in the hand
+GRASP_TABLE = (
+    "press_switch"  # the clip that reaches out with the right hand (upper body) for a prop on a table
+)
+TABLE_GRASP_M = 0.45  # metres: a grip point this high is reached for; lower, the character bends down for it
 
 
 def straight_route(scene: Scene, start: tuple[float, float], goal: tuple[float, float]) -> np.ndarray:
@@ -206,6 +220,79 @@ def prop_grip(
     return (best, *g) if g is not None else None
 
 
+def _grasp(placed: PlacedObject) -> tuple[str, tuple[float, float, float], tuple[float, float, float]] | None:
+    """(joint, object-frame point, world point) where a hand takes a small object: its "pick_up" point."""
+    try:
+        from wana.assets.catalog import asset_for, to_world
+
+        cp = asset_for(placed).contact_points.get("pick_up")
+    except Exception:  # noqa: BLE001 - unknown category or no catalog: nothing to take
+        return None
+    if cp is None:
+        return None
+    local = tuple(float(v) for v in cp.position)
+    world = to_world(placed, np.asarray(cp.position, float))
+    return cp.joint, local, (float(world[0]), float(world[1]), float(world[2]))  # type: ignore[return-value]
+
+
+SET_DOWN_REACH = 1.0  # metres: a surface this near is where a held prop is set down when none is named
+SET_DOWN_MARGIN = 0.08  # metres kept from a surface's edge
+SET_DOWN_CLEAR = 0.15  # metres kept from what already stands on the surface
+
+
+def _set_down_point(
+    scene: Scene, pos: np.ndarray, dest: PlacedObject | None, prop: PlacedObject, hand: dict
+) -> tuple[float, float, float]:
+    """World point for the holding joint that leaves the prop standing on a surface: dest's, else the nearest
+    one within SET_DOWN_REACH of pos, else the prop's own place in the room."""
+    from wana.assets.catalog import world_support_surfaces
+
+    home = _grasp(prop)
+    if (
+        dest is None
+        and home is not None
+        and np.hypot(home[2][0] - pos[0], home[2][2] - pos[1]) <= SET_DOWN_REACH
+    ):
+        return home[2]  # within reach of where it was taken from: back there
+    best, best_d = None, np.inf
+    for o in [dest] if dest is not None else scene.objects:
+        if o is None or o.id == prop.id:
+            continue
+        try:
+            surfs = world_support_surfaces(o)
+        except Exception:  # noqa: BLE001 - unknown category: nothing to set down on
+            continue
+        resting = [
+            np.array([r.position[0], r.position[2]])
+            for r in scene.objects
+            if r.support == o.id and r.id != prop.id
+        ]
+        for h, corners in surfs:
+            if not 0.3 <= h <= 1.3:
+                continue
+            lo, hi = corners.min(axis=0) + SET_DOWN_MARGIN, corners.max(axis=0) - SET_DOWN_MARGIN
+            if np.any(hi < lo):
+                lo = hi = (corners.min(axis=0) + corners.max(axis=0)) / 2
+            grid = np.stack(
+                np.meshgrid(np.linspace(lo[0], hi[0], 7), np.linspace(lo[1], hi[1], 7)), -1
+            ).reshape(-1, 2)
+            free = [g for g in grid if all(np.linalg.norm(g - r) > SET_DOWN_CLEAR for r in resting)]
+            for p in free or [np.clip(pos, lo, hi)]:
+                d = float(np.linalg.norm(p - pos))
+                if d < best_d:
+                    best, best_d = (float(p[0]), float(h), float(p[1])), d
+    if best is None or (dest is None and best_d > SET_DOWN_REACH):
+        if home is not None:
+            return home[2]
+        return (float(prop.position[0]), float(prop.position[1]), float(prop.position[2]))
+    from wana.domain import quat
+
+    grip = quat.rotate(
+        quat.yaw(np.array(float(hand.get("prop_yaw", 0.0)))), np.asarray(hand["prop_grip"], float)
+    )
+    return (best[0] + float(grip[0]), best[1] + float(grip[1]), best[2] + float(grip[2]))
+
+
 def _other_character(
     node: ActionNode, clip: ActionClip | None, others: dict[str, tuple[float, float]], scene: Scene, me: str
 ) -> str:
@@ -267,6 +354,7 @@ def plan_actions(
     seats: dict[int, str] | None = None,
     spots: dict[int, tuple[float, float]] | None = None,
     occupied: list[tuple[float, float]] | None = None,
+    holding: str = "",
 ) -> MotionPlan:
     """Turn a character's ordered actions into a MotionPlan.
 
@@ -284,6 +372,7 @@ def plan_actions(
         seats: action index -> the object's contact point to sit or lie on (its slot: "sit_0" on a sofa).
         spots: action index -> x, z where it stands at or walks to its object (its stand slot).
         occupied: (x, z) metres, world, of other characters already seated: seat slots there are taken.
+        holding: id of the scene object already in the hand (picked up by an earlier action): it stays there.
 
     Returns:
         the plan; unknown actions become a 1 s wait and a diagnostic.
@@ -296,7 +385,14 @@ def plan_actions(
     x, z, yaw = start
     pos = np.array([x, z], float)
 
+    hand: dict = {}  # the prop in the hand between segments (PlannedSegment prop fields), {} when empty
+    held_obj = next((o for o in scene.objects if o.id == holding), None) if holding else None
+    if held_obj is not None and (g := _grasp(held_obj)) is not None:
+        hand.update(prop=held_obj.id, prop_joint=g[0], prop_grip=g[1], prop_yaw=float(held_obj.yaw))
+
     def add(**kw) -> None:
+        if hand and not kw.get("prop"):  # held through every segment until it is put down
+            kw.update(hand, prop_span="whole")
         segs.append(PlannedSegment(index=len(segs), **kw))
 
     def route(a: tuple[float, float], b: tuple[float, float], ignore: frozenset[str]) -> np.ndarray:
@@ -366,6 +462,35 @@ def plan_actions(
                 return ""
         return ""
 
+    def set_down(dest: PlacedObject | None, ai: int, clip_name: str = "put_down") -> None:
+        """Put the held prop down (reach, release) on dest's surface, else the nearest one, else its place."""
+        nonlocal pos
+        prop_obj = next((o for o in scene.objects if o.id == hand["prop"]), None)
+        if prop_obj is None:
+            hand.clear()
+            return
+        target = _set_down_point(scene, pos, dest, prop_obj, hand)
+        here = np.array([target[0], target[2]])
+        if np.linalg.norm(here - pos) > REACH + 0.2 and now_posture() == "stand":
+            from services.motion.routing import free_spot
+
+            away = pos - here
+            n = float(np.linalg.norm(away))
+            spot = here + (away / n if n > 1e-6 else np.array([0.0, 1.0])) * REACH
+            spot = np.asarray(free_spot(scene, (float(spot[0]), float(spot[1]))), float)
+            walk_to(spot, 1.2, _yaw_to(spot, here, yaw), "walk", ai, (dest or prop_obj).id)
+        face = _yaw_to(pos, here, yaw)
+        if (
+            now_posture() == "stand"
+            and abs(np.arctan2(np.sin(face - yaw), np.cos(face - yaw))) > TURN_TOLERANCE
+        ):
+            walk_to(pos.copy(), 1.0, face, "turn", ai, prop_obj.id)
+        if clip_name != "put_down" and target[1] < TABLE_GRASP_M:
+            clip_name = "put_down"  # down to the floor: a bend, not an arm's reach
+        add(kind="action", action=clip_name, targets=((hand["prop_joint"], target),),
+            target_id=(dest or prop_obj).id, action_index=ai, **hand, prop_span="release")  # fmt: skip
+        hand.clear()
+
     node: ActionNode
     for ai, node in enumerate(character.actions):
         name = node.action
@@ -379,6 +504,9 @@ def plan_actions(
         clip = lib[name]
         speed_k = _walk_speed_factor(node.manner)
         person = _other_character(node, clip, others, scene, character.name)
+        sitting_by = ""  # "sits next to her": a seat near that character, not the floor beside her
+        if person and clip.interaction is not None and clip.interaction.object in ("seat", "bed"):
+            sitting_by, person = person, ""
         if person:
             there = np.asarray(others[person], dtype=float)
             touching = clip.interaction is not None and clip.interaction.object == "person"
@@ -430,6 +558,10 @@ def plan_actions(
             # Already standing: a short hold, not a get-up from a seat that is not there.
             add(kind="wait", action=name, duration_s=STAY_S, action_index=ai)
             continue
+        if name in ("turn_left", "turn_right", "turn_around") and now_posture() != "stand":
+            # Seated or lying, the body does not spin on the seat: the posture holds.
+            add(kind="wait", action=name, duration_s=STAY_S, action_index=ai)
+            continue
         if name in ("turn_left", "turn_right", "turn_around"):
             add(kind="action", action=name, action_index=ai)
             yaw += {"turn_left": np.pi / 2, "turn_right": -np.pi / 2, "turn_around": np.pi}[name]
@@ -449,8 +581,9 @@ def plan_actions(
         )
         seat_pick: tuple[PlacedObject, tuple[float, float, float]] | None = None
         if clip.interaction and clip.interaction.object in ("seat", "bed"):
+            near_xz = np.asarray(others[sitting_by], float) if sitting_by and obj is None else pos
             seat_pick = pick_seat(
-                scene, clip.interaction.object, obj, pos, others, character.name, occupied or []
+                scene, clip.interaction.object, obj, near_xz, others, character.name, occupied or []
             )
             if seat_pick is None:
                 what = "bed" if clip.interaction.object == "bed" else "seat"
@@ -486,29 +619,75 @@ def plan_actions(
                     )
         targets: dict[str, tuple[float, float, float]] = {}
         held: dict = {}
-        if clip.interaction and clip.interaction.object == "handheld":
-            grip = prop_grip(scene, name, obj, pos)
-            if grip is not None:
-                prop_obj, joint, local = grip
-                here = np.array([prop_obj.position[0], prop_obj.position[2]])
-                if np.linalg.norm(here - pos) > REACH + 0.2 and now_posture() == "stand":
-                    # Walk up to the prop first (it is picked up where it lies).
-                    from services.motion.routing import free_spot
+        kind = clip.interaction.object if clip.interaction else ""
+        if kind in HELD_KINDS and hand and (obj is None or obj.id == hand["prop"]):
+            # Already in the hand (picked up before): the action plays with it, no new reach.
+            obj = next((o for o in scene.objects if o.id == hand["prop"]), obj)
+            add(kind="action", action=name, duration_s=float(node.duration_s), target_id=hand["prop"],
+                action_index=ai)  # fmt: skip
+            continue
+        grip = prop_grip(scene, name, obj, pos) if kind in HELD_KINDS else None
+        taking = grip[0].id if grip is not None else obj.id if name == "pick_up" and obj is not None else ""
+        if hand and taking and taking != hand["prop"] and now_posture() == "stand":
+            set_down(None, ai, GRASP_TABLE)  # one hand, one prop: the one held goes down first
+        if grip is not None:
+            prop_obj, joint, local = grip
+            here = np.array([prop_obj.position[0], prop_obj.position[2]])
+            if np.linalg.norm(here - pos) > REACH + 0.2 and now_posture() == "stand":
+                # Walk up to the prop first (it is picked up where it lies).
+                from services.motion.routing import free_spot
 
-                    away = pos - here
-                    n = float(np.linalg.norm(away))
-                    spot = here + (away / n if n > 1e-6 else np.array([0.0, 1.0])) * REACH
-                    spot = np.asarray(free_spot(scene, (float(spot[0]), float(spot[1]))), float)
-                    walk_to(spot, 1.2, _yaw_to(spot, here, yaw), "walk", ai, prop_obj.id)
-                if np.linalg.norm(here - pos) <= PICK_REACH:  # within reach: it is held
-                    held = {
-                        "prop": prop_obj.id,
-                        "prop_joint": joint,
-                        "prop_grip": local,
-                        "prop_yaw": float(prop_obj.yaw),
-                    }
-                    obj = prop_obj
-        if obj is not None and clip.interaction and clip.interaction.object not in ("handheld", "person"):
+                away = pos - here
+                n = float(np.linalg.norm(away))
+                spot = here + (away / n if n > 1e-6 else np.array([0.0, 1.0])) * REACH
+                spot = np.asarray(free_spot(scene, (float(spot[0]), float(spot[1]))), float)
+                walk_to(spot, 1.2, _yaw_to(spot, here, yaw), "walk", ai, prop_obj.id)
+            if np.linalg.norm(here - pos) <= PICK_REACH:  # within reach: it is held from now on
+                reach = _grasp(prop_obj)
+                # A prop on a table is taken with an arm's reach (upper body: seated too), one on the floor
+                # with a bend down; either way the hand gets there before the prop leaves its place.
+                taker = "" if reach is None else GRASP_TABLE if reach[2][1] >= TABLE_GRASP_M else "pick_up"
+                standing = now_posture() == "stand"
+                if taker in lib and (standing or not lib[taker].drives_lower_body):
+                    rj, rlocal, rworld = reach  # type: ignore[misc]
+                    grasp = {"prop": prop_obj.id, "prop_joint": rj, "prop_grip": rlocal,
+                             "prop_yaw": float(prop_obj.yaw)}  # fmt: skip
+                    face = _yaw_to(pos, here, yaw)
+                    turn = abs(np.arctan2(np.sin(face - yaw), np.cos(face - yaw))) > TURN_TOLERANCE
+                    if standing and turn:
+                        walk_to(pos.copy(), 1.0, face, "turn", ai, prop_obj.id)
+                    add(kind="action", action=taker, targets=((rj, rworld),), target_id=prop_obj.id,
+                        action_index=ai, prop_span="grasp", **grasp)  # fmt: skip
+                    hand.update(grasp)
+                    add(kind="action", action=name, duration_s=float(node.duration_s),
+                        target_id=prop_obj.id, action_index=ai)  # fmt: skip
+                    continue
+                if reach is not None:  # held where a later action (or the put-down) finds it
+                    joint, local = reach[0], reach[1]
+                held = {
+                    "prop": prop_obj.id,
+                    "prop_joint": joint,
+                    "prop_grip": local,
+                    "prop_yaw": float(prop_obj.yaw),
+                }
+                obj = prop_obj
+                hand.update(held)
+                held["prop_span"] = "grasp"
+                kind = "handheld"
+        elif kind in HELD_KINDS and obj is not None:
+            kind = "reach"  # a prop that stays put (a microphone on its stand): the hand goes to its point
+        if name == "pick_up" and obj is not None and now_posture() == "stand" and _grasp(obj) is not None:
+            rj, rlocal, rworld = _grasp(obj)  # type: ignore[misc]
+            held = {"prop": obj.id, "prop_joint": rj, "prop_grip": rlocal, "prop_yaw": float(obj.yaw),
+                    "prop_span": "grasp"}  # fmt: skip
+        if name == "put_down" and hand:
+            # Set down on what the sentence names, else the nearest surface in reach, else where it was.
+            dest = find_object(scene, node.destination) or (
+                obj if obj is not None and obj.id != hand["prop"] else None
+            )
+            set_down(dest, ai)
+            continue
+        if obj is not None and clip.interaction and kind not in ("handheld", "person"):
             geo = _object_geometry(obj) or _fallback_geometry(obj)
             stand, points = geo
             targets = contact_targets(clip, points)
@@ -576,6 +755,10 @@ def plan_actions(
             action_index=ai,
             **held,
         )
+        if held.get("prop_span") == "release":
+            hand.clear()
+        elif held:
+            hand.update({k: v for k, v in held.items() if k != "prop_span"})
     segs = _with_moods(segs, character)
     return MotionPlan(
         character=character.name,

@@ -105,6 +105,8 @@ class PlannedSegment:
         0.0,
     )  # valence, arousal in [-1, 1]: the style it is played in (style.py)
     manner: str = ""  # a locomotion's manner word ("tiredly"): its arm swing and posture
+    prop_span: str = "window"  # held over: "window" (the clip's contact window), "grasp" (from the grasp
+    # on: picked up here), "whole" (the whole piece: held from before), "release" (until it is put down)
 
 
 @dataclass(frozen=True)
@@ -227,10 +229,14 @@ def _action_piece(seg: PlannedSegment, state: SegmentState) -> tuple[MotionPiece
     stand_lean = None  # standing at a low target: bend the knees first, the trunk at most STAND_MAX_LEAN
     if posture == "stand" and not clip.drives_lower_body and clip.interaction and stand_feet:
         low = {j: p for j, p in targets.items() if j in HAND_JOINTS}
-        if low and clip.interaction.object not in ("handheld", "person"):
+        if low and clip.interaction.object != "person":
             root, stand_lean = _crouch_to_reach(rot, root, low, _contact_weight(clip, t, dur), clip)
     rot = lock_feet(rot, root, contacts)  # feet stay planted: a lowered root bends the knees
-    if clip.interaction and clip.interaction.object not in ("handheld", "person"):
+    if (
+        clip.interaction
+        and clip.interaction.object != "person"
+        and (clip.interaction.object not in ("handheld", "tool") or targets)
+    ):
         w0, w1 = clip.interaction.window
         frames = np.arange(t)
         if clip.looping:
@@ -439,23 +445,64 @@ def synthesise_segment(
     return piece, end
 
 
-def held_prop(piece: MotionPiece) -> PropTrack:
-    """The prop of a piece's segment held by its joint over the clip's contact window (between the joins).
+PROP_TURN_S = 0.4  # seconds over which a prop turns from how it lay to how the hand holds it (and back)
 
-    The object keeps the orientation it had relative to the hand when grasped (its placed yaw at the first
-    held frame), and its grip point sits on the joint in every held frame.
-    """
-    seg = piece.segment
-    t = len(piece.root)
-    clip = get_clip(seg.action)
+
+@functools.lru_cache(maxsize=8)
+def _hand_at_rest(joint: str) -> np.ndarray:
+    """(4,) the joint's world rotation in the standing rest pose, facing +Z."""
+    _, grot = joint_globals(neutral_rotations()[None], np.zeros((1, 3)), JOINT_INDEX[joint])
+    return np.asarray(grot[0], dtype=np.float64)
+
+
+def _held_frames(seg: PlannedSegment, t: int) -> tuple[int, int]:
+    """[a, b) frames of a piece during which its segment's prop is in the hand."""
+    if seg.prop_span == "whole":
+        return 0, t
+    try:
+        clip = get_clip(seg.action)
+    except KeyError:
+        return 0, t
     w0, w1 = clip.interaction.window if clip.interaction else (0.0, clip.duration_s)
     if clip.looping:
         w0, w1 = 0.0, t / FPS
+    if seg.prop_span == "grasp":  # from the moment the hand reaches it to the end: it stays in the hand
+        return int(np.clip(round(w0 * FPS), 0, t - 1)), t
+    if seg.prop_span == "release":  # until the hand has set it down
+        return 0, int(np.clip(round((w0 + w1) / 2 * FPS), 1, t))
     a = int(np.clip(round(w0 * FPS), JOIN, max(JOIN, t - JOIN - 1)))
     b = int(np.clip(round(w1 * FPS), a + 1, max(a + 1, t - JOIN)))
+    return a, b
+
+
+def holding_after(seg: PlannedSegment) -> str:
+    """The id of the prop still in the hand after a segment ("" when the hands are empty)."""
+    return seg.prop if seg.prop and seg.prop_span in ("grasp", "whole") else ""
+
+
+def held_prop(piece: MotionPiece) -> PropTrack:
+    """The prop of a piece's segment held by its joint over the frames its span names.
+
+    The prop sits in the hand the same way in every piece (upright and facing forward when the arm hangs at
+    rest), so a prop held across several segments moves on continuously from one to the next; where it is
+    picked up (put down) it turns from (to) the orientation it lay in over PROP_TURN_S, and its grip point
+    is on the joint in every held frame.
+    """
+    seg = piece.segment
+    t = len(piece.root)
+    a, b = _held_frames(seg, t)
     pos, grot = joint_globals(piece.rotations[a:b], piece.root[a:b], JOINT_INDEX[seg.prop_joint])
-    rest = quat.mul(quat.inv(grot[0]), quat.yaw(np.array(seg.prop_yaw)))  # object in the hand's frame
+    rest = quat.inv(_hand_at_rest(seg.prop_joint))  # the object in the hand's frame
     rot = quat.normalize(quat.mul(grot, np.broadcast_to(rest, grot.shape)))
+    lying = np.broadcast_to(quat.yaw(np.array(seg.prop_yaw)), rot.shape)
+    n = min(len(rot), max(1, int(PROP_TURN_S * FPS)))
+    if seg.prop_span in ("grasp", "window"):
+        w = _smooth(np.linspace(0.0, 1.0, n))
+        rot[:n] = quat.slerp(lying[:n], rot[:n], w)
+    if seg.prop_span in ("release", "window"):
+        w = _smooth(np.linspace(1.0, 0.0, n))
+        rot[len(rot) - n :] = quat.slerp(lying[:n], rot[len(rot) - n :], w)
+    rot = quat.normalize(rot)
     origin = pos - quat.rotate(rot, np.broadcast_to(np.asarray(seg.prop_grip, float), pos.shape))
     return PropTrack(
         object_id=seg.prop,

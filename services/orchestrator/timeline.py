@@ -82,6 +82,24 @@ def schedule(
     return starts
 
 
+def _still_held(props: list[PropTrack], frame: int, gap: int) -> list[PropTrack]:
+    """A prop in the hand when a hold begins stays there, still, for the hold's ``gap`` frames."""
+    last = [p for p in props if p.end_frame == frame]
+    out = []
+    for p in last:
+        pos, rot = from_wire(p.position), from_wire(p.rotation)
+        out.append(
+            msgspec.structs.replace(
+                p,
+                start_frame=frame,
+                end_frame=frame + gap,
+                position=to_wire(np.repeat(pos[-1:], gap, 0).astype(np.float32)),
+                rotation=to_wire(np.repeat(rot[-1:], gap, 0).astype(np.float32)),
+            )
+        )
+    return out
+
+
 def assemble(name: str, pieces: list[Motion], starts: list[int], total: int | None = None) -> Motion:
     """Join per-action motions at their start frames, holding the pose through the gaps.
 
@@ -106,6 +124,7 @@ def assemble(name: str, pieces: list[Motion], starts: list[int], total: int | No
         )
         gap = start - frame
         if gap > 0:
+            props += _still_held(props, frame, gap)
             hold_root, hold_rot = (roots[-1][-1], rots[-1][-1]) if roots else (root[0], rot[0])
             roots.append(np.repeat(hold_root[None], gap, 0))
             rots.append(np.repeat(hold_rot[None], gap, 0))
@@ -131,6 +150,7 @@ def assemble(name: str, pieces: list[Motion], starts: list[int], total: int | No
         frame += len(root)
     if total is not None and total > frame and roots:
         gap = total - frame
+        props += _still_held(props, frame, gap)
         roots.append(np.repeat(roots[-1][-1][None], gap, 0))
         rots.append(np.repeat(rots[-1][-1][None], gap, 0))
         contacts.append(np.ones((gap, 2), np.uint8))

@@ -194,13 +194,13 @@ toaster | kitchen_appliance | toaster oven, sandwich maker | kitchen | SC | surf
 coffee_maker | kitchen_appliance | coffee machine, espresso machine, coffeemaker, percolator, coffee pot | kitchen cafe office | SCT | surface
 kettle | kitchen_appliance | electric kettle, water kettle, tea kettle, watering can | kitchen office | SCT | surface
 teapot | tableware | tea pot, tea set | kitchen dining_room cafe living_room | STCM | surface
-cup | drinkware | teacup, tea cup, coffee cup, cups, paper cup | kitchen dining_room cafe office | SCTM | surface
+cup | drinkware | teacup, tea cup, coffee cup, cups, paper cup, coffee, tea, espresso, cappuccino, latte, cocoa | kitchen dining_room cafe office | SCTM | surface
 mug | drinkware | coffee mug, beer mug, tankard, travel mug | kitchen office cafe | SCT | surface
-glass | drinkware | drinking glass, tumbler, wine glass, wineglass, goblet, water glass | kitchen dining_room cafe | SCT | surface
-bottle | drinkware | water bottle, wine bottle, flask, beer bottle, plastic bottle | kitchen dining_room gym office | SCTM | surface
+glass | drinkware | drinking glass, tumbler, wine glass, wineglass, goblet, water glass, milk, juice, orange juice, wine, lemonade, smoothie | kitchen dining_room cafe | SCT | surface
+bottle | drinkware | water bottle, wine bottle, flask, beer bottle, plastic bottle, water | kitchen dining_room gym office | SCTM | surface
 soda_can | drinkware | can, soda, coke, cola, soft drink, drink can, beer can, tin can, soda pop | kitchen living_room office | SC | surface
-plate | tableware | dish, dinner plate, saucer, platter, tray, serving tray, baking tray, tea tray | kitchen dining_room cafe | SCM | surface
-bowl | tableware | salad bowl, soup bowl, fruit bowl, cereal bowl | kitchen dining_room | SCM | surface
+plate | tableware | dish, dinner plate, saucer, platter, tray, serving tray, baking tray, tea tray, dinner, lunch, meal, food, sandwich, toast, pizza | kitchen dining_room cafe | SCM | surface
+bowl | tableware | salad bowl, soup bowl, fruit bowl, cereal bowl, soup, cereal, salad, porridge, noodles | kitchen dining_room | SCM | surface
 pan | cookware | frying pan, skillet, wok, saucepan, fry pan | kitchen | SCM | surface
 pot | cookware | cooking pot, stockpot, casserole, stew pot | kitchen | SCM | surface
 knife | cookware | kitchen knife, chef knife, chefs knife, blade, bread knife | kitchen | SM | surface
@@ -221,7 +221,7 @@ treadmill | gym_machine | running machine, running belt, treadmill machine, walk
 exercise_bike | gym_machine | stationary bike, spin bike, spinning bike, exercise bicycle, home trainer | gym | SCT | floor
 rowing_machine | gym_machine | rower, ergometer, erg, rowing ergometer | gym | SCT | floor
 weight_bench | gym_machine | workout bench, bench press, gym bench, press bench, training bench | gym | SCT | floor
-dumbbell | weights | dumbbells, hand weight, free weight, free weights | gym | SCM | floor
+dumbbell | weights | dumbbells, hand weight, free weight, free weights, weights | gym | SCM | floor
 barbell | weights | weight bar, barbells, olympic bar | gym | SCM | floor
 kettlebell | weights | kettle bell, kettlebells | gym | SCM | floor
 yoga_mat | sports_equipment | exercise mat, mat, gym mat, fitness mat, workout mat | gym bedroom | SC | floor

@@ -30,6 +30,7 @@ from services.orchestrator.backend import StageFailed
 from services.orchestrator.document import Sentence
 from services.orchestrator.slotting import Slotting
 from services.orchestrator.stages import StageContext, content_of
+from services.orchestrator.stages.props import provide
 from services.orchestrator.stages.seats import furnish
 from services.orchestrator.stages.social import frame_count
 from services.orchestrator.staging import (
@@ -185,7 +186,12 @@ def segments(
             else:
                 outside.discard(name)
         single = CharacterNode(name=name, actions=asked)
-        view = scene_view(scene, action)
+        view = _with_held(scene, scene_view(scene, action), state.holding)
+        in_other_hands = {st.holding for other, st in states.items() if other != name and st.holding}
+        if in_other_hands:  # one prop, one hand: what another character holds is not there to take
+            view = msgspec.structs.replace(
+                view, objects=[o for o in view.objects if o.id not in in_other_hands]
+            )
         near_them = others(action, name, states, object_ids)
         near = {o: d for o, d in (distances or {}).get((name, k), {}).items() if o in near_them}
         seated = seated_others(action, name, states)
@@ -230,6 +236,14 @@ def segments(
 
             pieces[name] = [ctx.engine.query(f"{kind}:{name}:idle", [name, view, st], idle).motion]
     return pieces
+
+
+def _with_held(scene: Scene, view: Scene, holding: str) -> Scene:
+    """The view with the object the character holds (it keeps holding it through actions that do not name it)."""
+    if not holding or any(o.id == holding for o in view.objects):
+        return view
+    held = [o for o in scene.objects if o.id == holding]
+    return msgspec.structs.replace(view, objects=[*view.objects, *held]) if held else view
 
 
 def _staged(
@@ -283,7 +297,9 @@ def animate(
 ) -> Animated:
     """Drafts on the composed layout, the layout optimised around each interaction, then the final motion."""
     characters = characters_of(graphs, [s.id for s in sentences])
+    scene, provided = provide(scene, graphs, sentences, ctx.seed)  # props named only in action sentences
     scene, added = furnish(ctx, scene, graphs, sentences)  # a chair where a sit has no free seat
+    added = [*provided, *added]
     door = doorway(scene)
     wait_ids = {sid for sid, c in commands if c.kind == "wait"}
     answering = {r.responder for r in (plan.responses if plan is not None else []) if r.response_index == 0}
@@ -382,7 +398,8 @@ def animate(
         if door is not None and not on.all():
             motion = _wait_outside(motion, on, door.outside(waiting_place[name]))
         out.motions[name] = motion
-    out.motions = _enlivened(scene, characters, _in_moods(characters, out.motions, moods))
+    out.motions = set_down_props(out.scene, out.motions, length)
+    out.motions = _enlivened(out.scene, characters, _in_moods(characters, out.motions, moods))
     return out
 
 
@@ -414,6 +431,42 @@ def _enlivened(scene: Scene, characters: Characters, motions: dict[str, Motion])
                 upcoming[k] = goal
         out[name] = enliven_motion(motion, attention(name, motions, upcoming))
     return out
+
+
+REST_M = 0.02  # metres: a prop released farther than this from its place in the room stays where it was put
+
+
+def set_down_props(scene: Scene, motions: dict[str, Motion], length: int) -> dict[str, Motion]:
+    """Each motion with a still track for every prop it set down away from its place in the room: from the
+    release until someone takes it again (or the story's end), it stays where it was put."""
+    homes = {o.id: np.asarray(o.position, float) for o in scene.objects}
+    tracks = sorted(
+        ((t.start_frame, t.end_frame, name, t) for name, m in motions.items() for t in m.props),
+        key=lambda x: (x[3].object_id, x[0]),
+    )
+    extra: dict[str, list] = {}
+    for i, (_, end, name, t) in enumerate(tracks):
+        later = [s for s, _, _, u in tracks[i + 1 :] if u.object_id == t.object_id and s >= end]
+        if any(s < end and e > end for s, e, _, u in tracks if u.object_id == t.object_id):
+            continue  # held on (the next piece's track starts where this one ends)
+        until = min(later, default=length)
+        pos, rot = from_wire(t.position), from_wire(t.rotation)
+        home = homes.get(t.object_id)
+        if until <= end or not len(pos) or home is None or np.linalg.norm(pos[-1] - home) <= REST_M:
+            continue
+        extra.setdefault(name, []).append(
+            msgspec.structs.replace(
+                t,
+                start_frame=end,
+                end_frame=until,
+                position=to_wire(np.repeat(pos[-1:], until - end, 0).astype(np.float32)),
+                rotation=to_wire(np.repeat(rot[-1:], until - end, 0).astype(np.float32)),
+            )
+        )
+    return {
+        name: msgspec.structs.replace(m, props=[*m.props, *extra[name]]) if name in extra else m
+        for name, m in motions.items()
+    }
 
 
 def _wait_outside(motion: Motion, on: np.ndarray, spot: tuple[float, float]) -> Motion:

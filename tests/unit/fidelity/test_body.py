@@ -26,7 +26,7 @@ def test_sitting_with_the_hips_half_a_metre_above_nothing_is_not_supported(make)
 
 
 def test_sitting_on_the_seat_is_supported_and_at_its_contact_point(make):
-    hips = make.still(0.0, 0.5, 0.0, 60)
+    hips = make.still(0.0, 0.54, 0.0, 60)  # the chair's seat is 0.45 m high, its sit point 10 cm above
     eve = make.motion("Eve", hips, [("sit", 0, 60, "s1", 0)])
     graph = {"s1": make.action_graph("s1", "Eve", "sit", "sit", target="chair")}
     under = make.scene(PlacedObject(id="chair", category="chair", position=(0.0, 0.0, -0.02)))

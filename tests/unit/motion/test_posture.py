@@ -92,3 +92,36 @@ def test_pieces_join_without_pops_even_when_synthesised_apart():
         assert np.allclose(np.abs(np.sum(piece.rotations[-1] * rot, axis=-1)), 1.0, atol=1e-6)
         state = end
     assert isinstance(state, SegmentState)
+
+
+def test_sits_next_to_a_person_takes_a_free_seat_near_them_not_the_floor_beside_them():
+    eve = CharacterNode(name="Eve", actions=[ActionNode(verb="sit", action="sit", target="Zoe")])
+    zoe_on_sofa = pick_seat(SCENE, "seat", SCENE.objects[2], np.array([-2.5, 1.5]), {}, "Zoe")
+    assert zoe_on_sofa is not None
+    zoe = (zoe_on_sofa[1][0], zoe_on_sofa[1][2])
+    plan = plan_actions(eve, SCENE, (0.0, -3.0, 0.0), others={"Zoe": zoe})
+    sit = next(s for s in plan.segments if s.action == "sit")
+    assert sit.target_id == "sofa"  # the seat next to her, the other slot of her sofa
+    hips = dict(sit.targets)["Hips"]
+    assert 0.2 < np.hypot(hips[0] - zoe[0], hips[2] - zoe[1]) < 1.5
+
+
+def test_a_turn_while_seated_holds_the_seat():
+    plan = _plan(("sit", "chair"), ("turn_around", ""))
+    assert [(s.kind, s.action) for s in plan.segments][-1] == ("wait", "turn_around")
+    motion, _, _ = synthesise(plan)
+    hips = from_wire(motion.root_position)
+    sat = next(s for s in motion.segments if s.action == "sit").end_frame
+    assert np.linalg.norm(hips[sat:] - hips[sat - 1], axis=1).max() < 0.01
+
+
+def test_seat_points_keep_the_thighs_on_the_seat():
+    """The Hips point sits SIT_HIPS_M above a seat's top, so the thighs (6 cm spheres 5 cm under the Hips)
+    rest on it instead of sinking 7-11 cm into it."""
+    from wana.assets.catalog import make_object
+
+    for category in ("chair", "dining_chair", "armchair", "sofa", "stool", "bench"):
+        obj = make_object(category)
+        hips = obj.contact_points["sit"].position
+        seat = max(s.height for s in obj.support_surfaces)  # the seat: these seats' only support surface
+        assert 0.08 <= hips[1] - seat <= 0.12, (category, hips[1], seat)

@@ -46,17 +46,17 @@ def _grip_errors(motion: Motion) -> list[float]:
     return out
 
 
-def test_drinking_walks_to_the_cup_and_holds_it_in_the_hand():
+def test_drinking_walks_to_the_cup_reaches_for_it_and_holds_it_in_the_hand():
     eve = CharacterNode(name="Eve", actions=[ActionNode(verb="drink", action="drink", target="cup")])
     plan = plan_actions(eve, SCENE, (-1.0, -1.0, 0.0))
-    assert [s.kind for s in plan.segments] == ["locomotion", "action"]
-    assert plan.segments[-1].prop == "cup"
+    assert [s.action for s in plan.segments if s.kind == "action"] == ["press_switch", "drink"]  # a reach
+    assert plan.segments[0].kind == "locomotion"
+    assert plan.segments[-1].prop == "cup" and plan.segments[-2].prop == "cup"
     motion, _, _ = synthesise(plan)
-    assert [p.object_id for p in motion.props] == ["cup"]
+    assert {p.object_id for p in motion.props} == {"cup"}
     errors = _grip_errors(motion)
     assert len(errors) > 30 and max(errors) < 0.01
-    track = motion.props[0]
-    origin = from_wire(track.position)
+    origin = np.concatenate([from_wire(t.position) for t in motion.props])
     assert np.ptp(origin[:, 1]) > 0.1  # it travels with the hand (to the mouth), not left on the table
 
 
@@ -78,8 +78,14 @@ def test_the_story_motion_keeps_the_prop_in_the_hand_after_timing():
             orchestrator.close()
     motion = result.motions["Eve"]
     assert motion.props and motion.props[0].object_id in {o.id for o in result.scene.objects}
+    reach = next(s for s in motion.segments if s.action == "press_switch")  # the reach for the cup
     drink = next(s for s in motion.segments if s.action == "drink")
-    assert drink.start_frame <= motion.props[0].start_frame < motion.props[0].end_frame <= drink.end_frame
+    first = min(motion.props, key=lambda t: t.start_frame)
+    assert reach.start_frame < first.start_frame < reach.end_frame  # taken during the reach, not before
+    held = np.zeros(len(from_wire(motion.root_position)), bool)
+    for t in motion.props:
+        held[t.start_frame : t.end_frame] = True
+    assert held[first.start_frame : drink.end_frame].all()  # and held on through the drink
     assert max(_grip_errors(motion)) < 0.01
 
 
@@ -135,3 +141,77 @@ def test_the_glb_animates_the_held_prop_as_a_node_of_its_own():
         ]
     )
     assert np.allclose(m, yaw_matrix(SCENE.objects[1].yaw), atol=1e-6)
+
+
+def _prop_positions(motion: Motion, placed: PlacedObject) -> np.ndarray:
+    from services.render.scene_geometry import prop_track
+
+    return prop_track(placed, [motion], len(from_wire(motion.root_position)))[0]
+
+
+def test_a_prop_leaves_the_table_at_the_grasp_and_stays_in_the_hand_through_a_later_walk():
+    eve = CharacterNode(
+        name="Eve",
+        actions=[
+            ActionNode(verb="pick up", action="pick_up", target="cup"),
+            ActionNode(verb="walk", action="walk", destination="phone"),
+        ],
+    )
+    plan = plan_actions(eve, SCENE, (-1.0, -1.0, 0.0))
+    walk_after = [s for s in plan.segments if s.action_index == 1]
+    assert walk_after and all(s.prop == "cup" and s.prop_span == "whole" for s in walk_after)
+    motion, _, _ = synthesise(plan)
+    assert max(_grip_errors(motion)) < 0.01
+    pos = _prop_positions(motion, SCENE.objects[1])
+    first = min(t.start_frame for t in motion.props)
+    # reach, then attach: at the grasp the cup is still where it stood on the table (no jump into the hand)
+    assert np.linalg.norm(pos[first] - np.asarray(SCENE.objects[1].position)) < 0.02
+    assert np.max(np.linalg.norm(np.diff(pos, axis=0), axis=1)) < 0.3  # never jumps (10 m/s at 30 fps)
+    assert np.linalg.norm(pos[-1, [0, 2]] - np.asarray(SCENE.objects[2].position)[[0, 2]]) < 1.0  # carried
+
+
+def test_put_down_on_a_named_surface_releases_the_prop_there():
+    scene = Scene(
+        room=SCENE.room,
+        objects=[
+            *SCENE.objects,
+            PlacedObject(id="counter", category="kitchen_counter", position=(-1.5, 0.0, 1.5)),
+        ],
+    )
+    eve = CharacterNode(
+        name="Eve",
+        actions=[
+            ActionNode(verb="pick up", action="pick_up", target="cup"),
+            ActionNode(verb="put", action="put_down", target="cup", destination="counter"),
+        ],
+    )
+    plan = plan_actions(eve, scene, (-1.0, -1.0, 0.0))
+    put = [s for s in plan.segments if s.action == "put_down"]
+    assert len(put) == 1 and put[0].prop == "cup" and put[0].prop_span == "release"
+    motion, _, _ = synthesise(plan)
+    assert max(_grip_errors(motion)) < 0.01
+    last = max(motion.props, key=lambda t: t.end_frame)
+    end = from_wire(last.position)[-1]
+    from wana.assets.catalog import world_support_surfaces
+
+    (height, corners), *_ = sorted(world_support_surfaces(scene.objects[-1]), key=lambda s: -s[0])
+    lo, hi = corners.min(axis=0), corners.max(axis=0)
+    assert abs(end[1] - height) < 0.02  # standing on the counter's top ...
+    assert np.all(end[[0, 2]] >= lo - 1e-6) and np.all(end[[0, 2]] <= hi + 1e-6)  # ... inside its rectangle
+
+
+def test_taking_a_second_prop_sets_the_first_one_down_first():
+    eve = CharacterNode(
+        name="Eve",
+        actions=[
+            ActionNode(verb="pick up", action="pick_up", target="cup"),
+            ActionNode(verb="call", action="call_with_phone", target="phone"),
+        ],
+    )
+    plan = plan_actions(eve, SCENE, (-1.0, -1.0, 0.0))
+    released = [i for i, s in enumerate(plan.segments) if s.prop == "cup" and s.prop_span == "release"]
+    taken = [i for i, s in enumerate(plan.segments) if s.prop == "phone" and s.prop_span == "grasp"]
+    assert released and taken and released[0] < taken[0]  # one hand, one prop
+    assert all(s.prop != "cup" for s in plan.segments[released[0] + 1 :])
+    motion, _, _ = synthesise(plan)
+    assert max(_grip_errors(motion)) < 0.01

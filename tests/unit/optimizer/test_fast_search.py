@@ -193,7 +193,7 @@ def test_clearing_pushes_the_obstacle_off_the_walk_and_leaves_targets_alone():
 
 def test_a_walk_through_a_ring_of_boxes_is_verified_collision_free_after_clearing():
     scene, inter = _ring_scene()
-    seat = np.array([0.0, 0.5, -1.0])
+    seat = np.array([0.0, 0.55, -1.0])  # the chair's sit point (10 cm above its 0.45 m seat)
     start = np.array([0.0, 1.5])
     motion = _walk_then_sit(np.array([start, seat[[0, 2]]]), seat)  # straight through box0
     res = optimise_and_verify(

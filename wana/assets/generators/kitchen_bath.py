@@ -73,7 +73,7 @@ def toilet(b: Builder, p: Params) -> None:
     b.ellipsoid((0, seat_h - 0.06, 0.08), (w / 2 * 0.95, 0.07, d * 0.3), p.body)
     b.box((-w / 2, seat_h - 0.1, -d / 2), (w / 2, h, -d / 2 + 0.2), p.body)  # tank
     b.box((-0.04, h - 0.01, -d / 2 + 0.08), (0.04, h + 0.01, -d / 2 + 0.12), p.tone("chrome"))
-    b.contact("sit", "Hips", (0.0, seat_h + 0.03, 0.05))
+    b.contact("sit", "Hips", (0.0, seat_h + 0.10, 0.05))  # the thighs on the seat, not in it
     b.contact("flush", "RightHand", (0.0, h + 0.02, -d / 2 + 0.1))
     b.stand = (0.0, 0.0, d / 2 + 0.3)
 
@@ -96,6 +96,7 @@ def bathtub(b: Builder, p: Params) -> None:
     b.box((-w / 2 + wall, y0 + 0.08, -d / 2 + wall), (w / 2 - wall, h - 0.15, d / 2 - wall), p.tone("glass"))
     b.contact("lie", "Hips", (0.0, y0 + 0.15, 0.0))
     b.contact("sit", "Hips", (w * 0.25, y0 + 0.15, 0.0))
+    b.surface(y0 + 0.08, -w / 2 + wall, -d / 2 + wall, w / 2 - wall, d / 2 - wall)  # the tub's floor: lain on
     b.stand = (0.0, 0.0, d / 2 + 0.35)
 
 

@@ -7,9 +7,14 @@ import numpy as np
 from wana.assets.generators.registry import register
 from wana.assets.params import Builder, Params
 
+# metres from a seat's top to the Hips joint of someone sitting on it: the hip joints ride about a thigh's
+# thickness above the seat (the body's thigh spheres are 6 cm, 5 cm under the Hips joint), so the thighs rest
+# on the seat instead of sinking 7-11 cm into it.
+SIT_HIPS_M = 0.10
+
 
 def _sit(b: Builder, p: Params, seat_h: float, z: float = 0.0, x: float = 0.0, name: str = "sit") -> None:
-    b.contact(name, "Hips", (x, seat_h + 0.03, z))
+    b.contact(name, "Hips", (x, seat_h + SIT_HIPS_M, z))
 
 
 def chair(b: Builder, p: Params, kind: str = "chair") -> None:
@@ -268,7 +273,7 @@ def bed(b: Builder, p: Params, kind: str = "bed") -> None:
         for i in range(4):
             y = frame_h + (y2 - frame_h) * (i + 1) / 5
             b.box((w / 2 - 0.02, y, d / 2 - 0.35), (w / 2 + 0.02, y + 0.03, d / 2 - 0.05), p.frame)
-    b.contact("sit", "Hips", (0.0, top + 0.03, d / 2 - 0.35))
+    b.contact("sit", "Hips", (0.0, top + SIT_HIPS_M, d / 2 - 0.35))
     b.contact("lie", "Hips", (0.0, top + 0.1, 0.0))
     b.surface(
         top + (0.0 if p.state == "empty" or kind == "crib" else 0.05),

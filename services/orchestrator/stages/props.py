@@ -1,0 +1,336 @@
+"""Objects the story's actions use that the scene sentences never put in the room, added before motion.
+
+"John reads a newspaper", "Sam drinks coffee" (a cup: the catalog's synonyms), "Leo plays the guitar" in a room
+whose scene sentences never named them; "Tom hammers" with no hammer anywhere. Each such object is placed
+where a person would find it: a small object on the surface the character was last at ("walks to the desk
+and answers the phone": on the desk), else on a surface the same sentence names ("takes a book from the
+bookshelf"), else on the room's largest table; a floor object (a guitar, a dumbbell) on the floor beside
+that place. The placement is direct, on the composed room (nothing else moves), and the sentence gets an
+I202 diagnostic saying what was added and where. Where nothing can hold it, the room is left as it is and the
+action's own check says so (the object is missing; nothing passes silently).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from types import ModuleType
+
+import numpy as np
+
+from proto.common import Span
+from proto.scene import PlacedObject, Scene
+from proto.ssg import ActionNode, Diagnostic, ObjectNode, SentenceGraph
+from services.orchestrator.document import Sentence
+from wana.domain.actions import get_clip
+from wana.domain.object_geometry import find_object
+
+# The object an action uses when the sentence names none ("Tom hammers", "She drinks"): catalog categories.
+DEFAULT_PROP = {
+    "drink": "cup",
+    "call_with_phone": "phone",
+    "pick_up_phone_answer": "phone",
+    "text_on_phone": "phone",
+    "hammer": "hammer",
+    "saw": "saw",
+    "screw": "screwdriver",
+    "drill": "drill",
+    "read": "book",
+    "read_newspaper": "book",
+    "sing_with_microphone": "microphone",
+    "listen_with_headphones": "headphones",
+    "play_guitar": "guitar",
+    "play_violin": "violin",
+    "play_flute": "flute",
+    "eat_snack": "plate",
+    "lift_weights": "dumbbell",
+    "take_photo": "camera",
+    "sweep": "broom",
+    "pour": "kettle",
+    "use_tablet": "tablet",
+}
+HELD_KINDS = ("handheld", "tool")  # interactions whose object is held in the hand
+TABLE_HEIGHT = (0.35, 1.25)  # metres: surfaces a standing or seated person puts things on
+GAP = 0.03  # metres between an added object and what already stands there
+EDGE = 0.06  # metres an added object keeps from its surface's edge
+FLOOR_RING = (0.35, 0.6, 0.9)  # metres beside the anchor's footprint where a floor object may stand
+
+
+@dataclass(frozen=True)
+class Need:
+    """One object to add: its node, the sentence that first uses it, and where the character was then."""
+
+    node: ObjectNode
+    sentence_id: str
+    near: tuple[str, ...]  # object ids to put it on / beside, best first
+
+
+def _catalog() -> ModuleType:
+    """The asset catalog, imported on first use (the orchestrator runs without it in some tests)."""
+    from wana.assets import catalog
+
+    return catalog
+
+
+def _known(category: str) -> bool:
+    try:
+        return category in set(_catalog().categories())
+    except Exception:  # noqa: BLE001 - no catalog: nothing can be added
+        return False
+
+
+def _mount(category: str) -> str:
+    from wana.assets import vocabulary
+
+    info = vocabulary.CATEGORIES.get(category)
+    return info.mount if info is not None else "floor"
+
+
+def _clip_kind(action: ActionNode) -> str:
+    try:
+        clip = get_clip(action.action) if action.action else None
+    except KeyError:
+        return ""
+    return clip.interaction.object if clip is not None and clip.interaction is not None else ""
+
+
+def _made_for(scene: Scene, action: str) -> bool:
+    """Whether the room already has a small object the action can use (a "pick_up" and the action's point)."""
+    keys = {action, action.split("_")[0]}
+    for o in scene.objects:
+        try:
+            points = set(_catalog().asset_for(o).contact_points)
+        except Exception:  # noqa: BLE001 - unknown category
+            continue
+        if "pick_up" in points and keys & points:
+            return True
+    return False
+
+
+def prop_needs(graphs: Sequence[SentenceGraph], sentence_ids: Sequence[str], scene: Scene) -> list[Need]:
+    """The objects action sentences use that the room lacks, in story order (one per id)."""
+    out: list[Need] = []
+    wanted: set[str] = set()
+    last_at: dict[str, list[str]] = {}  # character -> object ids it went to or used, latest last
+
+    def present(ref: str) -> bool:
+        return find_object(scene, ref) is not None or ref in wanted
+
+    for g, sid in zip(graphs, sentence_ids, strict=True):
+        if g.kind != "action":
+            continue
+        named = {o.id: o for o in g.objects}
+        for c in g.characters:
+            for a in c.actions:
+                refs = [r for r in (a.target, a.instrument, a.destination) if r]
+                here = [r for r in refs if find_object(scene, r) is not None]
+                for ref in refs:
+                    node = named.get(ref)
+                    if node is None or present(ref) or present(node.category) or not _known(node.category):
+                        continue
+                    near = (*here, *reversed(last_at.get(c.name, [])))
+                    out.append(Need(node, sid, tuple(dict.fromkeys(near))))
+                    wanted |= {node.id, node.category}
+                kind = _clip_kind(a)
+                default = DEFAULT_PROP.get(a.action, "")
+                if (
+                    kind in HELD_KINDS
+                    and default
+                    and _known(default)
+                    and not any(present(r) for r in refs)
+                    and default not in wanted
+                    and not _made_for(scene, a.action)
+                ):
+                    node = ObjectNode(id=default, category=default, word=default.replace("_", " "))
+                    near = (*here, *reversed(last_at.get(c.name, [])))
+                    out.append(Need(node, sid, tuple(dict.fromkeys(near))))
+                    wanted |= {default}
+                last_at.setdefault(c.name, []).extend(here)
+    return out
+
+
+def _surfaces(placed: PlacedObject) -> list[tuple[float, np.ndarray, np.ndarray]]:
+    """(height, xz min, xz max) of an object's support surfaces at table height, world; none for a seat or a
+    bed (a cup is not put where someone sits)."""
+    try:
+        if any(n.startswith(("sit", "lie")) for n in _catalog().asset_for(placed).contact_points):
+            return []
+        surfs = _catalog().world_support_surfaces(placed)
+    except Exception:  # noqa: BLE001 - unknown category: nothing to put on
+        return []
+    return [
+        (h, corners.min(axis=0), corners.max(axis=0))
+        for h, corners in surfs
+        if TABLE_HEIGHT[0] <= h <= TABLE_HEIGHT[1]
+    ]
+
+
+def _footprint(category: str, attributes: dict[str, str], seed: int) -> np.ndarray:
+    """(2, 2) xz half extents box of a catalog object (min, max), object frame."""
+    obj = _catalog().make_object(category, attributes, seed)
+    b = np.asarray(obj.collision_boxes, float).reshape(-1, 2, 3)
+    return np.stack([b[:, 0, [0, 2]].min(axis=0), b[:, 1, [0, 2]].max(axis=0)])
+
+
+def _boxes_xz(scene: Scene, ids: set[str] | None = None) -> list[tuple[np.ndarray, float, float]]:
+    """(xz min/max (2, 2), bottom, top) of the objects (all when ids is None), world."""
+    out = []
+    for o in scene.objects:
+        if ids is not None and o.id not in ids:
+            continue
+        try:
+            b = np.asarray(_catalog().world_bounds(o), float)
+        except Exception:  # noqa: BLE001
+            continue
+        out.append((b[:, [0, 2]], float(b[0, 1]), float(b[1, 1])))
+    return out
+
+
+def _overlaps(
+    lo: np.ndarray, hi: np.ndarray, y0: float, y1: float, boxes: list[tuple[np.ndarray, float, float]]
+) -> bool:
+    """Whether the box [lo, hi] x [y0, y1] comes within GAP of any of the boxes (xz min/max, bottom, top)."""
+    return any(
+        np.all(lo < b[1] + GAP) and np.all(hi > b[0] - GAP) and y0 < top and y1 > bottom
+        for b, bottom, top in boxes
+    )
+
+
+def _on_surface(scene: Scene, anchor: PlacedObject, fp: np.ndarray, height: float) -> tuple | None:
+    """(x, y, z) centre of the base of a free spot on the anchor's surfaces nearest their middle, or None."""
+    others = _boxes_xz(scene)
+    for h, lo, hi in sorted(_surfaces(anchor), key=lambda s: -float(np.prod(s[2] - s[1]))):
+        size = fp[1] - fp[0]
+        if np.any(hi - lo < size + 2 * EDGE):
+            lo, hi = lo - EDGE, hi + EDGE  # a small surface: the object may come to its edge
+            if np.any(hi - lo < size + 2 * EDGE):
+                continue
+        xs = np.linspace(lo[0] + EDGE - fp[0][0], hi[0] - EDGE - fp[1][0], 9)
+        zs = np.linspace(lo[1] + EDGE - fp[0][1], hi[1] - EDGE - fp[1][1], 9)
+        # Nearest the room's middle first: the front of a counter against a wall, within a person's reach.
+        spots = sorted(((x, z) for x in xs for z in zs), key=lambda p: np.hypot(p[0], p[1]))
+        for x, z in spots:
+            a, b = np.array([x, z]) + fp[0], np.array([x, z]) + fp[1]
+            if not _overlaps(a, b, h + 0.005, h + height, others):
+                return (float(x), float(h), float(z))
+    return None
+
+
+def _beside(scene: Scene, anchor: PlacedObject | None, fp: np.ndarray, height: float) -> tuple | None:
+    """(x, 0, z) of a free floor spot beside the anchor (the room's middle without one), inside the walls."""
+    others = _boxes_xz(scene)
+    room = scene.room
+    if anchor is not None:
+        b = np.asarray(_catalog().world_bounds(anchor), float)[:, [0, 2]]
+    else:
+        b = np.zeros((2, 2))
+    centre = (b[0] + b[1]) / 2
+    for ring in FLOOR_RING:
+        for ang in np.linspace(0, 2 * np.pi, 16, endpoint=False):
+            d = np.array([np.sin(ang), np.cos(ang)])
+            half = (b[1] - b[0]) / 2
+            p = centre + d * (np.abs(d) @ half + ring)
+            a, c = p + fp[0], p + fp[1]
+            inside = (
+                abs(p[0]) + fp[1][0] < room.width / 2 - 0.1 and abs(p[1]) + fp[1][1] < room.depth / 2 - 0.1
+            )
+            if inside and not _overlaps(a, c, 0.0, height, others):
+                return (float(p[0]), 0.0, float(p[1]))
+    return None
+
+
+def _tables(scene: Scene) -> list[PlacedObject]:
+    """Floor objects with a surface at table height, largest surface first."""
+    scored = []
+    for o in scene.objects:
+        surfs = _surfaces(o) if not o.support else []
+        if surfs:
+            scored.append((max(float(np.prod(s[2] - s[1])) for s in surfs), o))
+    return [o for _, o in sorted(scored, key=lambda t: -t[0])]
+
+
+def place(scene: Scene, need: Need, seed: int = 0) -> tuple[PlacedObject, str] | None:
+    """The object of one need placed in the room and the id it rests on or stands by ("" when neither)."""
+    node = need.node
+    attrs = dict(node.attributes)
+    try:
+        obj = _catalog().make_object(node.category, attrs, seed)
+    except Exception:  # noqa: BLE001 - no mesh for it: it cannot be shown
+        return None
+    boxes = np.asarray(obj.collision_boxes, float).reshape(-1, 2, 3)
+    fp = np.stack([boxes[:, 0, [0, 2]].min(axis=0), boxes[:, 1, [0, 2]].max(axis=0)])
+    height = float(boxes[:, 1, 1].max())
+    by_id = {o.id: o for o in scene.objects}
+    anchors = [by_id[r] if r in by_id else find_object(scene, r) for r in need.near]
+    found = [o for o in [*anchors, *_tables(scene)] if o is not None]
+    candidates = list({o.id: o for o in found}.values())  # by id, the first kept
+    if _mount(node.category) == "surface":
+        for anchor in candidates:
+            spot = _on_surface(scene, anchor, fp, height)
+            if spot is not None:
+                return _placed(node, attrs, seed, spot, anchor.id), anchor.id
+        return None
+    beside: list[PlacedObject | None] = [*candidates, None]
+    for near in beside:
+        spot = _beside(scene, near, fp, height)
+        if spot is not None:
+            return _placed(node, attrs, seed, spot, ""), near.id if near is not None else ""
+    return None
+
+
+def _placed(
+    node: ObjectNode, attrs: dict[str, str], seed: int, spot: tuple[float, float, float], support: str
+) -> PlacedObject:
+    return PlacedObject(
+        id=node.id,
+        category=node.category,
+        attributes=attrs,
+        seed=seed,
+        position=(round(spot[0], 5), round(spot[1], 5), round(spot[2], 5)),
+        yaw=0.0,
+        support=support,
+        from_text=True,
+    )
+
+
+def provide(
+    scene: Scene, graphs: Sequence[SentenceGraph], sentences: Sequence[Sentence], seed: int = 0
+) -> tuple[Scene, list[tuple[str, Diagnostic]]]:
+    """The room with every object the actions use and the room lacked, and one I202 per object added."""
+    needs = prop_needs(graphs, [s.id for s in sentences], scene)
+    if not needs:
+        return scene, []
+    spans = {s.id: Span(s.start, s.end) for s in sentences}
+    objects = list(scene.objects)
+    notes = []
+    for need in needs:
+        now = Scene(room=scene.room, objects=objects, seed=scene.seed)
+        got = place(now, need, seed)
+        what = need.node.word or need.node.category.replace("_", " ")
+        if got is None:
+            continue
+        placed, at = got
+        objects.append(placed)
+        where = (
+            f"on the {at.split('#')[0].replace('_', ' ')}"
+            if placed.support
+            else f"beside the {at.split('#')[0].replace('_', ' ')}"
+            if at
+            else "in the room"
+        )
+        message = f"added a {placed.category.replace('_', ' ')} {where}: the story uses the {what} but no scene sentence puts it in the room"
+        notes.append(
+            (
+                need.sentence_id,
+                Diagnostic(
+                    code="I202",
+                    message=message,
+                    span=spans.get(need.sentence_id, Span(0, 0)),
+                    severity="info",
+                ),
+            )
+        )
+    return Scene(room=scene.room, objects=objects, seed=scene.seed), notes
+
+
+__all__ = ["DEFAULT_PROP", "Need", "place", "prop_needs", "provide"]

@@ -1,0 +1,108 @@
+"""Objects the actions use that no scene sentence put in the room: added where a person would find them (on
+the surface the character was at, else one the sentence names, else the largest table), with an I202, and
+then used: picked up, held on through the following sentences, set down where the story says."""
+
+from __future__ import annotations
+
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from proto.scene import PlacedObject, Room, Scene
+from proto.ssg import ActionNode, CharacterNode, ObjectNode, SentenceGraph
+from services.orchestrator.backend import InProcessBackend
+from services.orchestrator.document import Sentence
+from services.orchestrator.session import Orchestrator
+from services.orchestrator.stages.props import prop_needs, provide
+from wana.arrays import from_wire
+from wana.assets.catalog import world_bounds, world_support_surfaces
+
+ROOM = Room(room_type="office", width=6, depth=6, height=3)
+DESK = PlacedObject(id="desk", category="desk", position=(-1.5, 0.0, 1.5), yaw=0.0)
+TABLE = PlacedObject(id="table", category="dining_table", position=(1.5, 0.0, -1.0), yaw=0.0)
+
+
+def _graph(sid: str, name: str, *actions: ActionNode, objects: tuple[ObjectNode, ...] = ()) -> SentenceGraph:
+    return SentenceGraph(
+        sentence_id=sid, text="", kind="action", characters=[CharacterNode(name=name, actions=list(actions))],
+        objects=list(objects),
+    )  # fmt: skip
+
+
+def _sentences(*ids: str) -> list[Sentence]:
+    return [Sentence(id=i, start=0, end=1, text="x") for i in ids]
+
+
+def test_an_object_named_only_in_an_action_goes_on_the_surface_the_character_walked_to():
+    graphs = [
+        _graph("s1", "John", ActionNode(verb="walk", action="walk", destination="desk")),
+        _graph(
+            "s2",
+            "John",
+            ActionNode(verb="read", action="read", target="book"),
+            objects=(ObjectNode(id="book", category="book", word="book"),),
+        ),  # fmt: skip
+    ]
+    scene = Scene(room=ROOM, objects=[TABLE, DESK])  # the table has the larger top: the desk must win
+    needs = prop_needs(graphs, ["s1", "s2"], scene)
+    assert [(n.node.id, n.sentence_id, n.near[:1]) for n in needs] == [("book", "s2", ("desk",))]
+    furnished, notes = provide(scene, graphs, _sentences("s1", "s2"))
+    book = next(o for o in furnished.objects if o.id == "book")
+    assert book.support == "desk"
+    (height, corners), *_ = sorted(world_support_surfaces(DESK), key=lambda s: -s[0])
+    assert abs(book.position[1] - height) < 1e-3
+    lo, hi = world_bounds(book)[:, [0, 2]]
+    assert np.all(lo >= corners.min(axis=0) - 1e-6) and np.all(hi <= corners.max(axis=0) + 1e-6)
+    assert [(sid, d.code) for sid, d in notes] == [("s2", "I202")] and "desk" in notes[0][1].message
+
+
+def test_nothing_is_added_for_an_object_the_room_has_or_the_catalog_lacks():
+    cup = PlacedObject(id="cup", category="cup", position=(1.5, 0.76, -1.0), support="table")
+    graphs = [
+        _graph(
+            "s1",
+            "Sam",
+            ActionNode(verb="drink", action="drink", target="cup"),
+            ActionNode(verb="walk", action="walk", destination="elevator"),
+            objects=(
+                ObjectNode(id="cup", category="cup", word="cup"),
+                ObjectNode(id="elevator", category="elevator", word="elevator"),
+            ),
+        )  # fmt: skip
+    ]
+    assert prop_needs(graphs, ["s1"], Scene(room=ROOM, objects=[TABLE, cup])) == []
+
+
+def test_a_tool_action_with_no_tool_in_the_room_gets_one_on_the_table():
+    graphs = [_graph("s1", "Tom", ActionNode(verb="hammer", action="hammer"))]
+    furnished, notes = provide(Scene(room=ROOM, objects=[TABLE]), graphs, _sentences("s1"))
+    hammer = [o for o in furnished.objects if o.category == "hammer"]
+    assert len(hammer) == 1 and hammer[0].support == "table" and notes[0][1].code == "I202"
+
+
+def _story(text: str):
+    with tempfile.TemporaryDirectory() as tmp:
+        orchestrator = Orchestrator(Path(tmp) / "s.db", InProcessBackend(), seed=0)
+        try:
+            return orchestrator.create(text, doc_id="props").compute()
+        finally:
+            orchestrator.close()
+
+
+def test_coffee_named_only_in_an_action_is_a_cup_on_the_table_held_from_the_grasp_to_the_end():
+    result = _story(
+        "In the kitchen there is a table$.\nSam walks to the table.\nSam drinks coffee.\nSam waves.\n"
+    )
+    cups = [o for o in result.scene.objects if o.category == "cup"]
+    assert len(cups) == 1 and cups[0].support == "table"
+    assert any(d.code == "I202" for ds in result.diagnostics.values() for d in ds)
+    motion = result.motions["Sam"]
+    frames = len(from_wire(motion.root_position))
+    held = np.zeros(frames, bool)
+    for t in motion.props:
+        assert t.object_id == cups[0].id
+        held[t.start_frame : t.end_frame] = True
+    first = int(np.argmax(held))
+    wave = next(s for s in motion.segments if s.action == "wave")
+    assert 0 < first and held[first:].all() and wave.end_frame <= frames  # in the hand through the wave
