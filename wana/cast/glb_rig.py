@@ -152,7 +152,7 @@ def _accessor(doc: dict, blob: bytes, index: int) -> np.ndarray:
     rows = np.lib.stride_tricks.as_strided(raw, shape=(count, width * dtype.itemsize), strides=(stride, 1))
     out = np.ascontiguousarray(rows).view(dtype).reshape(count, width)
     if acc.get("normalized") and dtype.kind in "ui":
-        out = out.astype(np.float32) / np.iinfo(dtype).max
+        out = out.astype(np.float32) / float(np.iinfo(str(dtype)).max)
     return out
 
 
