@@ -81,8 +81,11 @@ def test_the_glb_wears_each_users_rig_on_its_own_joint_names(runs):
 def test_the_story_checks_are_those_of_the_built_in_cast(runs):
     own = json.loads((runs / "own" / "report.json").read_text())
     plain = json.loads((runs / "plain" / "report.json").read_text())
-    checks = lambda r: [
-        (s["id"], s["verdict"], [(c["name"], c["ok"]) for c in s["checks"]]) for s in r["sentences"]
-    ]  # noqa: E731
+
+    def checks(report: dict) -> list:
+        return [
+            (s["id"], s["verdict"], [(c["name"], c["ok"]) for c in s["checks"]]) for s in report["sentences"]
+        ]
+
     assert checks(own) == checks(plain)
     assert any(s["checks"] for s in own["sentences"])

@@ -29,7 +29,6 @@ RIGS = {
 
 def _world_at(doc: dict, blob: bytes, frame: int, names: list[str]) -> dict[str, np.ndarray]:
     """World positions of the named nodes at a keyframe, by glTF's own rules (TRS, animation channels)."""
-    acc = lambda i: _read(doc, blob, i)  # noqa: E731
     nodes = doc["nodes"]
     trs = {
         i: [
@@ -41,7 +40,7 @@ def _world_at(doc: dict, blob: bytes, frame: int, names: list[str]) -> dict[str,
     }
     for ch in doc["animations"][0]["channels"]:
         s = doc["animations"][0]["samplers"][ch["sampler"]]
-        out = acc(s["output"])
+        out = _read(doc, blob, s["output"])
         k = {"translation": 0, "rotation": 1, "scale": 2}.get(ch["target"]["path"])
         if k is not None:
             trs[ch["target"]["node"]][k] = out[min(frame, len(out) - 1)].astype(np.float64)
