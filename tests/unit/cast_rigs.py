@@ -94,10 +94,13 @@ def rig_glb(
     centimetres: bool = False,
     a_pose: bool = False,
     vrm: dict[str, str] | None = None,
+    facing_back: bool = False,
 ) -> bytes:
     """GLB bytes of the rig: joints (under an "Armature" node at 0.01 scale with centimetre offsets when asked),
     the arms rotated 40 degrees down at rest for an A-pose, a VRM 0.x humanoid table when given
-    (VRM bone -> joint name)."""
+    (VRM bone -> joint name), facing -Z (as VRM 0.x models do) when asked."""
+    if facing_back:
+        joints = [(name, p, o * np.array([-1.0, 1.0, -1.0])) for name, p, o in joints]
     n = len(joints)
     unit = 100.0 if centimetres else 1.0
     local_r = [Rotation.identity() for _ in range(n)]

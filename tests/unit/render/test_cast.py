@@ -127,13 +127,15 @@ def _glb(data: bytes):
         return read_glb(p)
 
 
-def test_limbs_follow_the_canonical_bones_whatever_the_rest_pose(walk):
-    """A-pose, other proportions: each mapped bone points where the canonical bone points."""
-    data, _ = RIGS["unreal"]
+@pytest.mark.parametrize("kind", ["unreal", "vrm0"])
+def test_limbs_follow_the_canonical_bones_whatever_the_rest_pose(kind, walk):
+    """A-pose, other proportions, a rig facing -Z: each mapped bone of the upper body points where the
+    canonical bone points; the legs (bent by IK on their own lengths) put the ankles over the canonical ankles."""
+    data = RIGS["unreal"][0] if kind == "unreal" else rig_glb(rig_joints(MIXAMO, legs=1.1), facing_back=True)
     cast = load_cast([CastMember(name="Eve", glb=data)])["Eve"]
     pose = cast_pose(cast, walk)
     canon = Rig.from_motion(walk).joint_positions
-    for a, b in (("LeftArm", "LeftForeArm"), ("RightLeg", "RightFoot"), ("Spine", "Spine1")):
+    for a, b in (("LeftArm", "LeftForeArm"), ("RightForeArm", "RightHand"), ("Spine", "Spine1")):
         d_user = pose.world[:, cast.joints[b]] - pose.world[:, cast.joints[a]]
         d_canon = canon[:, JOINT_INDEX[b]] - canon[:, JOINT_INDEX[a]]
         cos = (
@@ -142,6 +144,9 @@ def test_limbs_follow_the_canonical_bones_whatever_the_rest_pose(walk):
             / np.linalg.norm(d_canon, axis=1)
         )
         assert cos.min() > 0.999, (a, b, cos.min())
+    for foot in ("LeftFoot", "RightFoot"):  # no sliding: the ankle over the canonical ankle at every frame
+        gap = pose.world[:, cast.joints[foot]][:, [0, 2]] - canon[:, JOINT_INDEX[foot]][:, [0, 2]]
+        assert np.linalg.norm(gap, axis=1).max() < 0.01
 
 
 def test_a_vrm_humanoid_table_names_the_bones():
