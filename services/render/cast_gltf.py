@@ -95,12 +95,13 @@ def add_cast_character(
     material = len(b.doc["materials"])
     prims = []
     for i, prim in enumerate(rig.primitives):
-        b.doc["materials"].append(
-            {
-                "name": f"{name}_{i}",
-                "pbrMetallicRoughness": {"baseColorFactor": list(prim.colour), "metallicFactor": 0.0},
-            }
-        )
+        pbr: dict = {"baseColorFactor": list(prim.colour), "metallicFactor": 0.0}
+        if prim.texture is not None and prim.uv is not None:  # the character's own look, embedded
+            image, mime = prim.texture
+            b.doc.setdefault("images", []).append({"bufferView": b.view(image), "mimeType": mime})
+            b.doc.setdefault("textures", []).append({"source": len(b.doc["images"]) - 1})
+            pbr["baseColorTexture"] = {"index": len(b.doc["textures"]) - 1}
+        b.doc["materials"].append({"name": f"{name}_{i}", "pbrMetallicRoughness": pbr})
         _, weights = clean_skin(prim.joints, prim.weights)
         joints = np.where(weights > 0, prim.joints, 0)  # clean_skin's indices are 8-bit; a rig may have more
         faces = prim.indices.reshape(-1, 3)
@@ -117,6 +118,11 @@ def add_cast_character(
                         target=ARRAY_BUFFER,
                     ),
                     "WEIGHTS_0": b.accessor(weights, FLOAT, target=ARRAY_BUFFER),
+                    **(
+                        {"TEXCOORD_0": b.accessor(prim.uv, FLOAT, target=ARRAY_BUFFER)}
+                        if prim.texture is not None and prim.uv is not None
+                        else {}
+                    ),
                 },
                 "indices": b.accessor(
                     prim.indices.astype(np.uint16 if idx_type == UNSIGNED_SHORT else np.uint32),

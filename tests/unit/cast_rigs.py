@@ -95,10 +95,12 @@ def rig_glb(
     a_pose: bool = False,
     vrm: dict[str, str] | None = None,
     facing_back: bool = False,
+    texture: bytes | None = None,
 ) -> bytes:
     """GLB bytes of the rig: joints (under an "Armature" node at 0.01 scale with centimetre offsets when asked),
-    the arms rotated 40 degrees down at rest for an A-pose, a VRM 0.x humanoid table when given
-    (VRM bone -> joint name), facing -Z (as VRM 0.x models do) when asked."""
+        the arms rotated 40 degrees down at rest for an A-pose, a VRM 0.x humanoid table when given
+        (VRM bone -> joint name), facing -Z (as VRM 0.x models do) when asked, with a PNG base colour texture
+    when given (UVs from the vertices' x and y)."""
     if facing_back:
         joints = [(name, p, o * np.array([-1.0, 1.0, -1.0])) for name, p, o in joints]
     n = len(joints)
@@ -165,6 +167,17 @@ def rig_glb(
         "indices": add(indices, 5125, "SCALAR"),
         "material": 0,
     }
+    images: dict = {}
+    if texture is not None:
+        prim["attributes"]["TEXCOORD_0"] = add((vertices[:, :2] % 1.0).astype(np.float32), 5126, "VEC2")
+        while len(blob) % 4:
+            blob.append(0)
+        views.append({"buffer": 0, "byteOffset": len(blob), "byteLength": len(texture)})
+        blob.extend(texture)
+        images = {
+            "images": [{"bufferView": len(views) - 1, "mimeType": "image/png"}],
+            "textures": [{"source": 0}],
+        }
     nodes.append({"name": "body", "mesh": 0, "skin": 0})
     doc: dict = {
         "asset": {"version": "2.0"},
@@ -172,7 +185,15 @@ def rig_glb(
         "scenes": [{"nodes": [0, len(nodes) - 1]}],
         "nodes": nodes,
         "meshes": [{"primitives": [prim]}],
-        "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.5, 0.8, 1.0]}}],
+        "materials": [
+            {
+                "pbrMetallicRoughness": {
+                    "baseColorFactor": [0.2, 0.5, 0.8, 1.0],
+                    **({"baseColorTexture": {"index": 0}} if texture is not None else {}),
+                }
+            }
+        ],
+        **images,
         "skins": [
             {
                 "joints": [first + j for j in range(n)],

@@ -38,6 +38,8 @@ class Primitive:
     joints: np.ndarray  # (V, 4) skin joint indices
     weights: np.ndarray  # (V, 4) float32
     colour: tuple[float, float, float, float] = (0.8, 0.8, 0.8, 1.0)  # the material's base colour
+    uv: np.ndarray | None = None  # (V, 2) float32 TEXCOORD_0, with a texture
+    texture: tuple[bytes, str] | None = None  # the base colour image (bytes, mime type)
 
 
 @dataclass
@@ -156,6 +158,21 @@ def _accessor(doc: dict, blob: bytes, index: int) -> np.ndarray:
     return out
 
 
+def _image(doc: dict, blob: bytes, texture: int | None) -> tuple[bytes, str] | None:
+    """The embedded image of a texture (bytes, mime type), or None (no texture, or an external file)."""
+    if texture is None or texture >= len(doc.get("textures", [])):
+        return None
+    source = doc["textures"][texture].get("source")
+    if source is None or source >= len(doc.get("images", [])):
+        return None
+    image = doc["images"][source]
+    if "bufferView" not in image:
+        return None
+    view = doc["bufferViews"][image["bufferView"]]
+    start = int(view.get("byteOffset", 0))
+    return bytes(blob[start : start + int(view["byteLength"])]), str(image.get("mimeType", "image/png"))
+
+
 def _node_matrix(node: dict) -> np.ndarray:
     if "matrix" in node:
         return np.array(node["matrix"], dtype=np.float64).reshape(4, 4).T  # column-major
@@ -257,10 +274,18 @@ def read_rig(data: bytes, label: str = "the character") -> CastRig:
                 else np.arange(len(pos), dtype=np.uint32)
             )
             colour = (0.8, 0.8, 0.8, 1.0)
+            texture = None
             if "material" in prim and prim["material"] < len(materials):
-                f = materials[prim["material"]].get("pbrMetallicRoughness", {}).get("baseColorFactor")
+                pbr = materials[prim["material"]].get("pbrMetallicRoughness", {})
+                f = pbr.get("baseColorFactor")
                 if f:
                     colour = (float(f[0]), float(f[1]), float(f[2]), float(f[3]))
+                texture = _image(doc, blob, pbr.get("baseColorTexture", {}).get("index"))
+            uv = None
+            if texture is not None and "TEXCOORD_0" in attrs:
+                uv = _accessor(doc, blob, attrs["TEXCOORD_0"]).astype(np.float32)
+            else:
+                texture = None
             rig.primitives.append(
                 Primitive(
                     positions=pos,
@@ -268,6 +293,8 @@ def read_rig(data: bytes, label: str = "the character") -> CastRig:
                     joints=_accessor(doc, blob, attrs["JOINTS_0"]).astype(np.uint16),
                     weights=_accessor(doc, blob, attrs["WEIGHTS_0"]).astype(np.float32),
                     colour=colour,
+                    uv=uv,
+                    texture=texture,
                 )
             )
     if not rig.primitives:

@@ -179,3 +179,22 @@ def test_a_rig_the_tables_cannot_cover_names_every_missing_joint():
         map_joints(rig, {"LeftArn": "jnt_00"})
     with pytest.raises(CastError, match="not a GLB"):
         read_rig(b"Kaydara FBX Binary  \x00")
+
+
+def test_the_characters_texture_comes_along(walk):
+    import io
+
+    from PIL import Image
+
+    png = io.BytesIO()
+    Image.new("RGB", (4, 4), (200, 30, 40)).save(png, format="PNG")
+    data = rig_glb(rig_joints(MIXAMO), texture=png.getvalue())
+    glb = scene_glb(demo_scene(), [walk], cast=load_cast([CastMember(name="Eve", glb=data)]))
+    doc, blob = _glb(glb)
+    body = next(n for n in doc["nodes"] if n.get("name") == "Eve_body")
+    prim = doc["meshes"][body["mesh"]]["primitives"][0]
+    assert "TEXCOORD_0" in prim["attributes"]
+    texture = doc["materials"][prim["material"]]["pbrMetallicRoughness"]["baseColorTexture"]["index"]
+    view = doc["bufferViews"][doc["images"][doc["textures"][texture]["source"]]["bufferView"]]
+    image = Image.open(io.BytesIO(blob[view["byteOffset"] : view["byteOffset"] + view["byteLength"]]))
+    assert image.getpixel((1, 1)) == (200, 30, 40)
