@@ -96,11 +96,13 @@ def rig_glb(
     vrm: dict[str, str] | None = None,
     facing_back: bool = False,
     texture: bytes | None = None,
+    hair: bool = False,
 ) -> bytes:
     """GLB bytes of the rig: joints (under an "Armature" node at 0.01 scale with centimetre offsets when asked),
-        the arms rotated 40 degrees down at rest for an A-pose, a VRM 0.x humanoid table when given
-        (VRM bone -> joint name), facing -Z (as VRM 0.x models do) when asked, with a PNG base colour texture
-    when given (UVs from the vertices' x and y)."""
+            the arms rotated 40 degrees down at rest for an A-pose, a VRM 0.x humanoid table when given
+            (VRM bone -> joint name), facing -Z (as VRM 0.x models do) when asked, with a PNG base colour texture
+        when given (UVs from the vertices' x and y), and with ``hair`` a second mesh over the head bound by a skin of
+    its own (joints: the head only), as VRoid's VRMs bind hair and face."""
     if facing_back:
         joints = [(name, p, o * np.array([-1.0, 1.0, -1.0])) for name, p, o in joints]
     n = len(joints)
@@ -179,12 +181,35 @@ def rig_glb(
             "textures": [{"source": 0}],
         }
     nodes.append({"name": "body", "mesh": 0, "skin": 0})
+    extra: dict = {"meshes": [], "skins": [], "nodes": []}
+    if hair:
+        head = JOINT_NAMES.index("Head")  # rig_joints keeps the canonical order first
+        v, f = _box(
+            pos[head] + np.array([0, 0.1, 0]) * unit, pos[head] + np.array([0, 0.25, 0]) * unit, 0.1 * unit
+        )
+        hair_prim = {
+            "attributes": {
+                "POSITION": add(v.astype(np.float32), 5126, "VEC3", bounds=True),
+                "JOINTS_0": add(np.zeros((len(v), 4), dtype=np.uint16), 5123, "VEC4"),
+                "WEIGHTS_0": add(np.tile(np.float32([1, 0, 0, 0]), (len(v), 1)), 5126, "VEC4"),
+            },
+            "indices": add(f.reshape(-1).astype(np.uint32), 5125, "SCALAR"),
+            "material": 0,
+        }
+        extra["meshes"].append({"primitives": [hair_prim]})
+        extra["skins"].append(
+            {
+                "joints": [first + head],
+                "inverseBindMatrices": add(ibm[head : head + 1].reshape(1, 16), 5126, "MAT4"),
+            }
+        )
+        extra["nodes"].append({"name": "hair", "mesh": 1, "skin": 1})
     doc: dict = {
         "asset": {"version": "2.0"},
         "scene": 0,
-        "scenes": [{"nodes": [0, len(nodes) - 1]}],
-        "nodes": nodes,
-        "meshes": [{"primitives": [prim]}],
+        "scenes": [{"nodes": [0, len(nodes) - 1] + ([len(nodes)] if hair else [])}],
+        "nodes": nodes + extra["nodes"],
+        "meshes": [{"primitives": [prim]}] + extra["meshes"],
         "materials": [
             {
                 "pbrMetallicRoughness": {
@@ -199,7 +224,8 @@ def rig_glb(
                 "joints": [first + j for j in range(n)],
                 "inverseBindMatrices": add(ibm.reshape(n, 16), 5126, "MAT4"),
             }
-        ],
+        ]
+        + extra["skins"],
         "accessors": accessors,
         "bufferViews": views,
     }

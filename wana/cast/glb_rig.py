@@ -1,8 +1,9 @@
-"""Read a rigged humanoid from GLB bytes: its skin's joints (names, hierarchy, rest transforms), the meshes
-that skin binds, and the VRM humanoid bone table when the file is a VRM.
+"""Read a rigged humanoid from GLB bytes: its skins' joints (names, hierarchy, rest transforms), the meshes
+they bind, and the VRM humanoid bone table when the file is a VRM.
 
 A small reader of our own (json + numpy, no network, no extra package): it reads what a skinned character
-needs and nothing else: one skin (the one with most joints), every mesh primitive bound to it.
+needs and nothing else. A file may bind its body, hair and face with skins of their own over one skeleton
+(VRoid's VRMs do): the joints are the union of every skin's, each mesh keeps its skin.
 """
 
 from __future__ import annotations
@@ -35,23 +36,32 @@ class Primitive:
 
     positions: np.ndarray  # (V, 3) float32
     indices: np.ndarray  # (F*3,) uint32
-    joints: np.ndarray  # (V, 4) skin joint indices
+    joints: np.ndarray  # (V, 4) joint indices into its skin's joint list
     weights: np.ndarray  # (V, 4) float32
     colour: tuple[float, float, float, float] = (0.8, 0.8, 0.8, 1.0)  # the material's base colour
     uv: np.ndarray | None = None  # (V, 2) float32 TEXCOORD_0, with a texture
     texture: tuple[bytes, str] | None = None  # the base colour image (bytes, mime type)
+    skin: int = 0  # index into CastRig.skins
+
+
+@dataclass
+class Skin:
+    """One skin of the file: its joints (indices into CastRig's joints) and their inverse bind matrices."""
+
+    joints: np.ndarray  # (n,) int
+    inverse_bind: np.ndarray  # (n, 4, 4)
 
 
 @dataclass
 class CastRig:
-    """A user's character. Joint arrays are in the skin's joint order.
+    """A user's character. Joint arrays are in the order of the largest skin's joints, then the others'.
 
     Attributes:
         names: joint names as in the file.
         parents: index of the nearest ancestor joint, -1 for the skeleton's root(s).
         translation, rotation, scale: rest local transform of each joint (rotation x, y, z, w).
         base: 4x4 world matrix of the root joint's parent node (a Mixamo "Armature" at 0.01 scale, or identity).
-        inverse_bind: (J, 4, 4) inverse bind matrices.
+        skins: the file's skins (the largest first).
         primitives: the skinned meshes.
         humanoid: VRM humanoid bone name -> joint index (empty for a plain GLB).
     """
@@ -62,7 +72,7 @@ class CastRig:
     rotation: np.ndarray
     scale: np.ndarray
     base: np.ndarray
-    inverse_bind: np.ndarray
+    skins: list[Skin]
     primitives: list[Primitive] = field(default_factory=list)
     humanoid: dict[str, int] = field(default_factory=dict)
 
@@ -92,7 +102,10 @@ class CastRig:
         world = self.rest_world()
         lows = []
         for prim in self.primitives:
-            skin = np.einsum("jab,jbc->jac", world, self.inverse_bind)  # rest skinning: bind -> world
+            own = self.skins[prim.skin]
+            skin = np.einsum(
+                "jab,jbc->jac", world[own.joints], own.inverse_bind
+            )  # rest skinning: bind -> world
             w = prim.weights.astype(np.float64)
             mats = np.einsum("vk,vkab->vab", w, skin[prim.joints.astype(np.int64)])
             p = np.einsum("vab,vb->va", mats[:, :3, :3], prim.positions.astype(np.float64)) + mats[:, :3, 3]
@@ -219,10 +232,11 @@ def read_rig(data: bytes, label: str = "the character") -> CastRig:
     skins = doc.get("skins", [])
     if not skins:
         raise CastError(f"{label} has no skin (a rigged, skinned mesh is needed)")
-    s_index = max(range(len(skins)), key=lambda i: len(skins[i]["joints"]))
-    skin = skins[s_index]
+    order = sorted(range(len(skins)), key=lambda i: -len(skins[i]["joints"]))
     nodes = doc.get("nodes", [])
-    joint_nodes = [int(n) for n in skin["joints"]]
+    joint_nodes: list[int] = []
+    for i in order:
+        joint_nodes += [int(n) for n in skins[i]["joints"] if int(n) not in joint_nodes]
     node_to_joint = {n: j for j, n in enumerate(joint_nodes)}
     parent_of: dict[int, int] = {}
     for i, node in enumerate(nodes):
@@ -242,11 +256,17 @@ def read_rig(data: bytes, label: str = "the character") -> CastRig:
         base = _node_matrix(nodes[p]) @ base
         p = parent_of.get(p)
     trs = [_trs(nodes[n]) for n in joint_nodes]
-    if "inverseBindMatrices" in skin:
-        ibm = _accessor(doc, blob, skin["inverseBindMatrices"]).astype(np.float64).reshape(-1, 4, 4)
-        ibm = ibm.transpose(0, 2, 1)  # column-major
-    else:
-        ibm = np.repeat(np.eye(4)[None], len(joint_nodes), axis=0)
+    skin_of = {}
+    own_skins = []
+    for k, i in enumerate(order):
+        joints = [int(n) for n in skins[i]["joints"]]
+        if "inverseBindMatrices" in skins[i]:
+            ibm = _accessor(doc, blob, skins[i]["inverseBindMatrices"]).astype(np.float64).reshape(-1, 4, 4)
+            ibm = ibm.transpose(0, 2, 1)  # column-major
+        else:
+            ibm = np.repeat(np.eye(4)[None], len(joints), axis=0)
+        own_skins.append(Skin(np.array([node_to_joint[n] for n in joints], dtype=np.int64), ibm))
+        skin_of[i] = k
     rig = CastRig(
         names=[nodes[n].get("name", f"joint{j}") for j, n in enumerate(joint_nodes)],
         parents=parents,
@@ -254,14 +274,14 @@ def read_rig(data: bytes, label: str = "the character") -> CastRig:
         rotation=np.array([r for _, r, _ in trs]),
         scale=np.array([s for _, _, s in trs]),
         base=base,
-        inverse_bind=ibm,
+        skins=own_skins,
         humanoid=_humanoid(doc, node_to_joint),
     )
     if len(set(rig.names)) != len(rig.names):
         raise CastError(f"{label} has joints of the same name; every joint needs its own name")
     materials = doc.get("materials", [])
     for node in nodes:
-        if node.get("skin") != s_index or "mesh" not in node:
+        if node.get("skin") not in skin_of or "mesh" not in node:
             continue
         for prim in doc["meshes"][node["mesh"]]["primitives"]:
             attrs = prim.get("attributes", {})
@@ -295,6 +315,7 @@ def read_rig(data: bytes, label: str = "the character") -> CastRig:
                     colour=colour,
                     uv=uv,
                     texture=texture,
+                    skin=skin_of[node["skin"]],
                 )
             )
     if not rig.primitives:

@@ -198,3 +198,18 @@ def test_the_characters_texture_comes_along(walk):
     view = doc["bufferViews"][doc["images"][doc["textures"][texture]["source"]]["bufferView"]]
     image = Image.open(io.BytesIO(blob[view["byteOffset"] : view["byteOffset"] + view["byteLength"]]))
     assert image.getpixel((1, 1)) == (200, 30, 40)
+
+
+def test_a_mesh_with_a_skin_of_its_own_comes_along_and_follows_the_head(walk):
+    """VRoid's VRMs bind hair and face with skins of their own over the body's skeleton."""
+    data = rig_glb(rig_joints(MIXAMO), hair=True)
+    rig = read_rig(data)
+    assert len(rig.skins) == 2 and [p.skin for p in rig.primitives] == [0, 1]
+    glb = scene_glb(demo_scene(), [walk], cast=load_cast([CastMember(name="Eve", glb=data)]))
+    doc, blob = _glb(glb)
+    hair = next(n for n in doc["nodes"] if n.get("name") == "Eve_body_1")
+    skin = doc["skins"][hair["skin"]]
+    assert [doc["nodes"][j]["name"] for j in skin["joints"]] == ["mixamorig:Head"]
+    head = _world_at(doc, blob, 20, ["mixamorig:Head"])["mixamorig:Head"]
+    canon = Rig.from_motion(walk).joint_positions[20, JOINT_INDEX["Head"]]
+    assert np.linalg.norm(head[[0, 2]] - canon[[0, 2]]) < 0.1  # the head (and its hair) walks along
