@@ -103,6 +103,16 @@ class RenderReply(msgspec.Struct, frozen=True, kw_only=True, tag="render_reply")
     video: bytes = b""
 
 
+class CastMember(msgspec.Struct, frozen=True, kw_only=True):
+    """A user's own character for one story character (``wana animate --cast NAME=FILE``): the rigged mesh
+    as GLB bytes (a VRM is one; an FBX is converted before it is sent) and an optional joint map
+    (canonical joint -> the rig's joint name) for rigs whose names no table knows."""
+
+    name: str
+    glb: bytes
+    joint_map: dict[str, str] = {}
+
+
 class ExportRequest(Request["ExportReply"], frozen=True, kw_only=True, tag="export_request"):
     """Produce one whole file: the MP4 video, the animated GLB scene, one character's BVH, or the whole
     animation as USD (animation.usdc) or FBX (animation.fbx); the last two need optional packages on the
@@ -118,6 +128,7 @@ class ExportRequest(Request["ExportReply"], frozen=True, kw_only=True, tag="expo
     width: int = 640
     height: int = 480
     story: list[StorySentence] = []  # as RenderRequest.story
+    cast: list[CastMember] = []  # GLB and FBX: these characters wear the user's mesh, on its own joints
 
 
 class ExportReply(msgspec.Struct, frozen=True, kw_only=True, tag="export_reply"):

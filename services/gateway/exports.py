@@ -1,4 +1,4 @@
-"""Exports of a document (MP4 video, animated GLB scene, BVH motion) through the render service.
+"""Exports of a document (MP4 video, animated GLB scene, BVH motion, USD, FBX) through the render service.
 
 The document is brought up to date first (a no-op when the live session already computed the current
 version); the scene, motions and sentences with their commands then go to the render service as one
@@ -14,7 +14,13 @@ from services.orchestrator.exports import export_request
 from services.orchestrator.pipeline import PipelineResult
 from services.orchestrator.session import Session
 
-FORMATS: dict[str, str] = {"mp4": "video/mp4", "glb": "model/gltf-binary", "bvh": "application/octet-stream"}
+FORMATS: dict[str, str] = {
+    "mp4": "video/mp4",
+    "glb": "model/gltf-binary",
+    "bvh": "application/octet-stream",
+    "usd": "application/octet-stream",  # animation.usdc; the render worker needs usd-core
+    "fbx": "application/octet-stream",  # animation.fbx; the render worker needs Blender's bpy
+}
 
 
 class ExportUnavailable(RuntimeError):
@@ -49,7 +55,8 @@ def export_document(
 
     Args:
         session: the open document.
-        fmt: "mp4", "glb" or "bvh".
+        fmt: "mp4", "glb", "bvh", "usd" or "fbx" (the last two refused with a message naming the package
+            when the render worker lacks it).
         character: for BVH, the character to export ("" = the first one).
         width, height: video size in pixels (MP4).
 

@@ -3,7 +3,8 @@
 Writes DIR/animation.mp4, DIR/scene.glb, DIR/<character>.bvh and DIR/report.json; `--export` picks the
 formats (mp4, glb, bvh, usd: DIR/animation.usdc, fbx: DIR/animation.fbx) and `zip` bundles every file
 written with report.json in DIR/animation.zip. A stage whose logic is not in this build, or an export whose
-optional package is missing, is named in a clear message; nothing is faked.
+optional package is missing, is named in a clear message; nothing is faked. `--cast NAME=FILE` plays a
+story character with the user's own rigged humanoid (services/orchestrator/cast.py, wana.cast).
 """
 
 from __future__ import annotations
@@ -24,12 +25,14 @@ import msgspec
 
 from proto.common import ErrorCode
 from proto.fidelity import Check
-from proto.render import ExportFormat, ExportReply
+from proto.render import CastMember, ExportFormat, ExportReply
 from services.orchestrator.backend import Backend, InProcessBackend, StageFailed, StageUnavailable
+from services.orchestrator.cast import load_cast, unknown_names
 from services.orchestrator.exports import export
 from services.orchestrator.pipeline import PipelineResult
 from services.orchestrator.session import Orchestrator
 from services.orchestrator.timeline import FPS
+from wana.cast import CastError
 from wana.fidelity import story_checks, verdicts
 
 MAX_INPUT_BYTES = 1_000_000
@@ -103,6 +106,23 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="LIST",
         help="comma-separated files to write: mp4,glb,bvh (default), usd (animation.usdc, needs usd-core), "
         "fbx (animation.fbx, needs Blender's bpy), zip (animation.zip: every file written and report.json)",
+    )
+    p.add_argument(
+        "--cast",
+        action="append",
+        default=[],
+        metavar="NAME=FILE",
+        help="play the story's character NAME with your own rigged humanoid (.glb, .vrm, or .fbx with Blender's "
+        "bpy); its joints are found by name (Mixamo, VRM, Unity and Unreal humanoids); the GLB and FBX wear it. "
+        "Repeatable",
+    )
+    p.add_argument(
+        "--cast-map",
+        action="append",
+        default=[],
+        metavar="[NAME=]FILE",
+        help="a JSON object, canonical joint -> your joint name (Hips, Spine, Head, LeftArm, LeftForeArm, LeftHand, "
+        "LeftUpLeg, LeftLeg, LeftFoot, the Right ones...), for a --cast rig whose names no table knows",
     )
     return p
 
@@ -241,6 +261,7 @@ def write_exports(
     width: int = 640,
     height: int = 480,
     formats: Sequence[str] = DEFAULT_EXPORTS,
+    cast: Sequence[CastMember] = (),
 ) -> dict[str, Path]:
     """The asked files (ExportRequests through the backend, as the gateway sends them: animation.mp4,
     scene.glb, one BVH per character, animation.usdc, animation.fbx), report.json with a "render" section,
@@ -257,7 +278,7 @@ def write_exports(
         if fmt == "bvh":
             replies += [export(backend, result, "bvh", character=name) for name in sorted(result.motions)]
         else:
-            replies.append(export(backend, result, fmt, width=width, height=height))
+            replies.append(export(backend, result, fmt, width=width, height=height, cast=cast))
     for reply in replies:
         paths[reply.filename] = out / reply.filename
         paths[reply.filename].write_bytes(reply.data)
@@ -312,6 +333,11 @@ def main(argv: list[str]) -> int:
             print(f"wana animate: {why}", file=sys.stderr)
         return 2
     text = read_story(args.file)
+    try:
+        cast = load_cast(args.cast, args.cast_map)
+    except CastError as exc:
+        print(f"wana animate: {exc}", file=sys.stderr)
+        return 2
     out = Path(args.out)
     if not text.strip():
         print("wana animate: the story is empty; wrote nothing", file=sys.stderr)
@@ -335,6 +361,11 @@ def main(argv: list[str]) -> int:
                     print(f"{sid} [{d.span.start}:{d.span.end}] {d.severity}: {d.message}", file=sys.stderr)
             print(f"wana animate: {empty}; wrote nothing", file=sys.stderr)
             return 2
+        strangers = unknown_names(cast, sorted(result.motions))
+        if strangers:
+            for why in strangers:
+                print(f"wana animate: {why}", file=sys.stderr)
+            return 2
         out.mkdir(parents=True, exist_ok=True)
         report = summary(result)
         (out / "report.json").write_text(json.dumps(report, indent=2, ensure_ascii=False))
@@ -342,7 +373,14 @@ def main(argv: list[str]) -> int:
         if result.scene is not None and not result.unavailable:
             try:
                 paths = write_exports(
-                    backend, result, report, out, width=args.width, height=args.height, formats=args.export
+                    backend,
+                    result,
+                    report,
+                    out,
+                    width=args.width,
+                    height=args.height,
+                    formats=args.export,
+                    cast=cast,
                 )
             except (StageFailed, StageUnavailable) as exc:
                 result.unavailable["render"] = str(exc)

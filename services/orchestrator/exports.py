@@ -7,8 +7,10 @@ on frames itself (services/render/handlers.py), so no caller needs render's code
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from proto.common import Header
-from proto.render import ExportFormat, ExportReply, ExportRequest, StorySentence
+from proto.render import CastMember, ExportFormat, ExportReply, ExportRequest, StorySentence
 from proto.ssg import Command
 from services.orchestrator.backend import Backend
 from services.orchestrator.result import PipelineResult
@@ -26,7 +28,13 @@ def story_of(result: PipelineResult) -> list[StorySentence]:
 
 
 def export_request(
-    result: PipelineResult, fmt: ExportFormat, *, character: str = "", width: int = 640, height: int = 480
+    result: PipelineResult,
+    fmt: ExportFormat,
+    *,
+    character: str = "",
+    width: int = 640,
+    height: int = 480,
+    cast: Sequence[CastMember] = (),
 ) -> ExportRequest:
     """The render service's request for one file of a result that has a scene.
 
@@ -44,6 +52,7 @@ def export_request(
         width=width,
         height=height,
         story=story_of(result),
+        cast=list(cast) if fmt in ("glb", "fbx") else [],  # the formats that carry the user's meshes
     )
 
 
@@ -55,6 +64,9 @@ def export(
     character: str = "",
     width: int = 640,
     height: int = 480,
+    cast: Sequence[CastMember] = (),
 ) -> ExportReply:
     """One file of the result from the render service (StageFailed / StageUnavailable as any stage call)."""
-    return backend.call(export_request(result, fmt, character=character, width=width, height=height))
+    return backend.call(
+        export_request(result, fmt, character=character, width=width, height=height, cast=cast)
+    )

@@ -16,12 +16,14 @@ from __future__ import annotations
 
 import json
 import struct
+from collections.abc import Mapping
 from pathlib import Path
 
 import numpy as np
 
 from proto.motion_data import Motion
 from proto.scene import Scene
+from services.render.cast_gltf import CastCharacter, add_cast_character
 from services.render.gltf_camera import add_camera
 from services.render.scene_geometry import (
     ColouredMesh,
@@ -339,6 +341,7 @@ def scene_glb(
     fps: float = 30.0,
     camera: CameraTrack | None = None,
     armature_nodes: bool = False,
+    cast: Mapping[str, CastCharacter] | None = None,
 ) -> bytes:
     """The GLB bytes of the scene with its animated characters and held props (and the video's camera when
     given: services.render.gltf_camera).
@@ -346,7 +349,10 @@ def scene_glb(
     ``armature_nodes`` puts each character's Hips under a plain node named after the character (its mesh
     node then is "<name>_body"): Blender's glTF importer makes an armature of the parent of a skeleton's
     root, so with the Hips at the scene root every character would land in one shared armature. The FBX
-    export asks for it; the GLB we ship keeps the validator's layout."""
+    export asks for it; the GLB we ship keeps the validator's layout.
+
+    ``cast`` (story name -> the user's character, services.render.cast_gltf) swaps those characters' built-in
+    bodies for the user's mesh on its own joints, always under a node of the character's name."""
     b = _Builder()
     static_mat = b.material("scene")
     held = held_ids(motions)
@@ -357,6 +363,9 @@ def scene_glb(
     if motions:
         skin_mat = b.material("characters")
         for m in motions:
+            if cast and m.character in cast:
+                add_cast_character(b, m.character, cast[m.character], m, animation, fps)
+                continue
             rig = Rig.from_motion(m)
             _add_character(b, rig, skin_mat, animation, fps, armature_nodes)
     if camera is not None:
@@ -372,9 +381,10 @@ def write_glb(
     motions: list[Motion],
     fps: float = 30.0,
     camera: CameraTrack | None = None,
+    cast: Mapping[str, CastCharacter] | None = None,
 ) -> Path:
     """Write ``scene_glb`` to a file."""
     out = Path(path)
     out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_bytes(scene_glb(scene, motions, fps, camera))
+    out.write_bytes(scene_glb(scene, motions, fps, camera, cast=cast))
     return out

@@ -20,6 +20,7 @@ from proto.common import reply_header
 from proto.render import Caption, ExportReply, ExportRequest, RenderReply, RenderRequest, TimedCommand
 from services.render.bvh_export import motion_bvh, safe_filename
 from services.render.camera_checks import staged_checks
+from services.render.cast_gltf import CastCharacter, load_cast
 from services.render.director import shot_messages
 from services.render.fbx_export import glb_to_fbx
 from services.render.gltf_export import scene_glb
@@ -29,6 +30,7 @@ from services.render.timeline import make_captions, place_commands
 from services.render.usd_export import scene_usd
 from services.render.video import FPS, encode_mp4
 from wana.bus.service import InvalidInput
+from wana.cast import CastError
 
 MAX_REPLY_BYTES = 30 * 1024 * 1024  # under the bus's 32 MiB frame cap
 MAX_SIDE = 2048
@@ -152,6 +154,14 @@ def handle_render(req: RenderRequest) -> RenderReply:
         )
 
 
+def _cast(req: ExportRequest) -> dict[str, CastCharacter]:
+    """The request's own characters, loaded (a file that cannot be used is the caller's error)."""
+    try:
+        return load_cast(list(req.cast))
+    except CastError as exc:
+        raise InvalidInput(str(exc)) from exc
+
+
 def handle_export(req: ExportRequest) -> ExportReply:
     """Produce the MP4 (with its camera checks, services.render.camera_checks), the GLB, one character's BVH,
     or the USD or FBX of the whole animation."""
@@ -166,7 +176,10 @@ def handle_export(req: ExportRequest) -> ExportReply:
                 filename="scene.glb",
                 media_type="model/gltf-binary",
                 data=scene_glb(
-                    req.scene, list(req.motions), camera=stage.camera_track(req.width, req.height)
+                    req.scene,
+                    list(req.motions),
+                    camera=stage.camera_track(req.width, req.height),
+                    cast=_cast(req),
                 ),
                 n_frames=stage.n_frames,
                 shots=shot_messages(stage.shots),
@@ -179,7 +192,9 @@ def handle_export(req: ExportRequest) -> ExportReply:
                 if req.format == "usd":
                     data, filename = scene_usd(req.scene, list(req.motions), camera, FPS), "animation.usdc"
                 else:
-                    glb = scene_glb(req.scene, list(req.motions), camera=camera, armature_nodes=True)
+                    glb = scene_glb(
+                        req.scene, list(req.motions), camera=camera, armature_nodes=True, cast=_cast(req)
+                    )
                     data, filename = glb_to_fbx(glb), "animation.fbx"
             except ModuleNotFoundError as exc:  # an optional package this worker lacks
                 raise InvalidInput(str(exc)) from exc

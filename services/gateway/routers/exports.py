@@ -1,4 +1,4 @@
-"""Export downloads: MP4, animated GLB, BVH, made by the render service (503 when it is not available)."""
+"""Export downloads: MP4, animated GLB, BVH, USD, FBX, made by the render service (503 when it is not available)."""
 
 from __future__ import annotations
 
@@ -23,7 +23,7 @@ router = APIRouter(prefix="/api/documents", tags=["exports"])
 
 @router.get(
     "/{doc_id}/export/{fmt}",
-    summary="Download the animation as MP4, the scene as animated GLB, or a character's motion as BVH",
+    summary="Download the animation as MP4, USD or FBX, the scene as animated GLB, or a character's motion as BVH",
     responses={
         200: {"content": {m: {} for m in FORMATS.values()}},
         409: {"description": "nothing to export yet (no scene, or no motion for BVH)"},
@@ -34,7 +34,7 @@ router = APIRouter(prefix="/api/documents", tags=["exports"])
 )
 async def export(
     doc_id: str,
-    fmt: Literal["mp4", "glb", "bvh"],
+    fmt: Literal["mp4", "glb", "bvh", "usd", "fbx"],
     orch: OrchestratorDep,
     character: str = Query("", max_length=100, description="BVH: which character ('' = the first)"),
     width: int = Query(640, ge=16, le=2048, description="MP4: width in pixels"),

@@ -18,7 +18,7 @@ def test_create_then_get_returns_the_text_version_sentences_and_export_links(gat
     got = gateway.http.get(f"/api/documents/{doc['doc_id']}").json()
     assert got["text"] == "A desk$. Eve walks." and got["version"] == 0 and got["title"] == "office"
     assert [(s["start"], s["end"]) for s in got["sentences"]] == [(0, 8), (9, 19)]
-    assert set(got["exports"]) == {"mp4", "glb", "bvh"}
+    assert set(got["exports"]) == {"mp4", "glb", "bvh", "usd", "fbx"}
     assert got["live"] == f"/api/documents/{doc['doc_id']}/live"
 
 
@@ -59,7 +59,7 @@ def test_unknown_documents_are_404_with_a_code(gateway) -> None:
 
 def test_exports_answer_503_when_the_render_service_is_not_available(gateway) -> None:
     doc_id = gateway.http.post("/api/documents", json={"text": "Eve walks."}).json()["doc_id"]
-    for fmt in ("mp4", "glb", "bvh"):
+    for fmt in ("mp4", "glb", "bvh", "usd", "fbx"):
         r = gateway.http.get(f"/api/documents/{doc_id}/export/{fmt}")
         assert r.status_code == 503 and r.json()["detail"]["code"] == "E011"
         assert f"{fmt.upper()} export is not available" in r.json()["detail"]["message"]
