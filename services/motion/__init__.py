@@ -1,6 +1,6 @@
 """The motion service: neural locomotion, template actions, blending and IK.
 
-CONTRACT: SynthesizeRequest -> SynthesizeReply | ErrorReply.
+CONTRACT: SynthesizeRequest -> SynthesizeReply | ErrorReply; PairRequest -> PairReply | ErrorReply.
 
 Python API: wana.domain.actions (action_names, load_library), services.motion.planning.plan_actions,
 services.motion.synthesis (synthesise_segment, synthesise), wana.domain.bvh (read_bvh, write_bvh),

@@ -31,7 +31,7 @@ from services.orchestrator.document import Sentence
 from services.orchestrator.slotting import Slotting
 from services.orchestrator.stages import StageContext, content_of
 from services.orchestrator.stages.seats import furnish
-from services.orchestrator.stages.social import frame_count
+from services.orchestrator.stages.social import fit_cast, frame_count, paired_actions
 from services.orchestrator.staging import (
     Doorway,
     doorway,
@@ -372,6 +372,9 @@ def animate(
         if door is not None and not on.all():
             motion = _wait_outside(motion, on, door.outside(waiting_place[name]))
         out.motions[name] = motion
+    fitted = fit_cast(ctx, out.motions, paired_actions(characters, plan))  # give way, touch on both bodies
+    if fitted is not None:
+        out.motions = dict(fitted.motions)
     return out
 
 
