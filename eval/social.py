@@ -13,7 +13,7 @@ wall time of plan_social per plan over the cases' stories and a two-character te
 
 The cast on screen (the whole pipeline, in-process, over CAST_STORIES or the .txt stories of --stories DIR):
 overlap_frames (frames where two characters on stage overlap by more than the story checks' 3 cm, summed
-over the stories), entrance_ok_share (share of "walks in" / "enters" / "comes in" actions whose character is
+over the stories; the frames of a two-person clip such as a hug touch on purpose and do not count), entrance_ok_share (share of "walks in" / "enters" / "comes in" actions whose character is
 off stage before and first shown outside the room or within 1 m of a door), shared_slots (seated frames where
 two characters' hips are within 0.35 m: one seat for two), hand_contact_cm (p95 over the contact frames of
 every two-person action, its clip's interaction window, of how far the hands that should touch are apart: the
@@ -272,9 +272,15 @@ def cast_metrics(stories: dict[str, str], seed: int = 0) -> dict[str, float | in
                 frames = max((b.frames for b in bodies.values()), default=0)
                 bad = np.zeros(frames, bool)
                 seated_close = np.zeros(frames, bool)
+                touching = {n: np.zeros(bodies[n].frames, bool) for n in names}
+                for n in names:  # a hug or a handshake touches on purpose (as the story checks allow)
+                    for seg in motions[n].segments:
+                        if seg.action in MEET or seg.action in ON_BODY:
+                            touching[n][seg.start_frame : seg.end_frame] = True
                 for i, a in enumerate(names):
                     for b in names[i + 1 :]:
-                        fa, _ = overlap(bodies[a], bodies[b])
+                        n_ab = min(bodies[a].frames, bodies[b].frames)
+                        fa, _ = overlap(bodies[a], bodies[b], touching[a][:n_ab] | touching[b][:n_ab])
                         both = on[a] & on[b]
                         bad |= fa.failing & (fa.amount > OVERLAP_M) & both
                         ha, hb = bodies[a].joint("Hips"), bodies[b].joint("Hips")

@@ -98,8 +98,9 @@ class Track:
             n for n in ("root", "rotations", "foot", "present", "expression") if getattr(self, n) is not None
         ]
 
-    def insert(self, at: int, count: int) -> None:
-        """``count`` copies of frame ``at`` before it (a held pose, both feet down)."""
+    def insert(self, at: int, count: int, before: bool = False) -> None:
+        """``count`` copies of frame ``at`` before it (a held pose, both feet down); with ``before`` they
+        belong to the segment that ends at ``at`` (the segment starting there starts later)."""
         for name in self._arrays():
             a = getattr(self, name)
             if at >= len(a):
@@ -108,7 +109,7 @@ class Track:
             if name == "foot":
                 held[:] = 1
             setattr(self, name, np.concatenate([a[:at], held, a[at:]]))
-        self.segments = [_shift_segment(s, at, count) for s in self.segments]
+        self.segments = [_shift_segment(s, at - 1 if before else at, count) for s in self.segments]
         self.props = [_insert_prop(p, at, count) for p in self.props]
 
     def remove(self, at: int, count: int) -> None:
@@ -214,7 +215,7 @@ def _stop_frame(track: Track, start: int, conflict: int) -> int:
     return at
 
 
-def _take_back(track: Track, after: int, count: int) -> int:
+def take_back(track: Track, after: int, count: int) -> int:
     """Remove up to ``count`` frames from the holds after frame ``after``; returns how many are left over."""
     while count > 0:
         holds = [s for s in track.segments if s.action == "hold" and s.start_frame >= after]
@@ -288,7 +289,7 @@ def give_way(motions: Mapping[str, Motion]) -> tuple[dict[str, Motion], list[str
             hopeless.add((walker, seg.start_frame, other))
             continue
         track.insert(stop, wait)
-        left = _take_back(track, seg.end_frame + wait, wait)
+        left = take_back(track, seg.end_frame + wait, wait)
         del left  # the story grows by what no hold could give back (padded below)
         changed.add(walker)
         notes.append(f"{walker} waits {wait / track.motion.fps:.1f} s for {other} to pass")
@@ -304,4 +305,4 @@ def give_way(motions: Mapping[str, Motion]) -> tuple[dict[str, Motion], list[str
     return out, notes
 
 
-__all__ = ["Track", "give_way", "is_walk"]
+__all__ = ["Track", "give_way", "is_walk", "take_back"]

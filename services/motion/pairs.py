@@ -330,6 +330,47 @@ def _segment(motion: Motion, pair: PairedAction) -> Segment | None:
     return None
 
 
+def align_mutual(motions: Mapping[str, Motion], pairs: Sequence[PairedAction]) -> dict[str, Motion]:
+    """Two characters doing one action together ("They hug") start their clips on the same frame.
+
+    Each clip starts once its own character has got there: the one who walks up to the other starts late,
+    the one who waits plays its clip into the air. The earlier clip is held back (its character keeps the
+    pose it had) to start with the later one; the wait is taken back from that character's next hold.
+    """
+    from services.motion.giveway import Track, take_back
+
+    out = dict(motions)
+    seen: set[tuple[str, str, int]] = set()
+    for pair in pairs:
+        motion = out.get(pair.actor)
+        seg = _segment(motion, pair) if motion is not None else None
+        if seg is None or not pair.partner or pair.partner not in out:
+            continue
+        theirs = [
+            s
+            for s in out[pair.partner].segments
+            if s.action == pair.action and s.start_frame < seg.end_frame and s.end_frame > seg.start_frame
+        ]
+        if not theirs or (pair.partner, pair.actor, theirs[0].start_frame) in seen:
+            continue
+        other = theirs[0]
+        seen.add((pair.actor, pair.partner, seg.start_frame))
+        shift = seg.start_frame - other.start_frame
+        if shift == 0:
+            continue
+        early, at = (pair.partner, other.start_frame) if shift > 0 else (pair.actor, seg.start_frame)
+        track = Track.of(out[early])
+        length = track.frames
+        track.insert(at, abs(shift), before=True)
+        take_back(track, at + abs(shift) + (other.end_frame - other.start_frame), abs(shift))
+        if track.frames > length:  # no hold to give the wait back: the end is cut (it only holds a pose)
+            track.remove(length, track.frames - length)
+        elif track.frames < length:
+            track.pad(length)
+        out[early] = track.to_motion()
+    return out
+
+
 def solve_pairs(
     motions: Mapping[str, Motion], pairs: Sequence[PairedAction]
 ) -> tuple[dict[str, Motion], list[PairContact], list[str]]:
@@ -342,6 +383,7 @@ def solve_pairs(
     Returns:
         the motions (the changed ones replaced), the contact gaps reached per pair, and diagnostics.
     """
+    motions = align_mutual(motions, pairs)
     arrays = {
         n: (from_wire(m.rotations).astype(np.float64), from_wire(m.root_position).astype(np.float64))
         for n, m in motions.items()
@@ -350,6 +392,7 @@ def solve_pairs(
     contacts: list[PairContact] = []
     notes: list[str] = []
     done: set[tuple[str, str, int]] = set()  # (partner, actor, window start) already solved as a meet
+    leaned: set[tuple[frozenset[str], int]] = set()  # (the two, window start) already leant towards each other
     for pair in pairs:
         spec = PAIRS.get(pair.action)
         motion = motions.get(pair.actor)
@@ -389,9 +432,11 @@ def solve_pairs(
         reach_b = profile(n, s0 + lag, c0, c1, e0)
         a.rotations = turn_towards(a.rotations, a.root, b.root, held)
         b.rotations = turn_towards(b.rotations, b.root, a.root, held)
-        a.rotations = lean_in(a.rotations, spec.lean, reach_a)  # leaning: upright again by the clip's end
-        if not mutual:  # a partner doing the same leans in its own pass
+        together = (frozenset((pair.actor, partner)), w0)
+        if together not in leaned:  # "They hug": both lean in once, in the first of the two passes
+            a.rotations = lean_in(a.rotations, spec.lean, reach_a)  # upright again by the clip's end
             b.rotations = lean_in(b.rotations, spec.lean, reach_b)
+            leaned.add(together)
         if not mutual:
             b.rotations = answer_pose(b.rotations, a.rotations, spec.answer, reach_b)
         pos_a, grot_a = a.fk()
