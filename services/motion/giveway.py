@@ -117,7 +117,7 @@ class Track:
         for name in self._arrays():
             a = getattr(self, name)
             setattr(self, name, np.concatenate([a[:at], a[at + count :]]))
-        kept = []
+        kept: list[Segment] = []
         for s in self.segments:
             start = s.start_frame - _overlap_before(s.start_frame, at, count)
             end = s.end_frame - _overlap_before(s.end_frame, at, count)

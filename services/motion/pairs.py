@@ -79,7 +79,9 @@ class PairSpec:
     lean: float = 0.0
 
 
-BACK = 0.66  # share of a hug's hand direction that is "back" (the rest: the flank; the fingers reach the back)
+BACK = (
+    0.66  # share of a hug's hand direction that is "back" (the rest: the flank; the fingers reach the back)
+)
 PAIRS: dict[str, PairSpec] = {
     "hug": PairSpec(
         actor=(
@@ -392,7 +394,9 @@ def solve_pairs(
     contacts: list[PairContact] = []
     notes: list[str] = []
     done: set[tuple[str, str, int]] = set()  # (partner, actor, window start) already solved as a meet
-    leaned: set[tuple[frozenset[str], int]] = set()  # (the two, window start) already leant towards each other
+    leaned: set[tuple[frozenset[str], int]] = (
+        set()
+    )  # (the two, window start) already leant towards each other
     for pair in pairs:
         spec = PAIRS.get(pair.action)
         motion = motions.get(pair.actor)

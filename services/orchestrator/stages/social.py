@@ -90,7 +90,8 @@ def paired_actions(
     the characters' order, each with its partner when the text names one and the partner's answer delay
     (the social model's response delay to that action, when it has one)."""
     delays = {
-        (r.actor, r.action_index, r.responder): r.delay_s for r in (plan.responses if plan is not None else [])
+        (r.actor, r.action_index, r.responder): r.delay_s
+        for r in (plan.responses if plan is not None else [])
     }
     out: list[PairedAction] = []
     for name, (node, _) in characters.items():
