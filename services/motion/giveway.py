@@ -215,6 +215,21 @@ def _stop_frame(track: Track, start: int, conflict: int) -> int:
     return at
 
 
+def slack(track: Track, after: int, action_index: int) -> int:
+    """Frames of hold after frame ``after`` and before the character's next action (other than ``action_index``,
+    the one walking): what a wait can be taken back from without starting that next action late, which
+    would put it after actions the text tells later."""
+    total = 0
+    for s in sorted(track.segments, key=lambda s: s.start_frame):
+        if s.start_frame < after:
+            continue
+        if s.action == "hold":
+            total += s.end_frame - s.start_frame
+        elif s.action_index != action_index:
+            break
+    return total
+
+
 def take_back(track: Track, after: int, count: int) -> int:
     """Remove up to ``count`` frames from the holds after frame ``after``; returns how many are left over."""
     while count > 0:
@@ -285,8 +300,8 @@ def give_way(motions: Mapping[str, Motion]) -> tuple[dict[str, Motion], list[str
             ):
                 wait = count
                 break
-        if not wait:
-            hopeless.add((walker, seg.start_frame, other))
+        if not wait or slack(track, seg.end_frame, seg.action_index) < wait:
+            hopeless.add((walker, seg.start_frame, other))  # no wait clears the way, or none fits the story
             continue
         track.insert(stop, wait)
         left = take_back(track, seg.end_frame + wait, wait)
@@ -305,4 +320,4 @@ def give_way(motions: Mapping[str, Motion]) -> tuple[dict[str, Motion], list[str
     return out, notes
 
 
-__all__ = ["Track", "give_way", "is_walk", "take_back"]
+__all__ = ["Track", "give_way", "is_walk", "slack", "take_back"]

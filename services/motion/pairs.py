@@ -37,6 +37,9 @@ OUTSIDE_M = 0.005  # a hand rests this far outside the surface it touches
 RAMP_FRAMES = 12  # frames the partner's turn and answer fade in before the actor's clip and out after it
 TURN_MIN = 0.12  # radians: a partner this far off facing the actor is turned towards them
 REACH_SHARE = 0.93  # a meeting point is kept within this share of each arm's straight reach
+HANDS_MAX_MS = 9.0  # m/s: a fit that moves a hand faster than this is dropped (the story checks allow 10)
+BUSY_HIPS_M = 0.1  # metres the partner's hips rise or drop during the clip that mean it sits down or gets up
+SEATED_HIPS_M = 0.75  # metres: hips lower than this are seated
 REACH_MAX = 1.6  # metres between the two hips beyond which no contact is attempted (nobody walked up)
 ARM_JOINTS = tuple(
     n for n in JOINT_NAMES if n.startswith(("LeftShoulder", "LeftArm", "LeftForeArm", "LeftHand"))
@@ -425,6 +428,9 @@ def solve_pairs(
             )
             continue
         mutual = _mutual(motions[partner], pair, partner, w0, w1)
+        # A partner sitting down or standing up meanwhile is busy: it neither turns nor answers (its arm
+        # pulled to a shared point while its body drops would whip), the actor reaches for it as it is.
+        busy = float(np.ptp(root_b[seg.start_frame : seg.end_frame, 1])) > BUSY_HIPS_M
         a = _Side(pair.actor, rot_a[lo:hi].copy(), root_a[lo:hi], offsets_of(pair.actor))
         b = _Side(partner, rot_b[lo:hi].copy(), root_b[lo:hi], offsets_of(partner))
         n = hi - lo
@@ -435,19 +441,24 @@ def solve_pairs(
         reach_a = profile(n, s0, c0, c1, e0)  # the hands: full at the contact frames
         reach_b = profile(n, s0 + lag, c0, c1, e0)
         a.rotations = turn_towards(a.rotations, a.root, b.root, held)
-        b.rotations = turn_towards(b.rotations, b.root, a.root, held)
+        if root_b[w0, 1] >= SEATED_HIPS_M and not busy:  # a seated partner's legs would swing into the actor
+            b.rotations = turn_towards(b.rotations, b.root, a.root, held)
         together = (frozenset((pair.actor, partner)), w0)
         if together not in leaned:  # "They hug": both lean in once, in the first of the two passes
             a.rotations = lean_in(a.rotations, spec.lean, reach_a)  # upright again by the clip's end
-            b.rotations = lean_in(b.rotations, spec.lean, reach_b)
+            if not busy:
+                b.rotations = lean_in(b.rotations, spec.lean, reach_b)
             leaned.add(together)
-        if not mutual:
+        if not mutual and not busy:
             b.rotations = answer_pose(b.rotations, a.rotations, spec.answer, reach_b)
         pos_a, grot_a = a.fk()
         pos_b, grot_b = b.fk()
         goals_a = [(t.joint, surface_point(pos_b, grot_b, t)) for t in spec.actor]
-        goals_b = [] if mutual else [(t.joint, surface_point(pos_a, grot_a, t)) for t in spec.partner]
+        goals_b = [] if mutual or busy else [(t.joint, surface_point(pos_a, grot_a, t)) for t in spec.partner]
         for ja, jb in spec.meet:
+            if busy:
+                goals_a.append((ja, pos_b[:, JOINT_INDEX[jb]]))
+                continue
             mid = (pos_a[:, JOINT_INDEX[ja]] + pos_b[:, JOINT_INDEX[jb]]) / 2
             mid = _within_reach(mid, _shoulder_reach(pos_a, ja), _shoulder_reach(pos_b, jb))
             goals_a.append((ja, mid))
@@ -462,6 +473,14 @@ def solve_pairs(
                 actor=pair.actor, partner=partner, action=pair.action, start_frame=w0, end_frame=w1, gap_m=gap
             )
         )
+        for side, rot in ((a, rot_a), (b, rot_b)):
+            if (
+                _fastest_hand(side) > HANDS_MAX_MS
+                and _fastest_hand(_Side(side.name, rot[lo:hi], side.root, side.offsets)) <= HANDS_MAX_MS
+            ):
+                side.rotations = rot[
+                    lo:hi
+                ].copy()  # the fit would whip a hand: this side keeps its own motion
         rot_a[lo:hi], rot_b[lo:hi] = a.rotations, b.rotations
         changed |= {pair.actor, partner}
         if spec.meet:
@@ -473,6 +492,13 @@ def solve_pairs(
             motions[name], rotations=to_wire(quat.normalize(rot).astype(np.float32))
         )
     return out, contacts, notes
+
+
+def _fastest_hand(side: _Side, fps: int = 30) -> float:
+    """m/s: the fastest either hand moves between two frames."""
+    pos, _ = side.fk()
+    hands = pos[:, [JOINT_INDEX["LeftHand"], JOINT_INDEX["RightHand"]]]
+    return float(np.linalg.norm(np.diff(hands, axis=0), axis=2).max() * fps) if len(hands) > 1 else 0.0
 
 
 def _shoulder_reach(pos: np.ndarray, end: str) -> tuple[np.ndarray, np.ndarray]:
