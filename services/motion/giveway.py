@@ -218,7 +218,7 @@ def _stop_frame(track: Track, start: int, conflict: int) -> int:
 def slack(track: Track, after: int, action_index: int) -> int:
     """Frames of hold after frame ``after`` and before the character's next action (other than ``action_index``,
     the one walking): what a wait can be taken back from without starting that next action late, which
-    would put it after actions the text tells later."""
+    would put it after actions the text tells later. With no next action, any wait fits."""
     total = 0
     for s in sorted(track.segments, key=lambda s: s.start_frame):
         if s.start_frame < after:
@@ -226,8 +226,8 @@ def slack(track: Track, after: int, action_index: int) -> int:
         if s.action == "hold":
             total += s.end_frame - s.start_frame
         elif s.action_index != action_index:
-            break
-    return total
+            return total
+    return MAX_WAIT_FRAMES  # nothing after it: the story may grow (the others hold their last pose)
 
 
 def take_back(track: Track, after: int, count: int) -> int:

@@ -19,6 +19,7 @@ from services.orchestrator.stages import StageContext, content_of
 from services.orchestrator.views import social_part
 from wana.arrays import from_wire, to_wire
 from wana.domain.actions import get_clip
+from wana.domain.routes import Reservations
 
 
 def social_plan(ctx: StageContext, graphs: Sequence[SentenceGraph]) -> SocialPlan:
@@ -112,9 +113,55 @@ def paired_actions(
     return out
 
 
+LOCOMOTION = ("walk", "walk_slowly", "walk_backward", "run", "jog", "tiptoe", "march", "limp")
+
+
+def _walking(motion: Motion) -> np.ndarray:
+    """(T,) bool: the frames of the motion's locomotion segments."""
+    out = np.zeros(frame_count(motion), bool)
+    for seg in motion.segments:
+        try:
+            walk = seg.action in LOCOMOTION or "locomotion" in get_clip(seg.action).tags
+        except KeyError:
+            walk = False
+        if walk:
+            out[seg.start_frame : seg.end_frame] = True
+    return out
+
+
+def walkers_meet(motions: dict[str, Motion]) -> bool:
+    """True when some character, while walking, comes within a body of another on stage (the reservation
+    table's test, wana.domain.routes.Reservations): only then can giving way change anything."""
+    table = Reservations()
+    paths: dict[str, np.ndarray] = {}
+    for name, motion in motions.items():
+        xz = from_wire(motion.root_position)[:, [0, 2]].astype(np.float64)
+        if motion.present is not None:
+            on = from_wire(motion.present).astype(bool).reshape(-1)[: len(xz)]
+            xz[: len(on)][~on] = np.nan
+        paths[name] = xz
+        table.reserve(name, xz)
+    for name, motion in motions.items():
+        walking = _walking(motion)
+        if not walking.any():
+            continue
+        mine = paths[name].copy()
+        mine[~walking[: len(mine)]] = np.nan
+        if table.first_conflict(mine, range(len(mine)), exclude={name}) is not None:
+            return True
+    return False
+
+
 def fit_cast(ctx: StageContext, motions: dict[str, Motion], pairs: list[PairedAction]) -> PairReply | None:
-    """The `cast` node: the motions with walkers giving way and paired contacts solved (None: one character)."""
+    """The `cast` node: the motions with walkers giving way and paired contacts solved.
+
+    None (and no node at all) when there is nothing to fit: one character, no two-person action and no two
+    characters who meet while one walks. So a story whose characters never come near each other recomputes
+    as before, and an edit there re-runs no `cast` node.
+    """
     if len(motions) < 2 or len({frame_count(m) for m in motions.values()}) != 1:
+        return None
+    if not pairs and not walkers_meet(motions):
         return None
     request = PairRequest(header=ctx.header(), motions=motions, pairs=pairs)
 
