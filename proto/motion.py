@@ -57,6 +57,9 @@ class SynthesizeRequest(Request["SynthesizeReply"], frozen=True, kw_only=True, t
     occupied: list[
         tuple[float, float]
     ] = []  # x, z (metres, world) of other characters seated by then: seat slots there are not free
+    bodies: list[
+        tuple[float, float]
+    ] = []  # x, z (metres, world) of other characters standing in the room by then: walks go round them
 
 
 class SynthesizeReply(msgspec.Struct, frozen=True, kw_only=True, tag="synthesize_reply"):

@@ -33,6 +33,8 @@ def handle_synthesize(req: SynthesizeRequest) -> SynthesizeReply:
             raise InvalidInput(f"others[{name!r}] must be finite (x, z)")
     if not all(np.isfinite(xz).all() for xz in req.occupied):
         raise InvalidInput("occupied must be finite (x, z) pairs")
+    if not all(np.isfinite(xz).all() for xz in req.bodies):
+        raise InvalidInput("bodies must be finite (x, z) pairs")
     routes = list(req.routes)
     route_diags: list[str] = []
 
@@ -44,7 +46,7 @@ def handle_synthesize(req: SynthesizeRequest) -> SynthesizeReply:
             r = np.asarray(routes.pop(0), float).reshape(-1, 2)
             if len(r) >= 2 and np.isfinite(r).all():
                 return r
-        wps, why = scene_route(scene, a, b, ignore)
+        wps, why = scene_route(scene, a, b, ignore, bodies=req.bodies)
         if why:
             route_diags.append(why)
         return wps
