@@ -285,20 +285,22 @@ def give_way(motions: Mapping[str, Motion]) -> tuple[dict[str, Motion], list[str
         if len(moving) < 2 or float(np.linalg.norm(moving - moving[0], axis=1).max()) < STILL_M:
             hopeless.add((walker, seg.start_frame, other))  # standing still: waiting will not clear the way
             continue
-        stop = _stop_frame(track, seg.start_frame, frame)
         table_others = Reservations(clearance=table.clearance)
         for n, xz in paths.items():
             if n != walker:
                 table_others.reserve(n, xz)
-        wait = 0
-        for count in range(STEP_FRAMES, MAX_WAIT_FRAMES + 1, STEP_FRAMES):
-            trial = _waited(paths[walker], stop, count)
-            skip = {walker} | {o for (w, s, o) in hopeless if w == walker and s == seg.start_frame}
-            if (
-                table_others.first_conflict(trial, range(stop, min(len(trial), seg.end_frame + count)), skip)
-                is None
-            ):
-                wait = count
+        skip = {walker} | {o for (w, s, o) in hopeless if w == walker and s == seg.start_frame}
+        wait, stop = 0, seg.start_frame
+        # Stop just before the meeting, or earlier when the other passes through that spot too.
+        for back in range(0, 6 * LEAD_FRAMES + 1, LEAD_FRAMES):
+            stop = _stop_frame(track, seg.start_frame, frame - back)
+            for count in range(STEP_FRAMES, MAX_WAIT_FRAMES + 1, STEP_FRAMES):
+                trial = _waited(paths[walker], stop, count)
+                tested = range(stop, min(len(trial), seg.end_frame + count))
+                if table_others.first_conflict(trial, tested, skip) is None:
+                    wait = count
+                    break
+            if wait or stop == seg.start_frame:
                 break
         if not wait or slack(track, seg.end_frame, seg.action_index) < wait:
             hopeless.add((walker, seg.start_frame, other))  # no wait clears the way, or none fits the story
