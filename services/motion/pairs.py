@@ -11,6 +11,10 @@ between them, the arms of a hug reach the other's back. IK runs on each characte
 offsets the renderer and the story checks use), so the hands meet on screen, not on the reference skeleton.
 At the clip's contact frames (its interaction window) the contact joints are at their targets; outside them
 the correction fades out, so nothing pops.
+
+Over 400 lines because the pieces of one solve (the table of paired actions, the IK on a character's own
+skeleton, turning, leaning, the answer pose, aligning a pair's two clips and the guards) only make sense
+together and are used nowhere else.
 """
 
 from __future__ import annotations

@@ -76,7 +76,6 @@ def test_an_action_whose_end_state_changes_reruns_the_actions_after_it(session):
         "resolve",
         "segment:Tom:0",
         "segment:Tom:1",
-        "cast",  # his walk to the desk passes where Eve sits: the walkers' way is checked (and fitted) again
         "face:Tom",  # the same story for the social model (a walk to an object), new timing for his face
     ]
 
@@ -152,7 +151,6 @@ def test_inserting_an_action_runs_only_its_parse_and_its_new_motion_node(session
         "resolve",
         "social",
         "segment:Eve:2",
-        "cast",  # Tom walks later now, past Eve in her chair: the cast is fitted again
         "face:Eve",
         "face:Tom",  # his sentences now start after Eve's new one
     ]
