@@ -171,31 +171,6 @@ class Slotting:
         return Claim(action, spot=spots[int(taken)])
 
 
-WAY_M = 1.5  # metres from the straight line of a walk within which a standing character may be in its way
-
-
-def in_the_way(
-    scene: Scene, action: ActionNode, here: tuple[float, float], standing: dict[str, tuple[float, float]]
-) -> list[tuple[float, float]]:
-    """Where the characters stand (``standing``: name -> x, z) whom a walk from ``here`` to the object the
-    action names could pass: within WAY_M of the straight line there. The walk's route goes round them
-    (SynthesizeRequest.bodies); [] when the action names no object of the scene, so that an action that goes
-    nowhere does not depend on where the others are."""
-    obj = find_object(scene, action.target or action.destination or action.instrument)
-    if obj is None or not standing:
-        return []
-    a, b = np.asarray(here, float), np.array([obj.position[0], obj.position[2]], float)
-    ab = b - a
-    span = float(ab @ ab)
-    out = []
-    for x, z in standing.values():
-        p = np.array([x, z], float)
-        t = float(np.clip((p - a) @ ab / span, 0.0, 1.0)) if span > 1e-9 else 0.0
-        if float(np.linalg.norm(a + t * ab - p)) < WAY_M:
-            out.append((round(float(x), 2), round(float(z), 2)))
-    return sorted(out)
-
-
 _GRIDS: OrderedDict[bytes, OccupancyGrid] = OrderedDict()
 
 
@@ -214,4 +189,4 @@ def _stand_grid(scene: Scene) -> OccupancyGrid:
     return grid
 
 
-__all__ = ["Claim", "Slotting", "in_the_way"]
+__all__ = ["Claim", "Slotting"]

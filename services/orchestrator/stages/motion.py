@@ -28,7 +28,7 @@ from proto.social import SocialPlan
 from proto.ssg import ActionNode, CharacterNode, Command, Diagnostic, SentenceGraph
 from services.orchestrator.backend import StageFailed
 from services.orchestrator.document import Sentence
-from services.orchestrator.slotting import Slotting, in_the_way
+from services.orchestrator.slotting import Slotting
 from services.orchestrator.stages import StageContext, content_of
 from services.orchestrator.stages.seats import furnish
 from services.orchestrator.stages.social import fit_cast, frame_count, paired_actions
@@ -73,7 +73,6 @@ def synthesise(
     seats: dict[int, str] | None = None,
     spots: dict[int, tuple[float, float]] | None = None,
     occupied: list[tuple[float, float]] | None = None,
-    bodies: list[tuple[float, float]] | None = None,
 ) -> SynthesizeReply:
     request = SynthesizeRequest(
         header=ctx.header(),
@@ -87,7 +86,6 @@ def synthesise(
         seats=seats or {},
         spots=spots or {},
         occupied=occupied or [],
-        bodies=bodies or [],
     )
     return content_of(ctx.backend.call(request))
 
@@ -182,8 +180,6 @@ def segments(
         near_them = others(action, name, states, object_ids)
         near = {o: d for o, d in (distances or {}).get((name, k), {}).items() if o in near_them}
         seated = seated_others(action, name, states)
-        standing = {c: (st.x, st.z) for c, st in states.items() if c not in {name, *near_them, *outside}}
-        bodies = in_the_way(scene, asked[-1], (state.x, state.z), standing)  # its walk goes round them
 
         def run(
             single: CharacterNode = single,
@@ -195,20 +191,15 @@ def segments(
             seats: dict[int, str] = seats,
             spots: dict[int, tuple[float, float]] = spots,
             seated: list[tuple[float, float]] = seated,
-            bodies: list[tuple[float, float]] = bodies,
         ) -> SynthesizeReply:
             start = (state.x, state.z, state.yaw)
-            return synthesise(
-                ctx, single, view, state, start, near_them, near, routes, seats, spots, seated, bodies
-            )
+            return synthesise(ctx, single, view, state, start, near_them, near, routes, seats, spots, seated)
 
         inputs = [single, view, state, near_them, near] if near else [single, view, state, near_them]
         if routes or seats or spots:
             inputs.append([routes, sorted(seats.items()), sorted(spots.items())])
         if seated:  # only a seat-taking action depends on where the others sit
             inputs.append(seated)
-        if bodies:  # only a walk that may pass someone depends on where they stand
-            inputs.append(["bodies", bodies])
         reply = ctx.engine.query(f"{kind}:{name}:{k}", inputs, run)
         placed = [
             msgspec.structs.replace(seg, action_index=k, sentence_id=sids[k]) for seg in reply.motion.segments
