@@ -13,9 +13,14 @@ wall time of plan_social per plan over the cases' stories and a two-character te
 
 The cast on screen (the whole pipeline, in-process, over CAST_STORIES or the .txt stories of --stories DIR):
 overlap_frames (frames where two characters on stage overlap by more than the story checks' 3 cm, summed
-over the stories), entrance_ok_share (share of "walks in" / "enters" / "comes in" actions whose character is
+over the stories; the frames of a two-person clip such as a hug touch on purpose and do not count), entrance_ok_share (share of "walks in" / "enters" / "comes in" actions whose character is
 off stage before and first shown outside the room or within 1 m of a door), shared_slots (seated frames where
-two characters' hips are within 0.35 m: one seat for two). --no-cast skips them.
+two characters' hips are within 0.35 m: one seat for two), hand_contact_cm (p95 over the contact frames of
+every two-person action, its clip's interaction window, of how far the hands that should touch are apart: the
+two hands of a handshake, high five or held hands from each other, the hands of a hug, a hand on the shoulder
+or a push from the partner's body surface, and the partner's hands from the actor's back when it hugs back),
+paired_actions (how many were measured). --no-cast skips them. Over 400 lines because the cases and the cast
+stories are data that live with the measurement.
 """
 
 from __future__ import annotations
@@ -212,7 +217,24 @@ CAST_STORIES = {
     "Tom and Sam come in.\nThey sit at the table.\nMom walks in.\nShe waves at Tom.\n",
     "office_entrance": "In the office there is a desk near a window$. A chair is in front of the desk$.\n"
     "Eve sits on the chair.\nEve nods.\nTom enters the office.\nHe walks to Eve.\nTom goes out.\n",
+    "greetings": "In the living room there is a sofa$.\nAda walks to the sofa.\nBen walks in.\n"
+    "He shakes hands with Ada.\nAda hugs Ben.\nThey high-five.\nBen comforts Ada.\n",
+    "crossing": "In the office there is a desk$. A window is on the left wall$.\nEve stands near the window.\n"
+    "Tom stands near the desk.\nEve walks to the desk.\nTom walks to the window.\nThey hug.\n",
 }
+# Two-person clips: the joints that meet (actor's, partner's) and the actor's joints that rest on the partner.
+MEET = {
+    "shake_hands": (("RightHand", "RightHand"),),
+    "high_five": (("RightHandMiddle1", "RightHandMiddle1"),),
+    "hold_hands": (("RightHand", "LeftHand"),),
+}
+ON_BODY = {
+    "hug": ("LeftHand", "RightHand"),
+    "comfort": ("RightHand",),
+    "kiss_cheek": ("RightHand",),
+    "push_person": ("LeftHand", "RightHand"),
+}
+ANSWERED = {"hug": ("LeftHand", "RightHand")}  # the partner's hands on the actor (a hug is returned)
 DOOR_M = 1.0  # metres: an entrance shown this close to a door starts "at the door"
 SHARED_SEAT_M = 0.35  # metres between two seated characters' hips that means one seat for two
 OVERLAP_M = 0.03  # metres, as the story checks' body overlap
@@ -232,6 +254,8 @@ def cast_metrics(stories: dict[str, str], seed: int = 0) -> dict[str, float | in
     from wana.fidelity.body_checks import overlap
 
     overlaps, entrances, entrances_ok, shared = 0, 0, 0, 0
+    gaps: list[float] = []
+    paired = 0
     with tempfile.TemporaryDirectory(prefix="wana-cast-") as tmp:
         orch = Orchestrator(Path(tmp) / "s.db", InProcessBackend(), seed=seed)
         try:
@@ -249,9 +273,15 @@ def cast_metrics(stories: dict[str, str], seed: int = 0) -> dict[str, float | in
                 frames = max((b.frames for b in bodies.values()), default=0)
                 bad = np.zeros(frames, bool)
                 seated_close = np.zeros(frames, bool)
+                touching = {n: np.zeros(bodies[n].frames, bool) for n in names}
+                for n in names:  # a hug or a handshake touches on purpose (as the story checks allow)
+                    for seg in motions[n].segments:
+                        if seg.action in MEET or seg.action in ON_BODY:
+                            touching[n][seg.start_frame : seg.end_frame] = True
                 for i, a in enumerate(names):
                     for b in names[i + 1 :]:
-                        fa, _ = overlap(bodies[a], bodies[b])
+                        n_ab = min(bodies[a].frames, bodies[b].frames)
+                        fa, _ = overlap(bodies[a], bodies[b], touching[a][:n_ab] | touching[b][:n_ab])
                         both = on[a] & on[b]
                         bad |= fa.failing & (fa.amount > OVERLAP_M) & both
                         ha, hb = bodies[a].joint("Hips"), bodies[b].joint("Hips")
@@ -260,6 +290,12 @@ def cast_metrics(stories: dict[str, str], seed: int = 0) -> dict[str, float | in
                         seated_close |= low & near & both
                 overlaps += int(bad.sum())
                 shared += int(seated_close.sum())
+                for name, motion in motions.items():
+                    for seg in motion.segments:
+                        found = hand_gaps(name, seg, bodies, on)
+                        if found is not None:
+                            paired += 1
+                            gaps += found
                 doors = [
                     np.array([o.position[0], o.position[2]])
                     for o in result.scene.objects
@@ -286,11 +322,58 @@ def cast_metrics(stories: dict[str, str], seed: int = 0) -> dict[str, float | in
         finally:
             orch.close()
     return {
+        "hand_contact_cm": round(float(np.percentile(gaps, 95)) * 100, 2) if gaps else 0.0,
+        "paired_actions": paired,
         "overlap_frames": overlaps,
         "entrance_ok_share": round(entrances_ok / entrances, 4) if entrances else 1.0,
         "entrances": entrances,
         "shared_slots": shared,
     }
+
+
+def hand_gaps(name: str, seg, bodies: dict, on: dict) -> list[float] | None:  # noqa: ANN001
+    """Metres the touching joints are apart at a two-person clip's contact frames (None: no such clip, or
+    nobody on stage to do it to). The partner is the nearest character on stage during the clip."""
+    import numpy as np
+
+    from wana.domain.actions import get_clip
+
+    if seg.action not in MEET and seg.action not in ON_BODY:
+        return None
+    clip = get_clip(seg.action)
+    me = bodies[name]
+    length = seg.end_frame - seg.start_frame
+    w = clip.interaction.window if clip.interaction is not None else (0.0, clip.duration_s)
+    a = seg.start_frame + round(w[0] / clip.duration_s * length)
+    b = max(a + 1, seg.start_frame + round(w[1] / clip.duration_s * length))
+    frames = np.arange(a, min(b, me.frames))
+    mid = int(frames[len(frames) // 2]) if len(frames) else -1
+    others = [
+        n
+        for n in bodies
+        if n != name and mid >= 0 and mid < bodies[n].frames and on[n][mid] and on[name][mid]
+    ]
+    if not others:
+        return None
+    partner = min(
+        others, key=lambda n: float(np.linalg.norm(me.joint("Hips")[mid] - bodies[n].joint("Hips")[mid]))
+    )
+    them = bodies[partner]
+    frames = frames[frames < them.frames]
+
+    def surface(joint: str, toucher, touched) -> np.ndarray:  # noqa: ANN001
+        p = toucher.joint(joint)[frames]
+        d = np.linalg.norm(touched.points[frames] - p[:, None], axis=2) - touched.radii[None]
+        return np.maximum(d.min(axis=1), 0.0)
+
+    out: list[np.ndarray] = []
+    for ja, jb in MEET.get(seg.action, ()):
+        out.append(np.linalg.norm(me.joint(ja)[frames] - them.joint(jb)[frames], axis=1))
+    for joint in ON_BODY.get(seg.action, ()):
+        out.append(surface(joint, me, them))
+    for joint in ANSWERED.get(seg.action, ()):
+        out.append(surface(joint, them, me))
+    return [float(x) for x in np.concatenate(out)] if out else None
 
 
 def timed_plan(text: str, seed: int, reps: int) -> tuple[SocialPlan, list[float]]:
@@ -359,7 +442,8 @@ def main(argv: list[str] | None = None) -> int:
         print(
             f"cast over {len(stories)} stories: overlap_frames {cast['overlap_frames']}  "
             f"entrance_ok_share {cast['entrance_ok_share']:.3f} ({cast['entrances']} entrances)  "
-            f"shared_slots {cast['shared_slots']}"
+            f"shared_slots {cast['shared_slots']}  hand_contact_cm {cast['hand_contact_cm']:.1f} "
+            f"({cast['paired_actions']} paired actions)"
         )
     if args.json:
         args.json.parent.mkdir(parents=True, exist_ok=True)

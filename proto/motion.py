@@ -58,6 +58,9 @@ class SynthesizeRequest(Request["SynthesizeReply"], frozen=True, kw_only=True, t
     occupied: list[
         tuple[float, float]
     ] = []  # x, z (metres, world) of other characters seated by then: seat slots there are not free
+    bodies: list[
+        tuple[float, float]
+    ] = []  # x, z (metres, world) of other characters standing in the room by then: walks go round them
 
 
 class SynthesizeReply(msgspec.Struct, frozen=True, kw_only=True, tag="synthesize_reply"):
@@ -68,10 +71,53 @@ class SynthesizeReply(msgspec.Struct, frozen=True, kw_only=True, tag="synthesize
     diagnostics: list[str] = []  # e.g. unknown actions replaced by a wait
 
 
+class PairedAction(msgspec.Struct, frozen=True, kw_only=True):
+    """A two-person action of the story (a hug, a handshake): whose clip it is and who it is done to."""
+
+    actor: str  # the character whose action clip it is
+    action_index: int  # index of the actor's ActionNode (Segment.action_index of the clip)
+    action: str  # action-library name of the clip ("hug", "shake_hands")
+    partner: str = ""  # the character it is done to; "" = the nearest one on stage
+    delay_s: float = 0.0  # seconds the partner's answer lags the actor (the social model's response delay)
+
+
+class PairContact(msgspec.Struct, frozen=True, kw_only=True):
+    """The contact one paired action reached."""
+
+    actor: str
+    partner: str
+    action: str
+    start_frame: int  # first contact frame (the clip's interaction window), story frames
+    end_frame: int  # exclusive
+    gap_m: float  # metres: the largest distance from a contact joint to its shared target over those frames
+
+
+class PairRequest(Request["PairReply"], frozen=True, kw_only=True, tag="pair_request"):
+    """Fit the cast's motions to each other once they share one time line: walkers give way to each other
+    (services/motion/giveway.py) and paired actions get both bodies' contacts (services/motion/pairs.py)."""
+
+    header: Header
+    motions: dict[str, Motion]  # name -> the character's whole motion, story frames
+    pairs: list[PairedAction] = []  # in story order
+    give_way: bool = True  # a walker about to walk into another character waits until the way is clear
+
+
+class PairReply(msgspec.Struct, frozen=True, kw_only=True, tag="pair_reply"):
+    header: Header
+    status: Status = "ok"
+    motions: dict[str, Motion]  # every motion of the request, the changed ones replaced
+    contacts: list[PairContact] = []  # one per solved paired action
+    diagnostics: list[str] = []  # e.g. a partner too far away to touch
+
+
 MotionRequest = SynthesizeRequest
 __all__ = [
     "Literal",
     "MotionRequest",
+    "PairContact",
+    "PairReply",
+    "PairRequest",
+    "PairedAction",
     "SegmentEndState",
     "SynthesizeReply",
     "SynthesizeRequest",

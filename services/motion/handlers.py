@@ -8,6 +8,8 @@ import numpy as np
 
 from proto.common import reply_header
 from proto.motion import (
+    PairReply,
+    PairRequest,
     SegmentEndState,
     SynthesizeReply,
     SynthesizeRequest,
@@ -31,6 +33,8 @@ def handle_synthesize(req: SynthesizeRequest) -> SynthesizeReply:
             raise InvalidInput(f"others[{name!r}] must be finite (x, z)")
     if not all(np.isfinite(xz).all() for xz in req.occupied):
         raise InvalidInput("occupied must be finite (x, z) pairs")
+    if not all(np.isfinite(xz).all() for xz in req.bodies):
+        raise InvalidInput("bodies must be finite (x, z) pairs")
     routes = list(req.routes)
     route_diags: list[str] = []
 
@@ -42,7 +46,7 @@ def handle_synthesize(req: SynthesizeRequest) -> SynthesizeReply:
             r = np.asarray(routes.pop(0), float).reshape(-1, 2)
             if len(r) >= 2 and np.isfinite(r).all():
                 return r
-        wps, why = scene_route(scene, a, b, ignore)
+        wps, why = scene_route(scene, a, b, ignore, bodies=req.bodies)
         if why:
             route_diags.append(why)
         return wps
@@ -93,4 +97,23 @@ def handle_synthesize(req: SynthesizeRequest) -> SynthesizeReply:
     )
 
 
-CONTRACT: Contract = {SynthesizeRequest: handle_synthesize}
+def handle_pair(req: PairRequest) -> PairReply:
+    """Fit the cast's motions to each other: walkers give way, then paired actions touch (both bodies)."""
+    from services.motion.giveway import give_way
+    from services.motion.pairs import solve_pairs
+
+    lengths = {int(m.root_position.shape[0]) for m in req.motions.values()}
+    if len(lengths) > 1:
+        raise InvalidInput(f"the motions must share one time line (lengths {sorted(lengths)})")
+    motions = dict(req.motions)
+    notes: list[str] = []
+    if req.give_way:
+        motions, waits = give_way(motions)
+        notes += waits
+    motions, contacts, pair_notes = solve_pairs(motions, req.pairs)
+    return PairReply(
+        header=reply_header(req), motions=motions, contacts=contacts, diagnostics=notes + pair_notes
+    )
+
+
+CONTRACT: Contract = {SynthesizeRequest: handle_synthesize, PairRequest: handle_pair}

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import threading
 from collections import OrderedDict
+from collections.abc import Sequence
 
 import msgspec
 import numpy as np
@@ -106,6 +107,26 @@ def scene_grid(
     return OccupancyGrid(blocked=blocked, origin=origin, cell=cell)
 
 
+BODY_M = 0.22  # metres: a standing character's radius, as an obstacle (wana.domain.routes.body_footprints)
+BODY_NEAR_END_M = 0.7  # metres: a character this near the start or the goal is not walked around (the one
+# walked up to, or the one stood beside when setting off)
+
+
+def with_bodies(
+    grid: OccupancyGrid, bodies: Sequence[tuple[float, float]], radius: float = RADIUS
+) -> OccupancyGrid:
+    """The grid with the cells within ``radius`` + BODY_M of each standing character blocked too."""
+    if not len(bodies):
+        return grid
+    h, w = grid.blocked.shape
+    rows, cols = np.mgrid[0:h, 0:w]
+    xz = grid.to_world(np.stack([rows, cols], axis=-1))
+    blocked = grid.blocked.copy()
+    for bx, bz in bodies:
+        blocked |= np.hypot(xz[..., 0] - bx, xz[..., 1] - bz) < radius + BODY_M
+    return OccupancyGrid(blocked=blocked, origin=grid.origin, cell=grid.cell)
+
+
 def plan_scene_route(
     scene: Scene,
     start_xz,
@@ -116,6 +137,7 @@ def plan_scene_route(
     cell: float = CELL,
     step_in: float = STEP_IN,
     into_hosts: bool = True,
+    bodies: Sequence[tuple[float, float]] = (),
 ) -> np.ndarray:
     """``wana.domain.routes.plan_route`` on cached grids (same arguments, same answer).
 
@@ -133,6 +155,7 @@ def plan_scene_route(
         cell: grid cell, metres.
         step_in: longest last step into the goal object's clearance, metres.
         into_hosts: whether the last step may enter the clearance of the object the goal lies on.
+        bodies: (x, z) metres of other characters standing in the room: the route goes round them too.
 
     Returns:
         (N, 2) waypoints from the start to the goal (or the free cell nearest to it).
@@ -140,7 +163,7 @@ def plan_scene_route(
     Raises:
         NoRouteError: when no route exists.
     """
-    grid = scene_grid(scene, ignore, radius, cell)
+    grid = with_bodies(scene_grid(scene, ignore, radius, cell), bodies, radius)
     start = np.asarray(start_xz, dtype=np.float64).reshape(2)
     goal = np.asarray(goal_xz, dtype=np.float64).reshape(2)
     if (
@@ -207,15 +230,31 @@ def scene_route(
     start_xz: tuple[float, float],
     goal_xz: tuple[float, float],
     ignore: frozenset[str] = frozenset(),
+    bodies: Sequence[tuple[float, float]] = (),
 ) -> tuple[np.ndarray, str]:
     """A collision-free route, or the straight line and a diagnostic when there is none.
 
     The route never ends inside other furniture (``into_hosts=False``); ``ignore`` should hold the
-    object walked to and what rests on it.
+    object walked to and what rests on it. ``bodies``: where other characters stand; the route goes
+    round them (those within BODY_NEAR_END_M of the start or the goal excepted), or past them where
+    they close the way.
 
     Returns:
         waypoints (N, 2) metres, world; "" or a diagnostic saying why the route is straight.
     """
+    ends = np.array([start_xz, goal_xz], dtype=np.float64)
+    around = [
+        b
+        for b in bodies
+        if np.isfinite(b).all() and np.linalg.norm(ends - np.asarray(b), axis=1).min() > BODY_NEAR_END_M
+    ]
+    if around:
+        try:
+            return plan_scene_route(
+                scene, start_xz, goal_xz, ignore=ignore, into_hosts=False, bodies=around
+            ), ""
+        except (NoRouteError, ValueError):
+            pass  # the others close the way: round the furniture only
     try:
         return plan_scene_route(scene, start_xz, goal_xz, ignore=ignore, into_hosts=False), ""
     except NoRouteError as exc:

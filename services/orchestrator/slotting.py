@@ -53,17 +53,30 @@ class Slotting:
     scene: Scene
     book: SlotBook = field(default_factory=SlotBook)
     sitters: dict[str, set[str]] = field(default_factory=dict)  # object id -> who sits on it in the story
+    standers: dict[str, set[str]] = field(default_factory=dict)  # object id -> who stands at it in the story
     _grid: OccupancyGrid | None = None
 
     def expect(self, who: str, action: ActionNode) -> None:
-        """Note, before the story is planned, that ``who`` sits on the object ``action`` names: a sofa that
-        two will share seats them apart (its end cushions), not side by side in the middle."""
+        """Note, before the story is planned, that ``who`` sits on or stands at the object ``action`` names: a
+        sofa that two will share seats them apart (its end cushions), not side by side in the middle, and a
+        counter two will stand at gives each its own stand slot."""
         clip = _clip(action)
-        if clip is None or clip.interaction is None or clip.interaction.object not in ("seat", "bed"):
+        if clip is None:
             return
-        obj = find_object(self.scene, action.target or action.instrument or action.destination)
+        kind = clip.interaction.object if clip.interaction is not None else ""
+        if kind in ("seat", "bed"):
+            obj = find_object(self.scene, action.target or action.instrument or action.destination)
+            if obj is not None:
+                self.sitters.setdefault(obj.id, set()).add(who)
+            return
+        if "locomotion" in clip.tags:
+            obj = find_object(self.scene, action.destination or action.target)
+        elif kind and kind not in ("handheld", "person"):
+            obj = find_object(self.scene, action.target or action.instrument or action.destination)
+        else:
+            obj = None
         if obj is not None:
-            self.sitters.setdefault(obj.id, set()).add(who)
+            self.standers.setdefault(obj.id, set()).add(who)
 
     @property
     def grid(self) -> OccupancyGrid:
@@ -151,8 +164,10 @@ class Slotting:
         spots = spots or stand_slots(obj)[:1]
         names = [str(i) for i in range(len(spots))]
         taken = self.book.take(obj.id + STAND_KEY, names, who)
-        if taken is None or taken == names[0]:
+        if taken is None or (taken == names[0] and len(self.standers.get(obj.id, ())) < 2):
             return Claim(action)
+        # Two or more at one object: the first is told its slot too (the planner's own spot, the middle of
+        # the front, would stand between the first two slots, within a body of the second).
         return Claim(action, spot=spots[int(taken)])
 
 

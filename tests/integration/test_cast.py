@@ -132,4 +132,20 @@ def _social_eval():
 def test_eval_social_counts_no_overlap_and_a_good_entrance_on_the_sofa_visit():
     social = _social_eval()
     cast = social.cast_metrics({"visit": social.CAST_STORIES["sofa_visit"]})
-    assert cast == {"overlap_frames": 0, "entrance_ok_share": 1.0, "entrances": 1, "shared_slots": 0}
+    assert cast == {
+        "overlap_frames": 0,
+        "entrance_ok_share": 1.0,
+        "entrances": 1,
+        "shared_slots": 0,
+        "hand_contact_cm": 0.0,  # no two-person action in it
+        "paired_actions": 0,
+    }
+
+
+@pytest.mark.slow
+def test_eval_social_finds_the_hands_of_every_greeting_touching():
+    social = _social_eval()
+    cast = social.cast_metrics({"greetings": social.CAST_STORIES["greetings"]})
+    assert cast["paired_actions"] >= 4  # a handshake, a hug, two hands of a high five, a hand on the shoulder
+    assert cast["hand_contact_cm"] <= 3.0
+    assert cast["overlap_frames"] == 0

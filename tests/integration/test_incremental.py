@@ -76,6 +76,7 @@ def test_an_action_whose_end_state_changes_reruns_the_actions_after_it(session):
         "resolve",
         "segment:Tom:0",
         "segment:Tom:1",
+        "cast",  # his walk to the desk now passes Eve at its chair: who gives way is asked again
         "face:Tom",  # the same story for the social model (a walk to an object), new timing for his face
     ]
 

@@ -32,7 +32,7 @@ from services.orchestrator.slotting import Slotting
 from services.orchestrator.stages import StageContext, content_of
 from services.orchestrator.stages.props import provide
 from services.orchestrator.stages.seats import furnish
-from services.orchestrator.stages.social import frame_count
+from services.orchestrator.stages.social import fit_cast, frame_count, paired_actions
 from services.orchestrator.staging import (
     Doorway,
     doorway,
@@ -398,6 +398,9 @@ def animate(
         if door is not None and not on.all():
             motion = _wait_outside(motion, on, door.outside(waiting_place[name]))
         out.motions[name] = motion
+    fitted = fit_cast(ctx, out.motions, paired_actions(characters, plan))  # give way, touch on both bodies
+    if fitted is not None:
+        out.motions = dict(fitted.motions)
     out.motions = set_down_props(out.scene, out.motions, length)
     out.motions = _enlivened(out.scene, characters, _in_moods(characters, out.motions, moods))
     return out
