@@ -170,7 +170,7 @@ class Broker:
         # its old connection is gone, and re-sends its jobs (PONG).
         self._socket.setsockopt(zmq.ROUTER_HANDOVER, 0 if root is not None else 1)
         self._socket.setsockopt(zmq.SNDHWM, 0)  # queues are bounded by queue_limit, not by dropping
-        self._socket.setsockopt(zmq.RCVHWM, 0)
+        self._socket.setsockopt(zmq.RCVHWM, wire.RCVHWM)  # a flooding peer waits (wire.RCVHWM)
         self._socket.setsockopt(zmq.MAXMSGSIZE, 2 * self.max_frame + 4096)
         self.endpoints: list[str] = []
         if not urls:
@@ -330,7 +330,7 @@ class Broker:
             self._sender_key = frames[1].get("User-Id") or ""
             if not self._key_matches(sender, self._sender_key):
                 self._client_error(
-                    sender, "", ErrorCode.INVALID_INPUT, "this routing id belongs to another key"
+                    sender, "", ErrorCode.UNAUTHORISED, "this routing id belongs to another key"
                 )
                 return
         if kind is RequestFrame:
@@ -368,7 +368,7 @@ class Broker:
         elif kind is StatsFrame:
             if self._allow is not None and not self._allow.is_client(self._sender_key):
                 self._client_error(
-                    sender, "", ErrorCode.INVALID_INPUT, "STATS is for authorised clients only"
+                    sender, "", ErrorCode.UNAUTHORISED, "STATS is for authorised clients only"
                 )
                 return
             self._send(sender, _STATS, wire.encoder.encode(self.stats(job_ids=False)))
@@ -419,13 +419,13 @@ class Broker:
         job_id = request.job_id
         if self._allow is not None and not self._allow.is_client(self._sender_key):
             why = "this peer's key is not in the clients' allow list"
-            self._client_error(client, job_id, ErrorCode.INVALID_INPUT, why, request.doc_id, request.revision)
+            self._client_error(client, job_id, ErrorCode.UNAUTHORISED, why, request.doc_id, request.revision)
             return
         job = self._jobs.get(job_id)
         owner = job.client if job is not None else self._done.get(job_id)
         if owner is not None and owner != client:  # never re-point a job to another peer
             why = f"job id {job_id!r} is already used by another peer"
-            self._client_error(client, job_id, ErrorCode.INVALID_INPUT, why, request.doc_id, request.revision)
+            self._client_error(client, job_id, ErrorCode.UNAUTHORISED, why, request.doc_id, request.revision)
             return
         if job is not None:  # the same client again (e.g. after a broker silence): it gets the reply
             self.duplicate_requests += 1
@@ -495,7 +495,7 @@ class Broker:
         if self._allow is not None and not self._allow.may_serve(self._sender_key, ready.service):
             log.warning("refused worker %r: its key may not serve %r", sender, ready.service)
             self._client_error(
-                sender, "", ErrorCode.INVALID_INPUT, f"this peer's key may not serve {ready.service!r}"
+                sender, "", ErrorCode.UNAUTHORISED, f"this peer's key may not serve {ready.service!r}"
             )
             return
         if worker is not None:  # re-registration: whatever it held is abandoned

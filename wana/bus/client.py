@@ -132,7 +132,7 @@ class Client:
         self._socket.setsockopt(zmq.LINGER, 0)
         self._socket.setsockopt(zmq.ROUTING_ID, b"C" + uuid.uuid4().hex.encode())
         self._socket.setsockopt(zmq.SNDHWM, 0)
-        self._socket.setsockopt(zmq.RCVHWM, 0)
+        self._socket.setsockopt(zmq.RCVHWM, wire.RCVHWM)
         root = curve.keys_dir(keys) if connect.startswith("tcp://") else None
         if root is not None:
             curve.connect_curve(self._socket, root, "client")

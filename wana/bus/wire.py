@@ -58,6 +58,10 @@ encoder = msgspec.msgpack.Encoder()
 # Every way decoding a frame can fail: msgspec's errors, and UnicodeDecodeError (a ValueError),
 # which msgspec raises as itself for a msgpack string that is not UTF-8 (b"\x91\xa1\xff" once
 # killed the broker). Every decode on the bus catches exactly this tuple.
+# Messages ZeroMQ queues per peer on a receiving socket before it stops reading that connection: the
+# sender then waits (TCP back-pressure; nothing is dropped on ROUTER or DEALER), so a peer flooding faster
+# than the loop handles its messages holds at most this many in the receiver's memory, not all of them.
+RCVHWM = 256
 DECODE_ERRORS = (msgspec.DecodeError, msgspec.ValidationError, ValueError)
 # Typed as Any because zmq.Frame (buffer protocol) is not declared a Buffer in pyzmq's stubs.
 envelope_decoder: Any = msgspec.msgpack.Decoder(Envelope)

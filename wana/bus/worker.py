@@ -135,6 +135,7 @@ class Worker:
         sock.setsockopt(zmq.LINGER, 0)
         sock.setsockopt(zmq.ROUTING_ID, b"W" + uuid.uuid4().hex.encode())
         sock.setsockopt(zmq.MAXMSGSIZE, 2 * self.max_frame + 4096)
+        sock.setsockopt(zmq.RCVHWM, wire.RCVHWM)
         if self._keys is not None:
             curve.connect_curve(sock, self._keys, "worker")
         sock.connect(self.connect)
