@@ -26,6 +26,7 @@ from proto.common import ErrorCode
 from proto.fidelity import Check
 from proto.render import ExportFormat, ExportReply
 from services.orchestrator.backend import Backend, InProcessBackend, StageFailed, StageUnavailable
+from services.orchestrator.budget import Budget
 from services.orchestrator.exports import export
 from services.orchestrator.pipeline import PipelineResult
 from services.orchestrator.session import Orchestrator
@@ -104,7 +105,65 @@ def build_parser() -> argparse.ArgumentParser:
         help="comma-separated files to write: mp4,glb,bvh (default), usd (animation.usdc, needs usd-core), "
         "fbx (animation.fbx, needs Blender's bpy), zip (animation.zip: every file written and report.json)",
     )
+    limits = p.add_argument_group(
+        "compute budget",
+        "what one story may spend; what goes over is cut with a W501 warning naming it, and the rest of "
+        "the story still animates",
+    )
+    d = Budget()
+    limits.add_argument(
+        "--max-seconds",
+        type=float,
+        default=d.max_seconds,
+        metavar="S",
+        help=f"wall time of the pipeline (default {d.max_seconds:g}); sentences are parsed only in its first "
+        "half, and stages after it are cut",
+    )
+    limits.add_argument(
+        "--max-sentences",
+        type=int,
+        default=d.max_sentences,
+        metavar="N",
+        help=f"sentences animated; later ones are cut (default {d.max_sentences})",
+    )
+    limits.add_argument(
+        "--max-sentence-chars",
+        type=int,
+        default=d.max_sentence_chars,
+        metavar="N",
+        help=f"longest sentence parsed; longer ones are cut (default {d.max_sentence_chars})",
+    )
+    limits.add_argument(
+        "--max-wait-s",
+        type=float,
+        default=d.max_wait_s,
+        metavar="S",
+        help=f"longest 'wait N seconds' (default {d.max_wait_s:g})",
+    )
+    limits.add_argument(
+        "--max-duration-s",
+        type=float,
+        default=d.max_duration_s,
+        metavar="S",
+        help=f"all waits of the story together (default {d.max_duration_s:g})",
+    )
     return p
+
+
+def budget_of(args: argparse.Namespace) -> Budget:
+    """The compute budget the command line asks for (SystemExit 2 with a message for a bad value)."""
+    budget = Budget(
+        max_seconds=args.max_seconds,
+        max_sentences=args.max_sentences,
+        max_sentence_chars=args.max_sentence_chars,
+        max_wait_s=args.max_wait_s,
+        max_duration_s=args.max_duration_s,
+    )
+    try:
+        budget.check()
+    except ValueError as exc:
+        raise SystemExit(f"wana animate: {exc}") from exc
+    return budget
 
 
 def read_story(path: str) -> str:
@@ -216,6 +275,7 @@ def summary(result: PipelineResult, extra_checks: Mapping[str, list[Check]] | No
         "characters": sorted(result.motions),
         "unavailable": _dropped(result, {sid: v.checks for sid, v in judged.items()}),
         "nodes_ran": result.ran,
+        "cut": dict(result.cut),  # sentence id -> what the compute budget cut (W501)
     }
 
 
@@ -306,6 +366,7 @@ def print_verdicts(report: dict[str, Any]) -> None:
 
 def main(argv: list[str]) -> int:
     args = build_parser().parse_args(argv)
+    budget = budget_of(args)
     missing = missing_extras(args.export)
     if missing:
         for why in missing:
@@ -324,7 +385,7 @@ def main(argv: list[str]) -> int:
             from services.orchestrator.embedded import Embedded
 
             backend = stack.enter_context(Embedded())
-        orchestrator = Orchestrator(Path(tmp) / "sessions.db", backend, seed=args.seed)
+        orchestrator = Orchestrator(Path(tmp) / "sessions.db", backend, seed=args.seed, budget=budget)
         result = orchestrator.create(text, doc_id="story").compute(progress=tick)
         orchestrator.close()
         close()
