@@ -26,7 +26,7 @@ from proto.common import ErrorCode
 from proto.fidelity import Check
 from proto.render import ExportFormat, ExportReply
 from services.orchestrator.backend import Backend, InProcessBackend, StageFailed, StageUnavailable
-from services.orchestrator.budget import Budget
+from services.orchestrator.budget import BUDGET_CODE, Budget
 from services.orchestrator.exports import export
 from services.orchestrator.pipeline import PipelineResult
 from services.orchestrator.session import Orchestrator
@@ -364,6 +364,21 @@ def print_verdicts(report: dict[str, Any]) -> None:
     print(f"wana animate: the animation shows {shown} of {len(sentences)} sentences fully", file=sys.stderr)
 
 
+def print_diagnostics(result: PipelineResult) -> None:
+    """Every diagnostic but the stage-unavailable ones, one line each; the same budget cut (W501) on many
+    sentences is one line naming the first and last of them."""
+    cuts: dict[str, list[str]] = {}
+    for sid, diags in result.diagnostics.items():
+        for d in diags:
+            if d.code == BUDGET_CODE:
+                cuts.setdefault(d.message, []).append(sid)
+            elif d.code != ErrorCode.UNAVAILABLE:
+                print(f"{sid} [{d.span.start}:{d.span.end}] {d.severity}: {d.message}", file=sys.stderr)
+    for message, sids in cuts.items():
+        where = sids[0] if len(sids) == 1 else f"{sids[0]}..{sids[-1]} ({len(sids)} sentences)"
+        print(f"{where} warning: {message}", file=sys.stderr)
+
+
 def main(argv: list[str]) -> int:
     args = build_parser().parse_args(argv)
     budget = budget_of(args)
@@ -407,10 +422,7 @@ def main(argv: list[str]) -> int:
                 )
             except (StageFailed, StageUnavailable) as exc:
                 result.unavailable["render"] = str(exc)
-    for sid, diags in result.diagnostics.items():
-        for d in diags:
-            if d.code != ErrorCode.UNAVAILABLE:
-                print(f"{sid} [{d.span.start}:{d.span.end}] {d.severity}: {d.message}", file=sys.stderr)
+    print_diagnostics(result)
     if result.unavailable:
         for why in result.unavailable.values():
             print(f"wana animate: {why}", file=sys.stderr)

@@ -109,7 +109,7 @@ class Meter:
                 seconds = min(max(asked, 0.0), b.max_wait_s, max(b.max_duration_s - used_s, 0.0))
                 if seconds != c.seconds:
                     why = (
-                        f"wait {asked:g} s is cut to {seconds:g} s (compute budget: at most "
+                        f"wait {asked:.10g} s is cut to {seconds:.10g} s (compute budget: at most "
                         f"{b.max_wait_s:g} s a wait, --max-wait-s, and {b.max_duration_s:g} s of waits "
                         f"in all, --max-duration-s)"
                     )
