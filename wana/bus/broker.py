@@ -78,7 +78,9 @@ log = logging.getLogger(__name__)
 
 _TICK_S = 0.05  # longest sleep of the event loop: bounds deadline precision and stop latency
 _DONE_MEMORY = 65536  # job ids remembered after their reply, to drop duplicates
-_UNDELIVERED_MEMORY = 256  # replies kept when the client was unreachable, re-sent if it asks again
+# Replies kept after they were sent, for a client that asks again: a reply ZeroMQ accepted can still be lost
+# with its connection (a reset drops what was in flight), and the client then re-sends its pending jobs.
+_UNDELIVERED_MEMORY = 4096
 _MAX_SERVICES = 1024  # distinct service names the broker will track
 _PREFETCH_MAX_JOB_S = 0.05  # prefetch only while a worker's jobs take less than this (see _next_worker)
 _HEARTBEAT = wire.encoder.encode(HeartbeatFrame())
@@ -367,9 +369,7 @@ class Broker:
                 self._remove_worker(worker, "it disconnected")
         elif kind is StatsFrame:
             if self._allow is not None and not self._allow.is_client(self._sender_key):
-                self._client_error(
-                    sender, "", ErrorCode.UNAUTHORISED, "STATS is for authorised clients only"
-                )
+                self._client_error(sender, "", ErrorCode.UNAUTHORISED, "STATS is for authorised clients only")
                 return
             self._send(sender, _STATS, wire.encoder.encode(self.stats(job_ids=False)))
         else:
@@ -432,9 +432,8 @@ class Broker:
             return
         if owner is not None:
             self.duplicate_requests += 1
-            kept = self._undelivered.pop(job_id, None)
-            if kept is not None:
-                self._undelivered_bytes -= len(kept[1][1])
+            kept = self._undelivered.get(job_id)
+            if kept is not None and kept[0] == client:  # kept until the bounds push it out
                 self._send(client, *kept[1])
             else:
                 why = f"job {job_id!r} was answered already"
@@ -759,12 +758,17 @@ class Broker:
                 self._send_out(peer, pairs, jobs[peer])
 
     def _send_out(self, peer: bytes, pairs: list, job_ids: list[str]) -> None:
+        worker = self._workers.get(peer)
         try:
             wire.send_pairs(self._socket, (peer,), pairs)
+            if worker is None:  # a client's answers to its own jobs: kept a while, in case of loss
+                done = self._done
+                for i, job_id in enumerate(job_ids):
+                    if done.get(job_id) == peer:
+                        self._keep_undelivered(peer, job_id, pairs[2 * i], pairs[2 * i + 1])
             return
         except zmq.ZMQError as exc:  # EHOSTUNREACH (ROUTER_MANDATORY): the peer is gone
             log.debug("could not send to %r: %s", peer, exc)
-        worker = self._workers.get(peer)
         if worker is not None:  # JOBs: re-queue them, they never reached it
             self._remove_worker(worker, "it is unreachable", undelivered=job_ids)
             return

@@ -137,6 +137,7 @@ class Client:
         if root is not None:
             curve.connect_curve(self._socket, root, "client")
         self._socket.connect(connect)
+        self._monitor = wire.watch_disconnects(self._socket)  # a dropped connection: re-send (_pump)
         self._prefix = uuid.uuid4().hex[:12]
         self._counter = 0
         self._pending: dict[str, _Pending] = {}
@@ -365,6 +366,7 @@ class Client:
     def close(self) -> None:
         """Close the socket; pending jobs are abandoned."""
         if not self._socket.closed:
+            wire.close_monitor(self._socket, self._monitor)
             self._socket.close(0)
 
     def __enter__(self) -> Client:
@@ -422,7 +424,10 @@ class Client:
         now = monotonic()
         if self._pending and now >= self._next_check:
             self._next_check = now + _TICK_S
-            if now - self._last_ping >= self.heartbeat_s:
+            if wire.dropped(self._monitor):  # what was in flight may be lost: re-send at the next PONG
+                self._broker_lost = True
+                self._ping()
+            elif now - self._last_ping >= self.heartbeat_s:
                 self._ping()
             if (
                 self._unanswered_since is not None

@@ -23,6 +23,7 @@ every pyzmq call costs microseconds, so the hot path makes as few as it can.
 
 from __future__ import annotations
 
+import contextlib
 from collections.abc import Sequence
 from typing import Any
 
@@ -62,6 +63,37 @@ encoder = msgspec.msgpack.Encoder()
 # sender then waits (TCP back-pressure; nothing is dropped on ROUTER or DEALER), so a peer flooding faster
 # than the loop handles its messages holds at most this many in the receiver's memory, not all of them.
 RCVHWM = 256
+
+
+def watch_disconnects(sock: zmq.Socket) -> zmq.Socket | None:
+    """A monitor of ``sock``'s connection drops (tcp:// and ipc://; None for inproc://, which never drops).
+
+    ZeroMQ reconnects by itself, but what was in flight on the dropped connection is gone: a peer that
+    learns of the drop re-sends (a client its pending jobs, a worker its READY, so the broker re-queues
+    what it held).
+    """
+    endpoint = sock.getsockopt_string(zmq.LAST_ENDPOINT)
+    if endpoint.startswith("inproc://"):
+        return None
+    return sock.get_monitor_socket(zmq.EVENT_DISCONNECTED)
+
+
+def dropped(monitor: zmq.Socket | None) -> bool:
+    """True when the monitored connection dropped since the last call (reads every pending event)."""
+    seen = False
+    while monitor is not None and monitor.poll(0):
+        monitor.recv_multipart(zmq.NOBLOCK)
+        seen = True
+    return seen
+
+
+def close_monitor(sock: zmq.Socket, monitor: zmq.Socket | None) -> None:
+    if monitor is not None:
+        with contextlib.suppress(zmq.ZMQError):
+            sock.disable_monitor()
+        monitor.close(0)
+
+
 DECODE_ERRORS = (msgspec.DecodeError, msgspec.ValidationError, ValueError)
 # Typed as Any because zmq.Frame (buffer protocol) is not declared a Buffer in pyzmq's stubs.
 envelope_decoder: Any = msgspec.msgpack.Decoder(Envelope)
