@@ -336,24 +336,40 @@ def _is_outage(exc: BaseException) -> bool:
 
 
 def counting_client(url: str, keys: Path) -> Any:
-    """A bus Client that counts replies delivered to it twice for one job (none may be)."""
+    """A bus Client that counts replies the broker sent twice for one job it was asked once.
+
+    A job the client re-sent (its connection dropped, or the broker went silent) may be answered again,
+    by design: the client cannot tell a lost reply from one still on its way, and drops the second one.
+    Those are counted apart (``redelivered``); a second reply to a job sent once is a duplicate.
+    """
     from proto.bus import ErrorFrame, ReplyFrame
     from wana.bus.client import Client
 
     class CountingClient(Client):
         answered: set[str]
+        resent_ids: set[str]
         duplicates = 0
+        redelivered = 0
+
+        def _on_pong(self, instance: str, seq: int) -> None:
+            before = {j: p.request for j, p in self._pending.items()}
+            super()._on_pong(instance, seq)
+            self.resent_ids |= {j for j, p in self._pending.items() if p.request is not before.get(j)}
 
         def _on_message(self, msg: Any, body: Any) -> None:
             if type(msg) in (ReplyFrame, ErrorFrame):
                 if msg.job_id in self.answered:
-                    self.duplicates += 1
+                    if msg.job_id in self.resent_ids:
+                        self.redelivered += 1
+                    else:
+                        self.duplicates += 1
+                        print(f"chaos: a second {type(msg).__name__} for job {msg.job_id}", file=sys.stderr)
                 elif msg.job_id in self._pending:
                     self.answered.add(msg.job_id)
             super()._on_message(msg, body)
 
     client = CountingClient(url, keys=keys)
-    client.answered = set()
+    client.answered, client.resent_ids = set(), set()
     return client
 
 
@@ -591,7 +607,7 @@ class Chaos:
         async with httpx.AsyncClient(base_url=base, headers=headers, timeout=20) as http:
             for d in docs:
                 texts.append((await http.get(f"/api/documents/{d}")).json()["text"])
-        self.computed = sum([await self._computes(d) for d in docs])
+        self.computed = sum(await asyncio.gather(*(self._computes(d) for d in docs)))
         return self.result(texts, len(docs))
 
     async def _computes(self, doc_id: str) -> bool:
@@ -606,7 +622,7 @@ class Chaos:
                 max_size=None,
             ) as ws:
                 version = -1
-                deadline = time.monotonic() + 120
+                deadline = time.monotonic() + 240
                 while time.monotonic() < deadline:
                     msg = json.loads(await asyncio.wait_for(ws.recv(), deadline - time.monotonic()))
                     if msg["type"] == "state":
@@ -637,6 +653,12 @@ class Chaos:
             file=sys.stderr,
         )
         t.probe_duplicates = self.probe.duplicates + self.load.duplicates
+        print(
+            f"chaos: duplicates: edits applied twice {applied_twice}, acks twice {acked_twice}, bus replies "
+            f"twice {t.probe_duplicates}; replies to re-sent jobs answered again (dropped by the client) "
+            f"{self.probe.redelivered + self.load.redelivered}",
+            file=sys.stderr,
+        )
         if lost:
             print(f"chaos: acknowledged edits missing: {lost[:20]}", file=sys.stderr)
         return {

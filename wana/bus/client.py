@@ -247,6 +247,7 @@ class Client:
         revision: int,
     ) -> _Pending:
         """Register one job as pending (not sent yet) and return it."""
+        self._connection_dropped()  # a drop seen from now on may concern this job; one before it may not
         if not isinstance(payload, (bytes, bytearray, memoryview)):
             raise TypeError(f"payload must be bytes, not {type(payload).__name__}")
         self._counter += 1
@@ -384,6 +385,15 @@ class Client:
         except zmq.Again:  # no broker connected at all (inproc after it closed): retried on PONG
             return False
 
+    def _connection_dropped(self) -> bool:
+        """Whether the connection dropped since the last look; if so, the jobs pending now (what was in
+        flight may be lost with it) are re-sent at the next PONG. A job sent after the drop is not."""
+        if not wire.dropped(self._monitor):
+            return False
+        for p in self._pending.values():
+            p.sent_to = ""
+        return True
+
     def _ping(self) -> None:
         self._ping_seq += 1
         if self._unanswered_since is None:
@@ -424,8 +434,7 @@ class Client:
         now = monotonic()
         if self._pending and now >= self._next_check:
             self._next_check = now + _TICK_S
-            if wire.dropped(self._monitor):  # what was in flight may be lost: re-send at the next PONG
-                self._broker_lost = True
+            if self._connection_dropped():
                 self._ping()
             elif now - self._last_ping >= self.heartbeat_s:
                 self._ping()
