@@ -625,10 +625,22 @@ class Chaos:
                 deadline = time.monotonic() + 240
                 while time.monotonic() < deadline:
                     msg = json.loads(await asyncio.wait_for(ws.recv(), deadline - time.monotonic()))
+                    last = {
+                        k: v
+                        for k, v in msg.items()
+                        if k in ("type", "version", "stage", "done", "total", "code", "message")
+                    }
                     if msg["type"] == "state":
                         version = msg["version"]
                     elif msg["type"] == "animation" and msg["version"] == version:
                         return True
+        stats = await asyncio.to_thread(lambda: self.probe.stats(timeout=5.0))
+        busy = {n: (s.workers, s.queued, s.in_flight) for n, s in stats.services.items()}
+        print(
+            f"chaos: document {doc_id} not animated; last message {locals().get('last')}; broker "
+            f"(workers, queued, in flight) {busy}",
+            file=sys.stderr,
+        )
         return False
 
     def result(self, texts: list[str], n_docs: int) -> dict[str, Any]:
