@@ -14,7 +14,9 @@ Rules (proto/PROTOCOL.md is the authoritative description):
   jobs are re-queued at the front of their service queue with the attempt count raised; a job dispatched
   ``max_attempts`` times whose worker died each time gets an E007 error reply.
 - Requests and replies are deduplicated by job id: a request whose job is already queued or in flight
-  is ignored, the first reply to a job wins and later ones are dropped.
+  is ignored, the first reply to a job wins and later ones are dropped. Recent answers are kept, so a
+  client that re-sends a job after its connection dropped (the answer may have been lost in flight)
+  gets the answer again.
 - Each service queue holds at most ``queue_limit`` waiting jobs; beyond that the client gets E005 busy.
 - A payload over ``max_frame`` bytes gets E002; frames over twice that are refused by ZeroMQ itself
   (the connection is dropped) so that no peer can exhaust the broker's memory.
