@@ -135,12 +135,17 @@ class Pipeline:
         W501 says why it was cut (recorded in ``cut``)."""
         graphs: dict[str, SentenceGraph] = {}
         todo = [s for s in sentences if s.id not in cut]
+
+        def quiet(stage: str, done: int, total: int) -> None:
+            """parse_all's own ticks, for one sentence at a time: this loop ticks for all of them."""
+
         for i, s in enumerate(todo):
             if not meter.parse_time_left():
                 for late in todo[i:]:
                     cut[late.id] = meter.out_of_parse_time()
                 break
-            graphs[s.id] = parse_all(ctx, [s], lambda stage, done, total, i=i: tick(stage, i, len(todo)))[0]
+            tick("parse", i, len(todo))
+            graphs[s.id] = parse_all(ctx, [s], quiet)[0]
         tick("parse", len(todo), len(todo))
         for s in sentences:
             if s.id in cut:
