@@ -262,15 +262,9 @@ class Editor:
     """One editor client of one document: appends marked sentences, one at a time, surviving outages."""
 
     def __init__(self, index: int, url: str, doc_id: str, token: str, tally: Tally, rng: random.Random):
-        self.index, self.url, self.doc_id, self.token, self.tally, self.rng = (
-            index,
-            url,
-            doc_id,
-            token,
-            tally,
-            rng,
-        )
-        self.sent = 0
+        self.index, self.url, self.doc_id, self.token = index, url, doc_id, token
+        self.tally, self.rng = tally, rng
+        self.sent = 0  # markers made so far (an edit re-sent after an outage keeps its marker)
 
     async def run(self, until: float) -> None:
         from websockets.asyncio.client import connect
