@@ -247,7 +247,8 @@ class Client:
         revision: int,
     ) -> _Pending:
         """Register one job as pending (not sent yet) and return it."""
-        self._connection_dropped()  # a drop seen from now on may concern this job; one before it may not
+        if not self._pending:  # a drop while idle concerns no job (while busy, _pump looks every tick)
+            self._connection_dropped()
         if not isinstance(payload, (bytes, bytearray, memoryview)):
             raise TypeError(f"payload must be bytes, not {type(payload).__name__}")
         self._counter += 1

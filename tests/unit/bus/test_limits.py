@@ -174,8 +174,8 @@ def test_a_flood_past_the_receive_high_water_mark_waits_instead_of_being_dropped
 
     from wana.bus import wire
 
-    n = 4 * wire.RCVHWM
-    broker = make_broker(ipc_url, queue_limit=2 * n)
+    n = 2 * wire.RCVHWM
+    broker = make_broker(ipc_url, queue_limit=n, max_client_jobs=n)
     assert broker._socket.getsockopt(zmq.RCVHWM) == wire.RCVHWM  # noqa: SLF001 - the bound under test
     thread_worker("echo", _echo, ipc_url)
     client = make_client(ipc_url)
