@@ -41,6 +41,7 @@ import argparse
 import asyncio
 import contextlib
 import json
+import math
 import os
 import random
 import secrets
@@ -65,6 +66,7 @@ DELAY_S, JITTER_S = 0.020, 0.010
 LOSS_P, LOSS_STALL_S, RESET_P = 0.01, 0.200, 0.001
 PARTITION_S = 5.0
 RESTART_AFTER_S = 1.0
+EDITS_PER_DOCUMENT = 100  # an editor moves to its next document then, so that no compute grows without end
 
 
 def unavailable_reason() -> str:
@@ -249,7 +251,7 @@ class Component:
 
 @dataclass
 class Tally:
-    acked: dict[str, int] = field(default_factory=dict)  # marker -> doc index
+    acked: dict[str, str] = field(default_factory=dict)  # marker -> document id
     ack_counts: dict[str, int] = field(default_factory=dict)  # marker -> acks received
     failed_clearly: int = 0
     probe_duplicates: int = 0
@@ -259,10 +261,12 @@ class Tally:
 
 
 class Editor:
-    """One editor client of one document: appends marked sentences, one at a time, surviving outages."""
+    """One editor client: appends marked sentences to its document, one at a time, surviving outages, and
+    moves to its next document after EDITS_PER_DOCUMENT."""
 
-    def __init__(self, index: int, url: str, doc_id: str, token: str, tally: Tally, rng: random.Random):
-        self.index, self.url, self.doc_id, self.token = index, url, doc_id, token
+    def __init__(self, index: int, url: str, docs: list[str], token: str, tally: Tally, rng: random.Random):
+        self.index, self.url, self.docs, self.token = index, url, docs, token
+        self.doc_id, self.in_doc = docs[0], 0
         self.tally, self.rng = tally, rng
         self.sent = 0  # markers made so far (an edit re-sent after an outage keeps its marker)
 
@@ -303,10 +307,14 @@ class Editor:
                             continue
                         self.tally.ack_counts[marker] = self.tally.ack_counts.get(marker, 0) + 1
                         if self.tally.ack_counts[marker] == 1:
-                            self.tally.acked[marker] = self.index
+                            self.tally.acked[marker] = self.doc_id
                         pending = None
                         version, text = reply["version"], text + sentence
+                        self.in_doc += 1
                         await asyncio.sleep(self.rng.uniform(0.3, 0.8))
+                        if self.in_doc >= EDITS_PER_DOCUMENT and self.doc_id != self.docs[-1]:
+                            self.doc_id, self.in_doc = self.docs[self.docs.index(self.doc_id) + 1], 0
+                            break  # connect to the next document
             except Exception as exc:  # noqa: BLE001 - any outage: reconnect
                 if not _is_outage(exc):
                     raise
@@ -578,8 +586,12 @@ class Chaos:
         headers = {"Authorization": f"Bearer {self.token}"}
         async with httpx.AsyncClient(base_url=base, headers=headers, timeout=20) as http:
             seed_text = "In the office there is a desk near a window$. A chair is in front of the desk$."
+            per_editor = max(1, math.ceil(seconds / 60))  # at about 1.6 edits a second, <= 100 each
             docs = [
-                (await http.post("/api/documents", json={"text": seed_text})).json()["doc_id"]
+                [
+                    (await http.post("/api/documents", json={"text": seed_text})).json()["doc_id"]
+                    for _ in range(per_editor)
+                ]
                 for _ in range(n_editors)
             ]
         start = time.monotonic()
@@ -597,12 +609,12 @@ class Chaos:
         await asyncio.gather(*tasks[:-1])
         await self._until(self._ready, 180, "the final recovery")
         tasks[-1].cancel()
-        texts = []
+        texts: dict[str, str] = {}
         async with httpx.AsyncClient(base_url=base, headers=headers, timeout=20) as http:
-            for d in docs:
-                texts.append((await http.get(f"/api/documents/{d}")).json()["text"])
-        self.computed = sum(await asyncio.gather(*(self._computes(d) for d in docs)))
-        return self.result(texts, len(docs))
+            for d in (d for mine in docs for d in mine):
+                texts[d] = (await http.get(f"/api/documents/{d}")).json()["text"]
+        self.computed = sum(await asyncio.gather(*(self._computes(d) for d in texts)))
+        return self.result(texts)
 
     async def _computes(self, doc_id: str) -> bool:
         """True when the document's newest version gets its animation after the run (no compute hung)."""
@@ -637,10 +649,10 @@ class Chaos:
         )
         return False
 
-    def result(self, texts: list[str], n_docs: int) -> dict[str, Any]:
+    def result(self, texts: dict[str, str]) -> dict[str, Any]:
         t = self.tally
         lost = [m for m, doc in t.acked.items() if f" {m}." not in texts[doc]]
-        applied_twice = sum(max(0, text.count(f" {m}.") - 1) for text in texts for m in t.ack_counts)
+        applied_twice = sum(max(0, text.count(f" {m}.") - 1) for text in texts.values() for m in t.ack_counts)
         acked_twice = sum(n - 1 for n in t.ack_counts.values() if n > 1)
         recoveries = sorted(t.recoveries)
         p95 = (
@@ -655,7 +667,7 @@ class Chaos:
         )
         print(
             f"chaos: probe parses {self.load_results}; documents animated after the run {self.computed} of "
-            f"{n_docs}",
+            f"{len(texts)}",
             file=sys.stderr,
         )
         t.probe_duplicates = self.probe.duplicates + self.load.duplicates
