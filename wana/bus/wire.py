@@ -83,7 +83,7 @@ def dropped(monitor: zmq.Socket | None) -> bool:
     """True when the monitored connection dropped since the last call (reads every pending event)."""
     seen = False
     # ZMQ_EVENTS rather than poll(): no Poller is built for the check
-    while monitor is not None and monitor.getsockopt(zmq.EVENTS) & _POLLIN:
+    while monitor is not None and int(monitor.getsockopt(zmq.EVENTS)) & _POLLIN:
         monitor.recv_multipart(zmq.NOBLOCK)
         seen = True
     return seen
