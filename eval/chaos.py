@@ -613,10 +613,13 @@ class Chaos:
         async with httpx.AsyncClient(base_url=base, headers=headers, timeout=20) as http:
             for d in (d for mine in docs for d in mine):
                 texts[d] = (await http.get(f"/api/documents/{d}")).json()["text"]
-        self.computed = sum(await asyncio.gather(*(self._computes(d) for d in texts)))
+        # Every document's newest version must get its animation; after the gateway's restart each is a
+        # cold compute, two at a time (WANA_COMPUTE_THREADS), so the wait grows with their number.
+        wait_s = 120.0 + 30.0 * len(texts)
+        self.computed = sum(await asyncio.gather(*(self._computes(d, wait_s) for d in texts)))
         return self.result(texts)
 
-    async def _computes(self, doc_id: str) -> bool:
+    async def _computes(self, doc_id: str, wait_s: float) -> bool:
         """True when the document's newest version gets its animation after the run (no compute hung)."""
         from websockets.asyncio.client import connect
 
@@ -628,7 +631,7 @@ class Chaos:
                 max_size=None,
             ) as ws:
                 version = -1
-                deadline = time.monotonic() + 240
+                deadline = time.monotonic() + wait_s
                 while time.monotonic() < deadline:
                     msg = json.loads(await asyncio.wait_for(ws.recv(), deadline - time.monotonic()))
                     last = {
