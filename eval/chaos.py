@@ -712,7 +712,7 @@ async def _main(args: argparse.Namespace) -> dict[str, Any]:
     loop.add_signal_handler(signal.SIGTERM, lambda: task.cancel() if task else None)
     try:
         seconds = 60.0 if args.quick else float(args.seconds)
-        return await asyncio.wait_for(chaos.run(seconds, args.editors), timeout=seconds + 600)
+        return await asyncio.wait_for(chaos.run(seconds, args.editors), timeout=seconds + 1500)
     finally:
         await chaos.teardown()
         if args.keep_logs:
