@@ -62,6 +62,7 @@ class ErrorCode(StrEnum):
     INVALID_INPUT = "E010"
     UNAVAILABLE = "E011"
     SCHEMA_VERSION = "E012"
+    UNAUTHORISED = "E013"
 
 
 # One table of error codes for every service (spaCy-style numbered errors).
@@ -78,7 +79,9 @@ ERROR_CODES: dict[str, str] = {
     "E010": "invalid input",
     "E011": "stage not available yet",
     "E012": "schema version not supported",
+    "E013": "unauthorised: this peer's key (or identity) may not do this",
     "W401": "the animation does not show this (a story check failed: wana.fidelity)",
+    "W501": "over the document's compute budget: this part was cut (services/orchestrator/budget.py)",
 }
 
 

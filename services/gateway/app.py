@@ -128,7 +128,7 @@ def create_app(settings: Settings | None = None, orchestrator: Orchestrator | No
             orch = orchestrator
             if orch is None:
                 backend = make_backend(settings, stack)
-                orch = Orchestrator(settings.db, backend, seed=settings.seed)
+                orch = Orchestrator(settings.db, backend, seed=settings.seed, budget=settings.budget)
                 stack.callback(orch.close)
             executor = ThreadPoolExecutor(settings.compute_threads, thread_name_prefix="wana-compute")
             stack.callback(executor.shutdown, wait=False, cancel_futures=True)
@@ -232,6 +232,15 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--seed", type=int, default=None, help="seed of every random choice (WANA_SEED; default 0)"
     )
+    p.add_argument(
+        "--max-seconds",
+        type=float,
+        default=None,
+        metavar="S",
+        help="compute budget: wall time of one document's compute (WANA_MAX_SECONDS; default 600); what "
+        "goes over it, or over WANA_MAX_SENTENCES (200), WANA_MAX_SENTENCE_CHARS (2000), WANA_MAX_WAIT_S "
+        "(60) or WANA_MAX_DURATION_S (600), is cut with a W501 warning and the rest still animates",
+    )
     p.add_argument("--log-level", default="info", choices=("critical", "error", "warning", "info", "debug"))
     return p
 
@@ -250,6 +259,7 @@ def main(argv: list[str] | None = None) -> int:
             seed=args.seed,
             services=parse_services(args.services) if args.services is not None else None,
             allowed_origins=tuple(o.rstrip("/") for o in args.allow_origin) if args.allow_origin else None,
+            max_seconds=args.max_seconds,
         )
         settings.check()
     except ValueError as exc:

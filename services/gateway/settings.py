@@ -8,6 +8,7 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
+from services.orchestrator.budget import Budget
 from services.orchestrator.registry import SERVICES  # the one service list
 
 REPO = Path(__file__).resolve().parents[2]
@@ -33,6 +34,16 @@ def _env_bool(name: str, default: bool) -> bool:
     if raw in ("0", "false", "no", "off"):
         return False
     raise ValueError(f"{name} must be true or false, got {raw!r}")
+
+
+def _env_float(name: str, default: float) -> float:
+    raw = os.environ.get(name, "")
+    if not raw:
+        return default
+    try:
+        return float(raw)
+    except ValueError as exc:
+        raise ValueError(f"{name} must be a number, got {raw!r}") from exc
 
 
 def is_loopback(host: str) -> bool:
@@ -82,6 +93,23 @@ class Settings:
     # costs ~50-70 ms of the event loop and saves only ~25% (base64 of float32 compresses poorly).
     ws_compression: bool = False
     session_ttl_s: int = 12 * 3600  # WANA_SESSION_TTL_S: lifetime of the login cookie (seconds)
+    # The compute budget of one document (services/orchestrator/budget.py): what is over it is cut, with a
+    # W501 warning on the sentence, and the rest still animates.
+    max_seconds: float = Budget.max_seconds  # WANA_MAX_SECONDS: wall time of one compute
+    max_sentences: int = Budget.max_sentences  # WANA_MAX_SENTENCES
+    max_sentence_chars: int = Budget.max_sentence_chars  # WANA_MAX_SENTENCE_CHARS
+    max_wait_s: float = Budget.max_wait_s  # WANA_MAX_WAIT_S: one `wait` command
+    max_duration_s: float = Budget.max_duration_s  # WANA_MAX_DURATION_S: all waits together
+
+    @property
+    def budget(self) -> Budget:
+        return Budget(
+            max_seconds=self.max_seconds,
+            max_sentences=self.max_sentences,
+            max_sentence_chars=self.max_sentence_chars,
+            max_wait_s=self.max_wait_s,
+            max_duration_s=self.max_duration_s,
+        )
 
     @property
     def ws_max_size(self) -> int:
@@ -113,6 +141,11 @@ class Settings:
             mesh_cache=_env_int("WANA_MESH_CACHE", cls.mesh_cache),
             ws_compression=_env_bool("WANA_WS_COMPRESSION", cls.ws_compression),
             session_ttl_s=_env_int("WANA_SESSION_TTL_S", cls.session_ttl_s),
+            max_seconds=_env_float("WANA_MAX_SECONDS", cls.max_seconds),
+            max_sentences=_env_int("WANA_MAX_SENTENCES", cls.max_sentences),
+            max_sentence_chars=_env_int("WANA_MAX_SENTENCE_CHARS", cls.max_sentence_chars),
+            max_wait_s=_env_float("WANA_MAX_WAIT_S", cls.max_wait_s),
+            max_duration_s=_env_float("WANA_MAX_DURATION_S", cls.max_duration_s),
         )
         return base.replace(**{k: v for k, v in overrides.items() if v is not None})
 
@@ -138,5 +171,6 @@ class Settings:
             raise ValueError("the remote backend needs a broker URL (--broker or WANA_BROKER)")
         if self.max_message_bytes < 1024:
             raise ValueError("max_message_bytes must be at least 1024")
+        self.budget.check()
         if not 0 <= self.port <= 65535:
             raise ValueError(f"port {self.port} is outside 0..65535")

@@ -27,6 +27,7 @@ from proto.common import ErrorCode
 from proto.fidelity import Check
 from proto.render import CastMember, ExportFormat, ExportReply
 from services.orchestrator.backend import Backend, InProcessBackend, StageFailed, StageUnavailable
+from services.orchestrator.budget import BUDGET_CODE, Budget
 from services.orchestrator.cast import load_cast, unknown_names
 from services.orchestrator.exports import export
 from services.orchestrator.pipeline import PipelineResult
@@ -124,7 +125,65 @@ def build_parser() -> argparse.ArgumentParser:
         help="a JSON object, canonical joint -> your joint name (Hips, Spine, Head, LeftArm, LeftForeArm, LeftHand, "
         "LeftUpLeg, LeftLeg, LeftFoot, the Right ones...), for a --cast rig whose names no table knows",
     )
+    limits = p.add_argument_group(
+        "compute budget",
+        "what one story may spend; what goes over is cut with a W501 warning naming it, and the rest of "
+        "the story still animates",
+    )
+    d = Budget()
+    limits.add_argument(
+        "--max-seconds",
+        type=float,
+        default=d.max_seconds,
+        metavar="S",
+        help=f"wall time of the pipeline (default {d.max_seconds:g}); sentences are parsed only in its first "
+        "half, and stages after it are cut",
+    )
+    limits.add_argument(
+        "--max-sentences",
+        type=int,
+        default=d.max_sentences,
+        metavar="N",
+        help=f"sentences animated; later ones are cut (default {d.max_sentences})",
+    )
+    limits.add_argument(
+        "--max-sentence-chars",
+        type=int,
+        default=d.max_sentence_chars,
+        metavar="N",
+        help=f"longest sentence parsed; longer ones are cut (default {d.max_sentence_chars})",
+    )
+    limits.add_argument(
+        "--max-wait-s",
+        type=float,
+        default=d.max_wait_s,
+        metavar="S",
+        help=f"longest 'wait N seconds' (default {d.max_wait_s:g})",
+    )
+    limits.add_argument(
+        "--max-duration-s",
+        type=float,
+        default=d.max_duration_s,
+        metavar="S",
+        help=f"all waits of the story together (default {d.max_duration_s:g})",
+    )
     return p
+
+
+def budget_of(args: argparse.Namespace) -> Budget:
+    """The compute budget the command line asks for (SystemExit 2 with a message for a bad value)."""
+    budget = Budget(
+        max_seconds=args.max_seconds,
+        max_sentences=args.max_sentences,
+        max_sentence_chars=args.max_sentence_chars,
+        max_wait_s=args.max_wait_s,
+        max_duration_s=args.max_duration_s,
+    )
+    try:
+        budget.check()
+    except ValueError as exc:
+        raise SystemExit(f"wana animate: {exc}") from exc
+    return budget
 
 
 def read_story(path: str) -> str:
@@ -236,6 +295,7 @@ def summary(result: PipelineResult, extra_checks: Mapping[str, list[Check]] | No
         "characters": sorted(result.motions),
         "unavailable": _dropped(result, {sid: v.checks for sid, v in judged.items()}),
         "nodes_ran": result.ran,
+        "cut": dict(result.cut),  # sentence id -> what the compute budget cut (W501)
     }
 
 
@@ -325,8 +385,24 @@ def print_verdicts(report: dict[str, Any]) -> None:
     print(f"wana animate: the animation shows {shown} of {len(sentences)} sentences fully", file=sys.stderr)
 
 
+def print_diagnostics(result: PipelineResult) -> None:
+    """Every diagnostic but the stage-unavailable ones, one line each; the same budget cut (W501) on many
+    sentences is one line naming the first and last of them."""
+    cuts: dict[str, list[str]] = {}
+    for sid, diags in result.diagnostics.items():
+        for d in diags:
+            if d.code == BUDGET_CODE:
+                cuts.setdefault(d.message, []).append(sid)
+            elif d.code != ErrorCode.UNAVAILABLE:
+                print(f"{sid} [{d.span.start}:{d.span.end}] {d.severity}: {d.message}", file=sys.stderr)
+    for message, sids in cuts.items():
+        where = sids[0] if len(sids) == 1 else f"{sids[0]}..{sids[-1]} ({len(sids)} sentences)"
+        print(f"{where} warning: {message}", file=sys.stderr)
+
+
 def main(argv: list[str]) -> int:
     args = build_parser().parse_args(argv)
+    budget = budget_of(args)
     missing = missing_extras(args.export)
     if missing:
         for why in missing:
@@ -350,7 +426,7 @@ def main(argv: list[str]) -> int:
             from services.orchestrator.embedded import Embedded
 
             backend = stack.enter_context(Embedded())
-        orchestrator = Orchestrator(Path(tmp) / "sessions.db", backend, seed=args.seed)
+        orchestrator = Orchestrator(Path(tmp) / "sessions.db", backend, seed=args.seed, budget=budget)
         result = orchestrator.create(text, doc_id="story").compute(progress=tick)
         orchestrator.close()
         close()
@@ -384,10 +460,7 @@ def main(argv: list[str]) -> int:
                 )
             except (StageFailed, StageUnavailable) as exc:
                 result.unavailable["render"] = str(exc)
-    for sid, diags in result.diagnostics.items():
-        for d in diags:
-            if d.code != ErrorCode.UNAVAILABLE:
-                print(f"{sid} [{d.span.start}:{d.span.end}] {d.severity}: {d.message}", file=sys.stderr)
+    print_diagnostics(result)
     if result.unavailable:
         for why in result.unavailable.values():
             print(f"wana animate: {why}", file=sys.stderr)

@@ -12,6 +12,9 @@ Query nodes (DESIGN §3), each keyed by the content hash of its inputs (what it 
 Each stage is a module of services/orchestrator/stages/. A stage whose service this process may not reach
 (StageUnavailable, e.g. a gateway started with --services) or that fails is named in `unavailable`, with
 an E011 diagnostic on the first sentence; nothing is faked.
+The document's compute budget (services/orchestrator/budget.py) cuts what is over it before the stages
+see it: sentences past the count or size limits and those the parse time did not reach get an empty graph
+and a W501 diagnostic, waits are shortened; after the time budget, service calls fail with E006.
 """
 
 from __future__ import annotations
@@ -24,6 +27,7 @@ from proto.common import ErrorCode, Span
 from proto.social import SocialPlan
 from proto.ssg import Diagnostic, SentenceGraph
 from services.orchestrator.backend import Backend, StageFailed, StageUnavailable
+from services.orchestrator.budget import Budget, Meter, over_budget
 from services.orchestrator.document import Document, Sentence
 from services.orchestrator.queries import QueryEngine
 from services.orchestrator.result import PipelineResult, SentenceView
@@ -51,10 +55,13 @@ def _stage_diag(stage: str, why: str, span: Span) -> Diagnostic:
 
 
 class Pipeline:
-    def __init__(self, backend: Backend, *, doc_id: str = "", seed: int = 0) -> None:
+    def __init__(
+        self, backend: Backend, *, doc_id: str = "", seed: int = 0, budget: Budget | None = None
+    ) -> None:
         self.backend = backend
         self.doc_id = doc_id
         self.seed = seed
+        self.budget = budget or Budget()
 
     def run(
         self,
@@ -68,19 +75,28 @@ class Pipeline:
         result = PipelineResult(doc_id=doc.doc_id, version=doc.version)
         tick: Progress = progress or (lambda stage, done, total: None)
         sentences = list(doc.sentences)
-        ctx = StageContext(self.backend, engine, self.doc_id, doc.version, self.seed)
+        meter = Meter(self.budget)
+        ctx = StageContext(meter.backend(self.backend), engine, self.doc_id, doc.version, self.seed)
+        cut = meter.sentences_to_parse(sentences)
 
         try:
-            ordered = parse_all(ctx, sentences, tick)
+            ordered = self._parse(ctx, meter, sentences, cut, tick)
+            # Only the sentences within the budget go on: the later stages never see the cut ones.
+            kept = [i for i, s in enumerate(sentences) if s.id not in cut]
+            resolved = list(ordered)
             try:
-                resolved = resolve(ctx, ordered)
+                for i, g in zip(kept, resolve(ctx, [ordered[i] for i in kept]), strict=True):
+                    resolved[i] = g
             except StageFailed as exc:
-                resolved = ordered
                 result.unavailable["resolve"] = str(exc)
         except StageUnavailable as exc:
             result.unavailable["parse"] = str(exc)
             self._finish(result, engine, sentences)
             return result
+        resolved = self._cut_waits(meter, resolved, cut)
+        live_graphs = [resolved[i] for i in kept]
+        live_sentences = [sentences[i] for i in kept]
+        result.cut = cut
         # Spans from the parser are relative to the whitespace-normalised sentence text; map them back.
         for s, g in zip(sentences, resolved, strict=True):
             result.graphs[s.id] = g
@@ -94,18 +110,63 @@ class Pipeline:
         if "scene" in stages:
             try:
                 tick("scene", 0, 1)
-                result.scene, result.scene_report = scene(ctx, resolved)
+                result.scene, result.scene_report = scene(ctx, live_graphs)
                 tick("scene", 1, 1)
             except (StageUnavailable, StageFailed) as exc:
                 result.unavailable["scene"] = str(exc)
 
         if "motion" in stages and result.scene is not None:
             try:
-                self._motion(ctx, result, resolved, sentences, tick)
+                self._motion(ctx, result, live_graphs, live_sentences, tick)
             except (StageUnavailable, StageFailed) as exc:
                 result.unavailable["motion"] = str(exc)
         self._finish(result, engine, sentences)
         return result
+
+    @staticmethod
+    def _parse(
+        ctx: StageContext,
+        meter: Meter,
+        sentences: list[Sentence],
+        cut: dict[str, str],
+        tick: Progress,
+    ) -> list[SentenceGraph]:
+        """Every sentence's graph in order: parsed while the parse time lasts, else an empty graph whose
+        W501 says why it was cut (recorded in ``cut``)."""
+        graphs: dict[str, SentenceGraph] = {}
+        todo = [s for s in sentences if s.id not in cut]
+
+        def quiet(stage: str, done: int, total: int) -> None:
+            """parse_all's own ticks, for one sentence at a time: this loop ticks for all of them."""
+
+        for i, s in enumerate(todo):
+            if not meter.parse_time_left():
+                for late in todo[i:]:
+                    cut[late.id] = meter.out_of_parse_time()
+                break
+            tick("parse", i, len(todo))
+            graphs[s.id] = parse_all(ctx, [s], quiet)[0]
+        tick("parse", len(todo), len(todo))
+        for s in sentences:
+            if s.id in cut:
+                why = over_budget(cut[s.id], Span(0, len(s.key_text)))
+                graphs[s.id] = SentenceGraph(sentence_id=s.id, text="", kind="empty", diagnostics=[why])
+        return [graphs[s.id] for s in sentences]
+
+    @staticmethod
+    def _cut_waits(meter: Meter, graphs: list[SentenceGraph], cut: dict[str, str]) -> list[SentenceGraph]:
+        """The graphs with their waits cut to the budget, each cut named by a W501 on its sentence."""
+        out, used = [], 0.0
+        for g in graphs:
+            g, used, notes = meter.cut_waits(g, used)
+            if notes:
+                span = Span(0, len(g.text))
+                g = msgspec.structs.replace(
+                    g, diagnostics=[*g.diagnostics, *(over_budget(n, span) for n in notes)]
+                )
+                cut.setdefault(g.sentence_id, "; ".join(notes))
+            out.append(g)
+        return out
 
     def _motion(
         self,

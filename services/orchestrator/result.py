@@ -35,3 +35,4 @@ class PipelineResult:
     reused: list[str] = field(default_factory=list)
     unavailable: dict[str, str] = field(default_factory=dict)  # stage -> why
     optimisations: list[OptimiseReply] = field(default_factory=list)  # one per optimised interaction
+    cut: dict[str, str] = field(default_factory=dict)  # sentence id -> what the compute budget cut (W501)

@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from services.orchestrator.backend import Backend
+from services.orchestrator.budget import Budget
 from services.orchestrator.document import Document, TextChange
 from services.orchestrator.pipeline import Pipeline, PipelineResult
 from services.orchestrator.queries import QueryEngine
@@ -79,10 +80,13 @@ class Session:
 class Orchestrator:
     """Opens sessions over one SQLite file and one backend."""
 
-    def __init__(self, db_path: str | Path, backend: Backend, *, seed: int = 0) -> None:
+    def __init__(
+        self, db_path: str | Path, backend: Backend, *, seed: int = 0, budget: Budget | None = None
+    ) -> None:
         self.store = SessionStore(db_path)
         self.backend = backend
         self.seed = seed
+        self.budget = budget or Budget()  # what one compute of one document may spend
         self._sessions: dict[str, Session] = {}
         self._lock = threading.Lock()
 
@@ -97,7 +101,9 @@ class Orchestrator:
             session = self._sessions.get(doc_id)
             if session is None:
                 doc = self.store.load(doc_id)
-                session = Session(doc, self.store, Pipeline(self.backend, doc_id=doc_id, seed=self.seed))
+                session = Session(
+                    doc, self.store, Pipeline(self.backend, doc_id=doc_id, seed=self.seed, budget=self.budget)
+                )
                 self._sessions[doc_id] = session
             return session
 

@@ -14,7 +14,9 @@ Rules (proto/PROTOCOL.md is the authoritative description):
   jobs are re-queued at the front of their service queue with the attempt count raised; a job dispatched
   ``max_attempts`` times whose worker died each time gets an E007 error reply.
 - Requests and replies are deduplicated by job id: a request whose job is already queued or in flight
-  is ignored, the first reply to a job wins and later ones are dropped.
+  is ignored, the first reply to a job wins and later ones are dropped. Recent answers are kept, so a
+  client that re-sends a job after its connection dropped (the answer may have been lost in flight)
+  gets the answer again.
 - Each service queue holds at most ``queue_limit`` waiting jobs; beyond that the client gets E005 busy.
 - A payload over ``max_frame`` bytes gets E002; frames over twice that are refused by ZeroMQ itself
   (the connection is dropped) so that no peer can exhaust the broker's memory.
@@ -78,7 +80,9 @@ log = logging.getLogger(__name__)
 
 _TICK_S = 0.05  # longest sleep of the event loop: bounds deadline precision and stop latency
 _DONE_MEMORY = 65536  # job ids remembered after their reply, to drop duplicates
-_UNDELIVERED_MEMORY = 256  # replies kept when the client was unreachable, re-sent if it asks again
+# Replies kept after they were sent, for a client that asks again: a reply ZeroMQ accepted can still be lost
+# with its connection (a reset drops what was in flight), and the client then re-sends its pending jobs.
+_UNDELIVERED_MEMORY = 4096
 _MAX_SERVICES = 1024  # distinct service names the broker will track
 _PREFETCH_MAX_JOB_S = 0.05  # prefetch only while a worker's jobs take less than this (see _next_worker)
 _HEARTBEAT = wire.encoder.encode(HeartbeatFrame())
@@ -170,7 +174,7 @@ class Broker:
         # its old connection is gone, and re-sends its jobs (PONG).
         self._socket.setsockopt(zmq.ROUTER_HANDOVER, 0 if root is not None else 1)
         self._socket.setsockopt(zmq.SNDHWM, 0)  # queues are bounded by queue_limit, not by dropping
-        self._socket.setsockopt(zmq.RCVHWM, 0)
+        self._socket.setsockopt(zmq.RCVHWM, wire.RCVHWM)  # a flooding peer waits (wire.RCVHWM)
         self._socket.setsockopt(zmq.MAXMSGSIZE, 2 * self.max_frame + 4096)
         self.endpoints: list[str] = []
         if not urls:
@@ -330,7 +334,7 @@ class Broker:
             self._sender_key = frames[1].get("User-Id") or ""
             if not self._key_matches(sender, self._sender_key):
                 self._client_error(
-                    sender, "", ErrorCode.INVALID_INPUT, "this routing id belongs to another key"
+                    sender, "", ErrorCode.UNAUTHORISED, "this routing id belongs to another key"
                 )
                 return
         if kind is RequestFrame:
@@ -367,9 +371,7 @@ class Broker:
                 self._remove_worker(worker, "it disconnected")
         elif kind is StatsFrame:
             if self._allow is not None and not self._allow.is_client(self._sender_key):
-                self._client_error(
-                    sender, "", ErrorCode.INVALID_INPUT, "STATS is for authorised clients only"
-                )
+                self._client_error(sender, "", ErrorCode.UNAUTHORISED, "STATS is for authorised clients only")
                 return
             self._send(sender, _STATS, wire.encoder.encode(self.stats(job_ids=False)))
         else:
@@ -419,22 +421,21 @@ class Broker:
         job_id = request.job_id
         if self._allow is not None and not self._allow.is_client(self._sender_key):
             why = "this peer's key is not in the clients' allow list"
-            self._client_error(client, job_id, ErrorCode.INVALID_INPUT, why, request.doc_id, request.revision)
+            self._client_error(client, job_id, ErrorCode.UNAUTHORISED, why, request.doc_id, request.revision)
             return
         job = self._jobs.get(job_id)
         owner = job.client if job is not None else self._done.get(job_id)
         if owner is not None and owner != client:  # never re-point a job to another peer
             why = f"job id {job_id!r} is already used by another peer"
-            self._client_error(client, job_id, ErrorCode.INVALID_INPUT, why, request.doc_id, request.revision)
+            self._client_error(client, job_id, ErrorCode.UNAUTHORISED, why, request.doc_id, request.revision)
             return
         if job is not None:  # the same client again (e.g. after a broker silence): it gets the reply
             self.duplicate_requests += 1
             return
         if owner is not None:
             self.duplicate_requests += 1
-            kept = self._undelivered.pop(job_id, None)
-            if kept is not None:
-                self._undelivered_bytes -= len(kept[1][1])
+            kept = self._undelivered.get(job_id)
+            if kept is not None and kept[0] == client:  # kept until the bounds push it out
                 self._send(client, *kept[1])
             else:
                 why = f"job {job_id!r} was answered already"
@@ -495,7 +496,7 @@ class Broker:
         if self._allow is not None and not self._allow.may_serve(self._sender_key, ready.service):
             log.warning("refused worker %r: its key may not serve %r", sender, ready.service)
             self._client_error(
-                sender, "", ErrorCode.INVALID_INPUT, f"this peer's key may not serve {ready.service!r}"
+                sender, "", ErrorCode.UNAUTHORISED, f"this peer's key may not serve {ready.service!r}"
             )
             return
         if worker is not None:  # re-registration: whatever it held is abandoned
@@ -759,12 +760,17 @@ class Broker:
                 self._send_out(peer, pairs, jobs[peer])
 
     def _send_out(self, peer: bytes, pairs: list, job_ids: list[str]) -> None:
+        worker = self._workers.get(peer)
         try:
             wire.send_pairs(self._socket, (peer,), pairs)
+            if worker is None:  # a client's answers to its own jobs: kept a while, in case of loss
+                done = self._done
+                for i, job_id in enumerate(job_ids):
+                    if done.get(job_id) == peer:
+                        self._keep_undelivered(peer, job_id, pairs[2 * i], pairs[2 * i + 1])
             return
         except zmq.ZMQError as exc:  # EHOSTUNREACH (ROUTER_MANDATORY): the peer is gone
             log.debug("could not send to %r: %s", peer, exc)
-        worker = self._workers.get(peer)
         if worker is not None:  # JOBs: re-queue them, they never reached it
             self._remove_worker(worker, "it is unreachable", undelivered=job_ids)
             return

@@ -132,11 +132,12 @@ class Client:
         self._socket.setsockopt(zmq.LINGER, 0)
         self._socket.setsockopt(zmq.ROUTING_ID, b"C" + uuid.uuid4().hex.encode())
         self._socket.setsockopt(zmq.SNDHWM, 0)
-        self._socket.setsockopt(zmq.RCVHWM, 0)
+        self._socket.setsockopt(zmq.RCVHWM, wire.RCVHWM)
         root = curve.keys_dir(keys) if connect.startswith("tcp://") else None
         if root is not None:
             curve.connect_curve(self._socket, root, "client")
         self._socket.connect(connect)
+        self._monitor = wire.watch_disconnects(self._socket)  # a dropped connection: re-send (_pump)
         self._prefix = uuid.uuid4().hex[:12]
         self._counter = 0
         self._pending: dict[str, _Pending] = {}
@@ -246,6 +247,8 @@ class Client:
         revision: int,
     ) -> _Pending:
         """Register one job as pending (not sent yet) and return it."""
+        if not self._pending:  # a drop while idle concerns no job (while busy, _pump looks every tick)
+            self._connection_dropped()
         if not isinstance(payload, (bytes, bytearray, memoryview)):
             raise TypeError(f"payload must be bytes, not {type(payload).__name__}")
         self._counter += 1
@@ -365,6 +368,7 @@ class Client:
     def close(self) -> None:
         """Close the socket; pending jobs are abandoned."""
         if not self._socket.closed:
+            wire.close_monitor(self._socket, self._monitor)
             self._socket.close(0)
 
     def __enter__(self) -> Client:
@@ -381,6 +385,15 @@ class Client:
             return True
         except zmq.Again:  # no broker connected at all (inproc after it closed): retried on PONG
             return False
+
+    def _connection_dropped(self) -> bool:
+        """Whether the connection dropped since the last look; if so, the jobs pending now (what was in
+        flight may be lost with it) are re-sent at the next PONG. A job sent after the drop is not."""
+        if not wire.dropped(self._monitor):
+            return False
+        for p in self._pending.values():
+            p.sent_to = ""
+        return True
 
     def _ping(self) -> None:
         self._ping_seq += 1
@@ -422,7 +435,9 @@ class Client:
         now = monotonic()
         if self._pending and now >= self._next_check:
             self._next_check = now + _TICK_S
-            if now - self._last_ping >= self.heartbeat_s:
+            if self._connection_dropped():
+                self._ping()
+            elif now - self._last_ping >= self.heartbeat_s:
                 self._ping()
             if (
                 self._unanswered_since is not None

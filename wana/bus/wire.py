@@ -23,6 +23,7 @@ every pyzmq call costs microseconds, so the hot path makes as few as it can.
 
 from __future__ import annotations
 
+import contextlib
 from collections.abc import Sequence
 from typing import Any
 
@@ -58,6 +59,43 @@ encoder = msgspec.msgpack.Encoder()
 # Every way decoding a frame can fail: msgspec's errors, and UnicodeDecodeError (a ValueError),
 # which msgspec raises as itself for a msgpack string that is not UTF-8 (b"\x91\xa1\xff" once
 # killed the broker). Every decode on the bus catches exactly this tuple.
+# Messages ZeroMQ queues per peer on a receiving socket before it stops reading that connection: the
+# sender then waits (TCP back-pressure; nothing is dropped on ROUTER or DEALER), so a peer flooding faster
+# than the loop handles its messages holds at most this many in the receiver's memory, not all of them.
+# (256 cost the broker ~10 us and a client ~5 us per request in bench/bus.py: flow control that often.)
+RCVHWM = 4096
+
+
+def watch_disconnects(sock: zmq.Socket) -> zmq.Socket | None:
+    """A monitor of ``sock``'s connection drops (tcp:// and ipc://; None for inproc://, which never drops).
+
+    ZeroMQ reconnects by itself, but what was in flight on the dropped connection is gone: a peer that
+    learns of the drop re-sends (a client its pending jobs, a worker its READY, so the broker re-queues
+    what it held).
+    """
+    endpoint = sock.getsockopt_string(zmq.LAST_ENDPOINT)
+    if endpoint.startswith("inproc://"):
+        return None
+    return sock.get_monitor_socket(zmq.EVENT_DISCONNECTED)
+
+
+def dropped(monitor: zmq.Socket | None) -> bool:
+    """True when the monitored connection dropped since the last call (reads every pending event)."""
+    seen = False
+    # ZMQ_EVENTS rather than poll(): no Poller is built for the check
+    while monitor is not None and int(monitor.getsockopt(zmq.EVENTS)) & _POLLIN:
+        monitor.recv_multipart(zmq.NOBLOCK)
+        seen = True
+    return seen
+
+
+def close_monitor(sock: zmq.Socket, monitor: zmq.Socket | None) -> None:
+    if monitor is not None:
+        with contextlib.suppress(zmq.ZMQError):
+            sock.disable_monitor()
+        monitor.close(0)
+
+
 DECODE_ERRORS = (msgspec.DecodeError, msgspec.ValidationError, ValueError)
 # Typed as Any because zmq.Frame (buffer protocol) is not declared a Buffer in pyzmq's stubs.
 envelope_decoder: Any = msgspec.msgpack.Decoder(Envelope)

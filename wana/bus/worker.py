@@ -102,6 +102,7 @@ class Worker:
         self._context = context or zmq.Context.instance()
         self._keys = curve.keys_dir(keys) if connect.startswith("tcp://") else None
         self._socket: zmq.Socket | None = None
+        self._monitor: zmq.Socket | None = None  # connection drops of _socket (wire.watch_disconnects)
         self._lock = threading.Lock()  # owns the socket: the loop, or the heartbeat thread during a job
         self._in_handler = False
         self._last_sent = 0.0
@@ -135,16 +136,20 @@ class Worker:
         sock.setsockopt(zmq.LINGER, 0)
         sock.setsockopt(zmq.ROUTING_ID, b"W" + uuid.uuid4().hex.encode())
         sock.setsockopt(zmq.MAXMSGSIZE, 2 * self.max_frame + 4096)
+        sock.setsockopt(zmq.RCVHWM, wire.RCVHWM)
         if self._keys is not None:
             curve.connect_curve(sock, self._keys, "worker")
         sock.connect(self.connect)
         self._socket = sock
+        self._monitor = wire.watch_disconnects(sock)  # a dropped connection: READY again (_serve_once)
         now = time.monotonic()
         self._broker_expiry = now + self.heartbeat_s * self.liveness
         self._send(self._ready)
 
     def _close(self) -> None:
         if self._socket is not None:
+            wire.close_monitor(self._socket, self._monitor)
+            self._monitor = None
             self._socket.close(0)
             self._socket = None
 
@@ -213,6 +218,14 @@ class Worker:
             self._reconnect(stop)
             return
         if now >= self._last_sent + self.heartbeat_s:
+            if wire.dropped(self._monitor):
+                # A reply or a JOB in flight may have gone with the connection: registering again makes
+                # the broker re-queue whatever it thinks this worker holds (the READY travels on the
+                # connection ZeroMQ re-opens, after anything queued before it).
+                log.warning(
+                    "%s worker: the connection to the broker dropped; registering again", self.service
+                )
+                self._send(self._ready)
             self._send(_HEARTBEAT)
         got = wire.recv_from_broker(sock) if self._draining else None
         if got is None:  # nothing waiting, or not draining (see wire.py): poll first

@@ -221,12 +221,12 @@ def test_a_re_sent_request_from_another_peer_never_re_points_the_job(
     victim.send(RequestFrame("echo", "j-victim", "k", 0, 10_000), b"q")
     _next_not_heartbeat(worker)
     thief.send(RequestFrame("echo", "j-victim", "k", 0, 10_000), b"q")
-    assert _error_of(thief.recv()).code == "E010"
+    assert _error_of(thief.recv()).code == "E013"
     worker.send(ReplyFrame("j-victim"), b"for the victim")
     assert victim.recv() == (ReplyFrame("j-victim"), [b"for the victim"])
     assert thief.recv(0.3) is None
     thief.send(RequestFrame("echo", "j-victim", "k", 0, 10_000), b"q")  # answered: still not the thief's
-    assert _error_of(thief.recv()).code == "E010"
+    assert _error_of(thief.recv()).code == "E013"
 
 
 def test_a_nested_batch_and_a_command_the_broker_never_takes_are_answered(ipc_url, make_broker, raw_peer):

@@ -163,3 +163,22 @@ def test_a_worker_busy_with_a_long_job_is_not_handed_another_one(
         client.request("echo", b"0", deadline_s=0.2)
     assert err.value.code == "E006" and "in the queue" in err.value.message
     assert client.result(busy, timeout=5) == b"0.6"
+
+
+def test_a_flood_past_the_receive_high_water_mark_waits_instead_of_being_dropped(
+    ipc_url, make_broker, make_client, thread_worker
+):
+    """RCVHWM bounds what the broker queues per peer; ZeroMQ then stops reading that peer (back-pressure),
+    so a burst of many times that many requests is all answered, none lost."""
+    import zmq
+
+    from wana.bus import wire
+
+    n = 2 * wire.RCVHWM
+    broker = make_broker(ipc_url, queue_limit=n, max_client_jobs=n)
+    assert broker._socket.getsockopt(zmq.RCVHWM) == wire.RCVHWM  # noqa: SLF001 - the bound under test
+    thread_worker("echo", _echo, ipc_url)
+    client = make_client(ipc_url)
+    jobs = [client.submit("echo", f"{i}".encode(), deadline_s=60) for i in range(n)]  # one message each
+    replies = client.wait(jobs, timeout=60)
+    assert sorted(replies.values()) == sorted(f"echo:{i}".encode() for i in range(n))
