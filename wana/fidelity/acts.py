@@ -42,6 +42,7 @@ class Act:
     k: int  # index among the character's actions (Segment.action_index)
     node: ActionNode
     segments: list[Segment] = field(default_factory=list)
+    objects: tuple[str, ...] = ()  # ids of the objects the sentence names (a handover's "the book")
 
     @property
     def clip(self) -> Segment | None:
@@ -74,7 +75,7 @@ def story_acts(
                 counters[c.name] = k + 1
                 motion = motions.get(c.name)
                 segs = [s for s in motion.segments if s.action_index == k] if motion is not None else []
-                acts.append(Act(sid, c.name, k, node, segs))
+                acts.append(Act(sid, c.name, k, node, segs, tuple(o.id for o in graph.objects)))
     return acts
 
 

@@ -8,17 +8,18 @@ closest to; with none in the room the check fails and says so (nothing dropped p
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from functools import partial
 
 import numpy as np
 
 from proto.fidelity import Check
+from proto.motion_data import PropTrack
 from proto.scene import PlacedObject
 from wana.assets.catalog import world_bounds
 from wana.assets.relations import footprint_gap
-from wana.assets.vocabulary import lookup_room
+from wana.assets.vocabulary import CATEGORIES, hypernyms, lookup_room
 from wana.fidelity.acts import Act, is_locomotion, window_frames
 from wana.fidelity.bodies import Body
 from wana.fidelity.clips import ClipNeeds, clip_needs
@@ -60,6 +61,11 @@ KIND_WORDS = {
     "floor_item": "thing to pick up",
 }
 HELD = ("handheld", "tool")
+HOLDABLE_M = 0.6  # metres: the largest side of a surface thing one holds in a hand
+# Handing an object over: the clip ("present") is a gesture with no object, so the check looks at the object.
+HANDOVER_VERBS = ("give", "hand", "pass", "offer", "hand over", "pass over", "give back", "hand out", "pass on")
+HANDOFF_FRAMES = 15  # the receiver's grip starts within this of the giver's letting go (0.5 s)
+HANDOFF_M = 0.15  # ... with the object this close to where the giver let go of it (no jump between hands)
 
 
 @dataclass(frozen=True)
@@ -101,8 +107,23 @@ def _fitting(
     return out
 
 
-def reach(act: Act, body: Body, world: World, candidates: list[PlacedObject]) -> Reach | None:
-    """The candidate object and contact point the body came closest to during the window, None if none fits."""
+def carried(tracks: Sequence[PropTrack], object_id: str, frames: np.ndarray) -> np.ndarray:
+    """(W,) whether the object is in one of the character's hands (a PropTrack of it) on each frame."""
+    out = np.zeros(len(frames), bool)
+    for t in tracks:
+        if t.object_id == object_id:
+            out |= (frames >= t.start_frame) & (frames < t.end_frame)
+    return out
+
+
+def reach(
+    act: Act, body: Body, world: World, candidates: list[PlacedObject], tracks: Sequence[PropTrack] = ()
+) -> Reach | None:
+    """The candidate object and contact point the body came closest to during the window, None if none fits.
+
+    A held object (a cup, a hammer) the character carries (a PropTrack of it) is in the hand on those frames:
+    its placed position is where it was picked up from, not where it is.
+    """
     clip = clip_needs(act.node.action)
     frames = window_frames(act)
     if clip is None or not len(frames):
@@ -111,31 +132,64 @@ def reach(act: Act, body: Body, world: World, candidates: list[PlacedObject]) ->
     best: Reach | None = None
     best_score = np.inf
     for placed in candidates:
+        held = carried(tracks, placed.id, np.asarray(frames)) if clip.object in HELD else None
         for name, targets in _fitting(clip, world.contact_points(placed)):
             dist = {j: np.linalg.norm(body.joint(j)[idx] - p, axis=1) for j, p in targets.items()}
+            if held is not None and held.any():
+                dist = {j: np.where(held, 0.0, d) for j, d in dist.items()}
             score = float(np.mean([d.mean() for d in dist.values()]))
             if score < best_score:
                 best, best_score = Reach(placed, name, targets, dist), score
     return best
 
 
+def _hypernyms(category: str) -> tuple[str, ...]:
+    try:
+        return tuple(hypernyms(category))
+    except KeyError:
+        return ()
+
+
+def _mount(category: str) -> str:
+    info = CATEGORIES.get(category)
+    return info.mount if info is not None else ""
+
+
+def _holdable(world: World, placed: PlacedObject) -> bool:
+    """A tool, or a small thing that rests on a surface (a cup, a book): not a plank or a stand microphone."""
+    if "tool" in _hypernyms(placed.category):
+        return True
+    b = world_bounds(placed)
+    return _mount(placed.category) == "surface" and float(np.max(b[1] - b[0])) <= HOLDABLE_M
+
+
 def _candidates(act: Act, world: World, characters: set[str]) -> tuple[list[PlacedObject], str]:
     """The objects the action may use, and the word the text used for them ("" when it named none).
 
     With no object named, a held object must be one made for the action (a hammer has a "hammer" point, a cup
-    a "drink" point); anything else must offer the interaction's own point, not just a place to touch.
+    a "drink" point); anything else must offer the interaction's own point, not just a place to touch. A held
+    action's named object that is not made for it is what is worked on ("hammers a nail", "sweeps the floor"):
+    the tool is then still the one made for the action, in the hand.
     """
     clip = clip_needs(act.node.action)
+    action = act.node.action
+    held = clip is not None and clip.object in HELD
+    meant = {action, action.split("_")[0]}
     for ref in (act.node.instrument, act.node.target, act.node.destination):
         if ref and ref not in characters:
-            return world.find(ref), ref
+            found = world.find(ref)
+            if not held:
+                return found, ref
+            tools = [o for o in found if meant & set(world.contact_points(o)) and _holdable(world, o)]
+            if tools or (not found and ref == act.node.instrument):  # the tool it names ("with a hammer")
+                return tools, ref
     if clip is None:
         return [], ""
-    action = act.node.action
-    if clip.object in HELD:
-        meant = {action, action.split("_")[0]}
-    else:
-        meant = {action, *PREFERRED_POINTS.get(clip.object, ())} - {"touch", "pick_up"}
+    if held:
+        return [
+            o for o in world.scene.objects if meant & set(world.contact_points(o)) and _holdable(world, o)
+        ], ""
+    meant = {action, *PREFERRED_POINTS.get(clip.object, ())} - {"touch", "pick_up"}
     return [o for o in world.scene.objects if meant & set(world.contact_points(o))], ""
 
 
@@ -159,13 +213,24 @@ def _fitting_at(act: Act, world: World, named: list[PlacedObject]) -> list[Place
 
 
 def contact(
-    act: Act, body: Body, world: World, bodies: Mapping[str, Body]
+    act: Act,
+    body: Body,
+    world: World,
+    bodies: Mapping[str, Body],
+    props: Mapping[str, Sequence[PropTrack]] | None = None,
 ) -> tuple[Check | None, dict[str, bool]]:
     """The `contact` check of one action and the objects it touches on purpose (exempt from `penetration`):
-    object id -> True when the whole body may touch it, False for the arms only."""
+    object id -> True when the whole body may touch it, False for the arms only.
+
+    Args:
+        props: character -> the objects it carries (Motion.props), for held objects and handing over.
+    """
+    props = props or {}
     clip = clip_needs(act.node.action)
     who, verb = act.character, act.node.verb or act.node.action
     base = partial(Check, name="contact", character=who)
+    if act.clip is not None and is_handover(act, set(bodies)):
+        return handover(act, world, bodies, props), {}
     if clip is None or act.clip is None:
         return None, {}
     if is_locomotion(act.node.action):
@@ -191,7 +256,7 @@ def contact(
             ),
             {},
         )
-    got = reach(act, body, world, candidates)
+    got = reach(act, body, world, candidates, props.get(who, ()))
     if got is None and word:  # "sits at the table": a fitting object at the named one (a chair at it)
         at = _fitting_at(act, world, candidates)
         got = reach(act, body, world, at) if at else None
@@ -297,6 +362,73 @@ def _touch_person(act: Act, body: Body, bodies: Mapping[str, Body], frames: rang
     )
 
 
+def is_handover(act: Act, characters: set[str]) -> bool:
+    """ "Tom gives the cup to Eve", "offers her a mint": a give verb, a recipient and an object to give (a
+    give verb with no object is a gesture: "gives Ben a thumbs up")."""
+    verb = act.node.verb.lower()
+    if not any(verb == v or verb.startswith(v + " ") for v in HANDOVER_VERBS):
+        return False
+    to = any(r in characters and r != act.character for r in (act.node.target, act.node.destination))
+    return to and bool(_handed_object(act, characters))
+
+
+def _handed_object(act: Act, characters: set[str]) -> str:
+    """The object word a handover names: in the action node, else the one object its sentence names."""
+    for ref in (act.node.target, act.node.instrument, act.node.destination):
+        if ref and ref not in characters:
+            return ref
+    return act.objects[0] if len(act.objects) == 1 else ""
+
+
+def handover(
+    act: Act, world: World, bodies: Mapping[str, Body], props: Mapping[str, Sequence[PropTrack]]
+) -> Check:
+    """The object passes from the giver's hand to the recipient's: the giver carries it during the action,
+    and the recipient's grip on it starts as the giver's ends, with the object where the giver let go."""
+    who = act.character
+    to = next(r for r in (act.node.target, act.node.destination) if r in bodies and r != who)
+    base = partial(Check, name="contact", character=who)
+    word = _handed_object(act, set(bodies))
+    found = {o.id for o in world.find(word)}
+    what = display(word)
+    if not found:
+        return base(ok=False, essential=True, reason=f"there is no {what} in the room for {who} to give {to}")
+    seg = act.clip
+    assert seg is not None
+    lo, hi = act.start, seg.end_frame + HANDOFF_FRAMES
+    given = [t for t in props.get(who, ()) if t.object_id in found and t.start_frame < hi and t.end_frame > lo]
+    if not given:
+        return base(
+            ok=False,
+            reason=f"the {what} is never in {who}'s hand: {who} gestures at {to} with an empty hand",
+            frames=frame_list(range(seg.start_frame, seg.end_frame)),
+        )
+    gave = max(given, key=lambda t: t.end_frame)
+    taken = [
+        t
+        for t in props.get(to, ())
+        if t.object_id == gave.object_id and abs(t.start_frame - gave.end_frame) <= HANDOFF_FRAMES
+    ]
+    if not taken:
+        return base(
+            ok=False,
+            reason=f"{who} holds the {what} but {to} never takes it",
+            frames=[min(gave.end_frame, seg.end_frame) - 1],
+        )
+    from wana.arrays import from_wire
+
+    let_go = from_wire(gave.position)[-1]
+    caught = from_wire(taken[0].position)[0]
+    jump = float(np.linalg.norm(let_go - caught))
+    if jump > HANDOFF_M:
+        return base(
+            ok=False,
+            reason=f"the {what} jumps {jump:.2f} m from {who}'s hand to {to}'s (their hands never meet)",
+            frames=[gave.end_frame - 1, taken[0].start_frame],
+        )
+    return base(ok=True, reason=f"the {what} passes from {who}'s hand to {to}'s at frame {taken[0].start_frame}")
+
+
 def _is_room_word(word: str) -> bool:
     """Whether a destination names the room (or a kind of room) rather than an object in it."""
     base = word.split("/")[0].split("#")[0].replace("_", " ")
@@ -351,4 +483,4 @@ def _arrival(act: Act, body: Body, world: World, bodies: Mapping[str, Body]) -> 
     )
 
 
-__all__ = ["CONTACT_M", "contact", "other_character", "reach"]
+__all__ = ["CONTACT_M", "carried", "contact", "handover", "is_handover", "other_character", "reach"]

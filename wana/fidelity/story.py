@@ -133,6 +133,7 @@ def _action_checks(
     for act in acts:
         if act.start >= 0:
             begins[act.sentence_id] = min(begins.get(act.sentence_id, act.start), act.start)
+    props = {name: list(m.props) for name, m in motions.items()}
     floor, floors, last = 0, {}, ""
     for act in acts:  # the floor of a sentence: when the action sentence before it began
         if act.sentence_id != last and last:
@@ -149,7 +150,7 @@ def _action_checks(
         seen.add(act.character)
         until = stays_until(act, motion)
         touching_until = stays_until(act, motion, through_standing_up=True)
-        contact, used = cc.contact(act, body, world, bodies)
+        contact, used = cc.contact(act, body, world, bodies, props)
         if contact is not None:
             checks.append(contact)
         if act.clip is not None:
