@@ -1,8 +1,8 @@
 """Do the story checks agree with the eye? Sample checks, draw what they name, compare with a person's labels.
 
 Usage:
-    .venv/bin/python eval/agreement.py [--split dev|test|others|all] [--sample N] [--seed 0]
-                                       [--quick] [--json PATH] [--labels PATH] [--out DIR]
+    .venv/bin/python eval/agreement.py [--split dev|test|others|all] [--sample N] [--sample-seed 0]
+                                       [--seed 0] [--quick] [--json PATH] [--labels PATH] [--out DIR]
 
 Each story of the split is computed once (the whole pipeline in-process, as eval/story.py does) and kept in a
 cache keyed by the story, the seed and the source of every stage the checks do not own, so that a change to a
@@ -21,8 +21,9 @@ the check is about looks right in the frames, ``fail`` when it looks wrong), a o
 The comparison runs on every labelled unit of the computed stories: agreement is the share of labels whose
 human verdict is the check's verdict (a check that no longer exists claims nothing: ``ok``). A label whose
 animation changed since it was judged (another stage changed the motion) is *stale*: it is not counted and is
-listed to be looked at again. ``--quick`` computes only the labelled stories, from the cache (a story not
-cached is computed only while the run stays under QUICK_BUDGET_S, the rest are reported as skipped).
+listed to be looked at again. Each label records the pipeline seed of the animation judged, and its story is
+computed with that seed. ``--quick`` checks only the QUICK_STORIES stories with the most labels, from the cache
+(seconds once cached; a cold cache computes them first).
 
 JSON keys: check_agreement (share of counted labels that agree), per_check (name -> labels, agree,
 agreement, false_alarms (check fails, eye says ok), misses (check passes, eye says fail)), counted, stale,
@@ -53,7 +54,7 @@ import story as story_eval  # noqa: E402  (eval/story.py: the same pipeline run 
 
 LABELS = REPO / "eval" / "data" / "agreement_labels.json"
 OUT = REPO / "out" / "eval" / "agreement"
-QUICK_BUDGET_S = 20.0  # --quick computes uncached stories only while under this
+QUICK_STORIES = 8  # --quick: the stories with the most labels
 # What the checks own: a change here reruns the checks on the cached animation, anything else recomputes it.
 CHECK_SOURCES = ("wana/fidelity/", "services/render/camera_checks.py", "services/render/gallery.py")
 PIPELINE_ROOTS = ("proto", "services", "wana")
@@ -123,7 +124,7 @@ def computed(path: Path, seed: int, version: str, cache: Path, *, compute: bool 
     compute is False)."""
     text = path.read_text(encoding="utf-8", errors="replace")
     key = hashlib.blake2b(f"{version}|{seed}|{text}".encode(), digest_size=10).hexdigest()
-    file = cache / f"{path.stem}-{key}.pkl"
+    file = cache / f"{path.stem}-s{seed}-{key}.pkl"
     if file.exists():
         try:
             with file.open("rb") as f:
@@ -134,7 +135,7 @@ def computed(path: Path, seed: int, version: str, cache: Path, *, compute: bool 
         return None
     result = story_eval._compute(text, path.stem, seed)
     cache.mkdir(parents=True, exist_ok=True)
-    for old in cache.glob(f"{path.stem}-*.pkl"):
+    for old in cache.glob(f"{path.stem}-s{seed}-*.pkl"):
         old.unlink(missing_ok=True)
     tmp = file.with_suffix(".tmp")
     with tmp.open("wb") as f:
@@ -146,7 +147,7 @@ def computed(path: Path, seed: int, version: str, cache: Path, *, compute: bool 
 # --- units: one (sentence, check, character) of one story --------------------------------------------------
 
 
-def units(row: dict[str, Any], fingerprint: str) -> list[dict[str, Any]]:
+def units(row: dict[str, Any], fingerprint: str, seed: int = 0) -> list[dict[str, Any]]:
     """Every (sentence, check, character) of one story row of eval/story.py, with the check's verdict."""
     out: dict[tuple[str, str, str], dict[str, Any]] = {}
     for s in row["per_sentence"]:
@@ -164,6 +165,7 @@ def units(row: dict[str, Any], fingerprint: str) -> list[dict[str, Any]]:
                     "reason": r["reason"],
                     "frames": [],
                     "animation": fingerprint,
+                    "seed": seed,
                 },
             )
             if not r["ok"] and u["check_verdict"] == "ok":  # the first failing one speaks for the unit
@@ -173,8 +175,9 @@ def units(row: dict[str, Any], fingerprint: str) -> list[dict[str, Any]]:
     return list(out.values())
 
 
-def unit_key(u: dict[str, Any]) -> tuple[str, str, str, str]:
-    return (u["story"], u["sentence"], u["check"], u["character"])
+def unit_key(u: dict[str, Any]) -> tuple[str, int, str, str, str]:
+    """(story, pipeline seed, sentence, check, character): one check about one character in one sentence."""
+    return (u["story"], int(u.get("seed", 0)), u["sentence"], u["check"], u["character"])
 
 
 def stratified_sample(pool: Sequence[dict[str, Any]], n: int, seed: int) -> list[dict[str, Any]]:
@@ -230,24 +233,25 @@ def load_labels(path: Path) -> list[dict[str, Any]]:
 
 def compare(
     labels: Iterable[dict[str, Any]],
-    found: dict[tuple[str, str, str, str], dict[str, Any]],
-    fingerprints: dict[str, str],
+    found: dict[tuple[Any, ...], dict[str, Any]],
+    fingerprints: dict[tuple[str, int], str],
 ) -> dict[str, Any]:
     """Agreement of each label with the current check verdict of its unit.
 
     Args:
         labels: the person's labels.
         found: unit key -> unit, over the stories computed this run.
-        fingerprints: story -> its animation's fingerprint (the stories computed this run).
+        fingerprints: (story, seed) -> its animation's fingerprint (the stories computed this run).
     """
     per: dict[str, collections.Counter[str]] = collections.defaultdict(collections.Counter)
     stale, skipped, disagreements = [], [], []
     for lab in labels:
         key = unit_key(lab)
-        if lab["story"] not in fingerprints:
+        story = (lab["story"], int(lab.get("seed", 0)))
+        if story not in fingerprints:
             skipped.append(key)
             continue
-        if lab.get("animation") and lab["animation"] != fingerprints[lab["story"]]:
+        if lab.get("animation") and lab["animation"] != fingerprints[story]:
             stale.append(key)
             continue
         u = found.get(key)
@@ -260,7 +264,7 @@ def compare(
             c["false_alarms" if check == "fail" else "misses"] += 1
             disagreements.append(
                 {
-                    **{k: lab[k] for k in ("story", "sentence", "check", "character", "human", "why")},
+                    **{k: lab[k] for k in ("story", "seed", "sentence", "check", "character", "human", "why")},
                     "check_verdict": check,
                     "reason": u["reason"] if u is not None else "(no such check now)",
                 }
@@ -309,56 +313,74 @@ def print_table(summary: dict[str, Any]) -> None:
 # --- the run --------------------------------------------------------------------------------------------
 
 
+def quick_stories(labels: Sequence[dict[str, Any]], n: int = QUICK_STORIES) -> list[tuple[str, int]]:
+    """The (story, seed) pairs --quick checks: the n with the most labels (ties in name order)."""
+    count = collections.Counter((lab["story"], int(lab.get("seed", 0))) for lab in labels)
+    return sorted(sorted(count), key=lambda k: -count[k])[:n]
+
+
 def run(args: argparse.Namespace) -> dict[str, Any]:
     t0 = time.perf_counter()
     labels = load_labels(args.labels)
-    paths = story_eval.story_paths(args.split)
+    every = {p.stem: p for p in story_paths_all()}
+    wanted: list[tuple[str, int]] = []
     if args.quick:
-        wanted = {lab["story"] for lab in labels}
-        every = story_eval.story_paths("all")
-        paths = [p for p in every if p.stem in wanted]
+        wanted = quick_stories(labels)
+        labels = [lab for lab in labels if (lab["story"], int(lab.get("seed", 0))) in set(wanted)]
+    else:
+        wanted = [(p.stem, args.seed) for p in story_eval.story_paths(args.split)]
+        wanted += sorted({(lab["story"], int(lab.get("seed", 0))) for lab in labels} - set(wanted))
     version = pipeline_version()
     cache = args.out / "cache"
-    found: dict[tuple[str, str, str, str], dict[str, Any]] = {}
-    fingerprints: dict[str, str] = {}
-    results: dict[str, Any] = {}
-    for path in paths:
-        budget_left = time.perf_counter() - t0 < QUICK_BUDGET_S
-        result = computed(path, args.seed, version, cache, compute=not args.quick or budget_left)
-        if result is None:
+    found: dict[tuple[Any, ...], dict[str, Any]] = {}
+    fingerprints: dict[tuple[str, int], str] = {}
+    results: dict[tuple[str, int], Any] = {}
+    for stem, seed in wanted:
+        path = every.get(stem)
+        if path is None:
             continue
+        result = computed(path, seed, version, cache)
         text = path.read_text(encoding="utf-8", errors="replace")
-        fingerprints[path.stem] = animation_fingerprint(result)
-        camera = camera_checks_of(result, fingerprints[path.stem], cache / "camera")
-        row = story_eval.check_result(path.stem, text, result, camera=camera)
-        results[path.stem] = result
-        for u in units(row, fingerprints[path.stem]):
+        fingerprints[(stem, seed)] = fp = animation_fingerprint(result)
+        camera = camera_checks_of(result, fp, cache / "camera")
+        row = story_eval.check_result(stem, text, result, camera=camera)
+        results[(stem, seed)] = result
+        for u in units(row, fp, seed):
             found[unit_key(u)] = u
     summary = compare(labels, found, fingerprints)
     if args.sample:
         labelled = {unit_key(lab) for lab in labels}
-        pool = [u for u in found.values() if unit_key(u) not in labelled or args.relabel]
-        picked = stratified_sample(pool, args.sample, args.seed)
+        pool = [
+            u for u in found.values() if u["seed"] == args.seed and (unit_key(u) not in labelled or args.relabel)
+        ]
+        picked = stratified_sample(pool, args.sample, args.sample_seed)
         sheets = args.out / "sheets"
         sheets.mkdir(parents=True, exist_ok=True)
         for i, u in enumerate(picked):
             name = f"{i:02d}-{u['story']}-{u['sentence']}-{u['check']}-{u['character'] or 'scene'}"
-            u["sheet"] = str(draw_sheet(results[u["story"]], u, sheets / f"{name.replace(' ', '_')}.png", i))
+            result = results[(u["story"], u["seed"])]
+            u["sheet"] = str(draw_sheet(result, u, sheets / f"{name.replace(' ', '_')}.png", i))
             who = f" ({u['character']})" if u["character"] else ""
             print(f"[{i}] {u['story']} {u['sentence']} {u['check']}{who} {u['check_verdict']}: {u['reason']}")
         (args.out / "samples.json").write_text(json.dumps(picked, indent=1))
         summary["samples"] = picked
+    summary["quick"] = bool(args.quick)
     summary["wall_s"] = time.perf_counter() - t0
     return summary
 
 
+def story_paths_all() -> list[Path]:
+    return story_eval.story_paths("all")
+
+
 def build_parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--split", choices=(*story_eval.SPLITS, "all"), default="all")
+    ap.add_argument("--split", choices=(*story_eval.SPLITS, "all"), default="dev")
     ap.add_argument("--sample", type=int, default=0, help="draw this many units and write their sheets")
     ap.add_argument("--relabel", action="store_true", help="let --sample draw units already labelled")
-    ap.add_argument("--seed", type=int, default=0, help="the sample's and the pipeline's seed (default 0)")
-    ap.add_argument("--quick", action="store_true", help="only the labelled stories, from the cache")
+    ap.add_argument("--seed", type=int, default=0, help="the pipeline's seed for --split (default 0)")
+    ap.add_argument("--sample-seed", type=int, default=0, help="the sample's seed (default 0)")
+    ap.add_argument("--quick", action="store_true", help=f"the {QUICK_STORIES} most labelled stories only")
     ap.add_argument("--labels", type=Path, default=LABELS, help="default eval/data/agreement_labels.json")
     ap.add_argument("--out", type=Path, default=OUT, help="cache, sheets and samples (out/eval/agreement)")
     ap.add_argument("--json", type=Path, default=None, help="write the agreement summary here")

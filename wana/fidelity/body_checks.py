@@ -27,6 +27,10 @@ MIN_RUN = 4  # frames
 SOFT = ("sofa", "armchair", "ottoman", "bean_bag", "bed", "bunk_bed", "cushion", "pillow", "mattress")
 HIPS_MAX_MS = 6.0  # metres per second between two frames
 HANDS_MAX_MS = 10.0
+# A throw, a punch or a kick is a hand or foot at 10-20 m/s by nature (a thrown ball leaves the hand at 15 m/s
+# and more): inside those clips only a hand past STRIKE_MAX_MS is a jump in the pose.
+STRIKES = ("throw", "punch", "kick", "punch_bag", "box", "slap")
+STRIKE_MAX_MS = 20.0
 POP_M = 0.10  # metres: a joint jumping this far (relative to the hips) in one frame at an action boundary
 POP_RATIO = 3.0  # ... and this many times more than it moves on the frames around the boundary
 
@@ -173,12 +177,19 @@ def overlap(a: Body, b: Body, allowed: np.ndarray | None = None) -> tuple[FrameF
     return fa, fb
 
 
-def speeds(body: Body, fps: int) -> FrameFailures:
-    """Frames reached too fast: the hips over HIPS_MAX_MS or a hand over HANDS_MAX_MS since the frame before."""
+def speeds(body: Body, fps: int, strikes: np.ndarray | None = None) -> FrameFailures:
+    """Frames reached too fast: the hips over HIPS_MAX_MS or a hand over HANDS_MAX_MS since the frame before.
+
+    Args:
+        strikes: (T,) bool, the frames of a throw, punch or kick (hands may reach STRIKE_MAX_MS there).
+    """
     out = FrameFailures.none(body.frames)
     if body.frames < 2:
         return out
-    limits = {"Hips": HIPS_MAX_MS, "LeftHand": HANDS_MAX_MS, "RightHand": HANDS_MAX_MS}
+    hands = np.full(body.frames - 1, HANDS_MAX_MS)
+    if strikes is not None:
+        hands[np.asarray(strikes[1 : body.frames], bool)] = STRIKE_MAX_MS
+    limits = {"Hips": np.full(body.frames - 1, HIPS_MAX_MS), "LeftHand": hands, "RightHand": hands}
     for name, limit in limits.items():
         v = np.linalg.norm(np.diff(body.joint(name), axis=0), axis=1) * fps  # (T-1,) m/s into frame t+1
         bad = np.nonzero((v > limit) & (v > out.amount[1:]))[0] + 1
