@@ -133,7 +133,7 @@ def _on_solid(points: np.ndarray, world: World, above: float) -> np.ndarray:
     for placed, _, outer in world.solids:
         near = np.all(
             (points[:, [0, 2]] >= outer[0, [0, 2]]) & (points[:, [0, 2]] <= outer[1, [0, 2]]), axis=1
-        ) & (points[:, 1] >= outer[1, 1] - SEAT_BELOW_M - 0.5) & ~out
+        ) & (points[:, 1] - above <= outer[1, 1]) & (points[:, 1] + SEAT_BELOW_M >= outer[0, 1]) & ~out
         if not near.any():
             continue
         probes = points[near][:, None, :] - drops[None, :, None] * np.array([0.0, 1.0, 0.0])
