@@ -264,7 +264,9 @@ def compare(
             c["false_alarms" if check == "fail" else "misses"] += 1
             disagreements.append(
                 {
-                    **{k: lab[k] for k in ("story", "seed", "sentence", "check", "character", "human", "why")},
+                    **{
+                        k: lab[k] for k in ("story", "seed", "sentence", "check", "character", "human", "why")
+                    },
                     "check_verdict": check,
                     "reason": u["reason"] if u is not None else "(no such check now)",
                 }
@@ -351,7 +353,9 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     if args.sample:
         labelled = {unit_key(lab) for lab in labels}
         pool = [
-            u for u in found.values() if u["seed"] == args.seed and (unit_key(u) not in labelled or args.relabel)
+            u
+            for u in found.values()
+            if u["seed"] == args.seed and (unit_key(u) not in labelled or args.relabel)
         ]
         picked = stratified_sample(pool, args.sample, args.sample_seed)
         sheets = args.out / "sheets"

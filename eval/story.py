@@ -292,7 +292,9 @@ def crashed_row(story: str, text: str, trace: str, compute_s: float) -> dict[str
 def story_camera_checks(result: Any) -> dict[str, Any]:
     """Sentence id -> the render service's camera checks of one computed story (the video's size)."""
     return dict(
-        camera_api()(result.scene, result.motions, result.commands, result.sentences, width=WIDTH, height=HEIGHT)
+        camera_api()(
+            result.scene, result.motions, result.commands, result.sentences, width=WIDTH, height=HEIGHT
+        )
     )
 
 
@@ -343,8 +345,13 @@ def check_result(
                 "verdict": v.verdict if v is not None else "ok",
                 "checks": sorted({c.name for c in checks}),
                 "results": [
-                    {"name": c.name, "ok": c.ok, "character": c.character, "reason": c.reason,
-                     "frames": frame_sample(c.frames)}
+                    {
+                        "name": c.name,
+                        "ok": c.ok,
+                        "character": c.character,
+                        "reason": c.reason,
+                        "frames": frame_sample(c.frames),
+                    }
                     for c in checks
                 ],  # fmt: skip
                 "failed": failed,

@@ -1,7 +1,9 @@
 """The story checks only the render service can make, because only it knows the camera (issue 13).
 
 - ``in_view``: for each action sentence, each acting character is inside the picture and at least
-  VISIBLE_SHARE unoccluded (services.render.visibility) on at least FRAME_SHARE of its action's frames.
+  VISIBLE_SHARE unoccluded (services.render.visibility) on at least FRAME_SHARE of its action's frames. A
+  seated character is judged by its head, trunk and arms (its legs are under the table or the seat), and
+  the seat it sits on hides nothing of it (a sofa's back seen from behind hides what sitting hides).
 - ``command_visible``: each camera or light/weather command is in force for at least
   MIN_COMMAND_FRAMES of the video (until a later command of the same kind replaces it, or the end).
 
@@ -33,12 +35,13 @@ from services.render.timeline import (
     place_commands,
 )
 from services.render.video import FPS
-from services.render.visibility import BodyView, body_view, capsule_radii
+from services.render.visibility import BODY_POINTS, BodyView, body_view, capsule_radii
 from wana.domain.skeleton import JOINT_INDEX
 
 VISIBLE_SHARE = 0.7  # of the body's sample points, for a frame to show the character
 SEATED_HIPS_M = 0.75  # hips lower than this are sitting or lying (standing hips are at about 0.9 m)
 SEAT_BELOW_M = 0.5  # the seat's top within this below the hips (a sofa's seat, a bed's mattress)
+LEG_JOINTS = ("Hips", "UpLeg", "Leg", "Foot", "ToeBase")
 FRAME_SHARE = 0.9  # of the action's frames that must show the character
 MIN_COMMAND_FRAMES = COMMAND_HOLD_FRAMES  # 1.5 s: what the render timeline holds the last command for
 
@@ -129,7 +132,7 @@ def in_view_checks(
             view = body_view(who, frames, joints, track, furniture, stage.scene.room, width, height, radii)
             hips = joints[who][np.clip(frames, 0, len(joints[who]) - 1), JOINT_INDEX["Hips"]]
             view = unhide_own_seat(view, seat_under(hips, furniture))
-            shown = view.visible.mean(axis=1) >= VISIBLE_SHARE
+            shown = shown_share(view, hips[:, 1] < SEATED_HIPS_M) >= VISIBLE_SHARE
             share = float(shown.mean())
             what = _quote(refs.get(sid), f"its action in sentence {sid}")
             ok = share >= FRAME_SHARE
@@ -173,6 +176,18 @@ def seat_under(hips: np.ndarray, furniture: Furniture) -> np.ndarray:
         mine = low & np.isfinite(top) & (gap <= SEAT_BELOW_M) & (gap < best)
         out[mine], best[mine] = k, gap[mine]
     return out
+
+
+LEGS = np.array([n.removeprefix("Left").removeprefix("Right") in LEG_JOINTS for n in BODY_POINTS])
+
+
+def shown_share(view: BodyView, seated: np.ndarray) -> np.ndarray:
+    """(F,) the share of the body shown on each frame; a seated character's legs are under the table or
+    the seat (what sitting hides), so a seated frame counts the head, trunk and arms only."""
+    share = view.visible.mean(axis=1)
+    if seated.any():
+        share[seated] = view.visible[seated][:, ~LEGS].mean(axis=1)
+    return share
 
 
 def unhide_own_seat(view: BodyView, seat: np.ndarray) -> BodyView:

@@ -131,9 +131,12 @@ def _on_solid(points: np.ndarray, world: World, above: float) -> np.ndarray:
     out = np.zeros(len(points), bool)
     drops = np.arange(-SEAT_BELOW_M, above + 1e-9, PROBE_STEP_M)
     for placed, _, outer in world.solids:
-        near = np.all(
-            (points[:, [0, 2]] >= outer[0, [0, 2]]) & (points[:, [0, 2]] <= outer[1, [0, 2]]), axis=1
-        ) & (points[:, 1] - above <= outer[1, 1]) & (points[:, 1] + SEAT_BELOW_M >= outer[0, 1]) & ~out
+        near = (
+            np.all((points[:, [0, 2]] >= outer[0, [0, 2]]) & (points[:, [0, 2]] <= outer[1, [0, 2]]), axis=1)
+            & (points[:, 1] - above <= outer[1, 1])
+            & (points[:, 1] + SEAT_BELOW_M >= outer[0, 1])
+            & ~out
+        )
         if not near.any():
             continue
         probes = points[near][:, None, :] - drops[None, :, None] * np.array([0.0, 1.0, 0.0])

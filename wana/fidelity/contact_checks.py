@@ -63,7 +63,17 @@ KIND_WORDS = {
 HELD = ("handheld", "tool")
 HOLDABLE_M = 0.6  # metres: the largest side of a surface thing one holds in a hand
 # Handing an object over: the clip ("present") is a gesture with no object, so the check looks at the object.
-HANDOVER_VERBS = ("give", "hand", "pass", "offer", "hand over", "pass over", "give back", "hand out", "pass on")
+HANDOVER_VERBS = (
+    "give",
+    "hand",
+    "pass",
+    "offer",
+    "hand over",
+    "pass over",
+    "give back",
+    "hand out",
+    "pass on",
+)
 HANDOFF_FRAMES = 15  # the receiver's grip starts within this of the giver's letting go (0.5 s)
 HANDOFF_M = 0.15  # ... with the object this close to where the giver let go of it (no jump between hands)
 
@@ -396,7 +406,9 @@ def handover(
     seg = act.clip
     assert seg is not None
     lo, hi = act.start, seg.end_frame + HANDOFF_FRAMES
-    given = [t for t in props.get(who, ()) if t.object_id in found and t.start_frame < hi and t.end_frame > lo]
+    given = [
+        t for t in props.get(who, ()) if t.object_id in found and t.start_frame < hi and t.end_frame > lo
+    ]
     if not given:
         return base(
             ok=False,
@@ -426,7 +438,9 @@ def handover(
             reason=f"the {what} jumps {jump:.2f} m from {who}'s hand to {to}'s (their hands never meet)",
             frames=[gave.end_frame - 1, taken[0].start_frame],
         )
-    return base(ok=True, reason=f"the {what} passes from {who}'s hand to {to}'s at frame {taken[0].start_frame}")
+    return base(
+        ok=True, reason=f"the {what} passes from {who}'s hand to {to}'s at frame {taken[0].start_frame}"
+    )
 
 
 def _is_room_word(word: str) -> bool:

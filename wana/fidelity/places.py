@@ -21,7 +21,9 @@ from wana.fidelity.words import frame_list, third_person
 from wana.fidelity.world import World, display
 
 PLACE_WORDS = ("behind", "in front of", "under", "underneath", "beneath", "beside", "next to")
-IN_FRONT_M = 0.35  # metres past an object's front face a body (its own depth) may stand and still be beside it
+IN_FRONT_M = (
+    0.35  # metres past an object's front face a body (its own depth) may stand and still be beside it
+)
 BESIDE_M = 1.0  # metres from the object's footprint: beside / next to / behind it at all
 PLACE_SHARE = 0.5  # of the action's frames at the stated place
 
@@ -51,7 +53,9 @@ def placement(act: Act, body: Body, world: World) -> Check | None:
     who, verb = act.character, act.node.verb or act.node.action
     where = f"{place} the {display(target)}"
     if not found:
-        return Check(name="contact", character=who, ok=False, reason=f"there is no {display(target)} to be {where}")
+        return Check(
+            name="contact", character=who, ok=False, reason=f"there is no {display(target)} to be {where}"
+        )
     frames = np.arange(seg.start_frame, min(seg.end_frame, body.frames))
     if not len(frames):
         return None

@@ -62,7 +62,9 @@ def _lathe_distance(profile: np.ndarray, radial: np.ndarray, height: np.ndarray)
     y, r = height[:, None], radial[:, None]
     crosses = (a[None, :, 1] > y) != (b[None, :, 1] > y)
     with np.errstate(divide="ignore", invalid="ignore"):
-        at = a[None, :, 0] + (y - a[None, :, 1]) * (b[None, :, 0] - a[None, :, 0]) / (b[None, :, 1] - a[None, :, 1])
+        at = a[None, :, 0] + (y - a[None, :, 1]) * (b[None, :, 0] - a[None, :, 0]) / (
+            b[None, :, 1] - a[None, :, 1]
+        )
     inside = (np.sum(crosses & (r < at), axis=1) % 2) == 1
     return np.where(inside, -dist, dist)
 
@@ -76,7 +78,8 @@ def object_solids(category: str, attributes: tuple[tuple[str, str], ...], seed: 
     if imported_object(category) is not None or category not in REGISTRY:
         boxes = np.asarray(catalog.make_object(category, dict(attributes), seed).collision_boxes)
         return tuple(
-            Solid("aabb", (b[1] - b[0]) / 2.0, np.eye(3), (b[1] + b[0]) / 2.0) for b in boxes.reshape(-1, 2, 3)
+            Solid("aabb", (b[1] - b[0]) / 2.0, np.eye(3), (b[1] + b[0]) / 2.0)
+            for b in boxes.reshape(-1, 2, 3)
         )
     attrs = normalize_attributes(category, dict(attributes))
     builder = Builder()

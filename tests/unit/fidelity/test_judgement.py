@@ -109,7 +109,11 @@ def _reading(make, tracks):
 
     eve = msgspec.structs.replace(eve, props=tracks(frames))
     node = ActionNode(verb="read", action="read", target="book")
-    graphs = {"s1": graph_of("s1", "Eve reads the book.", "Eve", node, [ObjectNode(id="book", category="book", word="book")])}
+    graphs = {
+        "s1": graph_of(
+            "s1", "Eve reads the book.", "Eve", node, [ObjectNode(id="book", category="book", word="book")]
+        )
+    }
     checks = story_checks([("s1", "action")], graphs, make.scene(book), {"Eve": eve})["s1"]
     return by_name(checks, "contact")[0]
 
@@ -195,7 +199,9 @@ def test_a_named_actor_played_by_someone_else_fails_performed_and_a_pronoun_does
     motions = {"Jenny": jenny, "Forrest": forrest}
     for text, wrong in (("Forrest walks in.", True), ("She walks in.", False), ("Jenny walks in.", False)):
         graphs = {"s1": graph_of("s1", text, "Jenny", node)}
-        performed = by_name(story_checks([("s1", "action")], graphs, make.scene(), motions)["s1"], "performed")
+        performed = by_name(
+            story_checks([("s1", "action")], graphs, make.scene(), motions)["s1"], "performed"
+        )
         failing = [c for c in performed if not c.ok]
         assert bool(failing) is wrong, (text, performed)
         if wrong:
@@ -209,7 +215,9 @@ def test_an_action_sentence_nothing_was_understood_of_never_passes(make):
 
 
 def test_an_unknown_object_word_fails_a_scene_sentence_but_not_an_action_one(make):
-    unknown = Diagnostic(code="W101", message="unknown object word: 'sweat'", span=Span(0, 5), severity="warning")
+    unknown = Diagnostic(
+        code="W101", message="unknown object word: 'sweat'", span=Span(0, 5), severity="warning"
+    )
     eve = make.motion("Eve", make.still(0.0, 0.95, 0.0, 69), [("wave", 0, 69, "s1", 0)])
     action = SentenceGraph(
         sentence_id="s1", text="Eve wipes the sweat.", kind="action", diagnostics=[unknown],
@@ -261,9 +269,9 @@ def test_lying_on_a_bunk_mattress_beyond_its_support_rectangle_is_supported(make
 
 
 def test_a_hand_at_fourteen_metres_a_second_is_a_throw_inside_a_throw_and_a_pop_elsewhere():
+    from wana.domain.skeleton import JOINT_INDEX, JOINT_NAMES
     from wana.fidelity.bodies import Body
     from wana.fidelity.body_checks import speeds
-    from wana.domain.skeleton import JOINT_INDEX, JOINT_NAMES
 
     t = 20
     joints = np.zeros((t, len(JOINT_NAMES), 3))
@@ -294,3 +302,14 @@ def test_a_seated_characters_own_sofa_does_not_count_as_hiding_them():
     shown = unhide_own_seat(view, seat_under(hips, furniture)).visible
     assert shown[0].tolist() == [True, True, True, False]  # the shelf still hides
     assert shown[1].tolist() == [False, True, True, True]  # standing behind the sofa: it hides
+
+
+def test_a_seated_character_is_shown_by_head_trunk_and_arms_and_a_standing_one_by_the_whole_body():
+    """Seen on the sheets: Anna typing at the table, plain from above, failed in_view on her hidden legs."""
+    from services.render.camera_checks import LEGS, VISIBLE_SHARE, shown_share
+    from services.render.visibility import BodyView
+
+    hidden = np.where(LEGS, 0, -1)[None].repeat(2, axis=0)  # the legs hidden, the rest seen
+    view = BodyView(np.arange(2), np.ones(hidden.shape, bool), hidden, ["the table"])
+    share = shown_share(view, np.array([True, False]))
+    assert share[0] == 1.0 and share[1] < VISIBLE_SHARE
