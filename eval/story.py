@@ -14,7 +14,9 @@ that crashes the pipeline is a failed story (with the traceback's last line), ne
 
 JSON keys: sentence_fidelity (share of sentences whose every check passes), story_fidelity (share of stories
 with every sentence ok), checks (check name -> sentences failing it), stories, sentences, per_story (each
-sentence's verdict and failed reasons), seed, split; also verdicts, crashed, unchecked and timings.
+sentence's verdict, failed reasons and ``results``: every check's name, ok, character, reason and frames),
+seed, split; also verdicts, crashed, unchecked and timings. eval/agreement.py reads the same rows to compare
+the checks with a person's eye.
 A failed sentence gets a contact sheet of its frames, the failing ones marked, under out/eval/story/<story>/.
 Over 400 lines because the corpus description and split rule (what kinds a story covers) live here too, so
 that one file both describes and measures the corpus.

@@ -14,7 +14,7 @@ from services.orchestrator.session import Orchestrator
 from wana.arrays import from_wire
 from wana.assets.catalog import object_to_world
 from wana.fidelity import story_checks
-from wana.fidelity.contact_checks import HANDOFF_FRAMES
+from wana.fidelity.handover import HANDOFF_FRAMES
 from wana.fidelity.places import IN_FRONT_M
 
 pytestmark = [pytest.mark.integration, pytest.mark.slow]
