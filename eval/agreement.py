@@ -2,7 +2,7 @@
 
 Usage:
     .venv/bin/python eval/agreement.py [--split dev|test|others|all] [--sample N] [--sample-seed 0]
-                                       [--seed 0] [--quick] [--json PATH] [--labels PATH] [--out DIR]
+                                       [--seed 0] [--quick | --labelled] [--json PATH] [--labels PATH] [--out DIR]
 
 Each story of the split is computed once (the whole pipeline in-process, as eval/story.py does) and kept in a
 cache keyed by the story, the seed and the source of every stage the checks do not own, so that a change to a
@@ -22,8 +22,9 @@ The comparison runs on every labelled unit of the computed stories: agreement is
 human verdict is the check's verdict (a check that no longer exists claims nothing: ``ok``). A label whose
 animation changed since it was judged (another stage changed the motion) is *stale*: it is not counted and is
 listed to be looked at again. Each label records the pipeline seed of the animation judged, and its story is
-computed with that seed. ``--quick`` checks only the QUICK_STORIES stories with the most labels, from the cache
-(seconds once cached; a cold cache computes them first).
+computed with that seed. ``--labelled`` compares every label and computes nothing else; ``--quick`` checks only
+the QUICK_STORIES stories with the most labels, from the cache (seconds once cached; a cold cache computes
+them first).
 
 JSON keys: check_agreement (share of counted labels that agree), per_check (name -> labels, agree,
 agreement, false_alarms (check fails, eye says ok), misses (check passes, eye says fail)), counted, stale,
@@ -329,6 +330,8 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     if args.quick:
         wanted = quick_stories(labels)
         labels = [lab for lab in labels if (lab["story"], int(lab.get("seed", 0))) in set(wanted)]
+    elif args.labelled:
+        wanted = sorted({(lab["story"], int(lab.get("seed", 0))) for lab in labels})
     else:
         wanted = [(p.stem, args.seed) for p in story_eval.story_paths(args.split)]
         wanted += sorted({(lab["story"], int(lab.get("seed", 0))) for lab in labels} - set(wanted))
@@ -385,6 +388,7 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--seed", type=int, default=0, help="the pipeline's seed for --split (default 0)")
     ap.add_argument("--sample-seed", type=int, default=0, help="the sample's seed (default 0)")
     ap.add_argument("--quick", action="store_true", help=f"the {QUICK_STORIES} most labelled stories only")
+    ap.add_argument("--labelled", action="store_true", help="every labelled story, and no --split")
     ap.add_argument("--labels", type=Path, default=LABELS, help="default eval/data/agreement_labels.json")
     ap.add_argument("--out", type=Path, default=OUT, help="cache, sheets and samples (out/eval/agreement)")
     ap.add_argument("--json", type=Path, default=None, help="write the agreement summary here")

@@ -25,7 +25,7 @@ from wana.fidelity.bodies import Body
 from wana.fidelity.clips import ClipNeeds, clip_needs
 from wana.fidelity.handover import handover, is_handover
 from wana.fidelity.words import frame_list, joint_words, stays, third_person
-from wana.fidelity.world import World, display
+from wana.fidelity.world import World, base_id, display
 
 CONTACT_M = 0.05  # the contact joint within this of the object's contact point ...
 CONTACT_SHARE = 0.5  # ... on at least this share of the window's frames
@@ -172,6 +172,7 @@ def _candidates(act: Act, world: World, characters: set[str]) -> tuple[list[Plac
     action = act.node.action
     held = clip is not None and clip.object in HELD
     meant = {action, action.split("_")[0]}
+    missing = ""  # a named object the room lacks ("drinks from the cup" with no cup)
     for ref in (act.node.instrument, act.node.target, act.node.destination):
         if ref and ref not in characters:
             found = world.find(ref)
@@ -180,12 +181,16 @@ def _candidates(act: Act, world: World, characters: set[str]) -> tuple[list[Plac
             tools = [o for o in found if meant & set(world.contact_points(o)) and _holdable(world, o)]
             if tools or (not found and ref == act.node.instrument):  # the tool it names ("with a hammer")
                 return tools, ref
+            kind = base_id(ref)  # a held thing the room lacks (a cup), not a surface worked on (the floor)
+            if not found and not missing and (_mount(kind) == "surface" or "tool" in _hypernyms(kind)):
+                missing = ref
     if clip is None:
         return [], ""
     if held:
-        return [
+        made_for = [
             o for o in world.scene.objects if meant & set(world.contact_points(o)) and _holdable(world, o)
-        ], ""
+        ]
+        return made_for, "" if made_for else missing
     meant = {action, *PREFERRED_POINTS.get(clip.object, ())} - {"touch", "pick_up"}
     return [o for o in world.scene.objects if meant & set(world.contact_points(o))], ""
 

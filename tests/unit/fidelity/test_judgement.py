@@ -313,3 +313,23 @@ def test_a_seated_character_is_shown_by_head_trunk_and_arms_and_a_standing_one_b
     view = BodyView(np.arange(2), np.ones(hidden.shape, bool), hidden, ["the table"])
     share = shown_share(view, np.array([True, False]))
     assert share[0] == 1.0 and share[1] < VISIBLE_SHARE
+
+
+def test_a_named_cup_the_room_lacks_is_named_and_a_floor_to_sweep_asks_for_the_broom(make):
+    frames = 60
+    eve = make.motion("Eve", make.still(0.0, 0.95, 0.0, frames), [("drink", 0, frames, "s1", 0)])
+    drink = {
+        "s1": graph_of(
+            "s1", "Eve drinks from the cup.", "Eve", ActionNode(verb="drink", action="drink", target="cup")
+        )
+    }
+    (cup,) = by_name(story_checks([("s1", "action")], drink, make.scene(), {"Eve": eve})["s1"], "contact")
+    assert not cup.ok and cup.reason.startswith("there is no cup in the room")
+    ed = make.motion("Ed", make.still(0.0, 0.95, 0.0, frames), [("sweep", 0, frames, "s1", 0)])
+    sweep = {
+        "s1": graph_of(
+            "s1", "Ed sweeps the floor.", "Ed", ActionNode(verb="sweep", action="sweep", target="floor")
+        )
+    }
+    (broom,) = by_name(story_checks([("s1", "action")], sweep, make.scene(), {"Ed": ed})["s1"], "contact")
+    assert not broom.ok and "nothing in the room to sweep with" in broom.reason
