@@ -1,5 +1,5 @@
-"""Where an action puts its character relative to the object it names: "hides behind the door", "stands in
-front of the desk", "crouches under the table".
+"""Where a hiding action puts its character relative to the object it names: "hides behind the door",
+"crouches under the table".
 
 The parse keeps the object ("door") but not the preposition, so the place word is read back from the
 sentence next to the object's word. "Behind" is judged on the object's own front (catalog objects face +Z):
@@ -21,6 +21,9 @@ from wana.fidelity.words import frame_list, third_person
 from wana.fidelity.world import World, display
 
 PLACE_WORDS = ("behind", "in front of", "under", "underneath", "beneath", "beside", "next to")
+# Only hiding is judged: "behind" a desk or a counter is its working side ("sits behind her desk"), the
+# catalog's front, while behind a door or a sofa one hides from is its back; hiding is about not being seen.
+HIDING = ("hide", "crouch", "duck", "take cover", "lurk")
 IN_FRONT_M = (
     0.35  # metres past an object's front face a body (its own depth) may stand and still be beside it
 )
@@ -32,6 +35,9 @@ def stated_place(act: Act) -> tuple[str, str] | None:
     """(place word, object id) when the sentence says where the action happens relative to its target."""
     target = act.node.target or act.node.destination
     if not target or target not in act.words or not act.text:
+        return None
+    verb = act.node.verb.lower()
+    if act.node.action not in HIDING and not any(verb == h or verb.startswith(h + " ") for h in HIDING):
         return None
     word = re.escape(act.words[target].lower())
     places = "|".join(re.escape(p) for p in PLACE_WORDS)
