@@ -16,7 +16,7 @@ Both read the same ``Staging`` the renderer draws from, so they judge the camera
 from __future__ import annotations
 
 from collections import Counter
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -25,6 +25,7 @@ from proto.fidelity import Check
 from proto.motion_data import Motion
 from proto.render import TimedCommand
 from proto.scene import Scene
+from services.render.director import Shot
 from services.render.sightlines import Furniture
 from services.render.staging import CameraTrack, Staging
 from services.render.timeline import (
@@ -84,7 +85,7 @@ def staged_checks(
     """The camera checks of a staged video (the renderer's own ``staging``); ``track`` when already planned."""
     track = track if track is not None else stage.camera_track(width, height)
     out = in_view_checks(stage, track, sentences, width=width, height=height)
-    for sid, checks in command_checks(stage.commands, stage.n_frames).items():
+    for sid, checks in command_checks(stage.commands, stage.n_frames, stage.shots).items():
         out.setdefault(sid, []).extend(checks)
     return out
 
@@ -227,15 +228,20 @@ def command_word(tc: TimedCommand) -> str:
     return f"camera {c.value}" if c.kind == "camera" else c.value
 
 
-def command_checks(commands: Iterable[TimedCommand], n_frames: int) -> dict[str, list[Check]]:
+def command_checks(
+    commands: Iterable[TimedCommand], n_frames: int, shots: Sequence[Shot] | None = None
+) -> dict[str, list[Check]]:
     """One ``command_visible`` check per camera or weather command with a sentence id.
 
     A command is in force from its frame until the next command of the same kind (camera; weather and
-    light) or the end of the video.
+    light) or the end of the video. With the director's shots, a camera command is in force on the frames
+    of its own shots only: "camera close" ends with its subject's next action, and the video then cuts
+    back to the director's framing however long the timeline holds the command.
 
     Args:
         commands: timed commands in frame order (timeline.place_commands).
         n_frames: the video's length.
+        shots: the director's plan (Staging.shots); None or empty: the timeline alone.
     """
     timed = [tc for tc in commands if tc.command.kind in ("camera", "weather")]
     out: dict[str, list[Check]] = {}
@@ -246,10 +252,22 @@ def command_checks(commands: Iterable[TimedCommand], n_frames: int) -> dict[str,
         start = min(max(0, tc.frame), n_frames)
         end = min(nxt.frame, n_frames) if nxt is not None else n_frames
         shown = max(0, end - start)
-        ok = shown >= MIN_COMMAND_FRAMES
         word = command_word(tc)
+        own = _own_shots(tc, shots) if tc.command.kind == "camera" else None
+        if own is not None:
+            frames = sorted({f for s in own for f in range(max(s.start, 0), min(s.end, n_frames))})
+            if len(frames) < shown:
+                shown, end = len(frames), (frames[-1] + 1 if frames else start)
+                start = frames[0] if frames else start
+                nxt = None if nxt is None or nxt.frame > end else nxt
+        ok = shown >= MIN_COMMAND_FRAMES
         if ok:
             reason = f"{word} is in force for {shown / FPS:.1f} s from {start / FPS:.1f} s"
+        elif own is not None and end < n_frames and (nxt is None or nxt.frame > end):
+            reason = (
+                f"{word} is shown for only {shown / FPS:.1f} s before the director cuts away "
+                f"(needs {MIN_COMMAND_FRAMES / FPS:.1f} s)"
+            )
         elif nxt is not None and nxt.frame < n_frames:
             reason = (
                 f"{word} is in force for only {shown / FPS:.1f} s before {command_word(nxt)} replaces it "
@@ -260,8 +278,15 @@ def command_checks(commands: Iterable[TimedCommand], n_frames: int) -> dict[str,
                 f"{word} takes effect {shown / FPS:.1f} s before the end of the video "
                 f"(needs {MIN_COMMAND_FRAMES / FPS:.1f} s)"
             )
-        frames = list(range(start, end)) if shown else [max(0, n_frames - 1)]
+        frames_named = list(range(start, start + shown)) if shown else [max(0, n_frames - 1)]
         out.setdefault(tc.sentence_id, []).append(
-            Check(name="command_visible", ok=ok, reason=reason, frames=frames, essential=shown == 0)
+            Check(name="command_visible", ok=ok, reason=reason, frames=frames_named, essential=shown == 0)
         )
     return out
+
+
+def _own_shots(tc: TimedCommand, shots: Sequence[Shot] | None) -> list[Shot] | None:
+    """The director's shots of one camera command (source "command", its sentence), None without a plan."""
+    if not shots:
+        return None
+    return [s for s in shots if s.source == "command" and s.sentence_id == tc.sentence_id]

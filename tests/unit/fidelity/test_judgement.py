@@ -333,3 +333,27 @@ def test_a_named_cup_the_room_lacks_is_named_and_a_floor_to_sweep_asks_for_the_b
     }
     (broom,) = by_name(story_checks([("s1", "action")], sweep, make.scene(), {"Ed": ed})["s1"], "contact")
     assert not broom.ok and "nothing in the room to sweep with" in broom.reason
+
+
+def test_a_scoped_close_up_is_in_force_on_its_own_shots_not_until_the_next_command():
+    """Seen on the sheets: "camera close" was "in force for 13.5 s" while the video showed the close-up for
+    a moment: the director ends a close-up with its subject's next action."""
+    from proto.render import TimedCommand
+    from proto.ssg import Command
+    from services.render.camera_checks import command_checks
+    from services.render.director import Shot
+
+    close = TimedCommand(command=Command(kind="camera", value="close"), frame=100, sentence_id="s3")
+    timeline = command_checks([close], 600)["s3"][0]
+    assert timeline.ok and "16.7 s" in timeline.reason
+    brief = [
+        Shot(100, 130, "close", "Eve", "", "s3", "command"),
+        Shot(130, 600, "wide", "", "", "s4", "director"),
+    ]
+    (check,) = command_checks([close], 600, brief)["s3"]
+    assert not check.ok and "1.0 s before the director cuts away" in check.reason
+    held = [
+        Shot(100, 160, "close", "Eve", "", "s3", "command"),
+        Shot(160, 600, "wide", "", "", "s4", "director"),
+    ]
+    assert command_checks([close], 600, held)["s3"][0].ok
