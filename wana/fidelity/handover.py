@@ -42,7 +42,7 @@ def is_handover(act: Act, characters: set[str]) -> bool:
     verb = act.node.verb.lower()
     if not any(verb == v or verb.startswith(v + " ") for v in HANDOVER_VERBS):
         return False
-    to = any(r in characters and r != act.character for r in (act.node.target, act.node.destination))
+    to = any(r and r in characters and r != act.character for r in (act.node.target, act.node.destination))
     return to and bool(_handed_object(act, characters))
 
 
@@ -60,7 +60,7 @@ def handover(
     """The object passes from the giver's hand to the recipient's: the giver carries it during the action,
     and the recipient's grip on it starts as the giver's ends, with the object where the giver let go."""
     who = act.character
-    to = next(r for r in (act.node.target, act.node.destination) if r in bodies and r != who)
+    to = next(r for r in (act.node.target, act.node.destination) if r and r in bodies and r != who)
     base = partial(Check, name="contact", character=who)
     word = _handed_object(act, set(bodies))
     found = {o.id for o in world.find(word)}

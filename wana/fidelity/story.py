@@ -120,7 +120,7 @@ def _wrong_character(graph: SentenceGraph, known: set[str]) -> list[Check]:
     words = set(re.findall(r"[a-z']+", text))
     if words & STAND_INS:
         return []
-    named = {n for n in known if re.search(rf"\b{re.escape(n.lower())}\b", text)}
+    named = {n for n in known if n and re.search(rf"\b{re.escape(n.lower())}\b", text)}
     out = []
     for c in graph.characters:
         said = set(re.findall(r"[a-z']+", f"{c.name} {c.mention}".lower())) - {"mr", "mrs", "ms", "dr", "the"}
