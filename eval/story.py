@@ -14,9 +14,10 @@ that crashes the pipeline is a failed story (with the traceback's last line), ne
 
 JSON keys: sentence_fidelity (share of sentences whose every check passes), story_fidelity (share of stories
 with every sentence ok), checks (check name -> sentences failing it), stories, sentences, per_story (each
-sentence's verdict and failed reasons), seed, split; also verdicts, crashed, unchecked and timings;
-acting_in_frame_share and occluded_share (of all acting characters' action frames: in the picture, and in
-it but less than 70 % unhidden; issue 16).
+sentence's verdict, failed reasons and ``results``: every check's name, ok, character, reason and frames),
+seed, split; also verdicts, crashed, unchecked and timings; acting_in_frame_share and occluded_share (of all
+acting characters' action frames: in the picture, and in it but less than 70 % unhidden; issue 16).
+eval/agreement.py reads the same rows to compare the checks with a person's eye.
 A failed sentence gets a contact sheet of its frames, the failing ones marked, under out/eval/story/<story>/.
 Over 400 lines because the corpus description and split rule (what kinds a story covers) live here too, so
 that one file both describes and measures the corpus.
@@ -216,7 +217,7 @@ def gallery_api() -> Callable[..., Any] | None:
 # --- one story -----------------------------------------------------------------------------------------
 
 
-def _sentence_frames(motions: dict[str, Any], sentence_id: str) -> tuple[int, int] | None:
+def sentence_frames(motions: dict[str, Any], sentence_id: str) -> tuple[int, int] | None:
     spans = [
         (g.start_frame, g.end_frame)
         for m in motions.values()
@@ -275,34 +276,73 @@ def evaluate_story(path: Path, seed: int = 0, gallery: Path | None = None) -> di
 
 def evaluate_text(story: str, text: str, seed: int = 0, gallery: Path | None = None) -> dict[str, Any]:
     """Compute one story, check every sentence; a crash anywhere is this story's failure, with its reason."""
-    row: dict[str, Any] = {"story": story, "kinds": story_kinds(story, text), "error": "", "gallery": []}
-    pieces = split_sentences(text)
     t0 = time.perf_counter()
     try:
         result = _compute(text, story, seed)
-        row["compute_s"] = time.perf_counter() - t0
-        story_checks, verdicts = fidelity_api()
-        camera_checks = camera_api()
-        sentences = [(s.id, s.kind) for s in result.sentences]
-        body = story_checks(sentences, result.graphs, result.scene, result.motions, result.unavailable)
-        tally: list[Any] = []  # services.render.camera_checks.ViewTally per in_view check
-        camera = camera_checks(
+    except Exception:
+        return crashed_row(story, text, traceback.format_exc(), time.perf_counter() - t0)
+    return check_result(story, text, result, gallery, compute_s=time.perf_counter() - t0)
+
+
+def crashed_row(story: str, text: str, trace: str, compute_s: float) -> dict[str, Any]:
+    """The row of a story whose pipeline or checks crashed: every sentence failed with the traceback's last line."""
+    row: dict[str, Any] = {"story": story, "kinds": story_kinds(story, text), "gallery": []}
+    row["error"] = trace.strip().splitlines()[-1]
+    row["compute_s"] = compute_s
+    row["per_sentence"] = [
+        {"id": f"s{i + 1}", "kind": k, "text": text[s:e], "verdict": "failed", "checks": [], "results": [],
+         "failed": [{"name": "pipeline", "reason": row["error"], "frames": [], "character": ""}]}
+        for i, (s, e, k) in enumerate(split_sentences(text))
+    ]  # fmt: skip
+    row["sentences"], row["ok"] = len(row["per_sentence"]), False
+    return row
+
+
+def story_camera_checks(result: Any, tally: list[Any] | None = None) -> dict[str, Any]:
+    """Sentence id -> the render service's camera checks of one computed story (the video's size); ``tally``
+    gathers a services.render.camera_checks.ViewTally per in_view check."""
+    return dict(
+        camera_api()(
             result.scene, result.motions, result.commands, result.sentences, width=WIDTH, height=HEIGHT,
             tally=tally,
-        )  # fmt: skip
-        row["view"] = {k: sum(getattr(t, k) for t in tally) for k in ("frames", "in_frame", "occluded")}
-        verdict = verdicts(body, extra=camera)
-        row["checks_s"] = time.perf_counter() - t0 - row["compute_s"]
+        )
+    )  # fmt: skip
+
+
+def story_verdicts(
+    result: Any, camera: dict[str, Any] | None = None, tally: list[Any] | None = None
+) -> dict[str, Any]:
+    """Sentence id -> SentenceVerdict of one computed story: the fidelity checks and the camera checks
+    (``camera`` when already computed for this animation)."""
+    story_checks, verdicts = fidelity_api()
+    sentences = [(s.id, s.kind) for s in result.sentences]
+    body = story_checks(sentences, result.graphs, result.scene, result.motions, result.unavailable)
+    if camera is None:
+        camera = story_camera_checks(result, tally)
+    return dict(verdicts(body, extra=camera))
+
+
+def check_result(
+    story: str,
+    text: str,
+    result: Any,
+    gallery: Path | None = None,
+    *,
+    compute_s: float = 0.0,
+    camera: dict[str, Any] | None = None,
+) -> dict[str, Any]:
+    """The row of one computed story: each sentence's verdict, its checks (``results``: name, ok, character,
+    frames) and the failed ones' reasons; a crash in the checks is this story's failure."""
+    t0 = time.perf_counter()
+    tally: list[Any] = []  # a ViewTally per in_view check, when the camera checks are computed here
+    try:
+        verdict = story_verdicts(result, camera, tally)
     except Exception:
-        row["error"] = traceback.format_exc().strip().splitlines()[-1]
-        row.setdefault("compute_s", time.perf_counter() - t0)
-        row["per_sentence"] = [
-            {"id": f"s{i + 1}", "kind": k, "text": text[s:e], "verdict": "failed", "checks": [],
-             "failed": [{"name": "pipeline", "reason": row["error"], "frames": [], "character": ""}]}
-            for i, (s, e, k) in enumerate(pieces)
-        ]  # fmt: skip
-        row["sentences"], row["ok"] = len(pieces), False
-        return row
+        return crashed_row(story, text, traceback.format_exc(), compute_s)
+    row: dict[str, Any] = {"story": story, "kinds": story_kinds(story, text), "error": "", "gallery": []}
+    row["compute_s"] = compute_s
+    row["view"] = {k: sum(getattr(t, k) for t in tally) for k in ("frames", "in_frame", "occluded")}
+    row["checks_s"] = time.perf_counter() - t0
     row["per_sentence"] = []
     for s in result.sentences:
         v = verdict.get(s.id)
@@ -319,6 +359,16 @@ def evaluate_text(story: str, text: str, seed: int = 0, gallery: Path | None = N
                 "text": s.text,
                 "verdict": v.verdict if v is not None else "ok",
                 "checks": sorted({c.name for c in checks}),
+                "results": [
+                    {
+                        "name": c.name,
+                        "ok": c.ok,
+                        "character": c.character,
+                        "reason": c.reason,
+                        "frames": frame_sample(c.frames),
+                    }
+                    for c in checks
+                ],  # fmt: skip
                 "failed": failed,
                 "failing_frames": sorted({f for c in checks if not c.ok for f in c.frames}),
             }
@@ -337,6 +387,14 @@ def evaluate_text(story: str, text: str, seed: int = 0, gallery: Path | None = N
     return row
 
 
+def frame_sample(frames: Sequence[int], most: int = 30) -> list[int]:
+    """At most `most` of a check's frames, evenly spread with the first and last kept (for the JSON)."""
+    frames = list(frames)
+    if len(frames) <= most:
+        return [int(f) for f in frames]
+    return [int(frames[round(i * (len(frames) - 1) / (most - 1))]) for i in range(most)]
+
+
 def _gallery(result: Any, row: dict[str, Any], folder: Path) -> list[str]:
     """One contact sheet per failed sentence; a sheet that cannot be drawn is noted, never fatal."""
     contact_sheet = gallery_api()
@@ -349,7 +407,7 @@ def _gallery(result: Any, row: dict[str, Any], folder: Path) -> list[str]:
         if s["verdict"] == "ok":
             continue
         failing = s["failing_frames"]
-        frames = sheet_frames(failing, _sentence_frames(result.motions, s["id"]), total)
+        frames = sheet_frames(failing, sentence_frames(result.motions, s["id"]), total)
         reasons = "; ".join(f"{f['name']}: {f['reason']}" for f in s["failed"])
         path = folder / f"{s['id']}.png"
         try:

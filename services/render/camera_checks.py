@@ -1,7 +1,9 @@
 """The story checks only the render service can make, because only it knows the camera (issue 13).
 
 - ``in_view``: for each action sentence, each acting character is inside the picture and at least
-  VISIBLE_SHARE unoccluded (services.render.visibility) on at least FRAME_SHARE of its action's frames.
+  VISIBLE_SHARE unoccluded (services.render.visibility) on at least FRAME_SHARE of its action's frames. A
+  seated character is judged by its head, trunk and arms (its legs are under the table or the seat), and
+  the seat it sits on hides nothing of it (a sofa's back seen from behind hides what sitting hides).
 - ``command_visible``: each camera or light/weather command is in force for at least
   MIN_COMMAND_FRAMES of the video (until a later command of the same kind replaces it, or the end).
 
@@ -14,7 +16,7 @@ Both read the same ``Staging`` the renderer draws from, so they judge the camera
 from __future__ import annotations
 
 from collections import Counter
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -24,6 +26,7 @@ from proto.fidelity import Check
 from proto.motion_data import Motion
 from proto.render import TimedCommand
 from proto.scene import Scene
+from services.render.director import Shot
 from services.render.sightlines import Furniture
 from services.render.staging import CameraTrack, Staging
 from services.render.timeline import (
@@ -34,9 +37,13 @@ from services.render.timeline import (
     place_commands,
 )
 from services.render.video import FPS
-from services.render.visibility import BodyView, body_view, capsule_radii
+from services.render.visibility import BODY_POINTS, BodyView, body_view, capsule_radii
+from wana.domain.skeleton import JOINT_INDEX
 
 VISIBLE_SHARE = 0.7  # of the body's sample points, for a frame to show the character
+SEATED_HIPS_M = 0.75  # hips lower than this are sitting or lying (standing hips are at about 0.9 m)
+SEAT_BELOW_M = 0.5  # the seat's top within this below the hips (a sofa's seat, a bed's mattress)
+LEG_JOINTS = ("Hips", "UpLeg", "Leg", "Foot", "ToeBase")
 FRAME_SHARE = 0.9  # of the action's frames that must show the character
 MIN_COMMAND_FRAMES = COMMAND_HOLD_FRAMES  # 1.5 s: what the render timeline holds the last command for
 
@@ -100,7 +107,7 @@ def staged_checks(
     """The camera checks of a staged video (the renderer's own ``staging``); ``track`` when already planned."""
     track = track if track is not None else stage.camera_track(width, height)
     out = in_view_checks(stage, track, sentences, width=width, height=height, tally=tally)
-    for sid, checks in command_checks(stage.commands, stage.n_frames).items():
+    for sid, checks in command_checks(stage.commands, stage.n_frames, stage.shots).items():
         out.setdefault(sid, []).extend(checks)
     return out
 
@@ -148,7 +155,9 @@ def in_view_checks(
         for who in sorted(chars):
             frames = chars[who]
             view = body_view(who, frames, joints, track, furniture, stage.scene.room, width, height, radii)
-            shown = view.visible.mean(axis=1) >= VISIBLE_SHARE
+            hips = joints[who][np.clip(frames, 0, len(joints[who]) - 1), JOINT_INDEX["Hips"]]
+            view = unhide_own_seat(view, seat_under(hips, furniture))
+            shown = shown_share(view, hips[:, 1] < SEATED_HIPS_M) >= VISIBLE_SHARE
             share = float(shown.mean())
             if tally is not None:
                 framed = view.in_frame.mean(axis=1) >= VISIBLE_SHARE
@@ -182,6 +191,50 @@ def in_view_checks(
     return out
 
 
+def seat_under(hips: np.ndarray, furniture: Furniture) -> np.ndarray:
+    """(F,) index of the furniture a character sits or lies on at each frame (hips (F, 3)), -1 when none:
+    the object with a box under the low hips whose top is at most SEAT_BELOW_M below them."""
+    out = np.full(len(hips), -1, dtype=np.int64)
+    best = np.full(len(hips), np.inf)
+    low = hips[:, 1] < SEATED_HIPS_M
+    if not low.any():
+        return out
+    for k, boxes in enumerate(furniture.boxes):
+        under = (
+            (boxes[None, :, 0, 0] <= hips[:, None, 0])
+            & (hips[:, None, 0] <= boxes[None, :, 1, 0])
+            & (boxes[None, :, 0, 2] <= hips[:, None, 2])
+            & (hips[:, None, 2] <= boxes[None, :, 1, 2])
+            & (boxes[None, :, 1, 1] <= hips[:, None, 1] + 0.05)
+        )  # (F, N): boxes right under the hips, not above them
+        top = np.where(under, boxes[None, :, 1, 1], -np.inf).max(axis=1)
+        gap = hips[:, 1] - top
+        mine = low & np.isfinite(top) & (gap <= SEAT_BELOW_M) & (gap < best)
+        out[mine], best[mine] = k, gap[mine]
+    return out
+
+
+LEGS = np.array([n.removeprefix("Left").removeprefix("Right") in LEG_JOINTS for n in BODY_POINTS])
+
+
+def shown_share(view: BodyView, seated: np.ndarray) -> np.ndarray:
+    """(F,) the share of the body shown on each frame; a seated character's legs are under the table or
+    the seat (what sitting hides), so a seated frame counts the head, trunk and arms only."""
+    share = view.visible.mean(axis=1)
+    if seated.any():
+        share[seated] = view.visible[seated][:, ~LEGS].mean(axis=1)
+    return share
+
+
+def unhide_own_seat(view: BodyView, seat: np.ndarray) -> BodyView:
+    """The view with the points hidden by the character's own seat counted as shown: a sofa's back hides
+    a seated person's legs from behind as sitting does, and the sofa is where the sentence puts them."""
+    own = (seat[:, None] >= 0) & (view.hidden_by == seat[:, None])
+    if not own.any():
+        return view
+    return BodyView(view.frames, view.in_frame, np.where(own, -1, view.hidden_by), view.occluders)
+
+
 def _in_view_failure(who: str, what: str, view: BodyView, shown: np.ndarray, share: float) -> str:
     """'Tom is out of frame for 2.1 s of ...; Tom is 60 % hidden behind the bookshelf for 0.5 s'."""
     failing = ~shown
@@ -210,15 +263,20 @@ def command_word(tc: TimedCommand) -> str:
     return f"camera {c.value}" if c.kind == "camera" else c.value
 
 
-def command_checks(commands: Iterable[TimedCommand], n_frames: int) -> dict[str, list[Check]]:
+def command_checks(
+    commands: Iterable[TimedCommand], n_frames: int, shots: Sequence[Shot] | None = None
+) -> dict[str, list[Check]]:
     """One ``command_visible`` check per camera or weather command with a sentence id.
 
     A command is in force from its frame until the next command of the same kind (camera; weather and
-    light) or the end of the video.
+    light) or the end of the video. With the director's shots, a camera command is in force on the frames
+    of its own shots only: "camera close" ends with its subject's next action, and the video then cuts
+    back to the director's framing however long the timeline holds the command.
 
     Args:
         commands: timed commands in frame order (timeline.place_commands).
         n_frames: the video's length.
+        shots: the director's plan (Staging.shots); None or empty: the timeline alone.
     """
     timed = [tc for tc in commands if tc.command.kind in ("camera", "weather")]
     out: dict[str, list[Check]] = {}
@@ -229,10 +287,22 @@ def command_checks(commands: Iterable[TimedCommand], n_frames: int) -> dict[str,
         start = min(max(0, tc.frame), n_frames)
         end = min(nxt.frame, n_frames) if nxt is not None else n_frames
         shown = max(0, end - start)
-        ok = shown >= MIN_COMMAND_FRAMES
         word = command_word(tc)
+        own = _own_shots(tc, shots) if tc.command.kind == "camera" else None
+        if own is not None:
+            frames = sorted({f for s in own for f in range(max(s.start, 0), min(s.end, n_frames))})
+            if len(frames) < shown:
+                shown, end = len(frames), (frames[-1] + 1 if frames else start)
+                start = frames[0] if frames else start
+                nxt = None if nxt is None or nxt.frame > end else nxt
+        ok = shown >= MIN_COMMAND_FRAMES
         if ok:
             reason = f"{word} is in force for {shown / FPS:.1f} s from {start / FPS:.1f} s"
+        elif own is not None and end < n_frames and (nxt is None or nxt.frame > end):
+            reason = (
+                f"{word} is shown for only {shown / FPS:.1f} s before the director cuts away "
+                f"(needs {MIN_COMMAND_FRAMES / FPS:.1f} s)"
+            )
         elif nxt is not None and nxt.frame < n_frames:
             reason = (
                 f"{word} is in force for only {shown / FPS:.1f} s before {command_word(nxt)} replaces it "
@@ -243,8 +313,15 @@ def command_checks(commands: Iterable[TimedCommand], n_frames: int) -> dict[str,
                 f"{word} takes effect {shown / FPS:.1f} s before the end of the video "
                 f"(needs {MIN_COMMAND_FRAMES / FPS:.1f} s)"
             )
-        frames = list(range(start, end)) if shown else [max(0, n_frames - 1)]
+        frames_named = list(range(start, start + shown)) if shown else [max(0, n_frames - 1)]
         out.setdefault(tc.sentence_id, []).append(
-            Check(name="command_visible", ok=ok, reason=reason, frames=frames, essential=shown == 0)
+            Check(name="command_visible", ok=ok, reason=reason, frames=frames_named, essential=shown == 0)
         )
     return out
+
+
+def _own_shots(tc: TimedCommand, shots: Sequence[Shot] | None) -> list[Shot] | None:
+    """The director's shots of one camera command (source "command", its sentence), None without a plan."""
+    if not shots:
+        return None
+    return [s for s in shots if s.source == "command" and s.sentence_id == tc.sentence_id]

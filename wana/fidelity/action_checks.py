@@ -14,6 +14,7 @@ from wana.fidelity.acts import SEATING, Act, window_frames
 from wana.fidelity.bodies import Body
 from wana.fidelity.clips import clip_needs
 from wana.fidelity.contact_checks import CONTACT_SHARE
+from wana.fidelity.solids import depth_inside
 from wana.fidelity.words import frame_list, joint_words, span_words, third_person
 from wana.fidelity.world import World, display, point_box_distance
 
@@ -106,7 +107,11 @@ def supported(act: Act, body: Body, world: World, until: int) -> Check | None:
 
 
 def _on_surface(points: np.ndarray, world: World, above: float = SEAT_ABOVE_M) -> np.ndarray:
-    """(T,) whether each (T, 3) point rests on some support surface (or, low enough, on the floor)."""
+    """(T,) whether each (T, 3) point rests on some support surface (or, low enough, on the floor).
+
+    A catalog support rectangle can cover less than the object (a bunk bed's only one spans half its
+    mattress), so a point also rests on an object when one of its solid parts is right under it.
+    """
     held = points[:, 1] <= above * 0.5  # on the floor itself
     for _, height, lo, hi in world.surfaces:
         inside = np.all(
@@ -115,7 +120,29 @@ def _on_surface(points: np.ndarray, world: World, above: float = SEAT_ABOVE_M) -
         )
         dy = points[:, 1] - height
         held |= inside & (dy >= -SEAT_BELOW_M) & (dy <= above)
-    return held
+    return held | _on_solid(points, world, above) if not held.all() else held
+
+
+PROBE_STEP_M = 0.03
+
+
+def _on_solid(points: np.ndarray, world: World, above: float) -> np.ndarray:
+    """(T,) whether some object's solid part lies under each point within `above` (probed every 3 cm)."""
+    out = np.zeros(len(points), bool)
+    drops = np.arange(-SEAT_BELOW_M, above + 1e-9, PROBE_STEP_M)
+    for placed, _, outer in world.solids:
+        near = (
+            np.all((points[:, [0, 2]] >= outer[0, [0, 2]]) & (points[:, [0, 2]] <= outer[1, [0, 2]]), axis=1)
+            & (points[:, 1] - above <= outer[1, 1])
+            & (points[:, 1] + SEAT_BELOW_M >= outer[0, 1])
+            & ~out
+        )
+        if not near.any():
+            continue
+        probes = points[near][:, None, :] - drops[None, :, None] * np.array([0.0, 1.0, 0.0])
+        depth = depth_inside(placed, probes.reshape(-1, 3), np.zeros(probes.shape[0] * probes.shape[1]))
+        out[np.nonzero(near)[0]] = (depth.reshape(probes.shape[:2]) >= 0.0).any(axis=1)
+    return out
 
 
 def _nearest_seat_words(hips: np.ndarray, world: World) -> str:

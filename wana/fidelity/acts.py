@@ -42,6 +42,9 @@ class Act:
     k: int  # index among the character's actions (Segment.action_index)
     node: ActionNode
     segments: list[Segment] = field(default_factory=list)
+    objects: tuple[str, ...] = ()  # ids of the objects the sentence names (a handover's "the book")
+    words: dict[str, str] = field(default_factory=dict)  # object id -> the word the sentence used for it
+    text: str = ""  # the sentence
 
     @property
     def clip(self) -> Segment | None:
@@ -74,7 +77,9 @@ def story_acts(
                 counters[c.name] = k + 1
                 motion = motions.get(c.name)
                 segs = [s for s in motion.segments if s.action_index == k] if motion is not None else []
-                acts.append(Act(sid, c.name, k, node, segs))
+                ids = tuple(o.id for o in graph.objects)
+                words = {o.id: o.word or o.category for o in graph.objects}
+                acts.append(Act(sid, c.name, k, node, segs, ids, words, graph.text))
     return acts
 
 

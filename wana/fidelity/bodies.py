@@ -39,7 +39,9 @@ BONE_RADII: dict[str, float] = {
 BONE_RADII.update({k.replace("Left", "Right"): v for k, v in list(BONE_RADII.items()) if "Left" in k})
 HEAD_CENTRE = (0.0, 0.10, 0.0)  # metres above the Head joint in the head's own frame
 HEAD_RADIUS = 0.09
-ALONG = (0.25, 0.5, 0.75)  # where each bone is sampled, as a share of its length
+# Where each bone is sampled, as a share of its length: every 1/8 keeps the spheres of a 40 cm thigh 5 cm apart,
+# so that a limb through a 4 cm table top is seen as deep as it goes (at 1/4 a sphere could straddle the top).
+ALONG = (0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875)
 
 
 @dataclass(frozen=True)

@@ -12,11 +12,25 @@ import numpy as np
 
 from wana.domain.skeleton import JOINT_INDEX, JOINT_NAMES
 from wana.fidelity.bodies import Body
-from wana.fidelity.world import World, point_box_distance
+from wana.fidelity.solids import depth_inside
+from wana.fidelity.world import World
 
 PENETRATION_M = 0.03  # a body part may sink this far into furniture or another body (soft contact)
+# What one sees of a part inside furniture (contact sheets of the story corpus, 320x240 tiles, see
+# eval/agreement.py): a part is visibly in when its own centre line is, i.e. deeper than its capsule radius
+# (a hand 3.5 cm, a shin 6 cm), never less than PENETRATION_M and never more than DEEP_M (a torso 6 cm into a
+# table edge is seen); a cushion gives SOFT_M before it looks pierced; and a pass shorter than MIN_RUN frames
+# (a foot sweeping through a bed's corner) is not seen at 30 fps.
+DEEP_M = 0.06
+SOFT_M = 0.05
+MIN_RUN = 4  # frames
+SOFT = ("sofa", "armchair", "ottoman", "bean_bag", "bed", "bunk_bed", "cushion", "pillow", "mattress")
 HIPS_MAX_MS = 6.0  # metres per second between two frames
 HANDS_MAX_MS = 10.0
+# A throw, a punch or a kick is a hand or foot at 10-20 m/s by nature (a thrown ball leaves the hand at 15 m/s
+# and more): inside those clips only a hand past STRIKE_MAX_MS is a jump in the pose.
+STRIKES = ("throw", "punch", "kick", "punch_bag", "box", "slap")
+STRIKE_MAX_MS = 20.0
 POP_M = 0.10  # metres: a joint jumping this far (relative to the hips) in one frame at an action boundary
 POP_RATIO = 3.0  # ... and this many times more than it moves on the frames around the boundary
 
@@ -47,8 +61,37 @@ class FrameFailures:
         )
 
 
+def is_soft(category: str, attributes: dict[str, str]) -> bool:
+    """Upholstered furniture a body sinks into a little (a sofa, a bed, a fabric armchair)."""
+    return category in SOFT or attributes.get("material", "") in ("fabric", "leather")
+
+
+def visible_depth(radii: np.ndarray) -> np.ndarray:
+    """(P,) metres a sphere of each radius may go into furniture before the part looks inside it."""
+    return np.clip(radii, PENETRATION_M, DEEP_M)
+
+
+def lasting(failing: np.ndarray, frames: int = MIN_RUN) -> np.ndarray:
+    """(T,) the failing frames that belong to a run of at least `frames` consecutive ones."""
+    out = np.zeros_like(failing)
+    t, n = 0, len(failing)
+    while t < n:
+        if not failing[t]:
+            t += 1
+            continue
+        end = t
+        while end < n and failing[end]:
+            end += 1
+        if end - t >= frames:
+            out[t:end] = True
+        t = end
+    return out
+
+
 def penetration(body: Body, world: World, exempt: dict[str, np.ndarray]) -> FrameFailures:
-    """Frames where a body part is more than PENETRATION_M inside a piece of furniture.
+    """Frames where a body part is visibly inside a piece of furniture (see DEEP_M, SOFT_M, MIN_RUN).
+
+    Depth is measured on the object's solid parts (wana.fidelity.solids), not on its voxel boxes.
 
     Args:
         body: the character.
@@ -59,7 +102,8 @@ def penetration(body: Body, world: World, exempt: dict[str, np.ndarray]) -> Fram
     out = FrameFailures.none(body.frames)
     frame_box = body.bounds  # (T, 2, 3)
     r = body.radii[None, :, None]
-    for placed, boxes, outer in world.solids:
+    allowance = visible_depth(body.radii)
+    for placed, _, outer in world.solids:
         frames = np.nonzero(np.all((frame_box[:, 0] <= outer[1]) & (frame_box[:, 1] >= outer[0]), axis=1))[0]
         if not len(frames):
             continue
@@ -72,16 +116,9 @@ def penetration(body: Body, world: World, exempt: dict[str, np.ndarray]) -> Fram
         if not near.any():
             continue
         t_idx, p_idx = np.nonzero(near)
-        centres = body.points[t_idx, p_idx]
-        reach = float(body.radii.max())
-        lo, hi = centres.min(axis=0) - reach, centres.max(axis=0) + reach
-        boxes = boxes[
-            np.all((boxes[:, 0] <= hi) & (boxes[:, 1] >= lo), axis=1)
-        ]  # only boxes a sphere can reach
-        if not len(boxes):
-            continue
-        depth = body.radii[p_idx] - point_box_distance(centres, boxes).min(axis=1)
-        deep = depth > PENETRATION_M
+        depth = depth_inside(placed, body.points[t_idx, p_idx], body.radii[p_idx])
+        soft = SOFT_M if is_soft(placed.category, dict(placed.attributes)) else 0.0
+        deep = depth > allowance[p_idx] + soft
         if not deep.any():
             continue
         t_idx, p_idx, depth = t_idx[deep], p_idx[deep], depth[deep]
@@ -96,6 +133,11 @@ def penetration(body: Body, world: World, exempt: dict[str, np.ndarray]) -> Fram
         out.amount[t_idx] = depth
         out.what[t_idx] = placed.id
         out.joint[t_idx] = body.point_joint[p_idx]
+    seen = lasting(out.failing)
+    out.amount[~seen] = 0.0
+    out.what[~seen] = ""
+    out.joint[~seen] = -1
+    out.failing[:] = seen
     return out
 
 
@@ -135,12 +177,19 @@ def overlap(a: Body, b: Body, allowed: np.ndarray | None = None) -> tuple[FrameF
     return fa, fb
 
 
-def speeds(body: Body, fps: int) -> FrameFailures:
-    """Frames reached too fast: the hips over HIPS_MAX_MS or a hand over HANDS_MAX_MS since the frame before."""
+def speeds(body: Body, fps: int, strikes: np.ndarray | None = None) -> FrameFailures:
+    """Frames reached too fast: the hips over HIPS_MAX_MS or a hand over HANDS_MAX_MS since the frame before.
+
+    Args:
+        strikes: (T,) bool, the frames of a throw, punch or kick (hands may reach STRIKE_MAX_MS there).
+    """
     out = FrameFailures.none(body.frames)
     if body.frames < 2:
         return out
-    limits = {"Hips": HIPS_MAX_MS, "LeftHand": HANDS_MAX_MS, "RightHand": HANDS_MAX_MS}
+    hands = np.full(body.frames - 1, HANDS_MAX_MS)
+    if strikes is not None:
+        hands[np.asarray(strikes[1 : body.frames], bool)] = STRIKE_MAX_MS
+    limits = {"Hips": np.full(body.frames - 1, HIPS_MAX_MS), "LeftHand": hands, "RightHand": hands}
     for name, limit in limits.items():
         v = np.linalg.norm(np.diff(body.joint(name), axis=0), axis=1) * fps  # (T-1,) m/s into frame t+1
         bad = np.nonzero((v > limit) & (v > out.amount[1:]))[0] + 1

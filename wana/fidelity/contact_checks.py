@@ -8,22 +8,24 @@ closest to; with none in the room the check fails and says so (nothing dropped p
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from functools import partial
 
 import numpy as np
 
 from proto.fidelity import Check
+from proto.motion_data import PropTrack
 from proto.scene import PlacedObject
 from wana.assets.catalog import world_bounds
 from wana.assets.relations import footprint_gap
-from wana.assets.vocabulary import lookup_room
+from wana.assets.vocabulary import CATEGORIES, hypernyms, lookup_room
 from wana.fidelity.acts import Act, is_locomotion, window_frames
 from wana.fidelity.bodies import Body
 from wana.fidelity.clips import ClipNeeds, clip_needs
+from wana.fidelity.handover import handover, is_handover
 from wana.fidelity.words import frame_list, joint_words, stays, third_person
-from wana.fidelity.world import World, display
+from wana.fidelity.world import World, base_id, display
 
 CONTACT_M = 0.05  # the contact joint within this of the object's contact point ...
 CONTACT_SHARE = 0.5  # ... on at least this share of the window's frames
@@ -60,6 +62,7 @@ KIND_WORDS = {
     "floor_item": "thing to pick up",
 }
 HELD = ("handheld", "tool")
+HOLDABLE_M = 0.6  # metres: the largest side of a surface thing one holds in a hand
 
 
 @dataclass(frozen=True)
@@ -101,8 +104,23 @@ def _fitting(
     return out
 
 
-def reach(act: Act, body: Body, world: World, candidates: list[PlacedObject]) -> Reach | None:
-    """The candidate object and contact point the body came closest to during the window, None if none fits."""
+def carried(tracks: Sequence[PropTrack], object_id: str, frames: np.ndarray) -> np.ndarray:
+    """(W,) whether the object is in one of the character's hands (a PropTrack of it) on each frame."""
+    out = np.zeros(len(frames), bool)
+    for t in tracks:
+        if t.object_id == object_id:
+            out |= (frames >= t.start_frame) & (frames < t.end_frame)
+    return out
+
+
+def reach(
+    act: Act, body: Body, world: World, candidates: list[PlacedObject], tracks: Sequence[PropTrack] = ()
+) -> Reach | None:
+    """The candidate object and contact point the body came closest to during the window, None if none fits.
+
+    A held object (a cup, a hammer) the character carries (a PropTrack of it) is in the hand on those frames:
+    its placed position is where it was picked up from, not where it is.
+    """
     clip = clip_needs(act.node.action)
     frames = window_frames(act)
     if clip is None or not len(frames):
@@ -111,31 +129,69 @@ def reach(act: Act, body: Body, world: World, candidates: list[PlacedObject]) ->
     best: Reach | None = None
     best_score = np.inf
     for placed in candidates:
+        held = carried(tracks, placed.id, np.asarray(frames)) if clip.object in HELD else None
         for name, targets in _fitting(clip, world.contact_points(placed)):
             dist = {j: np.linalg.norm(body.joint(j)[idx] - p, axis=1) for j, p in targets.items()}
+            if held is not None and held.any():
+                dist = {j: np.where(held, 0.0, d) for j, d in dist.items()}
             score = float(np.mean([d.mean() for d in dist.values()]))
             if score < best_score:
                 best, best_score = Reach(placed, name, targets, dist), score
     return best
 
 
+def _hypernyms(category: str) -> tuple[str, ...]:
+    try:
+        return tuple(hypernyms(category))
+    except KeyError:
+        return ()
+
+
+def _mount(category: str) -> str:
+    info = CATEGORIES.get(category)
+    return info.mount if info is not None else ""
+
+
+def _holdable(world: World, placed: PlacedObject) -> bool:
+    """A tool, or a small thing that rests on a surface (a cup, a book): not a plank or a stand microphone."""
+    if "tool" in _hypernyms(placed.category):
+        return True
+    b = world_bounds(placed)
+    return _mount(placed.category) == "surface" and float(np.max(b[1] - b[0])) <= HOLDABLE_M
+
+
 def _candidates(act: Act, world: World, characters: set[str]) -> tuple[list[PlacedObject], str]:
     """The objects the action may use, and the word the text used for them ("" when it named none).
 
     With no object named, a held object must be one made for the action (a hammer has a "hammer" point, a cup
-    a "drink" point); anything else must offer the interaction's own point, not just a place to touch.
+    a "drink" point); anything else must offer the interaction's own point, not just a place to touch. A held
+    action's named object that is not made for it is what is worked on ("hammers a nail", "sweeps the floor"):
+    the tool is then still the one made for the action, in the hand.
     """
     clip = clip_needs(act.node.action)
+    action = act.node.action
+    held = clip is not None and clip.object in HELD
+    meant = {action, action.split("_")[0]}
+    missing = ""  # a named object the room lacks ("drinks from the cup" with no cup)
     for ref in (act.node.instrument, act.node.target, act.node.destination):
         if ref and ref not in characters:
-            return world.find(ref), ref
+            found = world.find(ref)
+            if not held:
+                return found, ref
+            tools = [o for o in found if meant & set(world.contact_points(o)) and _holdable(world, o)]
+            if tools or (not found and ref == act.node.instrument):  # the tool it names ("with a hammer")
+                return tools, ref
+            kind = base_id(ref)  # a held thing the room lacks (a cup), not a surface worked on (the floor)
+            if not found and not missing and (_mount(kind) == "surface" or "tool" in _hypernyms(kind)):
+                missing = ref
     if clip is None:
         return [], ""
-    action = act.node.action
-    if clip.object in HELD:
-        meant = {action, action.split("_")[0]}
-    else:
-        meant = {action, *PREFERRED_POINTS.get(clip.object, ())} - {"touch", "pick_up"}
+    if held:
+        made_for = [
+            o for o in world.scene.objects if meant & set(world.contact_points(o)) and _holdable(world, o)
+        ]
+        return made_for, "" if made_for else missing
+    meant = {action, *PREFERRED_POINTS.get(clip.object, ())} - {"touch", "pick_up"}
     return [o for o in world.scene.objects if meant & set(world.contact_points(o))], ""
 
 
@@ -159,13 +215,24 @@ def _fitting_at(act: Act, world: World, named: list[PlacedObject]) -> list[Place
 
 
 def contact(
-    act: Act, body: Body, world: World, bodies: Mapping[str, Body]
+    act: Act,
+    body: Body,
+    world: World,
+    bodies: Mapping[str, Body],
+    props: Mapping[str, Sequence[PropTrack]] | None = None,
 ) -> tuple[Check | None, dict[str, bool]]:
     """The `contact` check of one action and the objects it touches on purpose (exempt from `penetration`):
-    object id -> True when the whole body may touch it, False for the arms only."""
+    object id -> True when the whole body may touch it, False for the arms only.
+
+    Args:
+        props: character -> the objects it carries (Motion.props), for held objects and handing over.
+    """
+    props = props or {}
     clip = clip_needs(act.node.action)
     who, verb = act.character, act.node.verb or act.node.action
     base = partial(Check, name="contact", character=who)
+    if act.clip is not None and is_handover(act, set(bodies)):
+        return handover(act, world, bodies, props), {}
     if clip is None or act.clip is None:
         return None, {}
     if is_locomotion(act.node.action):
@@ -191,7 +258,7 @@ def contact(
             ),
             {},
         )
-    got = reach(act, body, world, candidates)
+    got = reach(act, body, world, candidates, props.get(who, ()))
     if got is None and word:  # "sits at the table": a fitting object at the named one (a chair at it)
         at = _fitting_at(act, world, candidates)
         got = reach(act, body, world, at) if at else None
@@ -351,4 +418,4 @@ def _arrival(act: Act, body: Body, world: World, bodies: Mapping[str, Body]) -> 
     )
 
 
-__all__ = ["CONTACT_M", "contact", "other_character", "reach"]
+__all__ = ["CONTACT_M", "carried", "contact", "other_character", "reach"]

@@ -87,10 +87,28 @@ PERCEIVED_SLACK_M = 0.1
 _DISTANCE_LIMITS = {"near": NEAR_M, "next_to": NEXT_TO_M, "around": AROUND_M}
 
 
+ON_SHARE = 0.5  # of the subject's footprint over the anchor's top: it reads as on it (a wrench at the edge)
+ON_HEIGHT_M = 0.03
+
+
+def _looks_on(subject, anchor) -> bool:  # noqa: ANN001 - PlacedObjects
+    """Resting at the anchor's top height with at least half its footprint over the anchor: a viewer sees it
+    on top even when its origin overhangs the support rectangle's edge (the predicate tests the origin)."""
+    bs, ba = world_bounds(subject), world_bounds(anchor)
+    if abs(float(subject.position[1]) - float(ba[1, 1])) > ON_HEIGHT_M:
+        return False
+    lo, hi = np.maximum(bs[0, [0, 2]], ba[0, [0, 2]]), np.minimum(bs[1, [0, 2]], ba[1, [0, 2]])
+    over = float(np.prod(np.maximum(hi - lo, 0.0)))
+    area = float(np.prod(np.maximum(bs[1, [0, 2]] - bs[0, [0, 2]], 1e-6)))
+    return over / area >= ON_SHARE
+
+
 def _looks_true(relation: str, subject, anchor) -> bool:  # noqa: ANN001 - PlacedObjects
     """The relation as a viewer judges it: the geometric predicate, with a little slack on distances."""
     if relation_holds(relation, subject, anchor):
         return True
+    if relation == "on":
+        return _looks_on(subject, anchor)
     limit = _DISTANCE_LIMITS.get(relation)
     if limit is None or relation == "around":
         return False

@@ -9,6 +9,7 @@ out of those passes (the editor calls this after every edit).
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping, Sequence
 
 import numpy as np
@@ -25,8 +26,9 @@ from wana.fidelity import contact_checks as cc
 from wana.fidelity.acts import Act, owned_frames, stays_until, story_acts
 from wana.fidelity.bodies import Body, body_of
 from wana.fidelity.clips import clip_needs
+from wana.fidelity.places import placement
 from wana.fidelity.scene_checks import object_checks, relation_checks
-from wana.fidelity.words import frame_list
+from wana.fidelity.words import frame_list, third_person
 from wana.fidelity.world import World, display
 
 # Parser diagnostics that mean something the sentence asked for was dropped -> (check name, essential).
@@ -86,10 +88,76 @@ def story_checks(
             out[sid].extend(relation_checks(graph, world))
     if world is not None:
         _action_checks(out, acts, world, bodies, motions)
+    for sid, _ in sentences:
+        graph = graphs.get(sid)
+        if graph is not None and graph.kind == "action":
+            out[sid].extend(_wrong_character(graph, set(motions)))
+            out[sid].extend(_nothing_to_show(graph, out[sid]))
     for sid, checks in out.items():  # a dropped verb said once, by the check that names the character
         if any(c.name == "performed" and c.character and not c.ok for c in checks):
             out[sid] = [c for c in checks if not (c.name == "performed" and not c.character and not c.ok)]
     return out
+
+
+# Words that let a sentence's actor go unnamed ("He sits", "They talk", "Everyone waves").
+STAND_INS = frozenset(
+    "he she they him her them his hers their we us i you it everyone everybody all both together each "
+    "someone somebody".split()
+)
+
+
+SENTENCE_WORDS = frozenset("the a an then now later suddenly finally meanwhile after before".split())
+
+
+def _wrong_character(graph: SentenceGraph, known: set[str]) -> list[Check]:
+    """The sentence names who acts, and the animation has someone else do it ("Forrest walks in." played by
+    Jenny): the checks of the character the parse chose would judge the wrong person's motion.
+
+    An actor is named when a word of its name or the words the parse says the sentence used for it appear in
+    the text; a sentence with a pronoun or a group word ("He", "They", "everyone") names nobody for certain.
+    """
+    text = graph.text.lower().replace("’", "'")
+    words = set(re.findall(r"[a-z']+", text))
+    if words & STAND_INS:
+        return []
+    named = {n for n in known if n and re.search(rf"\b{re.escape(n.lower())}\b", text)}
+    out = []
+    for c in graph.characters:
+        said = set(re.findall(r"[a-z']+", f"{c.name} {c.mention}".lower())) - {"mr", "mrs", "ms", "dr", "the"}
+        if not c.actions or said & words:
+            continue
+        names = named or {
+            w for w in re.findall(r"\b[A-Z][a-z]+\b", graph.text) if w.lower() not in SENTENCE_WORDS
+        }
+        who = " and ".join(sorted(names)) if names else "someone else"
+        verb = c.actions[0].verb or c.actions[0].action
+        out.append(
+            Check(
+                name="performed",
+                character=c.name,
+                ok=False,
+                essential=True,
+                reason=f"the sentence is about {who}, but {c.name} is the one who {third_person(verb)}",
+            )
+        )
+    return out
+
+
+def _nothing_to_show(graph: SentenceGraph, checks: list[Check]) -> list[Check]:
+    """An action sentence with no action, relation or command and no check: nothing of it is shown, and it
+    must not pass as if it were ("Forrest holds Jenny's hand." parsed to nothing)."""
+    if checks or graph.social or graph.commands or any(c.actions for c in graph.characters):
+        return []
+    if re.search(r"\b(is|are|was|were)\s+(a|an|the|my|his|her|their|very|\w+'s)\b", graph.text.lower()):
+        return []  # a description ("Old Pete is a carpenter."): it asks for nothing to be seen
+    return [
+        Check(
+            name="performed",
+            ok=False,
+            essential=True,
+            reason="no action of this sentence was understood: the animation shows nothing for it",
+        )
+    ]
 
 
 def _dropped(
@@ -113,6 +181,8 @@ def _dropped(
         checks.append(Check(name=first_name, ok=False, essential=True, reason="no room was composed"))
     for d in graph.diagnostics:
         code = d.code.split()[0]
+        if code == "W101" and kind != "scene":
+            continue  # an action's object word ("wipes the sweat", "tells a story"): contact judges its target
         if code in DROPPED:
             name, essential = DROPPED[code]
             checks.append(Check(name=name, ok=False, essential=essential, reason=f"not shown: {d.message}"))
@@ -133,6 +203,7 @@ def _action_checks(
     for act in acts:
         if act.start >= 0:
             begins[act.sentence_id] = min(begins.get(act.sentence_id, act.start), act.start)
+    props = {name: list(m.props) for name, m in motions.items()}
     floor, floors, last = 0, {}, ""
     for act in acts:  # the floor of a sentence: when the action sentence before it began
         if act.sentence_id != last and last:
@@ -149,9 +220,12 @@ def _action_checks(
         seen.add(act.character)
         until = stays_until(act, motion)
         touching_until = stays_until(act, motion, through_standing_up=True)
-        contact, used = cc.contact(act, body, world, bodies)
+        contact, used = cc.contact(act, body, world, bodies, props)
         if contact is not None:
             checks.append(contact)
+        where = placement(act, body, world)
+        if where is not None:
+            checks.append(where)
         if act.clip is not None:
             hold = np.zeros(body.frames, bool)
             hold[act.start : touching_until] = True  # backing up to a seat touches it too
@@ -218,7 +292,11 @@ def _body_checks(
         owned = owned_frames(mine, motion)
         inside = bc.penetration(body, world, exempt.get(name, {}))
         boundaries = sorted({s.start_frame for s in motion.segments if s.start_frame > 0})
-        fast, popped = bc.speeds(body, motion.fps), bc.pops(body, boundaries)
+        strikes = np.zeros(body.frames, bool)
+        for seg in motion.segments:
+            if seg.action in bc.STRIKES:
+                strikes[max(seg.start_frame, 0) : seg.end_frame] = True
+        fast, popped = bc.speeds(body, motion.fps, strikes), bc.pops(body, boundaries)
         # Off stage nothing is seen: no furniture to be inside, and the hidden move to the door is no jump.
         here = on_stage[name]
         seen = here.copy()
@@ -318,7 +396,7 @@ def _continuity_check(name: str, fast: bc.FrameFailures, popped: bc.FrameFailure
     if wf >= 0:
         limit = bc.HIPS_MAX_MS if JOINT_NAMES[int(fast.joint[wf])] == "Hips" else bc.HANDS_MAX_MS
         reasons.append(
-            f"{name}'s {_joint_word(int(fast.joint[wf]))} {_verb(int(fast.joint[wf]), 'moves')} {fast.amount[wf]:.0f} m/s at frame {wf} "
+            f"{name}'s {_joint_word(int(fast.joint[wf]))} {_verb(int(fast.joint[wf]), 'moves')} {fast.amount[wf]:.1f} m/s at frame {wf} "
             f"(at most {limit:.0f} m/s)"
         )
     if wp >= 0:

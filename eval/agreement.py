@@ -1,0 +1,410 @@
+"""Do the story checks agree with the eye? Sample checks, draw what they name, compare with a person's labels.
+
+Usage:
+    .venv/bin/python eval/agreement.py [--split dev|test|others|all] [--sample N] [--sample-seed 0]
+                                       [--seed 0] [--quick | --labelled] [--json PATH] [--labels PATH] [--out DIR]
+
+Each story of the split is computed once (the whole pipeline in-process, as eval/story.py does) and kept in a
+cache keyed by the story, the seed and the source of every stage the checks do not own, so that a change to a
+check reruns in seconds while a change to the motion recomputes. The checks then run as eval/story.py runs
+them, and each (story, sentence, check, character) is one *unit*: ``fail`` when a check of that name about
+that character fails in that sentence, else ``ok``.
+
+``--sample N`` draws N units (seeded; round-robin over the strata check name x ok/fail, so a rare check and
+its passes are drawn as often as the common failures) and writes a contact sheet per unit under
+``out/eval/agreement/sheets/`` with the frames the check names (its failing frames, marked, else its own
+frames) and the first and last frame of the sentence; ``samples.json`` there lists them. A person looks at
+each sheet and writes a label into ``eval/data/agreement_labels.json``: the unit, ``human`` (``ok`` when what
+the check is about looks right in the frames, ``fail`` when it looks wrong), a one-line ``why``, and the
+``animation`` fingerprint of the frames judged.
+
+The comparison runs on every labelled unit of the computed stories: agreement is the share of labels whose
+human verdict is the check's verdict (a check that no longer exists claims nothing: ``ok``). A label whose
+animation changed since it was judged (another stage changed the motion) is *stale*: it is not counted and is
+listed to be looked at again. Each label records the pipeline seed of the animation judged, and its story is
+computed with that seed. ``--labelled`` compares every label and computes nothing else; ``--quick`` checks only
+the QUICK_STORIES stories with the most labels, from the cache (seconds once cached; a cold cache computes
+them first).
+
+JSON keys: check_agreement (share of counted labels that agree), per_check (name -> labels, agree,
+agreement, false_alarms (check fails, eye says ok), misses (check passes, eye says fail)), counted, stale,
+skipped, disagreements (each unit with both verdicts and the check's reason), samples (when --sample).
+"""
+
+from __future__ import annotations
+
+import argparse
+import collections
+import hashlib
+import json
+import os
+import pickle
+import random
+import sys
+import time
+from collections.abc import Iterable, Sequence
+from pathlib import Path
+from typing import Any
+
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+REPO = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(REPO))
+sys.path.insert(0, str(REPO / "eval"))
+
+import story as story_eval  # noqa: E402  (eval/story.py: the same pipeline run and checks)
+
+LABELS = REPO / "eval" / "data" / "agreement_labels.json"
+OUT = REPO / "out" / "eval" / "agreement"
+QUICK_STORIES = 8  # --quick: the stories with the most labels
+# What the checks own: a change here reruns the checks on the cached animation, anything else recomputes it.
+CHECK_SOURCES = ("wana/fidelity/", "services/render/camera_checks.py", "services/render/gallery.py")
+PIPELINE_ROOTS = ("proto", "services", "wana")
+PIPELINE_SUFFIXES = (".py", ".json", ".yaml", ".yml", ".toml", ".txt", ".bvh", ".npz", ".npy")
+
+
+# --- the computed stories ---------------------------------------------------------------------------------
+
+
+def pipeline_version(root: Path = REPO) -> str:
+    """A hash of every pipeline source and data file the checks do not own (the cache key's code part)."""
+    h = hashlib.blake2b(digest_size=12)
+    for top in PIPELINE_ROOTS:
+        for path in sorted((root / top).rglob("*")):
+            rel = path.relative_to(root).as_posix()
+            if not path.is_file() or path.suffix not in PIPELINE_SUFFIXES or "__pycache__" in rel:
+                continue
+            if any(rel.startswith(c) for c in CHECK_SOURCES):
+                continue
+            h.update(rel.encode())
+            if path.suffix == ".py" or path.stat().st_size < 1 << 20:
+                h.update(path.read_bytes())
+            else:  # large data: its size stands for it (hashing every array would cost seconds)
+                h.update(str(path.stat().st_size).encode())
+    return h.hexdigest()
+
+
+def animation_fingerprint(result: Any) -> str:
+    """A hash of what a contact sheet shows: the room, every motion's arrays and segments, the commands."""
+    import msgspec
+
+    h = hashlib.blake2b(digest_size=8)
+    h.update(msgspec.json.encode(result.scene) if result.scene is not None else b"")
+    for name in sorted(result.motions):
+        h.update(msgspec.json.encode(result.motions[name]))
+    h.update(repr(result.commands).encode())
+    return h.hexdigest()
+
+
+def render_version(root: Path = REPO) -> str:
+    """A hash of the render service's sources: the camera checks of an animation stay valid while it holds."""
+    h = hashlib.blake2b(digest_size=12)
+    for path in sorted((root / "services" / "render").glob("*.py")):
+        h.update(path.name.encode() + path.read_bytes())
+    return h.hexdigest()
+
+
+def camera_checks_of(result: Any, fingerprint: str, cache: Path) -> dict[str, Any]:
+    """The camera checks of one animation, cached by its fingerprint and the render sources (the camera
+    planner and the visibility test take most of a story's checking time)."""
+    file = cache / f"camera-{fingerprint}-{render_version()}.pkl"
+    if file.exists():
+        try:
+            with file.open("rb") as f:
+                return dict(pickle.load(f))
+        except Exception:
+            file.unlink(missing_ok=True)
+    camera = story_eval.story_camera_checks(result)
+    cache.mkdir(parents=True, exist_ok=True)
+    with file.open("wb") as f:
+        pickle.dump(camera, f, protocol=pickle.HIGHEST_PROTOCOL)
+    return camera
+
+
+def computed(path: Path, seed: int, version: str, cache: Path, *, compute: bool = True) -> Any | None:
+    """The PipelineResult of one story file, from the cache or computed and cached (None: not cached and
+    compute is False)."""
+    text = path.read_text(encoding="utf-8", errors="replace")
+    key = hashlib.blake2b(f"{version}|{seed}|{text}".encode(), digest_size=10).hexdigest()
+    file = cache / f"{path.stem}-s{seed}-{key}.pkl"
+    if file.exists():
+        try:
+            with file.open("rb") as f:
+                return pickle.load(f)
+        except Exception:
+            file.unlink(missing_ok=True)
+    if not compute:
+        return None
+    result = story_eval._compute(text, path.stem, seed)
+    cache.mkdir(parents=True, exist_ok=True)
+    for old in cache.glob(f"{path.stem}-s{seed}-*.pkl"):
+        old.unlink(missing_ok=True)
+    tmp = file.with_suffix(".tmp")
+    with tmp.open("wb") as f:
+        pickle.dump(result, f, protocol=pickle.HIGHEST_PROTOCOL)
+    tmp.replace(file)
+    return result
+
+
+# --- units: one (sentence, check, character) of one story --------------------------------------------------
+
+
+def units(row: dict[str, Any], fingerprint: str, seed: int = 0) -> list[dict[str, Any]]:
+    """Every (sentence, check, character) of one story row of eval/story.py, with the check's verdict."""
+    out: dict[tuple[str, str, str], dict[str, Any]] = {}
+    for s in row["per_sentence"]:
+        for r in s.get("results", []):
+            key = (s["id"], r["name"], r["character"])
+            u = out.setdefault(
+                key,
+                {
+                    "story": row["story"],
+                    "sentence": s["id"],
+                    "check": r["name"],
+                    "character": r["character"],
+                    "text": s["text"],
+                    "check_verdict": "ok",
+                    "reason": r["reason"],
+                    "frames": [],
+                    "animation": fingerprint,
+                    "seed": seed,
+                },
+            )
+            if not r["ok"] and u["check_verdict"] == "ok":  # the first failing one speaks for the unit
+                u["check_verdict"], u["reason"], u["frames"] = "fail", r["reason"], list(r["frames"])
+            elif r["ok"] == (u["check_verdict"] == "ok") and not u["frames"]:
+                u["frames"] = list(r["frames"])
+    return list(out.values())
+
+
+def unit_key(u: dict[str, Any]) -> tuple[str, int, str, str, str]:
+    """(story, pipeline seed, sentence, check, character): one check about one character in one sentence."""
+    return (u["story"], int(u.get("seed", 0)), u["sentence"], u["check"], u["character"])
+
+
+def stratified_sample(pool: Sequence[dict[str, Any]], n: int, seed: int) -> list[dict[str, Any]]:
+    """n units, seeded: round-robin over the strata (check, verdict) in name order, random within each."""
+    rng = random.Random(seed)
+    strata: dict[tuple[str, str], list[dict[str, Any]]] = collections.defaultdict(list)
+    for u in sorted(pool, key=unit_key):
+        strata[(u["check"], u["check_verdict"])].append(u)
+    queues = []
+    for key in sorted(strata):
+        q = strata[key][:]
+        rng.shuffle(q)
+        queues.append(q)
+    picked: list[dict[str, Any]] = []
+    while len(picked) < n and any(queues):
+        for q in queues:
+            if q and len(picked) < n:
+                picked.append(q.pop())
+    return picked
+
+
+def draw_sheet(result: Any, u: dict[str, Any], path: Path, index: int) -> Path:
+    """The contact sheet of one unit: the frames its check names (failing ones marked) and the sentence's
+    first and last frame."""
+    from services.render.gallery import contact_sheet
+
+    total = max((m.root_position.shape[0] for m in result.motions.values()), default=1)
+    span = story_eval.sentence_frames(result.motions, u["sentence"])
+    failing = u["frames"] if u["check_verdict"] == "fail" else []
+    frames = story_eval.sheet_frames(failing or u["frames"], span, total)
+    if not failing and span and len(frames) < 4:
+        frames = story_eval.sheet_frames([], span, total)
+    who = f" ({u['character']})" if u["character"] else ""
+    title = (
+        f"[{index}] {u['story']} {u['sentence']}: {u['text']}\n"
+        f"{u['check']}{who} says {u['check_verdict'].upper()}: {u['reason']}"
+    )
+    return contact_sheet(
+        result.scene, result.motions, result.commands, result.sentences, frames,
+        set(frames) & set(failing), title, path,
+    )  # fmt: skip
+
+
+# --- labels and agreement -------------------------------------------------------------------------------
+
+
+def load_labels(path: Path) -> list[dict[str, Any]]:
+    if not path.exists():
+        return []
+    data = json.loads(path.read_text(encoding="utf-8"))
+    return list(data["labels"] if isinstance(data, dict) else data)
+
+
+def compare(
+    labels: Iterable[dict[str, Any]],
+    found: dict[tuple[Any, ...], dict[str, Any]],
+    fingerprints: dict[tuple[str, int], str],
+) -> dict[str, Any]:
+    """Agreement of each label with the current check verdict of its unit.
+
+    Args:
+        labels: the person's labels.
+        found: unit key -> unit, over the stories computed this run.
+        fingerprints: (story, seed) -> its animation's fingerprint (the stories computed this run).
+    """
+    per: dict[str, collections.Counter[str]] = collections.defaultdict(collections.Counter)
+    stale, skipped, disagreements = [], [], []
+    for lab in labels:
+        key = unit_key(lab)
+        story = (lab["story"], int(lab.get("seed", 0)))
+        if story not in fingerprints:
+            skipped.append(key)
+            continue
+        if lab.get("animation") and lab["animation"] != fingerprints[story]:
+            stale.append(key)
+            continue
+        u = found.get(key)
+        check = u["check_verdict"] if u is not None else "ok"  # no such check: it claims nothing
+        c = per[lab["check"]]
+        c["labels"] += 1
+        if check == lab["human"]:
+            c["agree"] += 1
+        else:
+            c["false_alarms" if check == "fail" else "misses"] += 1
+            disagreements.append(
+                {
+                    **{
+                        k: lab[k] for k in ("story", "seed", "sentence", "check", "character", "human", "why")
+                    },
+                    "check_verdict": check,
+                    "reason": u["reason"] if u is not None else "(no such check now)",
+                }
+            )
+    counted = sum(c["labels"] for c in per.values())
+    agree = sum(c["agree"] for c in per.values())
+    return {
+        "check_agreement": agree / counted if counted else 0.0,
+        "counted": counted,
+        "per_check": {
+            name: {
+                "labels": c["labels"],
+                "agree": c["agree"],
+                "agreement": c["agree"] / c["labels"],
+                "false_alarms": c["false_alarms"],
+                "misses": c["misses"],
+            }
+            for name, c in sorted(per.items())
+        },
+        "stale": [list(k) for k in stale],
+        "skipped": [list(k) for k in skipped],
+        "disagreements": disagreements,
+    }
+
+
+def print_table(summary: dict[str, Any]) -> None:
+    print(f"{'check':16s} {'labels':>6s} {'agree':>6s} {'share':>6s} {'false alarms':>13s} {'misses':>7s}")
+    for name, c in summary["per_check"].items():
+        print(
+            f"{name:16s} {c['labels']:6d} {c['agree']:6d} {c['agreement']:6.2f} {c['false_alarms']:13d}"
+            f" {c['misses']:7d}"
+        )
+    for d in summary["disagreements"]:
+        who = f" ({d['character']})" if d["character"] else ""
+        print(
+            f"  disagree {d['story']} {d['sentence']} {d['check']}{who}: check {d['check_verdict']}, "
+            f"eye {d['human']} -- {d['why']}"
+        )
+    if summary["stale"]:
+        print(f"{len(summary['stale'])} labels are stale (the animation changed since): look again")
+    if summary["skipped"]:
+        print(f"{len(summary['skipped'])} labels skipped (their story was not computed this run)")
+    print(f"check_agreement {summary['check_agreement']:.3f} over {summary['counted']} labels")
+
+
+# --- the run --------------------------------------------------------------------------------------------
+
+
+def quick_stories(labels: Sequence[dict[str, Any]], n: int = QUICK_STORIES) -> list[tuple[str, int]]:
+    """The (story, seed) pairs --quick checks: the n with the most labels (ties in name order)."""
+    count = collections.Counter((lab["story"], int(lab.get("seed", 0))) for lab in labels)
+    return sorted(sorted(count), key=lambda k: -count[k])[:n]
+
+
+def run(args: argparse.Namespace) -> dict[str, Any]:
+    t0 = time.perf_counter()
+    labels = load_labels(args.labels)
+    every = {p.stem: p for p in story_paths_all()}
+    wanted: list[tuple[str, int]] = []
+    if args.quick:
+        wanted = quick_stories(labels)
+        labels = [lab for lab in labels if (lab["story"], int(lab.get("seed", 0))) in set(wanted)]
+    elif args.labelled:
+        wanted = sorted({(lab["story"], int(lab.get("seed", 0))) for lab in labels})
+    else:
+        wanted = [(p.stem, args.seed) for p in story_eval.story_paths(args.split)]
+        wanted += sorted({(lab["story"], int(lab.get("seed", 0))) for lab in labels} - set(wanted))
+    version = pipeline_version()
+    cache = args.out / "cache"
+    found: dict[tuple[Any, ...], dict[str, Any]] = {}
+    fingerprints: dict[tuple[str, int], str] = {}
+    results: dict[tuple[str, int], Any] = {}
+    for stem, seed in wanted:
+        path = every.get(stem)
+        if path is None:
+            continue
+        result = computed(path, seed, version, cache)
+        text = path.read_text(encoding="utf-8", errors="replace")
+        fingerprints[(stem, seed)] = fp = animation_fingerprint(result)
+        camera = camera_checks_of(result, fp, cache / "camera")
+        row = story_eval.check_result(stem, text, result, camera=camera)
+        results[(stem, seed)] = result
+        for u in units(row, fp, seed):
+            found[unit_key(u)] = u
+    summary = compare(labels, found, fingerprints)
+    if args.sample:
+        labelled = {unit_key(lab) for lab in labels}
+        pool = [
+            u
+            for u in found.values()
+            if u["seed"] == args.seed and (unit_key(u) not in labelled or args.relabel)
+        ]
+        picked = stratified_sample(pool, args.sample, args.sample_seed)
+        sheets = args.out / "sheets"
+        sheets.mkdir(parents=True, exist_ok=True)
+        for i, u in enumerate(picked):
+            name = f"{i:02d}-{u['story']}-{u['sentence']}-{u['check']}-{u['character'] or 'scene'}"
+            result = results[(u["story"], u["seed"])]
+            u["sheet"] = str(draw_sheet(result, u, sheets / f"{name.replace(' ', '_')}.png", i))
+            who = f" ({u['character']})" if u["character"] else ""
+            print(f"[{i}] {u['story']} {u['sentence']} {u['check']}{who} {u['check_verdict']}: {u['reason']}")
+        (args.out / "samples.json").write_text(json.dumps(picked, indent=1))
+        summary["samples"] = picked
+    summary["quick"] = bool(args.quick)
+    summary["wall_s"] = time.perf_counter() - t0
+    return summary
+
+
+def story_paths_all() -> list[Path]:
+    return story_eval.story_paths("all")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--split", choices=(*story_eval.SPLITS, "all"), default="dev")
+    ap.add_argument("--sample", type=int, default=0, help="draw this many units and write their sheets")
+    ap.add_argument("--relabel", action="store_true", help="let --sample draw units already labelled")
+    ap.add_argument("--seed", type=int, default=0, help="the pipeline's seed for --split (default 0)")
+    ap.add_argument("--sample-seed", type=int, default=0, help="the sample's seed (default 0)")
+    ap.add_argument("--quick", action="store_true", help=f"the {QUICK_STORIES} most labelled stories only")
+    ap.add_argument("--labelled", action="store_true", help="every labelled story, and no --split")
+    ap.add_argument("--labels", type=Path, default=LABELS, help="default eval/data/agreement_labels.json")
+    ap.add_argument("--out", type=Path, default=OUT, help="cache, sheets and samples (out/eval/agreement)")
+    ap.add_argument("--json", type=Path, default=None, help="write the agreement summary here")
+    return ap
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = build_parser().parse_args(argv)
+    summary = run(args)
+    print_table(summary)
+    print(f"wall {summary['wall_s']:.1f} s")
+    if args.json:
+        args.json.parent.mkdir(parents=True, exist_ok=True)
+        args.json.write_text(json.dumps(summary, indent=1))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

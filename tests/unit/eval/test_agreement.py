@@ -1,0 +1,90 @@
+"""eval/agreement.py: its sample is seeded and stratified, and its comparison counts what the docstring says
+(a check that no longer exists claims nothing; a label on a changed animation is stale, not counted)."""
+
+from __future__ import annotations
+
+import importlib.util
+import json
+import sys
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[3]
+
+
+@pytest.fixture(scope="module")
+def agreement():
+    spec = importlib.util.spec_from_file_location("agreement_eval", REPO / "eval" / "agreement.py")
+    module = importlib.util.module_from_spec(spec)
+    sys.modules["agreement_eval"] = module
+    spec.loader.exec_module(module)
+    return module
+
+
+def row(results):
+    """One story row as eval/story.py writes it: sentence s1 with the given (name, ok, character) checks."""
+    return {
+        "story": "duo-x-01",
+        "per_sentence": [
+            {"id": "s1", "text": "Tom waves.", "results": [
+                {"name": n, "ok": ok, "character": c, "reason": f"{n} {ok}", "frames": [3, 4]}
+                for n, ok, c in results]},
+        ],
+    }  # fmt: skip
+
+
+def test_a_unit_fails_when_any_check_of_its_name_about_its_character_fails(agreement):
+    units = agreement.units(row([("penetration", True, "Tom"), ("penetration", False, "Tom")]), "abc", 0)
+    (unit,) = units
+    assert unit["check_verdict"] == "fail" and unit["reason"] == "penetration False"
+    assert agreement.unit_key(unit) == ("duo-x-01", 0, "s1", "penetration", "Tom")
+
+
+def test_the_sample_is_seeded_and_draws_every_stratum_before_a_second_of_any(agreement):
+    pool = [
+        {"story": f"s{i:02d}", "seed": 0, "sentence": "s1", "check": c, "character": "", "check_verdict": v}
+        for i in range(30)
+        for c, v in (("contact", "fail"), ("contact", "ok"), ("entrance", "ok"))
+        if not (c == "entrance" and i > 1)
+    ]
+    first = agreement.stratified_sample(pool, 6, seed=3)
+    assert first == agreement.stratified_sample(pool, 6, seed=3)
+    assert first != agreement.stratified_sample(pool, 6, seed=4)
+    strata = [(u["check"], u["check_verdict"]) for u in first]
+    assert strata[:3] == [("contact", "fail"), ("contact", "ok"), ("entrance", "ok")]
+    assert strata.count(("entrance", "ok")) == 2  # the rare stratum is drawn out, the rest fill up
+
+
+def test_agreement_counts_false_alarms_misses_stale_and_skipped_labels(agreement):
+    def unit(check, verdict, story="a"):
+        return {"story": story, "seed": 0, "sentence": "s1", "check": check, "character": "Tom",
+                "check_verdict": verdict, "reason": "r"}  # fmt: skip
+
+    found = {agreement.unit_key(u): u for u in (unit("penetration", "fail"), unit("contact", "ok"))}
+    labels = [
+        {**unit("penetration", ""), "human": "ok", "why": "a graze", "animation": "f1"},  # false alarm
+        {**unit("contact", ""), "human": "fail", "why": "empty hand", "animation": "f1"},  # miss
+        {**unit("in_view", ""), "human": "ok", "why": "seen", "animation": "f1"},  # no such check: ok
+        {**unit("contact", "", story="b"), "human": "ok", "why": "-", "animation": "old"},  # stale
+        {**unit("contact", "", story="c"), "human": "ok", "why": "-", "animation": "f3"},  # not computed
+    ]
+    out = agreement.compare(labels, found, {("a", 0): "f1", ("b", 0): "new"})
+    assert out["counted"] == 3 and out["check_agreement"] == pytest.approx(1 / 3)
+    assert out["per_check"]["penetration"]["false_alarms"] == 1
+    assert out["per_check"]["contact"]["misses"] == 1
+    assert out["per_check"]["in_view"]["agreement"] == 1.0
+    assert [k[0] for k in out["stale"]] == ["b"] and [k[0] for k in out["skipped"]] == ["c"]
+
+
+def test_the_committed_labels_are_at_least_forty_and_each_says_why(agreement):
+    data = json.loads(agreement.LABELS.read_text())
+    labels = data["labels"]
+    assert len(labels) >= 40
+    for lab in labels:
+        assert lab["human"] in ("ok", "fail") and lab["why"].strip() and lab["animation"]
+        assert {"story", "seed", "sentence", "check", "character"} <= set(lab)
+    keys = [agreement.unit_key(lab) for lab in labels]
+    assert len(keys) == len(set(keys))
+    quick = agreement.quick_stories(labels)
+    assert len(quick) == agreement.QUICK_STORIES
