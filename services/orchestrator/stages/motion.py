@@ -33,6 +33,7 @@ from services.orchestrator.stages import StageContext, content_of
 from services.orchestrator.stages.props import provide
 from services.orchestrator.stages.seats import furnish
 from services.orchestrator.stages.social import frame_count
+from services.orchestrator.stages.states import with_states
 from services.orchestrator.staging import (
     Doorway,
     doorway,
@@ -400,6 +401,7 @@ def animate(
         out.motions[name] = motion
     out.motions = set_down_props(out.scene, out.motions, length)
     out.motions = _enlivened(out.scene, characters, _in_moods(characters, out.motions, moods))
+    out.scene = with_states(out.scene, characters, out.motions, sentences)  # doors opened, lamps on
     return out
 
 

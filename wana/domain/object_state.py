@@ -1,0 +1,112 @@
+"""Objects whose state a story changes: which categories have a state, its value at a frame, and the
+moving or glowing part of each (a door leaf on its hinge, a laptop lid, a lamp's shade, a screen).
+
+The catalog meshes are one piece each; the part a state moves is found here from the generator's layout
+(wana/assets/generators: the door's leaf between its frame posts, the laptop's lid behind its base, the
+panel coloured with the "screen" tone), so every output (MP4, GLB) poses the same part the same way.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from proto.scene import ObjectStateTrack
+
+# category -> {state: value at rest (before any sentence changes it)}
+STATEFUL: dict[str, dict[str, float]] = {
+    "door": {"open": 0.0},
+    "refrigerator": {"open": 0.0},
+    "wardrobe": {"open": 0.0},
+    "cabinet": {"open": 0.0},
+    "microwave": {"open": 0.0},
+    "laptop": {"open": 1.0, "on": 0.0},
+    "lamp": {"on": 0.0},
+    "floor_lamp": {"on": 0.0},
+    "desk_lamp": {"on": 0.0},
+    "television": {"on": 0.0},
+    "monitor": {"on": 0.0},
+    "computer": {"on": 0.0},
+}
+LIGHTS = ("lamp", "floor_lamp", "desk_lamp")  # categories that light the room when on
+DOOR_SWING = np.radians(85.0)  # how far an open door leaf turns on its hinge
+LID_TILT = 0.3  # radians the generator leans an open laptop lid back from upright (electronics.laptop)
+SCREEN_RGB = (20, 24, 30)  # wana.assets.params TONES["screen"]: the colour of a switched-off screen
+LIT_SCREEN_RGB = (150, 200, 245)
+LIT_SHADE_RGB = (255, 238, 190)
+FRAME_T = 0.07  # metres: the door generator's frame post width
+
+
+def value_at(track: ObjectStateTrack, frame: float) -> float:
+    """The track's state at a frame (linear between keys, held outside them)."""
+    if not track.frames:
+        return 0.0
+    return float(np.interp(frame, track.frames, track.values))
+
+
+def state_at(tracks: list[ObjectStateTrack], object_id: str, state: str, rest: float, frame: float) -> float:
+    """An object's state at a frame: its track's value, else its value at rest."""
+    for t in tracks:
+        if t.object_id == object_id and t.state == state:
+            return value_at(t, frame)
+    return rest
+
+
+def moving_faces(category: str, centroids: np.ndarray, colours: np.ndarray) -> np.ndarray:
+    """(F,) bool: the faces an "open" state turns (door leaf, laptop lid; the whole front of the others
+    is not split: they show no motion) from face centroids (F, 3) and RGB colours (F, 3), object frame."""
+    lo, hi = centroids.min(axis=0), centroids.max(axis=0)
+    if category == "door":
+        w_half = max(abs(lo[0]), abs(hi[0]))
+        inside = np.abs(centroids[:, 0]) < w_half - FRAME_T + 1e-4
+        return inside & (centroids[:, 1] < hi[1] - FRAME_T + 1e-4)
+    if category == "laptop":
+        return centroids[:, 2] < lo[2] + (hi[2] - lo[2]) * 0.12
+    return np.zeros(len(centroids), bool)
+
+
+def open_transform(category: str, bounds: np.ndarray, value: float) -> np.ndarray:
+    """(4, 4) object-frame transform of the moving part at an "open" value (identity when it does not move).
+
+    Door: the leaf turns about the hinge at its left frame post into the room (+Z), 0 shut, 1 open.
+    Laptop: the lid turns about the hinge at the back of the base down onto it, 1 open (as modelled), 0 shut.
+    """
+    m = np.eye(4)
+    if category == "door":
+        hinge = np.array([bounds[0, 0] + FRAME_T, 0.0, 0.0])
+        a = -DOOR_SWING * value
+        r = np.array([[np.cos(a), 0, np.sin(a)], [0, 1, 0], [-np.sin(a), 0, np.cos(a)]])
+    elif category == "laptop":
+        base_t = 0.02
+        hinge = np.array([0.0, base_t, bounds[0, 2] + 0.01])
+        a = (1.0 - value) * (np.pi / 2 + LID_TILT - 0.04)
+        r = np.array([[1, 0, 0], [0, np.cos(a), -np.sin(a)], [0, np.sin(a), np.cos(a)]])
+    else:
+        return m
+    m[:3, :3] = r
+    m[:3, 3] = hinge - r @ hinge
+    return m
+
+
+def glowing_faces(category: str, centroids: np.ndarray, colours: np.ndarray) -> np.ndarray:
+    """(F,) bool: the faces an "on" state lights: a screen's panel, a lamp's shade (its top third)."""
+    if category in LIGHTS:
+        lo, hi = centroids[:, 1].min(), centroids[:, 1].max()
+        return centroids[:, 1] > hi - (hi - lo) * 0.35
+    return np.all(np.abs(colours.astype(int) - np.array(SCREEN_RGB)) <= 6, axis=1)
+
+
+def lit_colour(category: str) -> tuple[int, int, int]:
+    """The RGB a lit part shows."""
+    return LIT_SHADE_RGB if category in LIGHTS else LIT_SCREEN_RGB
+
+
+__all__ = [
+    "LIGHTS",
+    "STATEFUL",
+    "glowing_faces",
+    "lit_colour",
+    "moving_faces",
+    "open_transform",
+    "state_at",
+    "value_at",
+]
