@@ -34,6 +34,7 @@ SCREEN_RGB = (20, 24, 30)  # wana.assets.params TONES["screen"]: the colour of a
 LIT_SCREEN_RGB = (150, 200, 245)
 LIT_SHADE_RGB = (255, 238, 190)
 FRAME_T = 0.07  # metres: the door generator's frame post width
+LAPTOP_BASE_T = 0.02  # metres: the laptop generator's base thickness (its lid's hinge height)
 
 
 def value_at(track: ObjectStateTrack, frame: float) -> float:
@@ -64,24 +65,27 @@ def moving_faces(category: str, centroids: np.ndarray, colours: np.ndarray) -> n
     return np.zeros(len(centroids), bool)
 
 
-def open_transform(category: str, bounds: np.ndarray, value: float) -> np.ndarray:
-    """(4, 4) object-frame transform of the moving part at an "open" value (identity when it does not move).
+def open_hinge(category: str, bounds: np.ndarray, value: float) -> tuple[np.ndarray, np.ndarray, float]:
+    """(hinge point, unit axis, angle in radians) the moving part of an "open" state turns by at a value,
+    object frame; angle 0 where the part does not move.
 
     Door: the leaf turns about the hinge at its left frame post into the room (+Z), 0 shut, 1 open.
     Laptop: the lid turns about the hinge at the back of the base down onto it, 1 open (as modelled), 0 shut.
     """
-    m = np.eye(4)
     if category == "door":
-        hinge = np.array([bounds[0, 0] + FRAME_T, 0.0, 0.0])
-        a = -DOOR_SWING * value
-        r = np.array([[np.cos(a), 0, np.sin(a)], [0, 1, 0], [-np.sin(a), 0, np.cos(a)]])
-    elif category == "laptop":
-        base_t = 0.02
-        hinge = np.array([0.0, base_t, bounds[0, 2] + 0.01])
-        a = (1.0 - value) * (np.pi / 2 + LID_TILT - 0.04)
-        r = np.array([[1, 0, 0], [0, np.cos(a), -np.sin(a)], [0, np.sin(a), np.cos(a)]])
-    else:
-        return m
+        return np.array([bounds[0, 0] + FRAME_T, 0.0, 0.0]), np.array([0.0, 1.0, 0.0]), -DOOR_SWING * value
+    if category == "laptop":
+        hinge = np.array([0.0, LAPTOP_BASE_T, bounds[0, 2] + 0.01])
+        return hinge, np.array([1.0, 0.0, 0.0]), (1.0 - value) * (np.pi / 2 + LID_TILT - 0.04)
+    return np.zeros(3), np.array([0.0, 1.0, 0.0]), 0.0
+
+
+def open_transform(category: str, bounds: np.ndarray, value: float) -> np.ndarray:
+    """(4, 4) object-frame transform of the moving part at an "open" value (identity when it does not move)."""
+    hinge, axis, a = open_hinge(category, bounds, value)
+    k = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
+    r = np.eye(3) + np.sin(a) * k + (1 - np.cos(a)) * (k @ k)  # Rodrigues
+    m = np.eye(4)
     m[:3, :3] = r
     m[:3, 3] = hinge - r @ hinge
     return m
@@ -106,6 +110,7 @@ __all__ = [
     "glowing_faces",
     "lit_colour",
     "moving_faces",
+    "open_hinge",
     "open_transform",
     "state_at",
     "value_at",
