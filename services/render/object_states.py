@@ -26,8 +26,8 @@ from wana.domain.object_state import (
     state_at,
 )
 
-LIGHT_GAIN = 0.55  # how much brighter a surface right at a lamp is when it is on (x its colour)
-LIGHT_RADIUS = 1.6  # metres: the lamp's pool of light (gaussian sigma)
+LIGHT_GAIN = 0.7  # how much brighter a surface right at a lamp is when it is on (x its colour)
+LIGHT_RADIUS = 1.1  # metres: the lamp's pool of light (gaussian sigma)
 LIGHT_WARM = np.array([1.0, 0.93, 0.78])  # the colour of a lamp's light
 
 
