@@ -87,7 +87,7 @@ def add_states(
         )
         yaw_q = quat.yaw(np.array(float(placed.yaw)))
         if "open" in rest and obj.moving.any():
-            hinge, axis, _ = open_hinge(category, obj.bounds, 0.0)
+            hinge, axis, _ = open_hinge(category, obj.part, 0.0)
             part = _part(obj.mesh, obj.moving, hinge)
             add_mesh(b, ColouredMesh(f"{oid}:part", part.vertices, part.faces, part.colours), material)
             node = len(b.doc["nodes"]) - 1
@@ -95,7 +95,7 @@ def add_states(
             pivot = b.node({"name": f"{oid}:hinge", "children": [node]}, root=True)
             angles = np.array(
                 [
-                    open_hinge(category, obj.bounds, state_at(scene.states, oid, "open", rest["open"], f))[2]
+                    open_hinge(category, obj.part, state_at(scene.states, oid, "open", rest["open"], f))[2]
                     for f in frames
                 ]
             )

@@ -40,6 +40,7 @@ class StatefulObject:
     moving: np.ndarray  # (V,) bool: vertices an "open" state turns
     glowing: np.ndarray  # (V,) bool: vertices an "on" state lights
     bounds: np.ndarray  # (2, 3) object-frame bounds
+    part: np.ndarray  # (2, 3) object-frame bounds of the moving part (the whole mesh's when none moves)
     light: np.ndarray  # (3,) world position of its light (lamps), else the object's origin
 
 
@@ -61,9 +62,11 @@ def stateful_objects(scene: Scene) -> dict[str, StatefulObject]:
         moving = np.repeat(moving_faces(placed.category, centroids, face_rgb), 3)
         glowing = np.repeat(glowing_faces(placed.category, centroids, face_rgb), 3)
         bounds = np.stack([mesh.vertices.min(axis=0), mesh.vertices.max(axis=0)])
+        moved = mesh.vertices[moving] if moving.any() else mesh.vertices
+        part = np.stack([moved.min(axis=0), moved.max(axis=0)])
         top = np.array([0.0, bounds[1, 1] * 0.8, 0.0, 1.0])
         light = (object_to_world(placed) @ top)[:3]
-        out[placed.id] = StatefulObject(placed, mesh, moving, glowing, bounds, light)
+        out[placed.id] = StatefulObject(placed, mesh, moving, glowing, bounds, part, light)
     return out
 
 
@@ -75,7 +78,7 @@ def posed(obj: StatefulObject, scene: Scene, frame: float) -> tuple[np.ndarray, 
     verts = obj.mesh.vertices.copy()
     if "open" in rest:
         value = state_at(scene.states, obj.placed.id, "open", rest["open"], frame)
-        m = open_transform(obj.placed.category, obj.bounds, value)
+        m = open_transform(obj.placed.category, obj.part, value)
         verts[obj.moving] = verts[obj.moving] @ m[:3, :3].T + m[:3, 3]
     verts = verts @ yaw_matrix(obj.placed.yaw).T + np.asarray(obj.placed.position, float)
     colours = obj.mesh.colours[:, :3].astype(np.float64) / 255.0

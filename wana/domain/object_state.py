@@ -34,7 +34,6 @@ SCREEN_RGB = (20, 24, 30)  # wana.assets.params TONES["screen"]: the colour of a
 LIT_SCREEN_RGB = (150, 200, 245)
 LIT_SHADE_RGB = (255, 238, 190)
 FRAME_T = 0.07  # metres: the door generator's frame post width
-LAPTOP_BASE_T = 0.02  # metres: the laptop generator's base thickness (its lid's hinge height)
 
 
 def value_at(track: ObjectStateTrack, frame: float) -> float:
@@ -53,36 +52,41 @@ def state_at(tracks: list[ObjectStateTrack], object_id: str, state: str, rest: f
 
 
 def moving_faces(category: str, centroids: np.ndarray, colours: np.ndarray) -> np.ndarray:
-    """(F,) bool: the faces an "open" state turns (door leaf, laptop lid; the whole front of the others
-    is not split: they show no motion) from face centroids (F, 3) and RGB colours (F, 3), object frame."""
+    """(F,) bool: the faces an "open" state turns, from face centroids (F, 3) and RGB colours (F, 3), object
+    frame: a door's leaf (between its frame posts, under its head), a laptop's lid (above its base, which
+    the touchpad on its front half tops); none for the others (they change state without a moving part)."""
     lo, hi = centroids.min(axis=0), centroids.max(axis=0)
     if category == "door":
         w_half = max(abs(lo[0]), abs(hi[0]))
         inside = np.abs(centroids[:, 0]) < w_half - FRAME_T + 1e-4
         return inside & (centroids[:, 1] < hi[1] - FRAME_T + 1e-4)
     if category == "laptop":
-        return centroids[:, 2] < lo[2] + (hi[2] - lo[2]) * 0.12
+        front = centroids[:, 2] > 0.02
+        base_top = float(centroids[front, 1].max()) if front.any() else 0.02
+        y, z = centroids[:, 1], centroids[:, 2]
+        return (y > base_top + 0.003) | ((z < -hi[2] + 0.018) & (y > base_top - 0.004))
     return np.zeros(len(centroids), bool)
 
 
-def open_hinge(category: str, bounds: np.ndarray, value: float) -> tuple[np.ndarray, np.ndarray, float]:
+def open_hinge(category: str, part: np.ndarray, value: float) -> tuple[np.ndarray, np.ndarray, float]:
     """(hinge point, unit axis, angle in radians) the moving part of an "open" state turns by at a value,
-    object frame; angle 0 where the part does not move.
+    object frame, from the part's (2, 3) bounds; angle 0 where nothing moves.
 
-    Door: the leaf turns about the hinge at its left frame post into the room (+Z), 0 shut, 1 open.
-    Laptop: the lid turns about the hinge at the back of the base down onto it, 1 open (as modelled), 0 shut.
+    Door: the leaf turns about its edge at the left frame post into the room (+Z), 0 shut, 1 open.
+    Laptop: the lid turns about its front bottom edge (the hinge on the base) down onto the base, 1 open
+    (as modelled), 0 shut.
     """
     if category == "door":
-        return np.array([bounds[0, 0] + FRAME_T, 0.0, 0.0]), np.array([0.0, 1.0, 0.0]), -DOOR_SWING * value
+        return np.array([part[0, 0], 0.0, 0.0]), np.array([0.0, 1.0, 0.0]), -DOOR_SWING * value
     if category == "laptop":
-        hinge = np.array([0.0, LAPTOP_BASE_T, bounds[0, 2] + 0.01])
-        return hinge, np.array([1.0, 0.0, 0.0]), (1.0 - value) * (np.pi / 2 + LID_TILT - 0.04)
+        hinge = np.array([0.0, part[0, 1], part[1, 2]])
+        return hinge, np.array([1.0, 0.0, 0.0]), (1.0 - value) * (np.pi / 2 + LID_TILT - 0.03)
     return np.zeros(3), np.array([0.0, 1.0, 0.0]), 0.0
 
 
-def open_transform(category: str, bounds: np.ndarray, value: float) -> np.ndarray:
-    """(4, 4) object-frame transform of the moving part at an "open" value (identity when it does not move)."""
-    hinge, axis, a = open_hinge(category, bounds, value)
+def open_transform(category: str, part: np.ndarray, value: float) -> np.ndarray:
+    """(4, 4) object-frame transform of the moving part (its (2, 3) bounds) at an "open" value."""
+    hinge, axis, a = open_hinge(category, part, value)
     k = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
     r = np.eye(3) + np.sin(a) * k + (1 - np.cos(a)) * (k @ k)  # Rodrigues
     m = np.eye(4)

@@ -81,6 +81,7 @@ def test_the_glb_turns_the_door_leaf_node_and_drives_the_lamps_light(tmp_path):
     assert issues["numErrors"] == 0 and issues["numWarnings"] == 0, issues["messages"][:5]
 
 
+@pytest.mark.slow
 def test_a_frame_after_the_lamp_turns_on_is_brighter_near_the_lamp():
     scene = _scene(door=False)
     w, h = 320, 240
