@@ -86,19 +86,16 @@ def add_states(
             material,
         )
         yaw_q = quat.yaw(np.array(float(placed.yaw)))
-        if "open" in rest and obj.moving.any():
-            hinge, axis, _ = open_hinge(category, obj.part, 0.0)
-            part = _part(obj.mesh, obj.moving, hinge)
-            add_mesh(b, ColouredMesh(f"{oid}:part", part.vertices, part.faces, part.colours), material)
+        values = [state_at(scene.states, oid, "open", rest.get("open", 0.0), f) for f in frames]
+        for k, bounds in sorted(obj.parts.items()) if "open" in rest else []:
+            hinge, axis, _ = open_hinge(category, bounds, 0.0, k)
+            part = _part(obj.mesh, obj.leaf == k, hinge)
+            label = f"{oid}:part" if len(obj.parts) == 1 else f"{oid}:part{k}"
+            add_mesh(b, ColouredMesh(label, part.vertices, part.faces, part.colours), material)
             node = len(b.doc["nodes"]) - 1
             b.doc["scenes"][0]["nodes"].remove(node)
-            pivot = b.node({"name": f"{oid}:hinge", "children": [node]}, root=True)
-            angles = np.array(
-                [
-                    open_hinge(category, obj.part, state_at(scene.states, oid, "open", rest["open"], f))[2]
-                    for f in frames
-                ]
-            )
+            pivot = b.node({"name": label.replace(":part", ":hinge"), "children": [node]}, root=True)
+            angles = np.array([open_hinge(category, bounds, v, k)[2] for v in values])
             rot = quat.mul(
                 np.broadcast_to(yaw_q, (n, 4)), quat.from_axis_angle(np.broadcast_to(axis, (n, 3)), angles)
             )

@@ -37,10 +37,16 @@ class StatefulObject:
 
     placed: PlacedObject
     mesh: ColouredMesh  # object frame, scaled, face-flattened
-    moving: np.ndarray  # (V,) bool: vertices an "open" state turns
+    leaf: np.ndarray  # (V,) int8: the leaf an "open" state turns each vertex with (0: still)
     glowing: np.ndarray  # (V,) bool: vertices an "on" state lights
     bounds: np.ndarray  # (2, 3) object-frame bounds
-    part: np.ndarray  # (2, 3) object-frame bounds of the moving part (the whole mesh's when none moves)
+    parts: dict[int, np.ndarray]  # leaf -> its (2, 3) object-frame bounds
+
+    @property
+    def moving(self) -> np.ndarray:
+        """(V,) bool: the vertices an "open" state moves."""
+        return self.leaf > 0
+
     light: np.ndarray  # (3,) world position of its light (lamps), else the object's origin
 
 
@@ -59,14 +65,17 @@ def stateful_objects(scene: Scene) -> dict[str, StatefulObject]:
         tri = mesh.vertices.reshape(-1, 3, 3)
         centroids = tri.mean(axis=1)
         face_rgb = mesh.colours[::3, :3]
-        moving = np.repeat(moving_faces(placed.category, centroids, face_rgb), 3)
+        leaf = np.repeat(moving_faces(placed.category, tri), 3)
         glowing = np.repeat(glowing_faces(placed.category, centroids, face_rgb), 3)
         bounds = np.stack([mesh.vertices.min(axis=0), mesh.vertices.max(axis=0)])
-        moved = mesh.vertices[moving] if moving.any() else mesh.vertices
-        part = np.stack([moved.min(axis=0), moved.max(axis=0)])
+        parts = {
+            int(k): np.stack([mesh.vertices[leaf == k].min(axis=0), mesh.vertices[leaf == k].max(axis=0)])
+            for k in np.unique(leaf)
+            if k > 0
+        }
         top = np.array([0.0, bounds[1, 1] * 0.8, 0.0, 1.0])
         light = (object_to_world(placed) @ top)[:3]
-        out[placed.id] = StatefulObject(placed, mesh, moving, glowing, bounds, part, light)
+        out[placed.id] = StatefulObject(placed, mesh, leaf, glowing, bounds, parts, light)
     return out
 
 
@@ -78,8 +87,9 @@ def posed(obj: StatefulObject, scene: Scene, frame: float) -> tuple[np.ndarray, 
     verts = obj.mesh.vertices.copy()
     if "open" in rest:
         value = state_at(scene.states, obj.placed.id, "open", rest["open"], frame)
-        m = open_transform(obj.placed.category, obj.part, value)
-        verts[obj.moving] = verts[obj.moving] @ m[:3, :3].T + m[:3, 3]
+        for k, part in obj.parts.items():
+            m = open_transform(obj.placed.category, part, value, k)
+            verts[obj.leaf == k] = verts[obj.leaf == k] @ m[:3, :3].T + m[:3, 3]
     verts = verts @ yaw_matrix(obj.placed.yaw).T + np.asarray(obj.placed.position, float)
     colours = obj.mesh.colours[:, :3].astype(np.float64) / 255.0
     if "on" in rest:

@@ -34,6 +34,9 @@ SCREEN_RGB = (20, 24, 30)  # wana.assets.params TONES["screen"]: the colour of a
 LIT_SCREEN_RGB = (150, 200, 245)
 LIT_SHADE_RGB = (255, 238, 190)
 FRAME_T = 0.07  # metres: the door generator's frame post width
+FRONT_T = (
+    0.02  # metres: a cabinet's or fridge's front panel before its carcass (generators storage, kitchen_bath)
+)
 
 
 def value_at(track: ObjectStateTrack, frame: float) -> float:
@@ -51,42 +54,68 @@ def state_at(tracks: list[ObjectStateTrack], object_id: str, state: str, rest: f
     return rest
 
 
-def moving_faces(category: str, centroids: np.ndarray, colours: np.ndarray) -> np.ndarray:
-    """(F,) bool: the faces an "open" state turns, from face centroids (F, 3) and RGB colours (F, 3), object
-    frame: a door's leaf (between its frame posts, under its head), a laptop's lid (above its base, which
-    the touchpad on its front half tops); none for the others (they change state without a moving part)."""
+FRONTS = ("refrigerator", "wardrobe", "cabinet", "microwave")  # appliances and furniture with hinged fronts
+PAIRED = ("wardrobe", "cabinet")  # two columns of fronts: the left ones hinge left, the right ones right
+
+
+def moving_faces(category: str, triangles: np.ndarray) -> np.ndarray:
+    """(F,) int8 leaf of each face an "open" state turns (0: still), from the faces' (F, 3, 3) corners,
+    object frame: a door's leaf (between its frame posts, under its head), a laptop's lid
+    (above its base, which the touchpad on its front half tops), a fridge's or wardrobe's fronts (in front
+    of the carcass; a two-column wardrobe's right fronts are leaf 2, hinged on the right)."""
+    centroids = triangles.mean(axis=1)
     lo, hi = centroids.min(axis=0), centroids.max(axis=0)
+    out = np.zeros(len(centroids), np.int8)
     if category == "door":
         w_half = max(abs(lo[0]), abs(hi[0]))
         inside = np.abs(centroids[:, 0]) < w_half - FRAME_T + 1e-4
-        return inside & (centroids[:, 1] < hi[1] - FRAME_T + 1e-4)
-    if category == "laptop":
+        out[inside & (centroids[:, 1] < hi[1] - FRAME_T + 1e-4)] = 1
+    elif category == "laptop":
         front = centroids[:, 2] > 0.02
         base_top = float(centroids[front, 1].max()) if front.any() else 0.02
         y, z = centroids[:, 1], centroids[:, 2]
-        return (y > base_top + 0.003) | ((z < -hi[2] + 0.018) & (y > base_top - 0.004))
-    return np.zeros(len(centroids), bool)
+        out[(y > base_top + 0.003) | ((z < -hi[2] + 0.018) & (y > base_top - 0.004))] = 1
+    elif category in FRONTS:
+        fronts = centroids[:, 2] > _front_face(triangles) - FRONT_T + 1e-3
+        out[fronts] = 1
+        if category in PAIRED:
+            out[fronts & (centroids[:, 0] > 0)] = 2
+    return out
 
 
-def open_hinge(category: str, part: np.ndarray, value: float) -> tuple[np.ndarray, np.ndarray, float]:
-    """(hinge point, unit axis, angle in radians) the moving part of an "open" state turns by at a value,
-    object frame, from the part's (2, 3) bounds; angle 0 where nothing moves.
+def _front_face(triangles: np.ndarray) -> float:
+    """z of the fronts' outer face: the frontmost large face looking forward (+Z), handles left aside."""
+    n = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
+    area = np.linalg.norm(n, axis=1) / 2
+    forward = (n[:, 2] > 0.99 * 2 * area) & (area > 0.02)
+    z = triangles.mean(axis=1)[:, 2]
+    return float(z[forward].max()) if forward.any() else float(z.max())
 
-    Door: the leaf turns about its edge at the left frame post into the room (+Z), 0 shut, 1 open.
-    Laptop: the lid turns about its front bottom edge (the hinge on the base) down onto the base, 1 open
-    (as modelled), 0 shut.
+
+def open_hinge(
+    category: str, part: np.ndarray, value: float, leaf: int = 1
+) -> tuple[np.ndarray, np.ndarray, float]:
+    """(hinge point, unit axis, angle in radians) a moving leaf of an "open" state turns by at a value,
+    object frame, from the leaf's (2, 3) bounds; angle 0 where nothing moves.
+
+    Door, fridge, wardrobe: the leaf turns about its back edge on the left (leaf 1) or the right (leaf 2)
+    out to the front (+Z), 0 shut, 1 open. Laptop: the lid turns about its front bottom edge (the hinge on
+    the base) down onto the base, 1 open (as modelled), 0 shut.
     """
-    if category == "door":
-        return np.array([part[0, 0], 0.0, 0.0]), np.array([0.0, 1.0, 0.0]), -DOOR_SWING * value
+    up = np.array([0.0, 1.0, 0.0])
+    if category == "door" or category in FRONTS:
+        x = part[0, 0] if leaf == 1 else part[1, 0]
+        swing = DOOR_SWING * value
+        return np.array([x, 0.0, part[0, 2]]), up, -swing if leaf == 1 else swing
     if category == "laptop":
         hinge = np.array([0.0, part[0, 1], part[1, 2]])
         return hinge, np.array([1.0, 0.0, 0.0]), (1.0 - value) * (np.pi / 2 + LID_TILT - 0.03)
-    return np.zeros(3), np.array([0.0, 1.0, 0.0]), 0.0
+    return np.zeros(3), up, 0.0
 
 
-def open_transform(category: str, part: np.ndarray, value: float) -> np.ndarray:
-    """(4, 4) object-frame transform of the moving part (its (2, 3) bounds) at an "open" value."""
-    hinge, axis, a = open_hinge(category, part, value)
+def open_transform(category: str, part: np.ndarray, value: float, leaf: int = 1) -> np.ndarray:
+    """(4, 4) object-frame transform of a moving leaf (its (2, 3) bounds) at an "open" value."""
+    hinge, axis, a = open_hinge(category, part, value, leaf)
     k = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
     r = np.eye(3) + np.sin(a) * k + (1 - np.cos(a)) * (k @ k)  # Rodrigues
     m = np.eye(4)
@@ -109,6 +138,7 @@ def lit_colour(category: str) -> tuple[int, int, int]:
 
 
 __all__ = [
+    "FRONTS",
     "LIGHTS",
     "STATEFUL",
     "glowing_faces",

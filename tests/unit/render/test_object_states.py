@@ -104,3 +104,23 @@ def test_a_frame_after_the_lamp_turns_on_is_brighter_near_the_lamp():
     far_gain = patch(after, uv[1]) - patch(before, uv[1])
     assert near_gain > 8.0, near_gain
     assert near_gain > 2 * max(far_gain, 0.5), (near_gain, far_gain)
+
+
+def test_a_wardrobe_opens_its_two_fronts_outwards_on_their_outer_hinges():
+    scene = Scene(
+        room=ROOM,
+        objects=[PlacedObject(id="wardrobe", category="wardrobe", position=(0.0, 0.0, -1.6))],
+        states=[ObjectStateTrack(object_id="wardrobe", state="open", frames=[0, 18], values=[0.0, 1.0])],
+    )
+    obj = stateful_objects(scene)["wardrobe"]
+    assert sorted(obj.parts) == [1, 2]  # left and right fronts, the carcass still
+    shut, _ = posed(obj, scene, 0)
+    wide, _ = posed(obj, scene, 18)
+    for leaf, side in ((1, -1), (2, 1)):
+        mask = obj.leaf == leaf
+        assert wide[mask][:, 2].max() > shut[mask][:, 2].max() + 0.4  # swung out to the front
+        outer = shut[mask][:, 0].min() if side < 0 else shut[mask][:, 0].max()
+        assert (
+            abs((wide[mask][:, 0].min() if side < 0 else wide[mask][:, 0].max()) - outer) < 0.05
+        )  # hinge side
+    assert np.allclose(wide[obj.leaf == 0], shut[obj.leaf == 0])
