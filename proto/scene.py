@@ -24,7 +24,22 @@ class PlacedObject(msgspec.Struct, frozen=True, kw_only=True):
     from_text: bool = True  # False for context objects added by composition
 
 
+class ObjectStateTrack(msgspec.Struct, frozen=True, kw_only=True):
+    """How one state of a placed object changes over the animation: a door or lid open, a lamp or screen on.
+
+    The value is 0 (closed / off) to 1 (open / on): piecewise linear between the keys (frames ascending),
+    held before the first key and after the last. The orchestrator writes one key pair per change, from
+    the frame the hand touches the object (services/orchestrator/stages/states.py).
+    """
+
+    object_id: str  # PlacedObject.id
+    state: str  # "open" (door leaf, lid) | "on" (light, screen)
+    frames: list[int] = []  # key frames, ascending
+    values: list[float] = []  # the state at each key frame, 0..1
+
+
 class Scene(msgspec.Struct, frozen=True, kw_only=True):
     room: Room
     objects: list[PlacedObject] = []
     seed: int = 0
+    states: list[ObjectStateTrack] = []  # objects whose state the story changes (none: every object at rest)

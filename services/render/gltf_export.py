@@ -25,6 +25,8 @@ from proto.motion_data import Motion
 from proto.scene import Scene
 from services.render.cast_gltf import CastCharacter, add_cast_character
 from services.render.gltf_camera import add_camera
+from services.render.gltf_states import add_states
+from services.render.object_states import stateful_objects
 from services.render.scene_geometry import (
     ColouredMesh,
     held_ids,
@@ -356,10 +358,15 @@ def scene_glb(
     b = _Builder()
     static_mat = b.material("scene")
     held = held_ids(motions)
-    for mesh in room_meshes(scene.room) + object_meshes(scene, held):
+    stateful = {k: v for k, v in stateful_objects(scene).items() if k not in held}
+    for mesh in room_meshes(scene.room) + object_meshes(scene, held | set(stateful)):
         _add_static(b, mesh, static_mat)
     animation: dict = {"name": "wana", "samplers": [], "channels": []}
     _add_props(b, scene, motions, held, static_mat, animation, fps)
+    if stateful:  # doors and lids on their hinges, lamps and screens lit (services.render.gltf_states)
+        n = max((int(from_wire(m.root_position).shape[0]) for m in motions), default=0)
+        n = max([n, *(max(t.frames) + 1 for t in scene.states if t.frames)])
+        add_states(b, scene, stateful, static_mat, animation, n, fps, _add_static)
     if motions:
         skin_mat = b.material("characters")
         for m in motions:

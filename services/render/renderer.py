@@ -20,6 +20,7 @@ from proto.scene import Scene
 from services.render import captions as captions_mod
 from services.render.camera import CameraPose
 from services.render.canvas import Canvas
+from services.render.object_states import lights_at, posed, relit, stateful_objects
 from services.render.scene_geometry import (
     FLOOR_RGBA,
     held_ids,
@@ -75,8 +76,11 @@ class FrameRenderer:
         objects = object_meshes(scene, held)
         self._motions = list(motions)
         self._props = {o.id: (o, prop_mesh(o)) for o in scene.objects if o.id in held}
-        self._static = merge(room_parts + objects)
+        self._stateful = {k: v for k, v in stateful_objects(scene).items() if k not in held}
+        still = [m for m in objects if m.name not in self._stateful]  # doors, lamps, screens: drawn per frame
+        self._static = merge(room_parts + still)
         self._objects = merge(objects, "objects")
+        self._lit: tuple[float, ...] = ()  # the lamps' values the static mesh's colours show (set on open)
         self._canvas: Canvas | None = None
         self._shadow_look: tuple[float, tuple[float, ...]] | None = None  # (strength, sun) last drawn
 
@@ -99,6 +103,7 @@ class FrameRenderer:
                     ch.colours[:, :3] / 255.0,
                 )
             self._canvas = c
+            self._lit = tuple(0.0 for _ in lights_at(self._stateful, self.scene, 0))  # base colours: all off
         return self._canvas
 
     def close(self) -> None:
@@ -165,6 +170,7 @@ class FrameRenderer:
                 mesh.faces if fresh else None,
                 mesh.colours[:, :3] / 255.0 if fresh else None,
             )
+        self._draw_states(c, f)
         self._update_shadows(c, look, verts)
         room = self.scene.room
         c.set_lines("rain", rain_segments(f, room, look.rain), (0.78, 0.82, 0.9))
@@ -177,6 +183,24 @@ class FrameRenderer:
         if text:
             img = captions_mod.draw_caption(img, text)
         return img
+
+    def _draw_states(self, c: Canvas, f: int) -> None:
+        """Doors and lids posed, lamps and screens lit at frame f; the room relit when a lamp changed."""
+        for oid, obj in self._stateful.items():
+            v, rgb = posed(obj, self.scene, f)
+            key = f"state:{oid}"
+            fresh = key not in c.names()
+            c.set_mesh(key, v, obj.mesh.faces if fresh else None, rgb)
+        lit = lights_at(self._stateful, self.scene, f)
+        st = self._static
+        if lit != self._lit and len(st.faces):
+            c.set_mesh(
+                "static",
+                st.vertices,
+                None,
+                relit(st.colours[:, :3] / 255.0, st.vertices, self._stateful, lit),
+            )
+            self._lit = lit
 
     def frames(
         self, start: int = 0, end: int | None = None, progress: Callable[[int], None] | None = None

@@ -33,6 +33,7 @@ from services.orchestrator.stages import StageContext, content_of
 from services.orchestrator.stages.props import provide
 from services.orchestrator.stages.seats import furnish
 from services.orchestrator.stages.social import fit_cast, frame_count, paired_actions
+from services.orchestrator.stages.states import with_states
 from services.orchestrator.staging import (
     Doorway,
     doorway,
@@ -403,6 +404,7 @@ def animate(
         out.motions = dict(fitted.motions)
     out.motions = set_down_props(out.scene, out.motions, length)
     out.motions = _enlivened(out.scene, characters, _in_moods(characters, out.motions, moods))
+    out.scene = with_states(out.scene, characters, out.motions, sentences)  # doors opened, lamps on
     return out
 
 
