@@ -22,7 +22,7 @@ from proto.motion_data import Motion, PropTrack, Segment
 from services.motion.blend import fade_from, layer, upper_body_mask
 from services.motion.gait_style import NEUTRAL as NEUTRAL_GAIT
 from services.motion.gait_style import gait_style
-from services.motion.ik import joint_globals, lean_needed, lean_spine, lock_feet, two_bone_ik
+from services.motion.ik import joint_globals, lean_needed, lean_spine, lock_feet, trunk_tilt, two_bone_ik
 from services.motion.locomotion import locomote
 from services.motion.style import apply_style, resample_fps, style_of
 from wana.arrays import to_wire
@@ -306,21 +306,30 @@ def _crouch_to_reach(
     weight: np.ndarray,
     clip: ActionClip,
 ) -> tuple[np.ndarray, float | None]:
-    """Root (T, 3) lowered (at most CROUCH_MAX, eased in by weight) just far enough that a trunk lean of
-    STAND_MAX_LEAN brings every hand target within reach, and that lean; (root, None) when no crouch
-    is enough (the trunk then leans as far as it must)."""
+    """Root (T, 3) lowered (at most CROUCH_MAX, eased in by weight) just far enough that the spine lean
+    bringing every hand target within reach leaves the trunk (hips -> neck, the clip's own bend included:
+    a wiping clip already bends ~15 degrees) within STAND_MAX_LEAN of upright, and that lean. When no
+    crouch is enough, the crouch whose lean tilts the trunk least and None (the trunk then leans as far
+    as it must)."""
     assert clip.interaction is not None
     slack = COMFORT_REACH if clip.interaction.object in ("keyboard", "instrument") else FULL_REACH
-    for drop in np.linspace(0.0, CROUCH_MAX, 8):
+    best, best_tilt = root, np.inf
+    for drop in np.linspace(0.0, CROUCH_MAX, 10):
         lowered = root.copy()
         lowered[:, 1] -= weight * drop
-        if all(
-            lean_needed(rot, lowered, j, np.asarray(p, dtype=np.float64), weight, STAND_MAX_LEAN, slack)
-            is not None
+        needs = [
+            lean_needed(rot, lowered, j, np.asarray(p, dtype=np.float64), weight, np.radians(80.0), slack)
             for j, p in hands.items()
-        ):
-            return lowered, STAND_MAX_LEAN
-    return root, None
+        ]
+        if None in needs:
+            continue
+        lean = max(n for n in needs if n is not None)
+        tilt = trunk_tilt(lean_spine(rot, lean, weight), lowered, weight)
+        if tilt <= STAND_MAX_LEAN:
+            return lowered, lean
+        if tilt < best_tilt:
+            best, best_tilt = lowered, tilt
+    return best, None
 
 
 def _scoot_to_reach(
