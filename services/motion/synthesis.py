@@ -49,6 +49,7 @@ FULL_REACH = 0.97  # share of the arm's reach a hand contact may use (nearly str
 COMFORT_REACH = 0.85  # the same for typing and playing: elbows bent ~110 degrees
 STAND_MAX_LEAN = np.radians(30.0)  # radians of trunk lean a standing reach may use before ...
 CROUCH_MAX = 0.45  # ... the knees bend: metres the hips may drop (feet planted) to reach a low target
+BEND_DOWN = ("pick_up", "put_down")  # clips that bend down to the floor with the feet planted
 HAND_JOINTS = ("LeftHand", "RightHand", "LeftHandMiddle1", "RightHandMiddle1")
 
 
@@ -227,7 +228,12 @@ def _action_piece(seg: PlannedSegment, state: SegmentState) -> tuple[MotionPiece
     stand_feet = not clip.drives_lower_body or seg.action in POSTURE_AFTER
     contacts = np.ones((t, 2), np.uint8) if stand_feet else _clip_contacts(rot, root)
     stand_lean = None  # standing at a low target: bend the knees first, the trunk at most STAND_MAX_LEAN
-    if posture == "stand" and not clip.drives_lower_body and clip.interaction and stand_feet:
+    bends_down = clip.name in BEND_DOWN  # its own dip is not enough for a grip on the floor: crouch on it
+    if (
+        posture == "stand"
+        and clip.interaction
+        and (bends_down or (not clip.drives_lower_body and stand_feet))
+    ):
         low = {j: p for j, p in targets.items() if j in HAND_JOINTS}
         if low and clip.interaction.object != "person":
             root, stand_lean = _crouch_to_reach(rot, root, low, _contact_weight(clip, t, dur), clip)
