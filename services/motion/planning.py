@@ -444,18 +444,12 @@ def plan_actions(
         if face is not None:
             yaw = face
 
-    def step_up_to(here: np.ndarray, ai: int, target: str) -> None:
-        """Standing farther than STEP_IN from a point the hand must reach (a prop to take or set down):
-        step to REACH from it, at the free spot nearest there for a body reaching over furniture
-        (REACH_BODY) when the route arrives there, else for a walking one, so the arm arrives without a
-        deep bend."""
-        if np.linalg.norm(here - pos) <= STEP_IN:
-            return
+    def reach_spot(want: np.ndarray, here: np.ndarray, target: str) -> np.ndarray:
+        """Where to stand to reach ``here`` from about ``want``: the free spot nearest ``want`` for a body
+        reaching over furniture (REACH_BODY) when the route from where the character is arrives there
+        and it is nearer ``here``, else the free spot for a walking body."""
         from services.motion.routing import RADIUS, free_spot, scene_route
 
-        away = pos - here
-        n = float(np.linalg.norm(away))
-        want = here + (away / n if n > 1e-6 else np.array([0.0, 1.0])) * REACH
         a = (float(pos[0]), float(pos[1]))
         ignore = resting_on(scene, target) if target and target not in others else frozenset()
         spots = []
@@ -467,7 +461,16 @@ def plan_actions(
                 if np.linalg.norm(np.asarray(ends, float).reshape(-1, 2)[-1] - spot) > 0.05:
                     continue
             spots.append(spot)
-        spot = min(spots, key=lambda p: float(np.linalg.norm(here - p)))
+        return min(spots, key=lambda p: float(np.linalg.norm(here - p)))
+
+    def step_up_to(here: np.ndarray, ai: int, target: str) -> None:
+        """Standing farther than STEP_IN from a point the hand must reach (a prop to take or set down):
+        step to REACH from it (reach_spot), so the arm arrives without a deep bend."""
+        if np.linalg.norm(here - pos) <= STEP_IN:
+            return
+        away = pos - here
+        n = float(np.linalg.norm(away))
+        spot = reach_spot(here + (away / n if n > 1e-6 else np.array([0.0, 1.0])) * REACH, here, target)
         if np.linalg.norm(here - spot) < np.linalg.norm(here - pos) - 0.05:  # only a step that closes in
             walk_to(spot, 1.2, _yaw_to(spot, here, yaw), "walk", ai, target)
 
