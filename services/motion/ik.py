@@ -320,3 +320,16 @@ def limb_lengths(end: str) -> tuple[float, float]:
     """Rest lengths (upper, lower) of a chain."""
     ua, mb, ec = (JOINT_INDEX[n] for n in CHAINS[end])
     return float(np.linalg.norm(REST_OFFSETS[mb])), float(np.linalg.norm(REST_OFFSETS[ec]))
+
+
+def trunk_tilt(rotations: np.ndarray, root: np.ndarray, weight: np.ndarray) -> float:
+    """Largest angle (radians) between the trunk (hips -> neck) and upright over the frames where weight
+    is 1 (0 with none): how far a clip already bends before any reach lean is added, so that the lean
+    a standing reach may add keeps the whole trunk within its budget."""
+    full = np.nonzero(np.asarray(weight) >= 0.999)[0]
+    if len(full) == 0:
+        return 0.0
+    hips = np.asarray(root, dtype=np.float64)[full]
+    neck, _ = joint_globals(rotations[full], hips, JOINT_INDEX["Neck"])
+    up = neck - hips
+    return float(np.max(np.arccos(np.clip(up[:, 1] / np.maximum(_norm(up), 1e-9), -1.0, 1.0))))

@@ -58,6 +58,8 @@ PERSON_DISTANCE = 0.8  # metres between two characters after one walks up to the
 CLOSE_DISTANCE = {"hug": 0.45, "shake_hands": 0.75, "high_five": 0.75}  # metres, per touching action
 SEATING = ("sit", "lie_down", "sleep")  # clips that leave the character on a seat or a bed
 TURN_TOLERANCE = 0.3  # radians off the wanted facing before the character turns in place
+REACH_BODY = 0.18  # metres: the clearance of a body standing at furniture to reach over it (feet, belly)
+STEP_IN = 0.5  # metres (horizontal): a point the hand must reach farther than this is stepped up to
 PICK_REACH = 0.9  # metres (horizontal) from where the character stands to a prop it can pick up
 SEATED_AS = {"sit": "sit", "lie_down": "lie", "sleep": "lie", "sit_on_floor": "sit_floor", "stand": "stand"}
 STAY_S = 1.0  # seconds a "sits" while seated or a "stands" while standing holds the posture
@@ -442,6 +444,36 @@ def plan_actions(
         if face is not None:
             yaw = face
 
+    def reach_spot(want: np.ndarray, here: np.ndarray, target: str) -> np.ndarray:
+        """Where to stand to reach ``here`` from about ``want``: the free spot nearest ``want`` for a body
+        reaching over furniture (REACH_BODY) when the route from where the character is arrives there
+        and it is nearer ``here``, else the free spot for a walking body."""
+        from services.motion.routing import RADIUS, free_spot, scene_route
+
+        a = (float(pos[0]), float(pos[1]))
+        ignore = resting_on(scene, target) if target and target not in others else frozenset()
+        spots = []
+        for radius in (REACH_BODY, RADIUS):
+            spot = np.asarray(free_spot(scene, (float(want[0]), float(want[1])), radius=radius), float)
+            b = (float(spot[0]), float(spot[1]))
+            if radius != RADIUS:  # a tight spot counts only when the walk gets there
+                ends = route(a, b, ignore) if route_fn is not None else scene_route(scene, a, b, ignore)[0]
+                if np.linalg.norm(np.asarray(ends, float).reshape(-1, 2)[-1] - spot) > 0.05:
+                    continue
+            spots.append(spot)
+        return min(spots, key=lambda p: float(np.linalg.norm(here - p)))
+
+    def step_up_to(here: np.ndarray, ai: int, target: str) -> None:
+        """Standing farther than STEP_IN from a point the hand must reach (a prop to take or set down):
+        step to REACH from it (reach_spot), so the arm arrives without a deep bend."""
+        if np.linalg.norm(here - pos) <= STEP_IN:
+            return
+        away = pos - here
+        n = float(np.linalg.norm(away))
+        spot = reach_spot(here + (away / n if n > 1e-6 else np.array([0.0, 1.0])) * REACH, here, target)
+        if np.linalg.norm(here - spot) < np.linalg.norm(here - pos) - 0.05:  # only a step that closes in
+            walk_to(spot, 1.2, _yaw_to(spot, here, yaw), "walk", ai, target)
+
     def now_posture() -> str:
         """The posture the plan so far leaves the character in."""
         for s in reversed(segs):
@@ -471,14 +503,8 @@ def plan_actions(
             return
         target = _set_down_point(scene, pos, dest, prop_obj, hand)
         here = np.array([target[0], target[2]])
-        if np.linalg.norm(here - pos) > REACH + 0.2 and now_posture() == "stand":
-            from services.motion.routing import free_spot
-
-            away = pos - here
-            n = float(np.linalg.norm(away))
-            spot = here + (away / n if n > 1e-6 else np.array([0.0, 1.0])) * REACH
-            spot = np.asarray(free_spot(scene, (float(spot[0]), float(spot[1]))), float)
-            walk_to(spot, 1.2, _yaw_to(spot, here, yaw), "walk", ai, (dest or prop_obj).id)
+        if now_posture() == "stand":
+            step_up_to(here, ai, (dest or prop_obj).id)
         face = _yaw_to(pos, here, yaw)
         if (
             now_posture() == "stand"
@@ -633,15 +659,8 @@ def plan_actions(
         if grip is not None:
             prop_obj, joint, local = grip
             here = np.array([prop_obj.position[0], prop_obj.position[2]])
-            if np.linalg.norm(here - pos) > REACH + 0.2 and now_posture() == "stand":
-                # Walk up to the prop first (it is picked up where it lies).
-                from services.motion.routing import free_spot
-
-                away = pos - here
-                n = float(np.linalg.norm(away))
-                spot = here + (away / n if n > 1e-6 else np.array([0.0, 1.0])) * REACH
-                spot = np.asarray(free_spot(scene, (float(spot[0]), float(spot[1]))), float)
-                walk_to(spot, 1.2, _yaw_to(spot, here, yaw), "walk", ai, prop_obj.id)
+            if now_posture() == "stand":  # walk up to the prop first (it is picked up where it lies)
+                step_up_to(here, ai, prop_obj.id)
             if np.linalg.norm(here - pos) <= PICK_REACH:  # within reach: it is held from now on
                 reach = _grasp(prop_obj)
                 # A prop on a table is taken with an arm's reach (upper body: seated too), one on the floor

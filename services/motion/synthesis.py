@@ -22,7 +22,7 @@ from proto.motion_data import Motion, PropTrack, Segment
 from services.motion.blend import fade_from, layer, upper_body_mask
 from services.motion.gait_style import NEUTRAL as NEUTRAL_GAIT
 from services.motion.gait_style import gait_style
-from services.motion.ik import joint_globals, lean_needed, lean_spine, lock_feet, two_bone_ik
+from services.motion.ik import joint_globals, lean_needed, lean_spine, lock_feet, trunk_tilt, two_bone_ik
 from services.motion.locomotion import locomote
 from services.motion.style import apply_style, resample_fps, style_of
 from wana.arrays import to_wire
@@ -49,6 +49,7 @@ FULL_REACH = 0.97  # share of the arm's reach a hand contact may use (nearly str
 COMFORT_REACH = 0.85  # the same for typing and playing: elbows bent ~110 degrees
 STAND_MAX_LEAN = np.radians(30.0)  # radians of trunk lean a standing reach may use before ...
 CROUCH_MAX = 0.45  # ... the knees bend: metres the hips may drop (feet planted) to reach a low target
+BEND_DOWN = ("pick_up", "put_down")  # clips that bend down to the floor with the feet planted
 HAND_JOINTS = ("LeftHand", "RightHand", "LeftHandMiddle1", "RightHandMiddle1")
 
 
@@ -227,7 +228,12 @@ def _action_piece(seg: PlannedSegment, state: SegmentState) -> tuple[MotionPiece
     stand_feet = not clip.drives_lower_body or seg.action in POSTURE_AFTER
     contacts = np.ones((t, 2), np.uint8) if stand_feet else _clip_contacts(rot, root)
     stand_lean = None  # standing at a low target: bend the knees first, the trunk at most STAND_MAX_LEAN
-    if posture == "stand" and not clip.drives_lower_body and clip.interaction and stand_feet:
+    bends_down = clip.name in BEND_DOWN  # its own dip is not enough for a grip on the floor: crouch on it
+    if (
+        posture == "stand"
+        and clip.interaction
+        and (bends_down or (not clip.drives_lower_body and stand_feet))
+    ):
         low = {j: p for j, p in targets.items() if j in HAND_JOINTS}
         if low and clip.interaction.object != "person":
             root, stand_lean = _crouch_to_reach(rot, root, low, _contact_weight(clip, t, dur), clip)
@@ -306,21 +312,30 @@ def _crouch_to_reach(
     weight: np.ndarray,
     clip: ActionClip,
 ) -> tuple[np.ndarray, float | None]:
-    """Root (T, 3) lowered (at most CROUCH_MAX, eased in by weight) just far enough that a trunk lean of
-    STAND_MAX_LEAN brings every hand target within reach, and that lean; (root, None) when no crouch
-    is enough (the trunk then leans as far as it must)."""
+    """Root (T, 3) lowered (at most CROUCH_MAX, eased in by weight) just far enough that the spine lean
+    bringing every hand target within reach leaves the trunk (hips -> neck, the clip's own bend included:
+    a wiping clip already bends ~15 degrees) within STAND_MAX_LEAN of upright, and that lean. When no
+    crouch is enough, the crouch whose lean tilts the trunk least and None (the trunk then leans as far
+    as it must)."""
     assert clip.interaction is not None
     slack = COMFORT_REACH if clip.interaction.object in ("keyboard", "instrument") else FULL_REACH
-    for drop in np.linspace(0.0, CROUCH_MAX, 8):
+    best, best_tilt = root, np.inf
+    for drop in np.linspace(0.0, CROUCH_MAX, 10):
         lowered = root.copy()
         lowered[:, 1] -= weight * drop
-        if all(
-            lean_needed(rot, lowered, j, np.asarray(p, dtype=np.float64), weight, STAND_MAX_LEAN, slack)
-            is not None
+        needs = [
+            lean_needed(rot, lowered, j, np.asarray(p, dtype=np.float64), weight, np.radians(80.0), slack)
             for j, p in hands.items()
-        ):
-            return lowered, STAND_MAX_LEAN
-    return root, None
+        ]
+        if None in needs:
+            continue
+        lean = max(n for n in needs if n is not None)
+        tilt = trunk_tilt(lean_spine(rot, lean, weight), lowered, weight)
+        if tilt <= STAND_MAX_LEAN:
+            return lowered, lean
+        if tilt < best_tilt:
+            best, best_tilt = lowered, tilt
+    return best, None
 
 
 def _scoot_to_reach(
