@@ -31,7 +31,8 @@ chose (the 180° rule), whatever a candidate on the other side would show.
 A camera command replaces the director from its frame until the next camera command; ``close`` and
 ``follow`` only until their subject's next action ends (at least MIN_SHOT_FRAMES), then the director
 resumes; they also cut away when someone else begins a sentence in their scope (after MIN_SHOT_FRAMES),
-so that a close-up of Ben does not leave Anna's wave off-screen. A view command (front, back, left, right, top) that named nobody turns to whoever acts in each
+so that a close-up of Ben does not leave Anna's wave off-screen, and frame that other character too when
+it acts within those first MIN_SHOT_FRAMES. A view command (front, back, left, right, top) that named nobody turns to whoever acts in each
 sentence of its scope (a pair: their middle). Shots are what ``report.json`` lists.
 
 This module is over 400 lines because the shot rules, the framing search and the command scopes are
@@ -410,7 +411,7 @@ def _framed(
             other = _search(wide, None, track_map, room, scorer, units, last)
             if other.score > found.score + WIDE_GAIN:
                 s, found, pair = wide, other, None
-        if pair is not None:
+        if pair is not None and s.source == "director":  # a command's framing keeps no side of the line
             pair_side.setdefault(pair, found.side)
         framed = replace(s, side=found.side, adjust=found.adjust if scorer is not None else None)
         out.append(framed)
@@ -529,6 +530,8 @@ def _command_shots(
             continue
         acting = tuple(dict.fromkeys(a for b in beats if b.start < end and b.end > start for a in b.acting))
         shot = Shot(start, end, mode, who, "", tc.sentence_id, "command", acting=acting)
+        if mode in SCOPED_COMMANDS and (other := _co_actor(who, start, beats, tracks)):
+            shot = replace(shot, partner=other)  # both in the picture: the pair's middle, closer in
         if mode == "over_shoulder":  # over this character's shoulder onto the nearest other one
             other = _nearest(who, tracks, start)
             shot = replace(shot, subject=other or who, partner=who if other else "")
@@ -537,6 +540,19 @@ def _command_shots(
         else:
             out.append(shot)
     return out
+
+
+def _co_actor(who: str, start: int, beats: list[_Beat], tracks: Mapping[str, CharacterTrack]) -> str:
+    """Who else acts while a close-up or follow shot of ``who`` from ``start`` must hold (its first
+    MIN_SHOT_FRAMES, which no cut-away shortens): the nearest of them, "" when nobody. "camera close"
+    before "They sit on the sofa and talk" or "Ted walks in" would otherwise hold on one face for 1.5 s
+    while the other character's action happens off-screen; the command then frames both, closer in."""
+    hold = start + MIN_SHOT_FRAMES
+    others = {a for b in beats if b.start < hold and b.end > start for a in b.acting if a != who}
+    if who not in tracks or not (others := {a for a in others if a in tracks}):
+        return ""
+    here = tracks[who].at(start)[0]
+    return min(others, key=lambda a: (float(np.linalg.norm((tracks[a].at(start)[0] - here)[[0, 2]])), a))
 
 
 def _cut_away(who: str, start: int, beats: list[_Beat]) -> int:
@@ -613,7 +629,9 @@ def plan_shots(
 
 def shot_keys(shots: Iterable[Shot]) -> list[CameraKey]:
     """The camera keys that play the shots: the director cuts (and so does a view command turning to the
-    next sentence's character), a command eases in as it always did."""
+    next sentence's character, and any command framed by measuring: the framing that was measured is the
+    one on screen from its first frame, where an ease from the shot before could swing the lens through a
+    whiteboard or out past the character); a command planned without measuring eases in as it always did."""
     shots = list(shots)
     return [
         CameraKey(
@@ -624,6 +642,7 @@ def shot_keys(shots: Iterable[Shot]) -> list[CameraKey]:
             side=s.side,
             end=s.end,
             cut=s.source == "director"
+            or s.adjust is not None
             or (i > 0 and shots[i - 1].source == "command" and s.sentence_id == shots[i - 1].sentence_id),
             adjust=s.adjust,
         )
