@@ -31,8 +31,9 @@ chose (the 180° rule), whatever a candidate on the other side would show.
 A camera command replaces the director from its frame until the next camera command; ``close`` and
 ``follow`` only until their subject's next action ends (at least MIN_SHOT_FRAMES), then the director
 resumes; they also cut away when someone else begins a sentence in their scope (after MIN_SHOT_FRAMES),
-so that a close-up of Ben does not leave Anna's wave off-screen, and frame that other character too when
-it acts within those first MIN_SHOT_FRAMES. A view command (front, back, left, right, top) that named nobody turns to whoever acts in each
+so that a close-up of Ben does not leave Anna's wave off-screen; one that named nobody ("camera close")
+also frames that other character when it acts within those first MIN_SHOT_FRAMES (a named subject is
+the user's choice and is held alone). A view command (front, back, left, right, top) that named nobody turns to whoever acts in each
 sentence of its scope (a pair: their middle). Shots are what ``report.json`` lists.
 
 This module is over 400 lines because the shot rules, the framing search and the command scopes are
@@ -530,7 +531,7 @@ def _command_shots(
             continue
         acting = tuple(dict.fromkeys(a for b in beats if b.start < end and b.end > start for a in b.acting))
         shot = Shot(start, end, mode, who, "", tc.sentence_id, "command", acting=acting)
-        if mode in SCOPED_COMMANDS and (other := _co_actor(who, start, beats, tracks)):
+        if mode in SCOPED_COMMANDS and tc.implied_target and (other := _co_actor(who, start, beats, tracks)):
             shot = replace(shot, partner=other)  # both in the picture: the pair's middle, closer in
         if mode == "over_shoulder":  # over this character's shoulder onto the nearest other one
             other = _nearest(who, tracks, start)
@@ -543,7 +544,7 @@ def _command_shots(
 
 
 def _co_actor(who: str, start: int, beats: list[_Beat], tracks: Mapping[str, CharacterTrack]) -> str:
-    """Who else acts while a close-up or follow shot of ``who`` from ``start`` must hold (its first
+    """Who else acts while an unnamed close-up or follow shot of ``who`` from ``start`` must hold (its first
     MIN_SHOT_FRAMES, which no cut-away shortens): the nearest of them, "" when nobody. "camera close"
     before "They sit on the sofa and talk" or "Ted walks in" would otherwise hold on one face for 1.5 s
     while the other character's action happens off-screen; the command then frames both, closer in."""
