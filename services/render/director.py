@@ -287,6 +287,20 @@ COMMAND_CHOICES = (
     Adjust(rise=1.0, scale=0.7),
     *(Adjust(turn=np.radians(60) * sg, rise=0.8) for sg in (1, -1)),  # last: a three-quarter view
 )
+# Last resorts, measured only when no candidate above lets every sentence in the shot pass: a high angle
+# looking down over what stands in front (a sitter hemmed in by the table, a partner's back, a chair),
+# from the shot's own side or turned a little; a wide shot from high above the middle of the room.
+RESCUE_CHOICES = tuple(
+    Adjust(turn=np.radians(a) * sg, rise=r, scale=k)
+    for r, k in ((1.6, 0.6), (2.2, 0.45))
+    for a in (0, 35)
+    for sg in ((1,) if a == 0 else (1, -1))
+)
+WIDE_RESCUE_CHOICES = tuple(
+    Adjust(turn=np.radians(a), rise=r, scale=k)
+    for r, k in ((1.0, 0.45), (1.6, 0.3))
+    for a in (0, 90, 180, 270)
+)
 LINE_CHOICE_TURN = np.radians(60.0)  # two-person shots keep to their side of the line
 SAMPLES = 8  # frames of a shot measured per candidate, at least
 SAMPLE_STEP = 15  # frames between measured frames of a long shot (at most MAX_SAMPLES)
@@ -373,15 +387,18 @@ def _unit_score(
     return (total / weight if weight > 0 else None), passes
 
 
-def _candidates(s: Shot, fixed_side: int | None) -> list[tuple[int, Adjust]]:
+def _candidates(s: Shot, fixed_side: int | None, rescue: bool = False) -> list[tuple[int, Adjust]]:
+    """The framings a shot is measured with, preferred first; ``rescue``: the last resorts instead."""
     sides = (fixed_side,) if fixed_side is not None else (1, -1)
     if s.source == "command":
-        return [(1, a) for a in COMMAND_CHOICES] if s.kind in COMMAND_VIEWS else []
+        if s.kind not in COMMAND_VIEWS or (rescue and s.kind == "top"):
+            return []
+        return [(1, a) for a in (RESCUE_CHOICES if rescue else COMMAND_CHOICES)]
     if s.kind == "wide":
-        return [(1, a) for a in OVERVIEW_CHOICES]
-    choices = SHOT_CHOICES
+        return [(1, a) for a in (WIDE_RESCUE_CHOICES if rescue else OVERVIEW_CHOICES)]
+    choices = RESCUE_CHOICES if rescue else SHOT_CHOICES
     if s.partner:
-        choices = tuple(a for a in SHOT_CHOICES if abs(a.turn) <= LINE_CHOICE_TURN + 1e-9)
+        choices = tuple(a for a in choices if abs(a.turn) <= LINE_CHOICE_TURN + 1e-9)
     return [(side, a) for a in choices for side in sides]
 
 
@@ -446,7 +463,8 @@ def _search(
     inside = [u for u in units if u.who in tracks and ((u.frames >= s.start) & (u.frames < s.end)).any()]
     who = list(dict.fromkeys([*(s.acting or (s.subject,)), *(u.who for u in inside)]))
     best = _Found(1, Adjust(), -np.inf, None, False)
-    for rank, (side, adj) in enumerate(_candidates(s, fixed_side)):
+    main = _candidates(s, fixed_side)
+    for rank, (side, adj) in enumerate(main):
         key = CameraKey(
             frame=s.start, mode=s.kind, character=s.subject, partner=s.partner, side=side, adjust=adj
         )
@@ -473,6 +491,45 @@ def _search(
             break  # without measuring, only the side is chosen
         if scorer is not None and best.score >= 1.0 - PREFERENCE * rank - 1e-9 and rank == 0:
             break  # the preferred framing shows everyone: nothing to improve
+    if scorer is not None and not best.passes:
+        best = _rescue(s, fixed_side, tracks, room, scorer, units, frames, who, inside, best, len(main))
+    return best
+
+
+def _rescue(
+    s: Shot,
+    fixed_side: int | None,
+    tracks: dict[str, CharacterTrack],
+    room: Room,
+    scorer: Scorer,
+    units: Sequence[_Unit],
+    frames: list[int],
+    who: list[str],
+    inside: list[_Unit],
+    best: _Found,
+    first_rank: int,
+) -> _Found:
+    """The last-resort framings (RESCUE_CHOICES), measured as the others, ranked after them: one wins
+    only when it shows more than every preferred framing did."""
+    for i, (side, adj) in enumerate(_candidates(s, fixed_side, rescue=True)):
+        key = CameraKey(
+            frame=s.start, mode=s.kind, character=s.subject, partner=s.partner, side=side, adjust=adj
+        )
+        poses = [_pose(key, tracks, room, f) for f in frames]
+        if any(p is None for p in poses):
+            break
+        seen = scorer.shown_each(poses, frames, who)
+        by_unit, passes = _unit_score(seen, frames, who, s, inside)
+        acting = [who.index(w) for w in (s.acting or (s.subject,)) if w in who]
+        fallback = float(seen[:, acting].mean()) if acting else 1.0
+        outside = float(np.mean([_outside(room, p.eye) for p in poses]))
+        score = (fallback if by_unit is None else by_unit) - OUTSIDE * outside
+        score -= PREFERENCE * (first_rank + i)
+        if score > best.score + 1e-12:
+            end_pose = _pose(key, tracks, room, max(s.start, s.end - 1))
+            best = _Found(side, adj, score, end_pose, passes)
+            if passes:
+                break
     return best
 
 
