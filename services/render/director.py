@@ -20,8 +20,11 @@ whose camera shows the shot's acting characters best over sample frames wins, me
 furniture, walls seen from inside and other bodies), per sentence: each (sentence, acting character)
 in the shot counts by its own frames and counts double once it would pass the check, so a short action
 inside a long shot is not averaged away (services.render.camera_checks judges each one alone). A closer
-shot whose best framing still leaves one of them unseen becomes a wide shot when that shows more. The
-planned camera is played as it is. Walls
+shot whose best framing still leaves one of them unseen becomes a wide shot when that shows more; when no
+candidate lets every sentence pass, a few high angles looking down over what stands in front are measured
+too (RESCUE_CHOICES: a sitter hemmed in by the table, a partner's back). A seated character is measured
+by its head, trunk and arms, as the check judges it (services.render.visibility.judged_view). The
+planned camera is played as it is, commands framed by measuring included (they cut in). Walls
 between the camera and the room are cut away (one-sided, culled from behind), so a camera may stand
 outside the room; a small cost per metre outside keeps views inside when they see as well.
 
