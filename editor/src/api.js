@@ -37,6 +37,7 @@ export function liveUrl(docId, version) {
   const url = new URL(apiUrl(`/api/documents/${encodeURIComponent(docId)}/live`));
   url.protocol = url.protocol === "https:" ? "wss:" : "ws:";
   if (version !== null && version !== undefined) url.searchParams.set("version", String(version));
+  url.searchParams.set("wire", "binary"); // animation messages as binary frames, characters as patches
   return url.toString();
 }
 

@@ -73,7 +73,7 @@ def wait_synced(page: Any, timeout_ms: int = 120_000) -> dict[str, Any]:
     return page.evaluate(
         """() => { const a = wana.state.animation; return {version: a.version, frames: a.frames,
             objects: a.objects.map(o => o.category), unavailable: a.unavailable,
-            characters: a.characters.map(c => ({name: c.name, root: c.root_position,
+            characters: a.characters.map(c => ({name: c.name, root: Array.from(c.root_position).join(','),
                 actions: c.segments.map(s => s.action)})),
             figures: wana.viewer.characterGroup.children.length,
             received: wana.state.received, update: wana.viewer.lastCharacterUpdate,
