@@ -1,21 +1,20 @@
-"""Binary animation frames for the live WebSocket: quantised arrays, and per-frame-run patches.
+"""Binary animation frames for the live WebSocket (`?wire=binary`): quantised characters, patched per run.
 
 A JSON animation message carries each character as base64 of float32 arrays: about 400 bytes a frame,
-every frame, whenever any of the character's frames changed. An edit of one sentence changes few frames of
-each character, but the story's time line moves every later frame by the edited sentence's change of
-length. So the live WebSocket sends animation messages as one binary frame:
+every frame, whenever any of the character's frames changed. An edit of one sentence changes few frames,
+but the story's time line moves every later frame by the edited sentence's change of length, and moods
+and glances change others a little. So the editor is sent animation messages as one binary frame:
 
-    b"WAN1" | u32 little-endian header length | header JSON (UTF-8) | zero padding to 8 | blobs
+    b"WAN1" | u32 little-endian header length | header JSON (UTF-8) | zero padding to 8 | zlib(blobs)
 
-Each blob starts at a multiple of 8 and is listed in the header's `blobs` as [offset, bytes, dtype, shape];
-dtype is "i16", "f32" or "u8". Rotations travel as int16 (quaternion component x 32767, `QUAT_SCALE`),
-root positions as float32, `present` as uint8. An entry refers to its blobs as {"blob": i}, i counted from
-the entry's `blob_base`.
-
-A character whose previous version the client holds (its hash) travels as a **patch** against it: `ops`
-rebuild the new frames in order, each [n, src]: n frames copied from the held frames src, src + 1, ... or,
-with src = -1, the next n rows of the patch's literal blobs. Rows are compared after quantisation, so a
-client that applies a patch holds exactly what a full entry would have given it (`Quantised`).
+The header is the animation message with `blobs`: [offset, bytes, dtype, shape] in the inflated section
+(each at a multiple of 8; dtype "i16", "u32" or "u8"). A character entry carries `ops` and three blobs
+(from its `blob_base`): residual rotations (int16, quaternion component x `QUAT_SCALE`), residual root
+positions (the bits of float32, as uint32) and residual presence (uint8). Each op [n, src, residual]
+copies n held frames from src (src -1: zeros) and, when residual is 1, adds the next n residual rows
+(wrapping integer sums). An entry with `patch` (the held version's hash) is rebuilt from that version;
+without it, from zeros (every frame). Rows are compared after quantisation, so a client that applies a
+patch holds exactly what a full entry would have given it (`Quantised`).
 """
 
 from __future__ import annotations
@@ -30,7 +29,7 @@ import numpy as np
 
 MAGIC = b"WAN1"
 QUAT_SCALE = 32767.0  # an int16 unit of a quaternion component: about 0.0035 degrees
-_DTYPES = {"i16": np.dtype("<i2"), "u32": np.dtype("<u4"), "u8": np.dtype("u1")}
+_DTYPES: dict[str, np.dtype[Any]] = {"i16": np.dtype("<i2"), "u32": np.dtype("<u4"), "u8": np.dtype("u1")}
 _NAMES = {v: k for k, v in _DTYPES.items()}
 _json = msgspec.json.Encoder()
 
