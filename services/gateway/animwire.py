@@ -68,45 +68,63 @@ def ops_between(old: Quantised | None, new: Quantised) -> tuple[list[list[int]],
     rows of the residuals to them (wrapping integer sums: int16 rotations, the root's float32 bits as
     uint32, uint8 presence). A new frame equal to a held one continues the current copy or starts one from
     the first held frame equal to it (a frame moved in time by an edit earlier in the story); any other
-    frame is a residual against the held frame at the same offset in time as the last copy (a frame a
-    mood or a glance changed a little), which compresses to a few bytes. `old` None: everything from zeros.
+    frame is a residual against the closest held frame at one of the offsets the copies found (a frame
+    a mood or a glance changed a little), which compresses to a few bytes. `old` None: all from zeros.
     """
     new_rows = [r.tobytes() for r in _row_table(new)]
     old_rows = [r.tobytes() for r in _row_table(old)] if old is not None else []
     where: dict[bytes, int] = {}
     for i, r in enumerate(old_rows):
         where.setdefault(r, i)
-    ops: list[list[int]] = []
-    base = np.full(new.frames, -1)
-    shift = 0
+    src = np.full(new.frames, -1)  # the held frame each new frame is built on (-1: zeros)
+    exact = np.zeros(new.frames, bool)
     for f, row in enumerate(new_rows):
+        nxt = src[f - 1] + 1 if f and exact[f - 1] else -1
+        if 0 <= nxt < len(old_rows) and old_rows[nxt] == row:
+            src[f], exact[f] = nxt, True
+        elif row in where:
+            src[f], exact[f] = where[row], True
+    if old is not None and not exact.all():
+        src[~exact] = _nearest_sources(old, new, src, exact)
+    ops: list[list[int]] = []
+    for f in range(new.frames):
+        residual = 0 if exact[f] else 1
         last = ops[-1] if ops else None
-        if last is not None and last[2] == 0:
-            nxt = last[1] + last[0]
-            if nxt < len(old_rows) and old_rows[nxt] == row:
+        if last is not None and last[2] == residual and (last[1] < 0) == (src[f] < 0):
+            if src[f] < 0 or last[1] + last[0] == src[f]:
                 last[0] += 1
                 continue
-        src = where.get(row, -1)
-        if src >= 0:
-            ops.append([1, src, 0])
-            shift = src - f
-            continue
-        src = f + shift if 0 <= f + shift < len(old_rows) else -1
-        base[f] = src
-        continuing = (
-            last is not None and last[2] == 1 and (last[1] + last[0] == src if src >= 0 else last[1] < 0)
-        )
-        if continuing and last is not None:
-            last[0] += 1
-        else:
-            ops.append([1, src, 1])
-    sent = np.zeros(new.frames, bool)
-    at = 0
-    for n, _, residual in ops:
-        sent[at : at + n] = residual == 1
-        at += n
-    rows, src_rows = np.flatnonzero(sent), base[sent]
-    return ops, _residuals(old, new, rows, src_rows)
+        ops.append([1, int(src[f]), residual])
+    rows = np.flatnonzero(~exact)
+    return ops, _residuals(old, new, rows, src[rows])
+
+
+HYSTERESIS = 0.8  # a residual frame changes its source only for one that leaves at most this share
+
+
+def _nearest_sources(old: Quantised, new: Quantised, src: np.ndarray, exact: np.ndarray) -> np.ndarray:
+    """For each inexact new frame, the held frame closest to it among a few offsets in time: none, the
+    story's change of length, and those of the exact copies (the offsets an edit moved frames by)."""
+    frames = np.flatnonzero(~exact)
+    shifts = {0, old.frames - new.frames, *(src[exact] - np.flatnonzero(exact)).tolist()}
+    cand = sorted(shifts)[:32]
+    target = new.rotations[frames].astype(np.int32)
+    cost = np.empty((len(cand) + 1, len(frames)))
+    cost[0] = np.abs(target).sum(axis=1)  # from zeros
+    for k, d in enumerate(cand, start=1):
+        idx = frames + d
+        ok = (idx >= 0) & (idx < old.frames)
+        held = old.rotations[np.clip(idx, 0, max(old.frames - 1, 0))].astype(np.int32)
+        cost[k] = np.where(ok, np.abs(target - held).sum(axis=1), np.inf)
+    best = np.argmin(cost, axis=0)
+    choice = best.copy()
+    for i in range(1, len(frames)):  # keep the previous frame's offset unless another is clearly closer
+        prev = choice[i - 1]
+        if frames[i] == frames[i - 1] + 1 and cost[best[i], i] > HYSTERESIS * cost[prev, i]:
+            choice[i] = prev
+    offsets = np.asarray([0, *cand])
+    out = frames + offsets[choice]
+    return np.where(choice == 0, -1, out)
 
 
 def _residuals(old: Quantised | None, new: Quantised, rows: np.ndarray, src: np.ndarray) -> Quantised:
