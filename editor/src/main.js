@@ -1,7 +1,15 @@
 // The wana editor: text on the left, the live animation on the right, one WebSocket per document.
 
 import "./style.css";
-import { createDocument, deleteDocument, downloadExport, fetchExport, getDocument, listDocuments } from "./api.js";
+import {
+  createDocument,
+  deleteDocument,
+  downloadExport,
+  fetchExport,
+  getDocument,
+  listDocuments,
+  renameDocument,
+} from "./api.js";
 import { directorCamera } from "./directorcam.js";
 import { fillExamples, renderHelp } from "./help.js";
 import { VOCABULARY } from "./vocabulary.js";
@@ -196,6 +204,19 @@ $("delete-doc").addEventListener("click", async () => {
   const next = docs.find((d) => d.doc_id !== gone) ?? (await createDocument("", "untitled"));
   await open(next.doc_id);
 });
+$("rename-doc").addEventListener("click", async () => {
+  const docId = state.docId;
+  const current = $("doc-picker").selectedOptions[0]?.dataset.title ?? "";
+  const title = window.prompt("Rename the document", current)?.trim();
+  if (!docId || !title || title === current) return;
+  try {
+    await renameDocument(docId, title);
+  } catch (err) {
+    $("export-status").textContent = `rename failed: ${err.message}`;
+    return;
+  }
+  await refreshPicker();
+});
 $("new-doc").addEventListener("click", async () => {
   const doc = await createDocument("", `untitled ${new Date().toLocaleString()}`);
   await open(doc.doc_id);
@@ -216,14 +237,11 @@ for (const button of document.querySelectorAll("#exports button[data-format]")) 
     const status = $("export-status");
     status.textContent = `${format.toUpperCase()}…`;
     if (format === "bvh") {
-      // one BVH per character of the animation shown
-      const names = (state.animation?.characters ?? []).map((c) => c.name);
-      const done = [];
-      for (const name of names) {
-        status.textContent = `BVH ${name} (${done.length + 1}/${names.length})…`;
-        done.push(await downloadExport(docId, "bvh", name));
-      }
-      if (docId === state.docId) status.textContent = done.join("; ");
+      // every character's BVH, in one zip
+      const count = (state.animation?.characters ?? []).length;
+      status.textContent = `BVH of ${count} character${count === 1 ? "" : "s"}…`;
+      const message = await downloadExport(docId, "bvh", "*").catch((err) => String(err.message || err));
+      if (docId === state.docId) status.textContent = message;
       return;
     }
     // MP4 and GLB render on the server: show the time it has taken, and let the writer cancel
