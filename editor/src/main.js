@@ -105,8 +105,7 @@ function showAnimation(received) {
   viewer.setObjects(msg.objects);
   viewer.setCharacters(msg.characters); // rebuilds only the figures whose hash changed
   viewer.setCommands(msg.commands);
-  if (state.directorOn) loadDirector();
-  else if (viewer.exportScene && viewer.exportVersion !== msg.version) viewer.useExport(null); // stale
+  scheduleSkinned(); // the skinned characters of this version, once the versions stop changing
   viewer.invalidate();
   timeline.setLength(msg.frames, msg.fps);
   tracks.render(msg, sentenceText);
@@ -156,6 +155,9 @@ async function open(docId) {
   state.version = null;
   state.holdings = new Holdings();
   state.animation = null;
+  state.directorCam = null;
+  if (viewer.exportScene) viewer.useExport(null); // the last document's skinned characters
+  viewer.exportDoc = null;
   updateExports();
   if (location.hash !== `#doc=${docId}`) history.replaceState(null, "", `#doc=${docId}`);
   state.live = new LiveDocument(docId, {
@@ -305,19 +307,46 @@ directorButton.title = "play the director's camera (the MP4's) or orbit freely";
 directorButton.textContent = "Free camera";
 $("focus").after(directorButton);
 state.directorOn = false;
-async function loadDirector() {
-  if (!state.directorOn || !state.docId) return viewer.useDirector(null);
-  const version = state.version;
-  try {
-    const glb = await fetchExport(state.docId, "glb");
-    const cam = directorCamera(glb);
-    if (!state.directorOn || version !== state.version) return;
-    viewer.useDirector(cam);
-    // Preview = export: the MP4's own skinned characters, room and objects under the MP4's camera.
-    await viewer.useExport(glb, version);
-  } catch (err) {
-    $("export-status").textContent = String(err.message || err);
+// Both cameras show the render service's skinned characters (its scene.glb of the version shown: preview =
+// export), from the first animation on; it is fetched once the versions stop changing for SKIN_QUIET_MS, and
+// the capsule figures stand in until it arrives (or when the render service is not available).
+const SKIN_QUIET_MS = 600;
+let skinTimer = null;
+let skinning = false;
+function scheduleSkinned() {
+  clearTimeout(skinTimer);
+  skinTimer = setTimeout(loadSkinned, SKIN_QUIET_MS);
+}
+async function loadSkinned() {
+  const { docId, version } = state;
+  if (!docId || version === null || !(state.animation?.characters ?? []).length) {
+    if (viewer.exportScene) viewer.useExport(null);
+    return viewer.useDirector(null);
   }
+  if (viewer.exportVersion === version && viewer.exportDoc === docId) {
+    if (state.directorOn !== !!viewer.director) viewer.useDirector(state.directorOn ? state.directorCam : null);
+    return;
+  }
+  if (skinning) return scheduleSkinned();
+  skinning = true;
+  try {
+    const glb = await fetchExport(docId, "glb");
+    if (version !== state.version || docId !== state.docId) return;
+    state.directorCam = directorCamera(glb);
+    viewer.useDirector(state.directorOn ? state.directorCam : null);
+    await viewer.useExport(glb, version);
+    viewer.exportDoc = docId;
+  } catch (err) {
+    if (state.directorOn && docId === state.docId) $("export-status").textContent = String(err.message || err);
+    if (viewer.exportScene && viewer.exportDoc !== state.docId) viewer.useExport(null); // another document's
+  } finally {
+    skinning = false;
+  }
+}
+function loadDirector() {
+  if (!state.directorOn) viewer.useDirector(null);
+  else if (viewer.exportVersion === state.version && state.directorCam) viewer.useDirector(state.directorCam);
+  loadSkinned();
 }
 directorButton.addEventListener("click", () => {
   state.directorOn = !state.directorOn;
