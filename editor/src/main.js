@@ -30,11 +30,22 @@ const state = {
   diagnostics: null,
   progress: null,
   messages: 0,
+  lastInput: -Infinity, // when the writer last typed in the text (performance.now())
+  pendingAnimation: null, // the newest animation, resolved, waiting for the writer to stop typing
   holdings: new Holdings(), // characters and objects of the last animation, by hash
   received: null, // what the last animation message carried: {version, unchanged: [character names]}
 };
 
+const TYPING_QUIET_MS = 400;
 const viewer = new Viewer($("viewport"));
+// A key in the text counts as typing from its keydown (before CodeMirror handles it).
+document.addEventListener(
+  "keydown",
+  (e) => {
+    if (e.target.closest?.("#text")) state.lastInput = performance.now();
+  },
+  true,
+);
 const pane = new TextPane({
   parent: $("text"),
   list: $("diagnostics"),
@@ -98,6 +109,23 @@ function showAnimation(received) {
     state.live.resume();
     return;
   }
+  state.pendingAnimation = { msg, unchanged };
+  showWhenQuiet();
+}
+
+/** While the writer types the 3D view waits (keystrokes first); the newest animation is shown after. */
+function typing() {
+  return performance.now() - state.lastInput < TYPING_QUIET_MS;
+}
+function showWhenQuiet() {
+  if (!state.pendingAnimation) return;
+  if (typing()) {
+    clearTimeout(state.quietTimer);
+    state.quietTimer = setTimeout(showWhenQuiet, TYPING_QUIET_MS);
+    return;
+  }
+  const { msg, unchanged } = state.pendingAnimation;
+  state.pendingAnimation = null;
   state.received = { version: msg.version, unchanged };
   state.animation = msg;
   state.version = msg.version;
@@ -155,6 +183,7 @@ async function open(docId) {
   state.version = null;
   state.holdings = new Holdings();
   state.animation = null;
+  state.pendingAnimation = null;
   state.directorCam = null;
   if (viewer.exportScene) viewer.useExport(null); // the last document's skinned characters
   viewer.exportDoc = null;
@@ -327,7 +356,7 @@ async function loadSkinned() {
     if (state.directorOn !== !!viewer.director) viewer.useDirector(state.directorOn ? state.directorCam : null);
     return;
   }
-  if (skinning) return scheduleSkinned();
+  if (skinning || typing()) return scheduleSkinned();
   skinning = true;
   try {
     const glb = await fetchExport(docId, "glb");
@@ -363,17 +392,12 @@ document.addEventListener("keydown", (e) => {
   }
 });
 
-// While the writer types, the 3D view draws at most every TYPING_FRAME_MS so keystrokes stay responsive;
-// the clock keeps running, so playback stays in time and catches up at once when typing stops.
-const TYPING_QUIET_MS = 400;
-const TYPING_FRAME_MS = 150;
-state.lastInput = -Infinity;
-state.lastDraw = 0;
-function frameLoop(now) {
-  const typing = now - state.lastInput < TYPING_QUIET_MS;
-  if (!typing || now - state.lastDraw >= TYPING_FRAME_MS) {
-    state.lastDraw = now;
-    timeline.tick(now); // poses the figures and highlights the sentences playing
+// While the writer types (and TYPING_QUIET_MS after the last key), the 3D view is not drawn and new
+// animations wait, so a keystroke never queues behind a frame of the (software-rendered) scene; playback
+// holds while the writer types and goes on when typing stops.
+function frameLoop() {
+  if (!typing()) {
+    timeline.tick(performance.now()); // poses the figures and highlights the sentences playing
     viewer.render();
   }
   requestAnimationFrame(frameLoop);
