@@ -146,6 +146,9 @@ class EncodedAnimation:
     objects: list[EncodedEntry]
     characters: list[EncodedEntry]
     binary: list[BinaryCharacter] = field(default_factory=list)  # the characters' binary forms, same order
+    _packed: dict[tuple[str, ...], bytes] = field(
+        default_factory=dict
+    )  # frames by what each entry is sent as
 
     @property
     def version(self) -> int:
@@ -187,25 +190,34 @@ class EncodedAnimation:
         Returns:
             (frame, what the client holds once it has read it, how many entries were sent as stubs).
         """
-        stubs = 0
-        objects = []
-        for e in self.objects:
-            stubs += e.hash in held.objects
-            objects.append(e.stub if e.hash in held.objects else e.full)
-        characters = []
+        kinds = [("stub" if e.hash in held.objects else "full") for e in self.objects]
         for e, b in zip(self.characters, self.binary, strict=True):
             if e.hash in held.characters:
-                characters.append(animwire.stub_entry(e.key, e.hash))
-                stubs += 1
+                kinds.append("stub")
             elif b.patch is not None and b.patch.meta["patch"] in held.characters:
-                characters.append(b.patch)
+                kinds.append("patch")
             else:
-                characters.append(b.full())
+                kinds.append("full")
         holds = Holdings(
             characters=frozenset(e.hash for e in self.characters),
             objects=frozenset(e.hash for e in self.objects),
         )
-        return animwire.pack(self.head, objects, characters), holds, stubs
+        key = tuple(kinds)
+        if key not in self._packed:  # clients that hold the same get the same frame: packed once
+            n = len(self.objects)
+            objects = [
+                e.stub if k == "stub" else e.full for e, k in zip(self.objects, kinds[:n], strict=True)
+            ]
+            characters = []
+            for e, b, k in zip(self.characters, self.binary, kinds[n:], strict=True):
+                if k == "stub":
+                    characters.append(animwire.stub_entry(e.key, e.hash))
+                elif k == "patch" and b.patch is not None:
+                    characters.append(b.patch)
+                else:
+                    characters.append(b.full())
+            self._packed[key] = animwire.pack(self.head, objects, characters)
+        return self._packed[key], holds, key.count("stub")
 
     def full(self) -> dict[str, Any]:
         """The whole message as a dict, every entry in full (decoded again: for tests and tools)."""
