@@ -116,15 +116,16 @@ def _nearest_sources(old: Quantised, new: Quantised, src: np.ndarray, exact: np.
         ok = (idx >= 0) & (idx < old.frames)
         held = old.rotations[np.clip(idx, 0, max(old.frames - 1, 0))].astype(np.int32)
         cost[k] = np.where(ok, np.abs(target - held).sum(axis=1), np.inf)
-    best = np.argmin(cost, axis=0)
-    choice = best.copy()
-    for i in range(1, len(frames)):  # keep the previous frame's offset unless another is clearly closer
+    best = np.argmin(cost, axis=0).tolist()
+    columns, at = cost.T.tolist(), frames.tolist()
+    choice = list(best)
+    for i in range(1, len(at)):  # keep the previous frame's offset unless another is clearly closer
         prev = choice[i - 1]
-        if frames[i] == frames[i - 1] + 1 and cost[best[i], i] > HYSTERESIS * cost[prev, i]:
+        if at[i] == at[i - 1] + 1 and columns[i][best[i]] > HYSTERESIS * columns[i][prev]:
             choice[i] = prev
     offsets = np.asarray([0, *cand])
-    out = frames + offsets[choice]
-    return np.where(choice == 0, -1, out)
+    out = frames + offsets[np.asarray(choice, dtype=int)]
+    return np.where(np.asarray(choice) == 0, -1, out)
 
 
 def _residuals(old: Quantised | None, new: Quantised, rows: np.ndarray, src: np.ndarray) -> Quantised:
