@@ -19,7 +19,9 @@ ratio = action_edit_p50_ms / full_ms. Targets (issue 9): action edit p50 <= 150 
 Writes {"action_edit_p50_ms", "scene_edit_p50_ms", "full_ms", "ratio"} (stable keys), plus
 "gateway_share_p50_ms" (latency not spent in Session.compute), "animation_message_kib_p50" and
 "unchanged_character_share" (characters the gateway sent as `unchanged` stubs), "late_action_edit_p50_ms"
-and "late_action_animation_kib_p50"; p95 is in the table.
+and "late_action_animation_kib_p50", and "bytes_per_action_edit_p50": every byte the WebSocket received from
+sending a one-word action edit to its animation, in a 3-character document (issue 20: <= 50 kB); p95 is
+in the table. Animation messages are read as binary frames, as the editor reads them.
 """
 
 from __future__ import annotations
@@ -63,6 +65,22 @@ ACTIONS = [
     "night",
     "Eve walks to the sofa.",
 ]
+# bytes per action edit (issue 20): three characters whose sentences interleave, so every edit moves the
+# later frames of all three in time
+THREE = [
+    "Eve walks to the chair.",
+    "Eve sits on the chair.",
+    "Tom walks to the sofa.",
+    "Tom waves at Eve.",
+    "Ann walks to the lamp.",
+    "Tom sits on the sofa.",
+    "Ann walks to the window.",
+    "Eve stands up.",
+    "Eve walks to the window.",
+    "Ann walks to the desk.",
+    "Tom stands up.",
+    "Tom walks to the lamp.",
+]
 WARM_UP = "In the kitchen there is a table$. A cup is on the table$. Ann walks to the table. Ann drinks."
 
 
@@ -74,18 +92,31 @@ def document() -> str:
     return text
 
 
+def three_character_document() -> str:
+    """The 3-character document of the bytes-per-edit measure (the scene of `document`, 12 actions)."""
+    return "\n".join([" ".join(SCENE), *THREE])
+
+
 class LiveClient:
-    """A WebSocket client of one document that tracks the text and version."""
+    """A WebSocket client of one document that tracks the text and version.
+
+    It reads animation messages as the editor does (binary frames, `?wire=binary`) and rebuilds every
+    patched character from the one it holds, checking that it was sent everything it needs.
+    """
 
     def __init__(self, ws_base: str, doc_id: str) -> None:
         from websockets.sync.client import connect
 
+        self.held: dict[str, Any] = {}  # character hash -> its frames (animwire.Quantised)
+        self.received_bytes = 0  # bytes of every message received so far
         self.overheads: list[float] = []  # ms of each edit's latency not spent in Session.compute
         self.animation_kb: list[float] = []  # size of each edit's animation message
         self.unchanged: list[int] = []  # characters each edit's animation message sent as `unchanged`
         self.last_size = 0  # characters of the last message received
         self._stack = contextlib.ExitStack()
-        self.ws = self._stack.enter_context(connect(f"{ws_base}/api/documents/{doc_id}/live", max_size=None))
+        self.ws = self._stack.enter_context(
+            connect(f"{ws_base}/api/documents/{doc_id}/live?wire=binary", max_size=None)
+        )
         state = self.until(lambda m: m["type"] == "state")
         self.text, self.version = state["text"], state["version"]
         self.last_animation = self.until(lambda m: m["type"] == "animation" and m["version"] == self.version)
@@ -94,12 +125,33 @@ class LiveClient:
         deadline = time.monotonic() + timeout
         while True:
             raw = self.ws.recv(timeout=max(deadline - time.monotonic(), 0.01))
-            msg = json.loads(raw)
+            msg = self._read_frame(raw) if isinstance(raw, bytes) else json.loads(raw)
             self.last_size = len(raw)
+            self.received_bytes += len(raw if isinstance(raw, bytes) else raw.encode("utf-8"))
             if msg["type"] == "error":
                 raise RuntimeError(f"gateway error {msg['code']}: {msg['message']}")
             if wanted(msg):
                 return msg
+
+    def _read_frame(self, raw: bytes) -> dict[str, Any]:
+        """A binary animation frame as a message; patched characters are rebuilt from the held ones."""
+        from services.gateway import animwire
+
+        header, blobs = animwire.unpack(raw)
+        held: dict[str, Any] = {}
+        for c in header["characters"]:
+            if c.get("unchanged"):
+                frames = self.held.get(c["hash"])
+            else:
+                base = self.held.get(c["patch"]) if c.get("patch") else None
+                if c.get("patch") and base is None:
+                    raise RuntimeError(f"patch of {c['name']} against a version this client does not hold")
+                frames = animwire.entry_frames(c, blobs, base)
+            if frames is None:
+                raise RuntimeError(f"{c['name']} sent unchanged, but this client does not hold it")
+            held[c["hash"]] = frames
+        self.held = held
+        return dict(header)
 
     def edit_to_animation(self, start: int, end: int, text: str) -> float:
         """Send one edit; milliseconds until the animation of the version it produced arrives."""
@@ -195,8 +247,24 @@ def run(reps: int, backend: str, progress: bool, budget_s: float | None = None) 
             old, new = places[k % 2]
             scene_ms.append(client.swap_word(old, new, 0))
             bar.update()
-        bar.close()
         client.close()
+        # bytes per action edit in a 3-character document: every byte received from the edit to its animation
+        # (at least three edits, so the p50 is a middle one)
+        three = LiveClient(
+            ws_base, http.post("/api/documents", json={"text": three_character_document()}).json()["doc_id"]
+        )
+        edit_bytes: list[int] = []
+        started = time.monotonic()
+        for k in range(reps):
+            if budget_s is not None and len(edit_bytes) >= 3 and time.monotonic() - started > budget_s:
+                break
+            old, new, occurrence = ("walks", "runs", k // 2) if k % 2 == 0 else ("runs", "walks", 0)
+            before = three.received_bytes
+            three.swap_word(old, new, occurrence)
+            edit_bytes.append(three.received_bytes - before)
+            bar.update()
+        three.close()
+        bar.close()
         http.close()
     finally:
         gateway.stop()
@@ -215,6 +283,7 @@ def run(reps: int, backend: str, progress: bool, budget_s: float | None = None) 
         "characters": len(anim["characters"]),
         "objects": len(anim["objects"]),
         "frames": anim["frames"],
+        "edit_bytes": np.asarray(edit_bytes),
     }
 
 
@@ -275,6 +344,12 @@ def main(argv: list[str] | None = None) -> int:
             f"late action edits: {int(r['late_unchanged'].sum())} of {len(r['late']) * r['characters']} "
             f"characters sent as unchanged; animation message p50 {late_kib_p50:.1f} KiB"
         )
+    if len(r["edit_bytes"]):
+        b50, b95 = np.percentile(r["edit_bytes"], [50, 95])
+        print(
+            f"bytes per action edit, 3 characters: p50 {b50 / 1000:.1f} kB, p95 {b95 / 1000:.1f} kB "
+            f"over {len(r['edit_bytes'])} edits (target p50 <= 50 kB)"
+        )
     if args.json:
         args.json.parent.mkdir(parents=True, exist_ok=True)
         out = {
@@ -289,6 +364,8 @@ def main(argv: list[str] | None = None) -> int:
             out["unchanged_character_share"] = round(
                 float(r["unchanged"].sum()) / max(len(r["unchanged"]) * r["characters"], 1), 3
             )
+        if len(r["edit_bytes"]):
+            out["bytes_per_action_edit_p50"] = int(np.percentile(r["edit_bytes"], 50))
         if len(r["late"]):
             out["late_action_edit_p50_ms"] = round(float(late_p50), 3)
             out["late_action_animation_kib_p50"] = round(late_kib_p50, 1)

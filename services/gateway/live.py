@@ -46,12 +46,18 @@ class Client:
     lock: asyncio.Lock = field(default_factory=asyncio.Lock)
     client_id: str = field(default_factory=lambda: secrets.token_hex(4))  # names its caret for the others
     holdings: Holdings = field(default_factory=Holdings)
+    binary: bool = (
+        False  # animation messages as binary frames, characters patched (services.gateway.animwire)
+    )
 
-    async def _send_text(self, text: str) -> bool:
+    async def _send_text(self, text: str | bytes) -> bool:
         if self.ws.client_state != WebSocketState.CONNECTED:
             return False
         try:
-            await self.ws.send_text(text)
+            if isinstance(text, bytes):
+                await self.ws.send_bytes(text)
+            else:
+                await self.ws.send_text(text)
         except Exception:  # a closed socket: the receive loop will detach it
             return False
         return True
@@ -65,8 +71,12 @@ class Client:
     async def send_animation(self, animation: EncodedAnimation) -> bool:
         """Send an animation message, with `unchanged` stubs for the entries this client holds."""
         async with self.lock:
-            text, holdings, _ = animation.text_for(self.holdings)
-            sent = await self._send_text(text)
+            data: str | bytes
+            if self.binary:
+                data, holdings, _ = animation.binary_for(self.holdings)
+            else:
+                data, holdings, _ = animation.text_for(self.holdings)
+            sent = await self._send_text(data)
             self.holdings = holdings if sent else Holdings()
             return sent
 

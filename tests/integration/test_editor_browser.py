@@ -1,5 +1,8 @@
 """End to end in headless Chromium: type a scene and two characters' actions, see them, edit one, see the update.
 
+The free camera shows the render service's skinned characters from the first animation on (no capsule
+mannequins until "Director" is pressed).
+
 The edit changes only Eve's motion: the gateway sends Tom as an `unchanged` stub and the editor keeps his
 figure as it was (the same three.js object), while both stay on screen.
 
@@ -73,7 +76,7 @@ def wait_synced(page: Any, timeout_ms: int = 120_000) -> dict[str, Any]:
     return page.evaluate(
         """() => { const a = wana.state.animation; return {version: a.version, frames: a.frames,
             objects: a.objects.map(o => o.category), unavailable: a.unavailable,
-            characters: a.characters.map(c => ({name: c.name, root: c.root_position,
+            characters: a.characters.map(c => ({name: c.name, root: Array.from(c.root_position).join(','),
                 actions: c.segments.map(s => s.action)})),
             figures: wana.viewer.characterGroup.children.length,
             received: wana.state.received, update: wana.viewer.lastCharacterUpdate,
@@ -110,16 +113,27 @@ def test_typing_a_story_shows_the_character_and_an_edit_updates_it(browser: Any,
         names = [c["name"] for c in first["characters"]]
         assert names == ["Eve", "Tom"], names
 
+        # The skinned characters (the render service's scene.glb) replace the capsule figures from the start.
+        page.wait_for_function(
+            "() => wana.viewer.exportScene && wana.viewer.exportVersion === wana.state.version",
+            timeout=120_000,
+        )
+        assert page.evaluate("() => wana.viewer.exportCharacters.length") >= 2
+        assert page.evaluate("() => wana.viewer.characterGroup.visible") is False
         # The character is drawn: after Focus aims the camera at it, hiding it changes the viewer's pixels.
         page.click("#focus")
         page.wait_for_timeout(300)
         page.screenshot(path=str(ARTIFACTS / "editor_e2e_focus.png"))
         canvas = page.locator("#viewport canvas")
         with_figure = png_pixels(canvas.screenshot())
-        page.evaluate("() => { wana.viewer.characterGroup.visible = false; wana.viewer.render(true); }")
+        page.evaluate(
+            "() => { for (const m of wana.viewer.exportCharacters) m.visible = false; wana.viewer.render(true); }"
+        )
         page.wait_for_timeout(200)
         without_figure = png_pixels(canvas.screenshot())
-        page.evaluate("() => { wana.viewer.characterGroup.visible = true; wana.viewer.render(true); }")
+        page.evaluate(
+            "() => { for (const m of wana.viewer.exportCharacters) m.visible = true; wana.viewer.render(true); }"
+        )
         changed = int((np.abs(with_figure - without_figure).sum(axis=2) > 30).sum())
         assert changed > 150, f"only {changed} pixels belong to the character"
 

@@ -203,10 +203,26 @@ def enliven(
     rot0 = np.asarray(rot, dtype=np.float64)
     root0 = np.asarray(root, dtype=np.float64)
     rot, root = rot0.copy(), root0.copy()
-    t_count = len(rot)
     w = np.clip(np.asarray(weight, dtype=np.float64), 0.0, 1.0)
     hw = w if head_weight is None else np.maximum(w, np.clip(head_weight, 0.0, 1.0))
-    if t_count < 2 or not np.any(hw > 0):
+    g = None if gaze is None else np.asarray(gaze, dtype=np.float64)
+    # Each stretch the layer covers has its own clock, starting at 0: an edit that moves a stretch in time,
+    # or lengthens it, leaves its frames as they were, so the editor is sent only what the edit changed.
+    for a, b in _runs(hw > 0):
+        rot[a:b], root[a:b] = _enliven_run(
+            rot0[a:b], root0[a:b], w[a:b], hw[a:b], seed, None if g is None else g[a:b]
+        )
+    return rot, root
+
+
+def _enliven_run(
+    rot0: np.ndarray, root0: np.ndarray, w: np.ndarray, hw: np.ndarray, seed: int, gaze: np.ndarray | None
+) -> tuple[np.ndarray, np.ndarray]:
+    """``enliven`` over one stretch of frames, its clock starting at 0 (the weight shifts draw from their own
+    generator: how many there are depends on the stretch's length, and the other draws must not)."""
+    rot, root = rot0.copy(), root0.copy()
+    t_count = len(rot)
+    if t_count < 2:
         return rot, root
     rng = np.random.default_rng(seed)
     t = np.arange(t_count) / FPS
@@ -235,7 +251,7 @@ def enliven(
         _post(rot, f"{side}ForeArm", (0, 1, 0), s * 3.0 * _smooth_noise(rng, t, (2.3, 3.7)) * w * (1 - lying))
 
     # Standing: the weight goes from foot to foot; the pelvis rises on the loaded side, the chest counters.
-    shift = weight_shift(rng, t) * w * standing
+    shift = weight_shift(np.random.default_rng(seed + 1), t) * w * standing
     if np.any(shift != 0):
         ankles = pos[:, [JOINT_INDEX["LeftFoot"], JOINT_INDEX["RightFoot"]]]
         feet = grot[:, [JOINT_INDEX["LeftFoot"], JOINT_INDEX["RightFoot"]]]
@@ -253,7 +269,7 @@ def enliven(
     # Gaze: toward what calls for attention, else a slow wander; far turns bring the chest along.
     pos2, grot2 = forward_kinematics(rot, root)
     if gaze is not None:
-        yaw, pitch = _gaze_angles(rot, pos2, grot2, np.asarray(gaze, dtype=np.float64))
+        yaw, pitch = _gaze_angles(rot, pos2, grot2, gaze)
     else:
         yaw, pitch = np.zeros(t_count), np.zeros(t_count)
     wander = np.radians(6.0) * _smooth_noise(rng, t, (5.3, 8.9))

@@ -174,3 +174,17 @@ def test_tiny_motions_pass_through(frames: int):
     rot, root = rot[:frames], root[:frames]
     out_rot, out_root = idle.enliven(rot, root, np.ones(frames), 1)
     assert out_rot.shape == rot.shape and out_root.shape == root.shape
+
+
+def test_an_idle_stretch_moved_in_time_or_lengthened_keeps_its_frames_bit_for_bit():
+    """Each stretch has its own clock: an edit earlier in the story that moves a hold by a few frames (or one
+    that lengthens it) changes none of the hold's frames, so the editor is sent only what the edit changed."""
+    rot, root = _standing(400)
+    first = idle.enliven(rot, root, idle.idle_weight(400, [(40, 200), (260, 380)]), 7)
+    moved = idle.enliven(rot, root, idle.idle_weight(400, [(40, 200), (253, 373)]), 7)
+    longer = idle.enliven(rot, root, idle.idle_weight(400, [(40, 260), (260, 380)]), 7)
+    for a, b in ((first, moved), (first, longer)):
+        assert np.array_equal(a[0][40:180], b[0][40:180]) and np.array_equal(a[1][40:180], b[1][40:180])
+    assert np.array_equal(first[0][260:380], moved[0][253:373])
+    assert np.array_equal(first[1][260:380], moved[1][253:373])
+    assert not np.array_equal(first[0][260:380], first[0][40:160])  # the layer still moves (not frozen)
