@@ -47,10 +47,12 @@ from services.orchestrator.staging import (
 from services.orchestrator.timeline import Beat, assemble, schedule
 from services.orchestrator.views import (
     characters_of,
+    geometry_view,
     others,
     scene_view,
     social_distances,
     social_moods,
+    with_looks,
 )
 from wana.arrays import from_wire, to_wire
 from wana.domain.actions import get_clip
@@ -301,6 +303,7 @@ def animate(
     scene, provided = provide(scene, graphs, sentences, ctx.seed)  # props named only in action sentences
     scene, added = furnish(ctx, scene, graphs, sentences)  # a chair where a sit has no free seat
     added = [*provided, *added]
+    looks, scene = scene, geometry_view(scene)  # the nodes below read shapes, not paint
     door = doorway(scene)
     wait_ids = {sid for sid, c in commands if c.kind == "wait"}
     answering = {r.responder for r in (plan.responses if plan is not None else []) if r.response_index == 0}
@@ -404,6 +407,7 @@ def animate(
         out.motions = dict(fitted.motions)
     out.motions = set_down_props(out.scene, out.motions, length)
     out.motions = _enlivened(out.scene, characters, _in_moods(characters, out.motions, moods))
+    out.scene = with_looks(out.scene, looks)
     out.scene = with_states(out.scene, characters, out.motions, sentences)  # doors opened, lamps on
     return out
 
