@@ -263,6 +263,13 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
         for actions, characters in stories:
             run = animate_run(actions, characters, startup_only=args.quick)
             res["animate"].append(run)
+            if args.quick:  # the child stopped at the pipeline's first step: there is no animation to time
+                print(
+                    f"animate {actions} actions / {characters} characters: start-up {run['startup_s']:.2f}s "
+                    "(--quick stops at the first step: no compute, export or animation)",
+                    flush=True,
+                )
+                continue
             print(
                 f"animate {actions} actions / {characters} characters: start-up {run['startup_s']:.2f}s, compute "
                 f"{run['compute_s']:.2f}s, export {run['export_s']:.2f}s, wall {run['wall_s']:.2f}s, "
