@@ -133,6 +133,16 @@ def optimise(
     return content_of(ctx.backend.call(request))
 
 
+def story_order(characters: Characters, sentences: Sequence[Sentence]) -> list[tuple[str, int]]:
+    """(name, k) of every action in story order: by sentence, then by character, then by k (one pass over
+    the actions, not one per sentence: a long story's edit should not pay actions x sentences)."""
+    by_sentence: dict[str, list[tuple[str, int]]] = {}
+    for name, (_, sids) in characters.items():
+        for k, sid in enumerate(sids):
+            by_sentence.setdefault(sid, []).append((name, k))
+    return [x for s in sentences for x in by_sentence.get(s.id, [])]
+
+
 def segments(
     ctx: StageContext,
     kind: str,
@@ -162,13 +172,7 @@ def segments(
     slotting = Slotting(scene)  # who holds which seat and stand slot, as the story runs
     pieces: dict[str, list[Motion]] = {name: [] for name in characters}
     object_ids = {o.id for o in scene.objects}
-    order = [
-        (name, k)
-        for s in sentences
-        for name, (_, sids) in characters.items()
-        for k, sid in enumerate(sids)
-        if sid == s.id
-    ]
+    order = story_order(characters, sentences)
     for name, k in order:
         slotting.expect(name, characters[name][0].actions[k])
     for name, k in order:
@@ -379,11 +383,8 @@ def animate(
     tick("motion", total, total)
     # Story timing: sentence order sets when actions start; gaps hold the pose.
     beats = [
-        Beat(sid, name, k, frame_count(pieces[name][k]))
-        for s in sentences
-        for name, (node, sids) in characters.items()
-        for k, sid in enumerate(sids)
-        if sid == s.id
+        Beat(characters[name][1][k], name, k, frame_count(pieces[name][k]))
+        for name, k in story_order(characters, sentences)
     ]
     waits = {sid: c.seconds for sid, c in commands if c.kind == "wait"}
     responses = {
