@@ -443,8 +443,8 @@ def enliven_motion(motion: Motion, gaze: np.ndarray | None = None, seed: int | N
     leaves every window it does not touch as it was, and those come from a cache (``_WINDOWS``) instead of
     being laid again. What a story edit costs is then the windows near the edit, not the whole story.
     """
-    root = from_wire(motion.root_position).astype(np.float64)
-    rot = from_wire(motion.rotations).astype(np.float64)
+    root = from_wire(motion.root_position)  # as sent (float32): hashed per window as it is, widened there
+    rot = from_wire(motion.rotations)
     frames = len(root)
     held = [(p.start_frame, p.end_frame) for p in motion.props]
     weight = idle_weight(frames, idle_spans(motion.segments, frames, rot), held)
@@ -499,7 +499,7 @@ def _window(
     if hit is not None:
         return hit
     own_seed = (seed + 7919 * len(rot)) & 0x7FFFFFFF
-    r, p = enliven(rot, root, weight, own_seed, gaze, head)
+    r, p = enliven(rot.astype(np.float64), root.astype(np.float64), weight, own_seed, gaze, head)
     laid = (r.astype(np.float32), p.astype(np.float32))
     if _WINDOW_BYTES[0] > WINDOW_CACHE_BYTES:
         _WINDOWS.clear()
