@@ -104,8 +104,22 @@ def doorway(scene: Scene) -> Doorway | None:
     return None
 
 
+_GRIDS: dict[bytes, OccupancyGrid] = {}  # layout (room, objects) and radius -> its grid
+_GRID_KEY = msgspec.msgpack.Encoder(order="deterministic")
+
+
 def _grid(scene: Scene, radius: float = BODY_M) -> OccupancyGrid:
-    return occupancy_grid(scene.room, scene_footprints(scene), radius=radius, cell=0.05)
+    """The floor's occupancy grid, rasterised once per layout (every motion stage run asks for it, and
+    most edits leave the layout as it was)."""
+    key = _GRID_KEY.encode([scene.room, scene.objects, radius])
+    grid = _GRIDS.get(key)
+    if grid is None:
+        grid = occupancy_grid(scene.room, scene_footprints(scene), radius=radius, cell=0.05)
+        grid.blocked.setflags(write=False)  # shared between calls: nobody may mark it
+        if len(_GRIDS) >= 32:
+            _GRIDS.clear()
+        _GRIDS[key] = grid
+    return grid
 
 
 def with_door(scene: Scene) -> Scene:

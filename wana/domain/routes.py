@@ -24,7 +24,6 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import ndimage
 
 from proto.scene import Room, Scene
 
@@ -243,6 +242,8 @@ def _nearest_free(grid: OccupancyGrid, rc: np.ndarray) -> np.ndarray:
         return rc
     if grid.blocked.all():
         raise NoRouteError("every cell of the room is blocked for a character of this radius")
+    from scipy import ndimage  # imported when a route is planned, not when the orchestrator starts
+
     _, (ri, ci) = ndimage.distance_transform_edt(grid.blocked, return_indices=True)
     return np.array([ri[rc[0], rc[1]], ci[rc[0], rc[1]]])
 
@@ -364,6 +365,8 @@ def plan_route_on_grid(grid: OccupancyGrid, start_xz: np.ndarray, goal_xz: np.nd
         raise ValueError(f"start and goal must be finite, got {start}, {goal}")
     s_rc = _nearest_free(grid, grid.to_cell(start))
     g_rc = _nearest_free(grid, grid.to_cell(goal))
+    from scipy import ndimage
+
     labels, _ = ndimage.label(~grid.blocked)  # 4-connected: exactly what no-corner-cutting A* reaches
     if labels[s_rc[0], s_rc[1]] != labels[g_rc[0], g_rc[1]]:
         raise NoRouteError(

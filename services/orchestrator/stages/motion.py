@@ -47,10 +47,12 @@ from services.orchestrator.staging import (
 from services.orchestrator.timeline import Beat, assemble, schedule
 from services.orchestrator.views import (
     characters_of,
+    geometry_view,
     others,
     scene_view,
     social_distances,
     social_moods,
+    with_looks,
 )
 from wana.arrays import from_wire, to_wire
 from wana.domain.actions import get_clip
@@ -131,6 +133,16 @@ def optimise(
     return content_of(ctx.backend.call(request))
 
 
+def story_order(characters: Characters, sentences: Sequence[Sentence]) -> list[tuple[str, int]]:
+    """(name, k) of every action in story order: by sentence, then by character, then by k (one pass over
+    the actions, not one per sentence: a long story's edit should not pay actions x sentences)."""
+    by_sentence: dict[str, list[tuple[str, int]]] = {}
+    for name, (_, sids) in characters.items():
+        for k, sid in enumerate(sids):
+            by_sentence.setdefault(sid, []).append((name, k))
+    return [x for s in sentences for x in by_sentence.get(s.id, [])]
+
+
 def segments(
     ctx: StageContext,
     kind: str,
@@ -160,13 +172,7 @@ def segments(
     slotting = Slotting(scene)  # who holds which seat and stand slot, as the story runs
     pieces: dict[str, list[Motion]] = {name: [] for name in characters}
     object_ids = {o.id for o in scene.objects}
-    order = [
-        (name, k)
-        for s in sentences
-        for name, (_, sids) in characters.items()
-        for k, sid in enumerate(sids)
-        if sid == s.id
-    ]
+    order = story_order(characters, sentences)
     for name, k in order:
         slotting.expect(name, characters[name][0].actions[k])
     for name, k in order:
@@ -301,6 +307,7 @@ def animate(
     scene, provided = provide(scene, graphs, sentences, ctx.seed)  # props named only in action sentences
     scene, added = furnish(ctx, scene, graphs, sentences)  # a chair where a sit has no free seat
     added = [*provided, *added]
+    looks, scene = scene, geometry_view(scene)  # the nodes below read shapes, not paint
     door = doorway(scene)
     wait_ids = {sid for sid, c in commands if c.kind == "wait"}
     answering = {r.responder for r in (plan.responses if plan is not None else []) if r.response_index == 0}
@@ -376,11 +383,8 @@ def animate(
     tick("motion", total, total)
     # Story timing: sentence order sets when actions start; gaps hold the pose.
     beats = [
-        Beat(sid, name, k, frame_count(pieces[name][k]))
-        for s in sentences
-        for name, (node, sids) in characters.items()
-        for k, sid in enumerate(sids)
-        if sid == s.id
+        Beat(characters[name][1][k], name, k, frame_count(pieces[name][k]))
+        for name, k in story_order(characters, sentences)
     ]
     waits = {sid: c.seconds for sid, c in commands if c.kind == "wait"}
     responses = {
@@ -404,6 +408,7 @@ def animate(
         out.motions = dict(fitted.motions)
     out.motions = set_down_props(out.scene, out.motions, length)
     out.motions = _enlivened(out.scene, characters, _in_moods(characters, out.motions, moods))
+    out.scene = with_looks(out.scene, looks)
     out.scene = with_states(out.scene, characters, out.motions, sentences)  # doors opened, lamps on
     return out
 
