@@ -23,7 +23,7 @@ from wana.domain.skeleton import JOINT_NAMES
 from wana.fidelity import action_checks as ac
 from wana.fidelity import body_checks as bc
 from wana.fidelity import contact_checks as cc
-from wana.fidelity.acts import Act, owned_frames, stays_until, story_acts
+from wana.fidelity.acts import Act, activity, owned_frames, stays_until, story_acts, to_blame
 from wana.fidelity.bodies import Body, body_of
 from wana.fidelity.clips import clip_needs
 from wana.fidelity.places import placement
@@ -277,6 +277,7 @@ def _body_checks(
     names = sorted(bodies)
     on_stage = {name: presence(motions[name], bodies[name].frames) for name in names}
     apart: dict[str, list[bc.FrameFailures]] = {name: [] for name in names}
+    doing = {name: activity(motions[name], bodies[name].frames) for name in names}
     for i, a in enumerate(names):
         for b in names[i + 1 :]:
             n = min(bodies[a].frames, bodies[b].frames)
@@ -284,8 +285,10 @@ def _body_checks(
             allowed = touching.get((a, b))
             allowed = off if allowed is None else (allowed[:n] | off)
             fa, fb = bc.overlap(bodies[a], bodies[b], allowed)
-            apart[a].append(fa)
-            apart[b].append(fb)
+            # One fault, one culprit: the frames go to the sentence of whoever caused them, not to both.
+            blame_a, blame_b = to_blame(doing[a], doing[b], n)
+            apart[a].append(_only(fa, blame_a))
+            apart[b].append(_only(fb, blame_b))
     for name in names:
         body, motion = bodies[name], motions[name]
         mine = [a for a in acts if a.character == name]
@@ -311,6 +314,17 @@ def _body_checks(
             if apart[name]:
                 checks.append(_overlap_check(name, apart[name], f))
             checks.append(_continuity_check(name, fast, popped, f))
+
+
+def _only(fail: bc.FrameFailures, blamed: np.ndarray) -> bc.FrameFailures:
+    """The failures on the frames this side is blamed for (the rest are the other side's doing)."""
+    keep = np.zeros(len(fail.failing), bool)
+    keep[: len(blamed)] = blamed
+    drop = ~keep
+    failing = fail.failing & keep
+    amount, what, joint = fail.amount.copy(), fail.what.copy(), fail.joint.copy()
+    amount[drop], what[drop], joint[drop] = 0.0, "", -1
+    return bc.FrameFailures(failing, amount, what, joint)
 
 
 def _joint_word(j: int) -> str:
