@@ -1,7 +1,7 @@
 """Do the story checks agree with the eye? Sample checks, draw what they name, compare with a person's labels.
 
 Usage:
-    .venv/bin/python eval/agreement.py [--split dev|test|others|all] [--sample N] [--sample-seed 0]
+    .venv/bin/python eval/agreement.py [--split dev|test|others|all] [--sample N | --blind N] [--sample-seed 0]
                                        [--seed 0] [--quick | --labelled] [--json PATH] [--labels PATH] [--out DIR]
 
 Each story of the split is computed once (the whole pipeline in-process, as eval/story.py does) and kept in a
@@ -26,9 +26,18 @@ computed with that seed. ``--labelled`` compares every label and computes nothin
 the QUICK_STORIES stories with the most labels, from the cache (seconds once cached; a cold cache computes
 them first).
 
+``--blind N`` draws N unlabelled units of every computed story and writes sheets under
+``out/eval/agreement/blind/`` that show the frames but not the verdict, the reason or marked frames (only the
+question the check answers): labels drawn that way are marked ``fresh`` and reported on their own. A body
+check blames the sentence a fault began in and the character whose motion caused it, so the question of an
+``overlap`` unit is whether that character moved into someone, of a ``penetration`` unit whether the part went
+into furniture in that sentence.
+
 JSON keys: check_agreement (share of counted labels that agree), per_check (name -> labels, agree,
 agreement, false_alarms (check fails, eye says ok), misses (check passes, eye says fail)), counted, stale,
-skipped, disagreements (each unit with both verdicts and the check's reason), samples (when --sample).
+skipped, disagreements (each unit with both verdicts and the check's reason), by_group (dev, test, others,
+fresh -> agreement, counted, labels), agreement_dev / agreement_held_out / agreement_fresh, fidelity (for
+--split: the split's sentence_fidelity and failures per check with these checks), samples (when --sample).
 """
 
 from __future__ import annotations
@@ -324,8 +333,8 @@ QUESTIONS = {
     "contact": "is the named object in the hand / under the body where the action needs it?",
     "placement": "is the character where the sentence puts them?",
     "supported": "is the character supported (no sitting, lying or leaning on air)?",
-    "penetration": "does any part of the character go visibly into furniture?",
-    "overlap": "does the character's body go into another character's?",
+    "penetration": "does a part of the character go visibly into furniture, begun in this sentence?",
+    "overlap": "does the character's own motion take its body into another's (not being walked into)?",
     "continuity": "does the character move without jumps or pops?",
     "entrance": "does the character come in from outside / a door, unseen before?",
     "in_view": "is the character in the picture and mostly unhidden while acting?",
