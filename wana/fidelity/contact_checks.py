@@ -81,6 +81,14 @@ class Reach:
     distance: dict[str, np.ndarray]  # body joint -> (W,) metres over the window frames
 
 
+FINGERTIP_M = 0.07  # metres from the middle finger's first joint (the skeleton's last hand joint) to its tip
+
+
+def _tip(joint: str) -> float:
+    """How far beyond the joint the body reaches: a finger joint's tip touches the board, not its knuckle."""
+    return FINGERTIP_M if joint.endswith("HandMiddle1") else 0.0
+
+
 def surface_gap(placed: PlacedObject, points: np.ndarray) -> np.ndarray:
     """(n,) metres from each point to the object's solid surface (0 on or inside it)."""
     return np.maximum(-depth_inside(placed, points, np.zeros(len(points))), 0.0)
@@ -144,7 +152,10 @@ def reach(
         for name, targets in _fitting(clip, world.contact_points(placed)):
             dist = {j: np.linalg.norm(body.joint(j)[idx] - p, axis=1) for j, p in targets.items()}
             if clip.object in ACROSS:  # writing moves over the board: any point of its face is the contact
-                dist = {j: np.minimum(d, surface_gap(placed, body.joint(j)[idx])) for j, d in dist.items()}
+                dist = {
+                    j: np.minimum(d, np.maximum(surface_gap(placed, body.joint(j)[idx]) - _tip(j), 0.0))
+                    for j, d in dist.items()
+                }
             if held is not None and held.any():
                 dist = {j: np.where(held, 0.0, d) for j, d in dist.items()}
             score = float(np.mean([d.mean() for d in dist.values()]))
