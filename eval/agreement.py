@@ -349,7 +349,10 @@ def draw_blind_sheet(result: Any, u: dict[str, Any], path: Path, index: int) -> 
 
     total = max((m.root_position.shape[0] for m in result.motions.values()), default=1)
     span = story_eval.sentence_frames(result.motions, u["sentence"])
-    frames = story_eval.sheet_frames(u["frames"], span, total)
+    named = list(u["frames"])
+    if u["check"] == "continuity":  # a jump is seen between two frames: show the one before each named
+        named = sorted({g for f in named[:4] for g in (f - 1, f) if g >= 0} | set(named))
+    frames = story_eval.sheet_frames(named, span, total)
     if span and len(frames) < 4:
         frames = story_eval.sheet_frames([], span, total)
     who = f" about {u['character']}" if u["character"] else ""
