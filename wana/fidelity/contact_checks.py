@@ -18,7 +18,6 @@ import numpy as np
 from proto.fidelity import Check
 from proto.motion_data import PropTrack
 from proto.scene import PlacedObject
-from wana.arrays import from_wire
 from wana.assets.catalog import world_bounds
 from wana.assets.relations import footprint_gap
 from wana.assets.vocabulary import CATEGORIES, hypernyms, lookup_room
@@ -133,20 +132,6 @@ def carried(tracks: Sequence[PropTrack], object_id: str, frames: np.ndarray) -> 
     return out
 
 
-def set_down(tracks: Sequence[PropTrack], placed: PlacedObject, frames: np.ndarray) -> np.ndarray:
-    """(W, 3) how far the object has moved from where the scene placed it on each frame: after a hand
-    carried it and let go, it is where it was let go ("sets the can back on the stool"), not where it was
-    picked up from."""
-    out = np.zeros((len(frames), 3))
-    for t in sorted(tracks, key=lambda t: t.end_frame):
-        if t.object_id != placed.id:
-            continue
-        pos = np.asarray(from_wire(t.position), dtype=float).reshape(-1, 3)
-        if len(pos):
-            out[frames >= t.end_frame] = pos[-1] - np.asarray(placed.position, dtype=float)
-    return out
-
-
 def reach(
     act: Act, body: Body, world: World, candidates: list[PlacedObject], tracks: Sequence[PropTrack] = ()
 ) -> Reach | None:
@@ -164,9 +149,8 @@ def reach(
     best_score = np.inf
     for placed in candidates:
         held = carried(tracks, placed.id, np.asarray(frames)) if clip.object in HELD else None
-        moved = set_down(tracks, placed, np.asarray(frames))
         for name, targets in _fitting(clip, world.contact_points(placed)):
-            dist = {j: np.linalg.norm(body.joint(j)[idx] - (p + moved), axis=1) for j, p in targets.items()}
+            dist = {j: np.linalg.norm(body.joint(j)[idx] - p, axis=1) for j, p in targets.items()}
             if clip.object in ACROSS:  # writing moves over the board: any point of its face is the contact
                 dist = {
                     j: np.minimum(d, np.maximum(surface_gap(placed, body.joint(j)[idx]) - _tip(j), 0.0))

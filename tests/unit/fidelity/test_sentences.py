@@ -225,18 +225,3 @@ def test_snapping_ones_fingers_asks_for_no_tool_but_taking_a_photo_does(make):
             assert contact and not contact[0].ok and "empty hand" in contact[0].reason
         else:
             assert not contact, contact
-
-
-def test_an_object_let_go_of_is_where_the_hand_left_it_not_where_the_room_placed_it():
-    """Seen on a fresh sheet: "sets the can back on the stool" was measured to where the can first stood."""
-    from proto.motion_data import PropTrack
-    from wana.arrays import to_wire
-    from wana.fidelity.contact_checks import set_down
-
-    can = PlacedObject(id="can", category="kettle", position=(3.0, 0.0, 0.0))
-    path = np.linspace([3.0, 1.0, 0.0], [0.5, 0.45, 0.0], 20).astype(np.float32)
-    track = PropTrack(object_id="can", joint="RightHand", start_frame=10, end_frame=30,
-                      position=to_wire(path), rotation=to_wire(np.tile([0, 0, 0, 1], (20, 1)).astype(np.float32)))  # fmt: skip
-    moved = set_down([track], can, np.array([5, 29, 30, 60]))
-    assert np.allclose(moved[:2], 0.0)  # before and while it is carried (held frames count as in the hand)
-    assert np.allclose(moved[2:], [-2.5, 0.45, 0.0], atol=1e-5)  # let go at the stool
