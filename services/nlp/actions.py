@@ -68,8 +68,13 @@ def _subject_tokens(verb: Token) -> list[Token]:
             climbed_from_conj = True
             v = v.head
             continue
-        if climbed_from_conj and v.dep_ in ("obj", "obl", "nmod") and v.head.i != v.i:
-            v = v.head  # "opens the door and leaves": "leaves" hangs under "door"
+        if (
+            climbed_from_conj
+            and v.dep_ in ("obj", "obl", "nmod", "advmod", "compound:prt")
+            and v.head.i != v.i
+        ):
+            # "opens the door and leaves": "leaves" hangs under "door"; "jump out and shout": under "out"
+            v = v.head
             continue
         break
     if climbed_from_conj and v is not verb and v.pos_ == "VERB":
@@ -173,6 +178,10 @@ def _verb_by_position(tok: Token) -> bool:
     return tok.dep_ == "conj" and tok.head.pos_ == "VERB" and lexicon.is_known_verb(verb_lemma(tok))
 
 
+# Verbs whose object is what gets made: the action happens at the instrument, not at the product.
+MAKING_VERBS = frozenset({"make", "brew", "cook", "bake", "prepare", "fix"})
+
+
 def _action(verb: Token, builder: GraphBuilder) -> tuple[ActionNode, str]:
     """The ActionNode of a verb clause and the verb its social meaning is read from ("hug" of "gives
     Mary a hug"; the verb's lemma otherwise)."""
@@ -238,6 +247,8 @@ def _action(verb: Token, builder: GraphBuilder) -> tuple[ActionNode, str]:
         )
     else:
         action = lexicon.action_for(lemma, particle, obj_words, prep, direction, person)
+    if lemma in MAKING_VERBS and instrument:
+        target = instrument  # "makes coffee with the coffee maker": the hands are at the machine
     if lemma in verbs.WITH_THING and primary is not None and primary.object_id and not person:
         action = verbs.WITH_THING[lemma]  # "balances three plates"
     if (

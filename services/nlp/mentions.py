@@ -206,6 +206,14 @@ def of_complement(head: Token) -> Token | None:
     return None
 
 
+_PICTURES = frozenset({"artwork", "stationery"})  # what shows a thing: "a photo of a cake" is one photo
+_EDIBLE = frozenset({"drinkware", "tableware", "food"})  # content words that name a vessel's food or drink
+
+
+def holder_families(holder: ObjectMention) -> list[str]:
+    return lexicon.hypernyms(holder.category)
+
+
 def holds_content(category: str) -> bool:
     """True for a category whose "of" phrase is what it holds or shows (see CONTENT_HOLDERS)."""
     return bool(CONTENT_HOLDERS.intersection(lexicon.hypernyms(category)))
@@ -220,7 +228,17 @@ def is_content(tok: Token) -> bool:
     if content is None or content.i != tok.i:
         return False
     holder = object_mention(head)
-    return holder is not None and holder.category != "" and holds_content(holder.category)
+    if holder is None or not holds_content(holder.category):
+        return False
+    own = lexicon.category_of(tok.lemma_) or lexicon.category_of(tok.text)
+    if (
+        own is None
+        or own == holder.category
+        or holds_content(own)
+        and _PICTURES & set(holder_families(holder))
+    ):
+        return True  # "popcorn", "juice" (a glass's own word), "a negative of a photo"
+    return bool(_EDIBLE.intersection(lexicon.hypernyms(own)))  # "a plate of sandwiches"; not "clothes"
 
 
 def object_mention(head: Token) -> ObjectMention | None:

@@ -24,6 +24,7 @@ from proto.common import Span
 from proto.ssg import ActionNode, CharacterNode, Diagnostic, ObjectNode, SentenceGraph, SocialNode
 from services.nlp import lexicon
 from services.nlp.errors import diagnostic
+from services.nlp.senses import room_senses
 
 PRONOUN_WORDS = {
     "he": "he",
@@ -221,7 +222,7 @@ def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> li
     Returns:
         New graphs; character names canonical, "they" expanded into one node per character.
     """
-    graphs = distinct_objects(graphs, offsets)
+    graphs = distinct_objects(room_senses(graphs, offsets), offsets)
     state = _State()
     out: list[SentenceGraph] = []
     multiword = state.multiword  # "can" -> the watering can
