@@ -291,6 +291,11 @@ def object_mention(head: Token) -> ObjectMention | None:
     if category is None:
         category = lexicon.category_of(head.lemma_) or lexicon.category_of(head.text)
         used = len(words) - 1
+    for poss in (c for c in head.lefts if c.dep_ == "nmod:poss" and c.pos_ == "NOUN"):
+        # "a teacher's desk": the catalog's teacher_desk, not a desk that belongs to a teacher
+        owned = exact_category([f"{poss.text}'s", *words[used if category else len(words) - 1 :]])
+        if owned is not None:
+            category, used = owned, len(words) - 1
     if category is None and head.lemma_.lower() in COLLECTIVE_HEADS and len(words) > 1:
         # "the drum kit", "a tea set": the thing the compound names
         for k in range(len(words) - 1):

@@ -202,7 +202,7 @@ glass | drinkware | drinking glass, tumbler, wine glass, wineglass, goblet, wate
 bottle | drinkware | water bottle, wine bottle, flask, beer bottle, plastic bottle, water | kitchen dining_room gym office | SCTM | surface
 soda_can | drinkware | can, soda, coke, cola, soft drink, drink can, beer can, tin can, soda pop | kitchen living_room office | SC | surface
 plate | tableware | dish, dinner plate, saucer, platter, tray, serving tray, baking tray, tea tray, dinner, lunch, meal, food, sandwich, toast, pizza | kitchen dining_room cafe | SCM | surface
-bowl | tableware | salad bowl, soup bowl, fruit bowl, cereal bowl, soup, cereal, salad, porridge, noodles, popcorn, bowl of popcorn, popcorn bowl, crisps, chips, snacks, fruit | kitchen dining_room | SCM | surface
+bowl | tableware | salad bowl, soup bowl, fruit bowl, cereal bowl, soup, cereal, salad, porridge, noodles, popcorn, popcorn bowl, crisps, chips, snacks, fruit | kitchen dining_room | SCM | surface
 pan | cookware | frying pan, skillet, wok, saucepan, fry pan | kitchen | SCM | surface
 pot | cookware | cooking pot, stockpot, casserole, stew pot | kitchen | SCM | surface
 knife | cookware | kitchen knife, chef knife, chefs knife, blade, bread knife | kitchen | SM | surface
