@@ -60,6 +60,7 @@ def _subject_tokens(verb: Token) -> list[Token]:
     for _ in range(6):
         subj = [c for c in v.children if c.dep_ in SUBJECT_DEPS and (not climbed_from_conj or c.i < verb.i)]
         if subj and (v.pos_ in ("VERB", "AUX") or v is verb or any(c.dep_ == "cop" for c in v.children)):
+            subj = [_member_of(s) for s in subj]
             out: list[Token] = []
             for s in subj:  # "Peter and Kate walk": the parser may mark both as subjects
                 out += [t for t in _with_conj_people(s) if t not in out]
@@ -83,6 +84,20 @@ def _subject_tokens(verb: Token) -> list[Token]:
         if lead and character_mention(lead[0]) is not None:
             return _with_conj_people(lead[0])
     return []
+
+
+def _member_of(tok: Token) -> Token:
+    """ "One of her teammates sits down": the teammate acts, not "one"."""
+    if tok.lower_ not in ("one", "each", "either", "neither") or character_mention(tok) is not None:
+        return tok
+    for c in tok.children:
+        if (
+            c.dep_ == "nmod"
+            and any(g.lower_ == "of" for g in c.children)
+            and character_mention(c) is not None
+        ):
+            return c
+    return tok
 
 
 def _with_conj_people(tok: Token) -> list[Token]:

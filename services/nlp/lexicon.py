@@ -213,6 +213,8 @@ PRONOUNS = {
     "you": "you",
     "we": "they",
     "us": "they",
+    "everyone": "all",
+    "everybody": "all",
 }
 OBJECT_PRONOUNS = frozenset({"it", "this", "that", "them"})
 FEMALE_NAMES = frozenset(
@@ -319,6 +321,7 @@ ASPECT_VERBS = frozenset(
         "need",
         "attempt",
         "come",
+        "burst",
     }
 )
 # Verbs whose meaning is social between two characters: action + SocialNode(kind="emotion").
@@ -434,6 +437,9 @@ ACTION_OVERRIDES: dict[tuple[str, str], str] = {
     ("play", "cello"): "play_violin",
     ("play", "ball"): "kick",
     ("play", "phone"): "text_on_phone",
+    ("burst", "tear"): "cry",
+    ("burst", "tears"): "cry",
+    ("burst", "laughter"): "laugh",
     ("play", "tablet"): "use_tablet",
     ("play", "game_console"): "use_tablet",
     ("play", "computer"): "type",

@@ -34,6 +34,8 @@ PRONOUN_WORDS = {
     "her": "she",
     "they": "they",
     "them": "they",
+    "everyone": "all",
+    "everybody": "all",
     "their": "they",
 }
 
@@ -76,6 +78,8 @@ class _State:
         return canonical
 
     def pronoun(self, pron: str, exclude: str = "") -> list[str]:
+        if pron == "all":  # "Everyone raises their glasses": every character named so far
+            return [c for c in self.characters if c != exclude]
         if pron == "they":
             group = [c for c in self.last_group if c != exclude]
             if len(group) >= 2 or (group and exclude):

@@ -60,7 +60,7 @@ kneel: kneel down, get down, genuflect, drop to one's knees
 squat: dive, dodge, crouch, stoop down, hunker down, duck, bend down, huddle
 hide: cower, take cover, duck behind, hide behind, lurk, conceal oneself, hide under, hide in, duck down behind, crouch behind
 lean_on_wall: lean, lean against, lean back, lean on, rest against, prop oneself
-idle: wait around, stand around, linger, loiter, pause, stay, remain, freeze, hesitate, stop, halt,
+idle: wait around, stand around, linger, loiter, pause, stay, remain, freeze, hesitate, stop, halt,, say nothing, do nothing, keep quiet, fall silent, keep still
     pose, watch on, stand by
 wait: await, wait for, hold on, hang on, stay put
 stretch: limber up, warm up, loosen up, unwind
@@ -99,7 +99,7 @@ talk: give a speech, make a speech, speechify, say, tell, speak, reply, answer, 
     chime in, negotiate, bargain, plead with, persuade, convince, complain, grumble, mutter, mumble,
     stammer, stutter, lie to, question, query, inquire, enquire, wonder aloud
 whisper: murmur, mutter softly, breathe, confide, hiss
-shout: yell, scream, shriek, cry out, call out, holler, roar, bellow, howl, exclaim loudly, screech
+shout: yell, scream, shriek, cry out, call out, holler, roar, bellow, howl, exclaim loudly, screech, swear, cuss, curse loudly
 quarrel: bicker, squabble, row, fight, wrangle, clash, feud
 argue: debate, dispute, contradict, protest, object, disagree with, challenge
 criticize: scold, reprimand, rebuke, lecture at, blame, reproach, chide, berate, nag, tell off, accuse
@@ -192,7 +192,7 @@ mop: mop the floor, swab
 sweep: brush the floor, sweep up, sweep the floor, sweep out, sweep away
 vacuum: hoover, vacuum the carpet
 iron: press, press clothes, iron clothes
-fold_clothes: fold, fold up, do the laundry, sort laundry, hang laundry
+fold_clothes: fold, fold up, do the laundry, sort laundry, hang laundry, tuck, tuck in, smooth, smooth out, straighten the blanket, make the bed
 water_plants: water, garden, weed, sprinkle, plant flowers
 open_door: open, unlock, open up, let in, let out, open the door, open the box, unwrap, unwrap the present, tear open
 close_door: close, shut, lock, slam, shut the door
@@ -287,6 +287,10 @@ BODY_PART_ACTIONS: dict[tuple[str, str], str] = {
     ("wash", "hands"): "wash_hands",
     ("wash", "face"): "wash_hands",
     ("wipe", "hands"): "rub_hands",
+    ("put", "arm"): "comfort",
+    ("put", "arms"): "hug",
+    ("wrap", "arms"): "hug",
+    ("throw", "arms"): "hug",
     ("dry", "hands"): "rub_hands",
     ("dry", "hand"): "rub_hands",
     ("dry", "face"): "wipe_sweat",

@@ -147,3 +147,51 @@ def test_senses_prefer_the_scene_then_the_one_kind_that_fits_the_room():
     # two desks fit a classroom: the word as written stays
     assert vocabulary.sense_in_context("desk", "desk", "classroom") == "desk"
     assert vocabulary.sense_in_context("laptop", "laptop", "bathroom") == "laptop"
+
+
+def test_everyone_is_every_character_named_so_far():
+    graphs = parse_document("Tom and Eve walk in. Everyone raises their glasses and drinks.")
+    assert sorted(acts(graphs[1:])) == [
+        ("Eve", "drink", ""),
+        ("Eve", "pick_up", "glass"),
+        ("Tom", "drink", ""),
+        ("Tom", "pick_up", "glass"),
+    ]
+    assert "W105" in codes(parse_document("Everybody claps."))  # nobody named yet: said so
+
+
+def test_one_of_a_group_is_a_member_of_it():
+    graphs = parse_document("One of her teammates sits down beside her and puts an arm around her shoulders.")
+    assert acts(graphs) == [("teammate", "sit", ""), ("teammate", "comfort", "shoulder")]
+
+
+def test_a_titled_unknown_name_read_as_a_clause_subject_still_acts():
+    graphs = parse_document("Nurse Adaeze strides in briskly, checks the chart and tucks the blanket.")
+    assert [(n, a) for n, a, _ in acts(graphs)] == [
+        ("Nurse Adaeze", "walk"),
+        ("Nurse Adaeze", "look_at"),
+        ("Nurse Adaeze", "fold_clothes"),
+    ]
+
+
+def test_a_pronoun_clause_after_a_comma_is_no_relative_clause():
+    graphs = parse_document(
+        "Jamal plays the guitar. Halfway through the song the string snaps, he swears, and everybody bursts "
+        "out laughing."
+    )
+    assert [a for _, a, _ in acts(graphs[1:])] == ["shout", "laugh"]
+
+
+@pytest.mark.parametrize(
+    ("text", "value"),
+    [("lights dim to evening", "night"), ("The lights go down.", "night"), ("lights up", "sunny")],
+)
+def test_a_stage_direction_for_the_lights_is_a_light_command(text, value):
+    (graph,) = parse_document(text)
+    assert [(c.kind, c.value) for c in graph.commands] == [("weather", value)]
+
+
+def test_bursting_into_tears_or_out_laughing():
+    assert acts(parse_document("Tom bursts into tears.")) == [("Tom", "cry", "tear")]
+    assert acts(parse_document("Tom bursts out laughing.")) == [("Tom", "laugh", "")]
+    assert acts(parse_document("Tom bursts through the door.")) == [("Tom", "walk", "door")]
