@@ -12,8 +12,12 @@ from wana.assets.params import Builder, Params
 def rug(b: Builder, p: Params) -> None:
     """A flat rug with a border: low enough to walk over (see wana.domain.routes), so no stand spot."""
     w, h, d = p.w, p.h, p.d
-    b.box((-w / 2, 0, -d / 2), (w / 2, h * 0.6, d / 2), p.frame)
-    b.box((-w / 2 + 0.08, h * 0.6, -d / 2 + 0.08), (w / 2 - 0.08, h, d / 2 - 0.08), p.body)
+    e = 0.08  # the border's width
+    b.box((-w / 2 + e, 0, -d / 2 + e), (w / 2 - e, h, d / 2 - e), p.body)
+    b.box((-w / 2, 0, -d / 2), (w / 2, h, -d / 2 + e), p.frame)
+    b.box((-w / 2, 0, d / 2 - e), (w / 2, h, d / 2), p.frame)
+    b.box((-w / 2, 0, -d / 2 + e), (-w / 2 + e, h, d / 2 - e), p.frame)
+    b.box((w / 2 - e, 0, -d / 2 + e), (w / 2, h, d / 2 - e), p.frame)
     if p.style.trim:  # a fringe at both short ends
         for s in (-1, 1):
             b.box((s * w / 2, 0, -d / 2), (s * (w / 2 + 0.04), h * 0.3, d / 2), p.tone("cream"))
@@ -86,7 +90,7 @@ def pill_bottle(b: Builder, p: Params) -> None:
     r = min(w, d) / 2
     b.cyl((0, 0, 0), r, h * 0.78, p.body, sections=14)
     b.cyl((0, h * 0.78, 0), r * 1.05, h * 0.22, p.tone("white"), sections=14)
-    b.cyl((0, h * 0.3, 0), r * 1.01, h * 0.3, p.tone("white"), sections=14)  # the label
+    b.cyl((0, h * 0.3, 0), r * 1.04, h * 0.3, p.tone("white"), sections=14)  # the label
     b.contact("pick_up", "RightHand", (r, h * 0.5, 0.0))
     b.contact("eat", "RightHand", (r, h * 0.5, 0.0))
 
