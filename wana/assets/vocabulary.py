@@ -253,6 +253,9 @@ _ARTICLES = {
 }
 
 
+_LEADING_ARTICLE = re.compile(r"^(?:a|an|the|some|this|that|his|her|their|my|your|its|our) ")
+
+
 def _singular(word: str) -> list[str]:
     out = [word]
     if word.endswith("ies") and len(word) > 4:
@@ -292,8 +295,8 @@ def lookup(word_or_phrase: str) -> str | None:
     phrase = _norm(word_or_phrase)
     if not phrase:
         return None
-    whole = _lookup_exact(phrase)
-    if whole is not None:  # "chest of drawers"
+    whole = _lookup_exact(phrase) or _lookup_exact(_LEADING_ARTICLE.sub("", phrase))
+    if whole is not None:  # "chest of drawers", "a box of chocolates"
         return whole
     if " of " in phrase:  # "a cup of coffee" -> cup, "a stack of paper" -> paper
         head, _, rest = phrase.partition(" of ")
