@@ -25,7 +25,7 @@ def _table(rows: str) -> dict[str, str]:
 
 VERB_ACTIONS: dict[str, str] = _table(
     """
-walk: squeeze in, squeeze through, squeeze past, weave, disappear, vanish, make one's way, stroll out, head down, wander down, burst through, burst in, amble, stroll, pace, wander, roam, head, proceed, advance, return, leave, exit, enter, cross, go,
+walk: squeeze in, squeeze through, squeeze past, weave, disappear, vanish, make one's way, stroll out, head down, wander down, burst through, burst in, amble, stroll, pace, wander, roam, head, proceed, advance, return, leave, exit, enter, cross, go, slip out, slip away, slip in, slip past, nip out,
     come, arrive, depart, follow, lead, stride, strut, trek, hike, patrol, travel, move, walk over,
     walk in, walk out, walk away, walk up, come in, come back, come over, go back, go out, go in,
     go over, get in, get out, head back, head out, make way, step in, step out, move over, accompany,

@@ -195,3 +195,16 @@ def test_bursting_into_tears_or_out_laughing():
     assert acts(parse_document("Tom bursts into tears.")) == [("Tom", "cry", "tear")]
     assert acts(parse_document("Tom bursts out laughing.")) == [("Tom", "laugh", "")]
     assert acts(parse_document("Tom bursts through the door.")) == [("Tom", "walk", "door")]
+
+
+def test_the_nurse_is_nurse_adaeze_and_everyone_stays_everyone():
+    graphs = parse_document(
+        "Nurse Adaeze walks in. Kofi waves at the nurse. The nurse slips out. Max comes in and waves at everyone."
+    )
+    assert acts(graphs) == [
+        ("Nurse Adaeze", "walk", ""),
+        ("Kofi", "wave", "Nurse Adaeze"),
+        ("Nurse Adaeze", "walk", ""),
+        ("Max", "walk", ""),
+        ("Max", "wave", "everyone"),
+    ]
