@@ -172,6 +172,9 @@ def point_rect_distance(points: np.ndarray, fp: Footprints) -> np.ndarray:
     return np.hypot(ex, ez)
 
 
+FLOOR_COVERING_M = 0.03  # metres: a box no taller than this is walked over
+
+
 def occupancy_grid(
     room: Room, footprints: Footprints, *, radius: float = 0.25, cell: float = 0.05, max_height: float = 1.8
 ) -> OccupancyGrid:
@@ -202,7 +205,9 @@ def occupancy_grid(
     blocked = np.zeros((h, w), dtype=bool)
     blocked[:, (xs < -room.width / 2 + radius) | (xs > room.width / 2 - radius)] = True
     blocked[(zs < -room.depth / 2 + radius) | (zs > room.depth / 2 - radius), :] = True
-    fp = footprints.select(footprints.y_min < max_height) if len(footprints) else footprints
+    # Boxes starting overhead do not block, nor floor coverings (a rug, a mat) one steps over.
+    walk_over = footprints.y_max <= FLOOR_COVERING_M
+    fp = footprints.select((footprints.y_min < max_height) & ~walk_over) if len(footprints) else footprints
     if len(fp) == 0:
         return OccupancyGrid(blocked=blocked, origin=origin, cell=cell)
     # Voxelised objects stack many boxes on one footprint: keep each distinct rectangle once.
