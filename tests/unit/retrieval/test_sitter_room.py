@@ -39,3 +39,16 @@ def test_a_chair_tucked_chest_deep_under_a_table_collides_but_one_at_its_edge_do
     assert _chair_facing_table(-0.05) is None  # 5 cm in front of the edge
     assert _chair_facing_table(0.04) is None  # the front of the seat just under the top: knees under it
     assert _chair_facing_table(0.25) == "table"  # the seat under the top: the chest would be in the table
+
+
+def test_what_rests_on_a_bench_keeps_off_its_sitters_place():
+    bench_fp = footprint("bench", {}, 0)
+    bench = Placed("bench", bench_fp, np.zeros(3), 0.0)
+    top = float(bench_fp.surfaces[0].height)
+    box_fp = footprint("box", {}, 0)
+    index = ObstacleIndex([bench])
+    middle = Placed("box", box_fp, np.array([0.0, top, 0.0]), 0.0, support="bench")
+    end = Placed("box", box_fp, np.array([0.5, top, 0.0]), 0.0, support="bench")
+    assert index.first_collider(middle) == "bench"
+    assert index.first_collider(end) is None
+    assert index.first_colliders([middle, end]) == ["bench", None]
