@@ -71,6 +71,8 @@ def test_under_a_window_is_against_its_wall_below_it_and_within_its_width():
     against = _at("desk", 0.0, w[2] / 2 + d[2] / 2 + 0.01)
     assert relation_holds("under", against, window)
     assert not relation_holds("under", _at("desk", 0.0, w[2] / 2 + d[2] / 2 + 1.0), window)  # out in the room
-    assert not relation_holds("under", _at("desk", w[0] / 2 + d[0], w[2] / 2 + d[2] / 2 + 0.01), window)  # beside
+    beside = _at("desk", w[0] / 2 + d[0], w[2] / 2 + d[2] / 2 + 0.01)
+    assert not relation_holds("under", beside, window)
     wardrobe = catalog.make_object("wardrobe").dims
-    assert not relation_holds("under", _at("wardrobe", 0.0, w[2] / 2 + wardrobe[2] / 2 + 0.01), window)  # too tall
+    too_tall = _at("wardrobe", 0.0, w[2] / 2 + wardrobe[2] / 2 + 0.01)
+    assert not relation_holds("under", too_tall, window)

@@ -34,7 +34,8 @@ def test_a_move_that_breaks_next_to_is_taken_back_only_as_far_as_needed():
     before = _room(BED_HALF + CHAIR_HALF + 0.2)
     after = _room(BED_HALF + CHAIR_HALF + 0.9)  # the optimiser slid the chair 0.7 m away
     after = msgspec.structs.replace(
-        after, objects=[*after.objects[:2], msgspec.structs.replace(after.objects[2], position=(-1.5, 0.0, 2.0))]
+        after,
+        objects=[*after.objects[:2], msgspec.structs.replace(after.objects[2], position=(-1.5, 0.0, 2.0))],
     )
     assert not relation_holds("next_to", _by_id(after)["rocking_chair"], _by_id(after)["bunk_bed"])
     kept = _by_id(keep_relations(before, after, NEXT_TO))
@@ -57,7 +58,8 @@ def test_nothing_broken_or_nothing_held_leaves_the_optimised_layout_as_it_is():
     before, after = _room(BED_HALF + CHAIR_HALF + 0.2), _room(BED_HALF + CHAIR_HALF + 0.25)
     assert keep_relations(before, after, NEXT_TO) is after
     far_before, far_after = _room(BED_HALF + CHAIR_HALF + 1.5), _room(BED_HALF + CHAIR_HALF + 2.0)
-    assert keep_relations(far_before, far_after, NEXT_TO) is far_after  # it never held: not the optimiser's doing
+    # It never held: not the optimiser's doing.
+    assert keep_relations(far_before, far_after, NEXT_TO) is far_after
 
 
 def test_copies_of_a_counted_subject_are_all_kept():
