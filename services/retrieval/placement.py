@@ -5,7 +5,8 @@ For a subject and an anchor already placed, each relation word yields poses in t
 past its back, "left of" on its left (+X, a character's left when it faces +Z), "right of" on -X,
 "next to" on either side, "near" on any side, "under" below its top, "above" over it, "facing" in front
 of it turned towards it, "around" one side per instance. Against a wall-mounted anchor (window,
-whiteboard) the subject keeps its back to that wall: below the anchor or beside it along the wall.
+whiteboard) the subject keeps its back to that wall: below the anchor or beside it along the wall; "in front
+of" it, a seat turns to face it and anything else keeps its back to it.
 The first pose of each list comes from the subject's own random generator (seeded by its id), so a
 subject's placement depends only on itself and its anchor; the rest are fixed alternatives.
 """
@@ -189,7 +190,11 @@ def relation_candidates(
             sides = sides[instance % len(sides) :] + sides[: instance % len(sides)]
         gaps = [float(rng.uniform(0.05, 0.3)), 0.05, 0.3, 0.6]
         for side in sides:
-            rel_yaws = [math.pi, 0.0] if side == "front" and relation == "in_front_of" else [0.0]
+            rel_yaws = [0.0]
+            if side == "front" and relation == "in_front_of":
+                # A seat faces what hangs on the wall (a sofa in front of the TV); what is used from its
+                # front keeps its back to it (a teacher's desk in front of the chalkboard faces the class).
+                rel_yaws = [math.pi, 0.0] if fp.sitters else [0.0, math.pi]
             lats = [lateral0 * half_w, 0.0, half_w, -half_w] if side in ("front", "below") else [0.0]
             for rel_yaw in rel_yaws:
                 for gap in gaps:
