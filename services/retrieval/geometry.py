@@ -41,6 +41,7 @@ class Footprint:
         bounds: (2, 3) object-frame AABB of the solid boxes (the sitters' aside: a chair is no taller).
         surfaces: support surfaces, object frame.
         mount: "floor", "surface" or "wall".
+        sitters: how many of the boxes, at the end, are sitter boxes (what rests on the seat keeps off them).
     """
 
     category: str
@@ -51,6 +52,7 @@ class Footprint:
     surfaces: tuple[SupportSurface, ...] = field(repr=False)
     mount: str
     extents_by_yaw: dict[float, np.ndarray] = field(default_factory=dict, repr=False)
+    sitters: int = 0
 
     @property
     def height(self) -> float:
@@ -65,7 +67,8 @@ def _footprint(category: str, attributes: tuple[tuple[str, str], ...], seed: int
         half = np.asarray(asset.dims) / 2.0
         boxes = np.array([[[-half[0], 0.0, -half[2]], [half[0], asset.dims[1], half[2]]]])
     bounds = np.stack([boxes[:, 0].min(axis=0), boxes[:, 1].max(axis=0)])  # the solid object's
-    boxes = np.concatenate([boxes, sitter_boxes(asset)])
+    sitters = sitter_boxes(asset)
+    boxes = np.concatenate([boxes, sitters])
     info = vocabulary.CATEGORIES.get(category)
     return Footprint(
         category,
@@ -75,6 +78,7 @@ def _footprint(category: str, attributes: tuple[tuple[str, str], ...], seed: int
         bounds,
         tuple(asset.support_surfaces),
         info.mount if info else "floor",
+        sitters=len(sitters),
     )
 
 
