@@ -278,6 +278,19 @@ def _on_surface(
             yield _to_world(
                 anchor, float(cx), float(cz), float(anchor.position[1]) + float(s.height), rel_yaw, anchor.id
             )
+        # ... else slid to either end of it (a box too deep for a bench, kept off the sitter's place).
+        for rel_yaw in (0.0, math.pi / 2.0):
+            e = extents(fp, rel_yaw)
+            room = float(s.max_xz[0] - s.min_xz[0]) / 2.0 - float(e[1, 0] - e[0, 0]) / 2.0
+            for lx in (cx - room, cx + room) if room > 0.01 else ():
+                yield _to_world(
+                    anchor,
+                    float(lx),
+                    float(cz),
+                    float(anchor.position[1]) + float(s.height),
+                    rel_yaw,
+                    anchor.id,
+                )
 
 
 def _above(
