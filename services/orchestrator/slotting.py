@@ -110,10 +110,11 @@ class Slotting:
         obj = find_object(self.scene, action.target or action.instrument or action.destination)
         if obj is None:
             return Claim(action)
-        slots = seat_slots(obj, kind)
-        if not slots:  # "sits at the table": a free seat around it
+        every = seat_slots(obj, kind)
+        if not every:  # "sits at the table": a free seat around it
             return self._seat_at(who, action, obj, kind)
-        default = slots[0]  # what the planner takes by itself
+        default = every[0]  # what the planner takes by itself
+        slots = seat_slots(obj, kind, self.scene.objects)  # those no prop rests on
         if len(self.sitters.get(obj.id, ())) == 2 and len(slots) >= 3:
             slots = [*slots[1:], slots[0]]  # two on three cushions: the ends, with the middle between them
         taken = self.book.take(obj.id, slots, who)
@@ -126,13 +127,13 @@ class Slotting:
             key=lambda o: float(np.linalg.norm(np.array([o.position[0], o.position[2]]) - here)),
         )
         for other in same:
-            slots = seat_slots(other, kind)
+            slots = seat_slots(other, kind, self.scene.objects)
             taken = self.book.take(other.id, slots, who) if slots else None
             if taken is not None:
                 moved = msgspec.structs.replace(action, target=other.id) if action.target else action
                 if not action.target:
                     moved = msgspec.structs.replace(action, destination=other.id)
-                return Claim(moved, seat="" if taken == slots[0] else taken)
+                return Claim(moved, seat="" if taken == seat_slots(other, kind)[0] else taken)
         return Claim(action)
 
     def _seat_at(self, who: str, action: ActionNode, obj: PlacedObject, kind: str) -> Claim:
@@ -149,14 +150,14 @@ class Slotting:
         for distance, seat in near:
             if distance > AROUND_M:
                 break
-            slots = seat_slots(seat, kind)
+            slots = seat_slots(seat, kind, self.scene.objects)
             taken = self.book.take(seat.id, slots, who) if slots else None
             if taken is not None:
                 field_name = (
                     "target" if action.target == obj.id or action.target == obj.category else "destination"
                 )
                 moved = msgspec.structs.replace(action, **{field_name: seat.id})
-                return Claim(moved, seat="" if taken == slots[0] else taken)
+                return Claim(moved, seat="" if taken == seat_slots(seat, kind)[0] else taken)
         return Claim(action)
 
     def _stand(self, who: str, action: ActionNode, obj: PlacedObject) -> Claim:

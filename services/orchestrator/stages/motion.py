@@ -31,6 +31,7 @@ from services.orchestrator.document import Sentence
 from services.orchestrator.slotting import Slotting
 from services.orchestrator.stages import StageContext, content_of
 from services.orchestrator.stages.props import provide
+from services.orchestrator.stages.scene import keep_relations
 from services.orchestrator.stages.seats import furnish
 from services.orchestrator.stages.social import fit_cast, frame_count, paired_actions
 from services.orchestrator.stages.states import with_states
@@ -49,6 +50,7 @@ from services.orchestrator.views import (
     characters_of,
     geometry_view,
     others,
+    scene_part,
     scene_view,
     social_distances,
     social_moods,
@@ -315,6 +317,7 @@ def animate(
     waiting_place = {name: i for i, name in enumerate(sorted(characters, key=lambda n: n not in hidden))}
     ids = {o.id for o in scene.objects}
     out = Animated(scene=scene, diagnostics=list(added))
+    stated = scene_part(graphs).relations  # kept true through every optimisation
     # Interactions: actions that touch an object of the scene; the layout is optimised around each.
     interactions = [
         (name, k, a)
@@ -354,7 +357,7 @@ def animate(
             warning = Diagnostic(code="W301", message=why, span=Span(0, 0), severity="warning")
             out.diagnostics.append((characters[name][1][k], warning))
             continue
-        scene = reply.scene
+        scene = keep_relations(scene, reply.scene, stated)
         out.optimisations.append(reply)
         done += 1
     out.scene = scene
