@@ -66,6 +66,7 @@ STAY_S = 1.0  # seconds a "sits" while seated or a "stands" while standing holds
 NEAR_NAMED = 1.6  # metres from a named non-seat ("sits at the desk") to the seat used with it
 NEAR_ANY = 4.0  # metres from the character to the seat a bare "sits down" uses
 TAKEN = 0.4  # metres from another character to a seat slot that counts as theirs
+SEAT_FOUND = 0.6  # metres from a seated character's position to the seat slot it sits on
 SAME_SEAT = 0.35  # metres between the hips and a seat point for a character to count as sitting on it
 HELD_KINDS = ("handheld", "tool")  # interactions played with an object in the hand
 GRASP_TABLE = (
@@ -137,6 +138,14 @@ def seat_slots(placed: PlacedObject, kind: str) -> list[tuple[float, float, floa
     ]
 
 
+def seat_under(scene: Scene, pos: np.ndarray) -> tuple[PlacedObject, tuple[float, float, float]] | None:
+    """The seat a seated character sits on (the slot nearest its position, within SEAT_FOUND) and its hips
+    point, None when no seat is there (on the floor)."""
+    cands = [(o, p) for o in scene.objects for p in seat_slots(o, "seat")]
+    ok = [(o, p) for o, p in cands if np.hypot(p[0] - pos[0], p[2] - pos[1]) <= SEAT_FOUND]
+    return min(ok, key=lambda c: np.hypot(c[1][0] - pos[0], c[1][2] - pos[1]), default=None)
+
+
 def pick_seat(
     scene: Scene,
     kind: str,
@@ -202,24 +211,40 @@ def prop_grip(
                 return joint, (float(cp.position[0]), float(cp.position[1]), float(cp.position[2]))
         return None
 
+    def nearest(objs: list[PlacedObject]) -> PlacedObject:
+        return min(objs, key=lambda o: float(np.hypot(o.position[0] - pos[0], o.position[2] - pos[1])))
+
+    made_for = [o for o in scene.objects if made_for_action(o, action)]
+    if named is not None and not made_for_action(named, action) and made_for:
+        named = (
+            None  # "hammers a nail", "sweeps the floor": what is worked on; the tool is the one made for it
+        )
     if named is not None:
+        # "drinks from her mug" with two mugs on the table: the one nearest the character
+        alike = [o for o in scene.objects if o.category == named.category and grip(o) is not None]
+        if "/" not in named.id and len(alike) > 1:
+            named = nearest(alike)
         g = grip(named)
         return (named, *g) if g is not None else None
-    made_for = []
-    for o in scene.objects:
-        try:
-            from wana.assets.catalog import asset_for
-
-            names = set(asset_for(o).contact_points)
-        except Exception:  # noqa: BLE001
-            continue
-        if "pick_up" in names and {action, action.split("_")[0]} & names:
-            made_for.append(o)
     if not made_for:
         return None
-    best = min(made_for, key=lambda o: float(np.hypot(o.position[0] - pos[0], o.position[2] - pos[1])))
+    best = nearest(made_for)
     g = grip(best)
     return (best, *g) if g is not None else None
+
+
+def made_for_action(placed: PlacedObject | None, action: str) -> bool:
+    """Whether a small object is made for an action: the catalog lets a hand pick it up and names a contact
+    point for the action (a cup's "drink", a hammer's "hammer")."""
+    if placed is None:
+        return False
+    try:
+        from wana.assets.catalog import asset_for
+
+        names = set(asset_for(placed).contact_points)
+    except Exception:  # noqa: BLE001 - unknown category or no catalog
+        return False
+    return "pick_up" in names and bool({action, action.split("_")[0]} & names)
 
 
 def _grasp(placed: PlacedObject) -> tuple[str, tuple[float, float, float], tuple[float, float, float]] | None:
@@ -517,6 +542,14 @@ def plan_actions(
             target_id=(dest or prop_obj).id, action_index=ai, **hand, prop_span="release")  # fmt: skip
         hand.clear()
 
+    def set_down_in_reach() -> bool:
+        """Whether a seated character can set the held prop down without getting up (a table in front)."""
+        prop_obj = next((o for o in scene.objects if o.id == hand.get("prop")), None)
+        if prop_obj is None:
+            return False
+        target = _set_down_point(scene, pos, None, prop_obj, hand)
+        return bool(np.hypot(target[0] - pos[0], target[2] - pos[1]) <= PICK_REACH)
+
     node: ActionNode
     for ai, node in enumerate(character.actions):
         name = node.action
@@ -646,15 +679,30 @@ def plan_actions(
         targets: dict[str, tuple[float, float, float]] = {}
         held: dict = {}
         kind = clip.interaction.object if clip.interaction else ""
-        if kind in HELD_KINDS and hand and (obj is None or obj.id == hand["prop"]):
+        in_hand = next((o for o in scene.objects if hand and o.id == hand["prop"]), None)
+        if (
+            kind in HELD_KINDS
+            and hand
+            and (
+                obj is None
+                or obj.id == hand["prop"]
+                or (made_for_action(in_hand, name) and not made_for_action(obj, name))
+            )
+        ):
             # Already in the hand (picked up before): the action plays with it, no new reach.
             obj = next((o for o in scene.objects if o.id == hand["prop"]), obj)
             add(kind="action", action=name, duration_s=float(node.duration_s), target_id=hand["prop"],
                 action_index=ai)  # fmt: skip
             continue
         grip = prop_grip(scene, name, obj, pos) if kind in HELD_KINDS else None
+        back_to = None  # seated with the prop out of reach: get up, fetch it, and sit back down
+        if grip is not None and now_posture() == "sit":
+            far = np.hypot(grip[0].position[0] - pos[0], grip[0].position[2] - pos[1]) > PICK_REACH
+            back_to = seat_under(scene, pos) if far else None
+            if back_to is not None:
+                add(kind="action", action="stand", action_index=ai)
         taking = grip[0].id if grip is not None else obj.id if name == "pick_up" and obj is not None else ""
-        if hand and taking and taking != hand["prop"] and now_posture() == "stand":
+        if hand and taking and taking != hand["prop"] and (now_posture() == "stand" or set_down_in_reach()):
             set_down(None, ai, GRASP_TABLE)  # one hand, one prop: the one held goes down first
         if grip is not None:
             prop_obj, joint, local = grip
@@ -678,6 +726,16 @@ def plan_actions(
                     add(kind="action", action=taker, targets=((rj, rworld),), target_id=prop_obj.id,
                         action_index=ai, prop_span="grasp", **grasp)  # fmt: skip
                     hand.update(grasp)
+                    if back_to is not None:  # the prop in hand: back to the seat it was fetched from
+                        seat_obj, hips = back_to
+                        face = float(seat_obj.yaw)
+                        approach = (
+                            np.array([hips[0], hips[2]]) + np.array([np.sin(face), np.cos(face)]) * SEAT_BACK
+                        )
+                        walk_to(approach, 1.2, face, "walk", ai, seat_obj.id)
+                        pos, yaw = approach.copy(), face
+                        add(kind="action", action="sit", targets=(("Hips", hips),), target_id=seat_obj.id,
+                            action_index=ai)  # fmt: skip
                     add(kind="action", action=name, duration_s=float(node.duration_s),
                         target_id=prop_obj.id, action_index=ai)  # fmt: skip
                     continue
