@@ -55,6 +55,10 @@ SPEEDS = {
 SEAT_BACK = 0.22  # metres the hips travel backwards while sitting down (sit clip)
 REACH = 0.42  # metres from the contact points to where the character stands
 PERSON_DISTANCE = 0.8  # metres between two characters after one walks up to the other
+HANDOVER_VERB = "give"  # ActionNode.verb the orchestrator keeps on an action that hands an object over
+HANDOVER_DISTANCE = 0.75  # metres between the two hips while one hands the other an object
+HANDOVER_HEIGHT = 1.0  # metres above the floor where the object passes from hand to hand
+HANDOVER_GESTURE_S = 1.2  # seconds of the presenting gesture after letting go
 CLOSE_DISTANCE = {"hug": 0.45, "shake_hands": 0.75, "high_five": 0.75}  # metres, per touching action
 SEATING = ("sit", "lie_down", "sleep")  # clips that leave the character on a seat or a bed
 TURN_TOLERANCE = 0.3  # radians off the wanted facing before the character turns in place
@@ -215,10 +219,10 @@ def prop_grip(
         return min(objs, key=lambda o: float(np.hypot(o.position[0] - pos[0], o.position[2] - pos[1])))
 
     made_for = [o for o in scene.objects if made_for_action(o, action)]
-    if named is not None and not made_for_action(named, action) and made_for:
-        named = (
-            None  # "hammers a nail", "sweeps the floor": what is worked on; the tool is the one made for it
-        )
+    if named is not None and not made_for_action(named, action) and (made_for or _is_tool_action(action)):
+        # "hammers a nail into the plank", "sweeps the floor": what is worked on; the tool is the one made
+        # for the action (none in reach: nothing is taken, the plank is not swung as a hammer)
+        named = None
     if named is not None:
         # "drinks from her mug" with two mugs on the table: the one nearest the character
         alike = [o for o in scene.objects if o.category == named.category and grip(o) is not None]
@@ -231,6 +235,14 @@ def prop_grip(
     best = nearest(made_for)
     g = grip(best)
     return (best, *g) if g is not None else None
+
+
+def _is_tool_action(action: str) -> bool:
+    try:
+        clip = get_clip(action)
+    except KeyError:
+        return False
+    return clip.interaction is not None and clip.interaction.object == "tool"
 
 
 def made_for_action(placed: PlacedObject | None, action: str) -> bool:
@@ -351,6 +363,24 @@ def _short_of(pos: np.ndarray, other: np.ndarray, distance: float) -> np.ndarray
     if n <= distance:
         return pos.copy()
     return other - d / n * distance
+
+
+def _free_beside(scene: Scene, pos: np.ndarray, other: np.ndarray, distance: float) -> np.ndarray:
+    """A free spot ``distance`` metres from another character (furniture clear of a walking body), the one
+    nearest the straight approach from pos; the straight approach's end when none is free."""
+    from services.motion.routing import free_spot
+
+    straight = _short_of(pos, other, distance)
+    ring = [
+        other + distance * np.array([np.sin(a), np.cos(a)])
+        for a in np.linspace(0, 2 * np.pi, 24, endpoint=False)
+    ]
+    free = [
+        p
+        for p in [straight, *ring]
+        if np.allclose(free_spot(scene, (float(p[0]), float(p[1]))), p, atol=0.02)
+    ]
+    return min(free, key=lambda p: float(np.linalg.norm(p - straight))) if free else straight
 
 
 def _with_moods(segs: list[PlannedSegment], character: CharacterNode) -> list[PlannedSegment]:
@@ -550,6 +580,52 @@ def plan_actions(
         target = _set_down_point(scene, pos, None, prop_obj, hand)
         return bool(np.hypot(target[0] - pos[0], target[2] - pos[1]) <= PICK_REACH)
 
+    def take(prop_obj: PlacedObject, ai: int) -> bool:
+        """Walk up to a small object and take it with an arm's reach (standing); False when out of reach."""
+        reach = _grasp(prop_obj)
+        if reach is None or now_posture() != "stand":
+            return False
+        here = np.array([prop_obj.position[0], prop_obj.position[2]])
+        step_up_to(here, ai, prop_obj.id)
+        if np.linalg.norm(here - pos) > PICK_REACH:
+            return False
+        taker = GRASP_TABLE if reach[2][1] >= TABLE_GRASP_M else "pick_up"
+        if hand and hand["prop"] != prop_obj.id:
+            set_down(None, ai, GRASP_TABLE)
+        face = _yaw_to(pos, here, yaw)
+        if abs(np.arctan2(np.sin(face - yaw), np.cos(face - yaw))) > TURN_TOLERANCE:
+            walk_to(pos.copy(), 1.0, face, "turn", ai, prop_obj.id)
+        grasp = {"prop": prop_obj.id, "prop_joint": reach[0], "prop_grip": reach[1],
+                 "prop_yaw": float(prop_obj.yaw)}  # fmt: skip
+        add(kind="action", action=taker, targets=((reach[0], reach[2]),), target_id=prop_obj.id,
+            action_index=ai, prop_span="grasp", **grasp)  # fmt: skip
+        hand.update(grasp)
+        return True
+
+    def hand_over(gift: PlacedObject | None, person: str, ai: int, duration_s: float) -> bool:
+        """ "Gives the cup to Anna": take the cup (unless it is in the hand already), walk up to Anna, hold it
+        out to the point between the two (the reach releases it there, at HANDOVER_HEIGHT) and finish with
+        the presenting gesture. The receiver's hand meets it there (services.motion.handover)."""
+        if gift is None or (hand.get("prop") != gift.id and not take(gift, ai)):
+            return False  # "gives him a thumbs up": a gesture, nothing changes hands
+        if not hand or now_posture() != "stand":
+            return False
+        there = np.asarray(others[person], dtype=float)
+        goal = _free_beside(scene, pos, there, HANDOVER_DISTANCE)
+        face = _yaw_to(goal, there, yaw)
+        if np.linalg.norm(goal - pos) > 0.1:
+            walk_to(goal, 1.2, face, "walk", ai, person)
+        elif abs(np.arctan2(np.sin(face - yaw), np.cos(face - yaw))) > TURN_TOLERANCE:
+            walk_to(pos.copy(), 1.0, face, "turn", ai, person)
+        mid = (pos + there) / 2
+        point = (float(mid[0]), HANDOVER_HEIGHT, float(mid[1]))
+        add(kind="action", action=GRASP_TABLE, targets=((hand["prop_joint"], point),), target_id=person,
+            action_index=ai, **hand, prop_span="release")  # fmt: skip
+        hand.clear()
+        add(kind="action", action="present", duration_s=duration_s or HANDOVER_GESTURE_S, target_id=person,
+            action_index=ai)  # fmt: skip
+        return True
+
     node: ActionNode
     for ai, node in enumerate(character.actions):
         name = node.action
@@ -566,6 +642,14 @@ def plan_actions(
         sitting_by = ""  # "sits next to her": a seat near that character, not the floor beside her
         if person and clip.interaction is not None and clip.interaction.object in ("seat", "bed"):
             sitting_by, person = person, ""
+        if person and name == "present" and node.verb == HANDOVER_VERB:
+            gift = next(
+                (o for r in (node.target, node.instrument, node.destination) if r != person
+                 and (o := find_object(scene, r)) is not None),
+                None,
+            )  # fmt: skip
+            if hand_over(gift, person, ai, float(node.duration_s)):
+                continue
         if person:
             there = np.asarray(others[person], dtype=float)
             touching = clip.interaction is not None and clip.interaction.object == "person"

@@ -107,6 +107,27 @@ def _made_for(scene: Scene, action: str) -> bool:
     return False
 
 
+def made_for(scene: Scene, action: str) -> list[PlacedObject]:
+    """The small objects of the room a held action can use when its sentence names none ("drinks water":
+    the cups; "calls someone": the phones): a "pick_up" point and the action's own point."""
+    try:
+        clip = get_clip(action) if action else None
+    except KeyError:
+        return []
+    if clip is None or clip.interaction is None or clip.interaction.object not in HELD_KINDS:
+        return []
+    keys = {action, action.split("_")[0]}
+    out = []
+    for o in scene.objects:
+        try:
+            points = set(_catalog().asset_for(o).contact_points)
+        except Exception:  # noqa: BLE001 - unknown category
+            continue
+        if "pick_up" in points and keys & points:
+            out.append(o)
+    return out
+
+
 def prop_needs(graphs: Sequence[SentenceGraph], sentence_ids: Sequence[str], scene: Scene) -> list[Need]:
     """The objects action sentences use that the room lacks, in story order (one per id)."""
     out: list[Need] = []
@@ -333,4 +354,4 @@ def provide(
     return Scene(room=scene.room, objects=objects, seed=scene.seed), notes
 
 
-__all__ = ["DEFAULT_PROP", "Need", "place", "prop_needs", "provide"]
+__all__ = ["DEFAULT_PROP", "Need", "made_for", "place", "prop_needs", "provide"]
