@@ -256,7 +256,16 @@ def made_for_action(placed: PlacedObject | None, action: str) -> bool:
         names = set(asset_for(placed).contact_points)
     except Exception:  # noqa: BLE001 - unknown category or no catalog
         return False
-    return "pick_up" in names and bool({action, action.split("_")[0]} & names)
+    if not ("pick_up" in names and bool({action, action.split("_")[0]} & names)):
+        return False
+    if not _is_tool_action(action):
+        return True
+    try:  # a tool action's own point is also on what it works on (the plank's "hammer"): a tool is a tool
+        from wana.assets.vocabulary import hypernyms
+
+        return "tool" in hypernyms(placed.category)
+    except KeyError:
+        return True
 
 
 def _grasp(placed: PlacedObject) -> tuple[str, tuple[float, float, float], tuple[float, float, float]] | None:
