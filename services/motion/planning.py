@@ -773,12 +773,14 @@ def plan_actions(
         held: dict = {}
         kind = clip.interaction.object if clip.interaction else ""
         in_hand = next((o for o in scene.objects if hand and o.id == hand["prop"]), None)
+        # a screwdriver in the hand does not sweep the floor when a broom is there to take
+        any_made_for = kind in HELD_KINDS and any(made_for_action(o, name) for o in scene.objects)
         if (
             kind in HELD_KINDS
             and hand
             and (
-                obj is None
-                or obj.id == hand["prop"]
+                (obj is None and (made_for_action(in_hand, name) or not any_made_for))
+                or (obj is not None and obj.id == hand["prop"])
                 or (made_for_action(in_hand, name) and not made_for_action(obj, name))
             )
         ):

@@ -137,6 +137,14 @@ def prop_needs(graphs: Sequence[SentenceGraph], sentence_ids: Sequence[str], sce
     def present(ref: str) -> bool:
         return find_object(scene, ref) is not None or ref in wanted
 
+    def fits(ref: str, action: str, kind: str) -> bool:
+        """Whether a named object is the one the action uses ("with the hammer"), not what it works on
+        ("sweeps the floor", "hammers a nail": the broom, the hammer are still needed)."""
+        placed = find_object(scene, ref)
+        if placed is None:
+            return True  # to be added from the sentence's own object
+        return kind != "tool" or placed in made_for(scene, action)
+
     for g, sid in zip(graphs, sentence_ids, strict=True):
         if g.kind != "action":
             continue
@@ -158,7 +166,7 @@ def prop_needs(graphs: Sequence[SentenceGraph], sentence_ids: Sequence[str], sce
                     kind in HELD_KINDS
                     and default
                     and _known(default)
-                    and not any(present(r) for r in refs)
+                    and not any(present(r) and fits(r, a.action, kind) for r in refs)
                     and default not in wanted
                     and not _made_for(scene, a.action)
                 ):
