@@ -31,7 +31,10 @@ def _sit_then_drink() -> CharacterNode:
     )
 
 
-def test_a_seated_drinker_out_of_reach_gets_up_fetches_the_cup_and_sits_back_down():
+def test_a_seated_drinker_out_of_reach_gets_up_fetches_the_cup_and_sits_back_down(monkeypatch):
+    import services.motion.planning as planning
+
+    monkeypatch.setattr(planning, "FETCH_WHEN_SEATED", True)
     scene = Scene(room=ROOM, objects=[TABLE, CHAIR, FAR_CUP])
     plan = plan_actions(_sit_then_drink(), scene, (-1.5, 3.0, np.pi))
     drink = [s for s in plan.segments if s.action_index == 1]
