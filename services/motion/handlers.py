@@ -100,6 +100,7 @@ def handle_synthesize(req: SynthesizeRequest) -> SynthesizeReply:
 def handle_pair(req: PairRequest) -> PairReply:
     """Fit the cast's motions to each other: walkers give way, then paired actions touch (both bodies)."""
     from services.motion.giveway import give_way
+    from services.motion.handover import hand_over
     from services.motion.pairs import solve_pairs
 
     lengths = {int(m.root_position.shape[0]) for m in req.motions.values()}
@@ -111,6 +112,8 @@ def handle_pair(req: PairRequest) -> PairReply:
         motions, waits = give_way(motions)
         notes += waits
     motions, contacts, pair_notes = solve_pairs(motions, req.pairs)
+    motions, handed = hand_over(motions, req.pairs)  # "gives the cup to Anna": from hand to hand
+    pair_notes += handed
     return PairReply(
         header=reply_header(req), motions=motions, contacts=contacts, diagnostics=notes + pair_notes
     )

@@ -55,6 +55,10 @@ SPEEDS = {
 SEAT_BACK = 0.22  # metres the hips travel backwards while sitting down (sit clip)
 REACH = 0.42  # metres from the contact points to where the character stands
 PERSON_DISTANCE = 0.8  # metres between two characters after one walks up to the other
+HANDOVER_VERB = "give"  # ActionNode.verb the orchestrator keeps on an action that hands an object over
+HANDOVER_DISTANCE = 0.75  # metres between the two hips while one hands the other an object
+HANDOVER_HEIGHT = 1.0  # metres above the floor where the object passes from hand to hand
+HANDOVER_GESTURE_S = 1.2  # seconds of the presenting gesture after letting go
 CLOSE_DISTANCE = {"hug": 0.45, "shake_hands": 0.75, "high_five": 0.75}  # metres, per touching action
 SEATING = ("sit", "lie_down", "sleep")  # clips that leave the character on a seat or a bed
 TURN_TOLERANCE = 0.3  # radians off the wanted facing before the character turns in place
@@ -66,6 +70,11 @@ STAY_S = 1.0  # seconds a "sits" while seated or a "stands" while standing holds
 NEAR_NAMED = 1.6  # metres from a named non-seat ("sits at the desk") to the seat used with it
 NEAR_ANY = 4.0  # metres from the character to the seat a bare "sits down" uses
 TAKEN = 0.4  # metres from another character to a seat slot that counts as theirs
+# A seated character whose prop is out of reach gets up, fetches it and sits back down. Off for now: getting
+# up from a chair at a table and sitting back down brings the legs through the chair and the table (the
+# story checks' penetration, +6 sentences on the quick subset), which costs more than the prop in the hand.
+FETCH_WHEN_SEATED = False
+SEAT_FOUND = 0.6  # metres from a seated character's position to the seat slot it sits on
 SAME_SEAT = 0.35  # metres between the hips and a seat point for a character to count as sitting on it
 HELD_KINDS = ("handheld", "tool")  # interactions played with an object in the hand
 GRASP_TABLE = (
@@ -137,6 +146,14 @@ def seat_slots(placed: PlacedObject, kind: str) -> list[tuple[float, float, floa
     ]
 
 
+def seat_under(scene: Scene, pos: np.ndarray) -> tuple[PlacedObject, tuple[float, float, float]] | None:
+    """The seat a seated character sits on (the slot nearest its position, within SEAT_FOUND) and its hips
+    point, None when no seat is there (on the floor)."""
+    cands = [(o, p) for o in scene.objects for p in seat_slots(o, "seat")]
+    ok = [(o, p) for o, p in cands if np.hypot(p[0] - pos[0], p[2] - pos[1]) <= SEAT_FOUND]
+    return min(ok, key=lambda c: np.hypot(c[1][0] - pos[0], c[1][2] - pos[1]), default=None)
+
+
 def pick_seat(
     scene: Scene,
     kind: str,
@@ -202,24 +219,57 @@ def prop_grip(
                 return joint, (float(cp.position[0]), float(cp.position[1]), float(cp.position[2]))
         return None
 
+    def nearest(objs: list[PlacedObject]) -> PlacedObject:
+        return min(objs, key=lambda o: float(np.hypot(o.position[0] - pos[0], o.position[2] - pos[1])))
+
+    made_for = [o for o in scene.objects if made_for_action(o, action)]
+    if named is not None and not made_for_action(named, action) and (made_for or _is_tool_action(action)):
+        # "hammers a nail into the plank", "sweeps the floor": what is worked on; the tool is the one made
+        # for the action (none in reach: nothing is taken, the plank is not swung as a hammer)
+        named = None
     if named is not None:
+        # "drinks from her mug" with two mugs on the table: the one nearest the character
+        alike = [o for o in scene.objects if o.category == named.category and grip(o) is not None]
+        if "/" not in named.id and len(alike) > 1:
+            named = nearest(alike)
         g = grip(named)
         return (named, *g) if g is not None else None
-    made_for = []
-    for o in scene.objects:
-        try:
-            from wana.assets.catalog import asset_for
-
-            names = set(asset_for(o).contact_points)
-        except Exception:  # noqa: BLE001
-            continue
-        if "pick_up" in names and {action, action.split("_")[0]} & names:
-            made_for.append(o)
     if not made_for:
         return None
-    best = min(made_for, key=lambda o: float(np.hypot(o.position[0] - pos[0], o.position[2] - pos[1])))
+    best = nearest(made_for)
     g = grip(best)
     return (best, *g) if g is not None else None
+
+
+def _is_tool_action(action: str) -> bool:
+    try:
+        clip = get_clip(action)
+    except KeyError:
+        return False
+    return clip.interaction is not None and clip.interaction.object == "tool"
+
+
+def made_for_action(placed: PlacedObject | None, action: str) -> bool:
+    """Whether a small object is made for an action: the catalog lets a hand pick it up and names a contact
+    point for the action (a cup's "drink", a hammer's "hammer")."""
+    if placed is None:
+        return False
+    try:
+        from wana.assets.catalog import asset_for
+
+        names = set(asset_for(placed).contact_points)
+    except Exception:  # noqa: BLE001 - unknown category or no catalog
+        return False
+    if not ("pick_up" in names and bool({action, action.split("_")[0]} & names)):
+        return False
+    if not _is_tool_action(action):
+        return True
+    try:  # a tool action's own point is also on what it works on (the plank's "hammer"): a tool is a tool
+        from wana.assets.vocabulary import hypernyms
+
+        return "tool" in hypernyms(placed.category)
+    except KeyError:
+        return True
 
 
 def _grasp(placed: PlacedObject) -> tuple[str, tuple[float, float, float], tuple[float, float, float]] | None:
@@ -326,6 +376,24 @@ def _short_of(pos: np.ndarray, other: np.ndarray, distance: float) -> np.ndarray
     if n <= distance:
         return pos.copy()
     return other - d / n * distance
+
+
+def _free_beside(scene: Scene, pos: np.ndarray, other: np.ndarray, distance: float) -> np.ndarray:
+    """A free spot ``distance`` metres from another character (furniture clear of a walking body), the one
+    nearest the straight approach from pos; the straight approach's end when none is free."""
+    from services.motion.routing import free_spot
+
+    straight = _short_of(pos, other, distance)
+    ring = [
+        other + distance * np.array([np.sin(a), np.cos(a)])
+        for a in np.linspace(0, 2 * np.pi, 24, endpoint=False)
+    ]
+    free = [
+        p
+        for p in [straight, *ring]
+        if np.allclose(free_spot(scene, (float(p[0]), float(p[1]))), p, atol=0.02)
+    ]
+    return min(free, key=lambda p: float(np.linalg.norm(p - straight))) if free else straight
 
 
 def _with_moods(segs: list[PlannedSegment], character: CharacterNode) -> list[PlannedSegment]:
@@ -517,6 +585,60 @@ def plan_actions(
             target_id=(dest or prop_obj).id, action_index=ai, **hand, prop_span="release")  # fmt: skip
         hand.clear()
 
+    def set_down_in_reach() -> bool:
+        """Whether a seated character can set the held prop down without getting up (a table in front)."""
+        prop_obj = next((o for o in scene.objects if o.id == hand.get("prop")), None)
+        if prop_obj is None:
+            return False
+        target = _set_down_point(scene, pos, None, prop_obj, hand)
+        return bool(np.hypot(target[0] - pos[0], target[2] - pos[1]) <= PICK_REACH)
+
+    def take(prop_obj: PlacedObject, ai: int) -> bool:
+        """Walk up to a small object and take it with an arm's reach (standing); False when out of reach."""
+        reach = _grasp(prop_obj)
+        if reach is None or now_posture() != "stand":
+            return False
+        here = np.array([prop_obj.position[0], prop_obj.position[2]])
+        step_up_to(here, ai, prop_obj.id)
+        if np.linalg.norm(here - pos) > PICK_REACH:
+            return False
+        taker = GRASP_TABLE if reach[2][1] >= TABLE_GRASP_M else "pick_up"
+        if hand and hand["prop"] != prop_obj.id:
+            set_down(None, ai, GRASP_TABLE)
+        face = _yaw_to(pos, here, yaw)
+        if abs(np.arctan2(np.sin(face - yaw), np.cos(face - yaw))) > TURN_TOLERANCE:
+            walk_to(pos.copy(), 1.0, face, "turn", ai, prop_obj.id)
+        grasp = {"prop": prop_obj.id, "prop_joint": reach[0], "prop_grip": reach[1],
+                 "prop_yaw": float(prop_obj.yaw)}  # fmt: skip
+        add(kind="action", action=taker, targets=((reach[0], reach[2]),), target_id=prop_obj.id,
+            action_index=ai, prop_span="grasp", **grasp)  # fmt: skip
+        hand.update(grasp)
+        return True
+
+    def hand_over(gift: PlacedObject | None, person: str, ai: int, duration_s: float) -> bool:
+        """ "Gives the cup to Anna": take the cup (unless it is in the hand already), walk up to Anna, hold it
+        out to the point between the two (the reach releases it there, at HANDOVER_HEIGHT) and finish with
+        the presenting gesture. The receiver's hand meets it there (services.motion.handover)."""
+        if gift is None or (hand.get("prop") != gift.id and not take(gift, ai)):
+            return False  # "gives him a thumbs up": a gesture, nothing changes hands
+        if not hand or now_posture() != "stand":
+            return False
+        there = np.asarray(others[person], dtype=float)
+        goal = _free_beside(scene, pos, there, HANDOVER_DISTANCE)
+        face = _yaw_to(goal, there, yaw)
+        if np.linalg.norm(goal - pos) > 0.1:
+            walk_to(goal, 1.2, face, "walk", ai, person)
+        elif abs(np.arctan2(np.sin(face - yaw), np.cos(face - yaw))) > TURN_TOLERANCE:
+            walk_to(pos.copy(), 1.0, face, "turn", ai, person)
+        mid = (pos + there) / 2
+        point = (float(mid[0]), HANDOVER_HEIGHT, float(mid[1]))
+        add(kind="action", action=GRASP_TABLE, targets=((hand["prop_joint"], point),), target_id=person,
+            action_index=ai, **hand, prop_span="release")  # fmt: skip
+        hand.clear()
+        add(kind="action", action="present", duration_s=duration_s or HANDOVER_GESTURE_S, target_id=person,
+            action_index=ai)  # fmt: skip
+        return True
+
     node: ActionNode
     for ai, node in enumerate(character.actions):
         name = node.action
@@ -533,6 +655,14 @@ def plan_actions(
         sitting_by = ""  # "sits next to her": a seat near that character, not the floor beside her
         if person and clip.interaction is not None and clip.interaction.object in ("seat", "bed"):
             sitting_by, person = person, ""
+        if person and name == "present" and node.verb == HANDOVER_VERB:
+            gift = next(
+                (o for r in (node.target, node.instrument, node.destination) if r != person
+                 and (o := find_object(scene, r)) is not None),
+                None,
+            )  # fmt: skip
+            if hand_over(gift, person, ai, float(node.duration_s)):
+                continue
         if person:
             there = np.asarray(others[person], dtype=float)
             touching = clip.interaction is not None and clip.interaction.object == "person"
@@ -646,15 +776,32 @@ def plan_actions(
         targets: dict[str, tuple[float, float, float]] = {}
         held: dict = {}
         kind = clip.interaction.object if clip.interaction else ""
-        if kind in HELD_KINDS and hand and (obj is None or obj.id == hand["prop"]):
+        in_hand = next((o for o in scene.objects if hand and o.id == hand["prop"]), None)
+        # a screwdriver in the hand does not sweep the floor when a broom is there to take
+        any_made_for = kind in HELD_KINDS and any(made_for_action(o, name) for o in scene.objects)
+        if (
+            kind in HELD_KINDS
+            and hand
+            and (
+                (obj is None and (made_for_action(in_hand, name) or not any_made_for))
+                or (obj is not None and obj.id == hand["prop"])
+                or (made_for_action(in_hand, name) and not made_for_action(obj, name))
+            )
+        ):
             # Already in the hand (picked up before): the action plays with it, no new reach.
             obj = next((o for o in scene.objects if o.id == hand["prop"]), obj)
             add(kind="action", action=name, duration_s=float(node.duration_s), target_id=hand["prop"],
                 action_index=ai)  # fmt: skip
             continue
         grip = prop_grip(scene, name, obj, pos) if kind in HELD_KINDS else None
+        back_to = None  # seated with the prop out of reach: get up, fetch it, and sit back down
+        if FETCH_WHEN_SEATED and grip is not None and now_posture() == "sit":
+            far = np.hypot(grip[0].position[0] - pos[0], grip[0].position[2] - pos[1]) > PICK_REACH
+            back_to = seat_under(scene, pos) if far else None
+            if back_to is not None:
+                add(kind="action", action="stand", action_index=ai)
         taking = grip[0].id if grip is not None else obj.id if name == "pick_up" and obj is not None else ""
-        if hand and taking and taking != hand["prop"] and now_posture() == "stand":
+        if hand and taking and taking != hand["prop"] and (now_posture() == "stand" or set_down_in_reach()):
             set_down(None, ai, GRASP_TABLE)  # one hand, one prop: the one held goes down first
         if grip is not None:
             prop_obj, joint, local = grip
@@ -678,6 +825,16 @@ def plan_actions(
                     add(kind="action", action=taker, targets=((rj, rworld),), target_id=prop_obj.id,
                         action_index=ai, prop_span="grasp", **grasp)  # fmt: skip
                     hand.update(grasp)
+                    if back_to is not None:  # the prop in hand: back to the seat it was fetched from
+                        seat_obj, hips = back_to
+                        face = float(seat_obj.yaw)
+                        approach = (
+                            np.array([hips[0], hips[2]]) + np.array([np.sin(face), np.cos(face)]) * SEAT_BACK
+                        )
+                        walk_to(approach, 1.2, face, "walk", ai, seat_obj.id)
+                        pos, yaw = approach.copy(), face
+                        add(kind="action", action="sit", targets=(("Hips", hips),), target_id=seat_obj.id,
+                            action_index=ai)  # fmt: skip
                     add(kind="action", action=name, duration_s=float(node.duration_s),
                         target_id=prop_obj.id, action_index=ai)  # fmt: skip
                     continue

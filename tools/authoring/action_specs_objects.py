@@ -244,7 +244,9 @@ def specs() -> list[Spec]:
     )
     # --- drinking, eating, kitchen ----------------------------------------------------------------
     cup_low = _right((0.2, -0.9, 0.4), (-0.2, 0.2, 1.0))
-    cup_mouth = merge(_right((0.3, -0.5, 0.6), (-0.5, 0.85, 0.15), (0, 0, 20)), head(-15))
+    # The elbow comes up in front and the forearm folds back, so that the wrist (where the cup is held)
+    # ends 15 cm from the head's centre, at the lips; the sip holds for most of the window.
+    cup_mouth = merge(_right((-0.25, 0.05, 0.97), (-0.24, 0.49, -0.84), (0, 0, 20)), head(-15))
     add(
         Spec(
             "drink",
@@ -253,12 +255,12 @@ def specs() -> list[Spec]:
             seq(
                 (0.0, N, "linear"),
                 (0.5, cup_low, "in_out"),
-                (0.6, cup_mouth, "in_out"),
-                (1.0, cup_mouth, "linear"),
-                (0.6, cup_low, "in_out"),
-                (0.5, N, "in_out"),
+                (0.5, cup_mouth, "in_out"),
+                (1.4, cup_mouth, "linear"),
+                (0.5, cup_low, "in_out"),
+                (0.4, N, "in_out"),
             ),
-            interaction=I("handheld", ["RightHand"], (0.5, 2.7)),
+            interaction=I("handheld", ["RightHand"], (0.5, 2.9)),
         )
     )
     spoon_low = merge(_right((0.2, -0.9, 0.4), (-0.1, 0.0, 1.0)), head(20))

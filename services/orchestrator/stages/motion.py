@@ -20,7 +20,7 @@ import msgspec
 import numpy as np
 
 from proto.common import Span
-from proto.motion import SegmentEndState, SynthesizeReply, SynthesizeRequest
+from proto.motion import PairedAction, SegmentEndState, SynthesizeReply, SynthesizeRequest
 from proto.motion_data import Motion
 from proto.optimizer import Interaction, OptimiseReply, OptimiseRequest, OptimiseSettings
 from proto.scene import Scene
@@ -30,7 +30,7 @@ from services.orchestrator.backend import StageFailed
 from services.orchestrator.document import Sentence
 from services.orchestrator.slotting import Slotting
 from services.orchestrator.stages import StageContext, content_of
-from services.orchestrator.stages.props import provide
+from services.orchestrator.stages.props import made_for, provide
 from services.orchestrator.stages.scene import keep_relations
 from services.orchestrator.stages.seats import furnish
 from services.orchestrator.stages.social import fit_cast, frame_count, paired_actions
@@ -61,6 +61,9 @@ from wana.domain.actions import get_clip
 from wana.domain.idle import attention, enliven_motion
 from wana.domain.object_geometry import find_object
 from wana.domain.style import MANNER_MOOD, restyle_motion
+from wana.fidelity.handover import HANDOVER_VERBS
+
+HANDOVER_VERB = "give"  # the verb an action that hands an object over keeps for the motion service (planning)
 
 Characters = dict[str, tuple[CharacterNode, list[str]]]  # name -> (its actions in order, their sentence ids)
 Distances = dict[tuple[str, int], dict[str, float]]  # (name, k) -> {other: metres}
@@ -157,6 +160,7 @@ def segments(
     door: Doorway | None = None,
     hidden: set[str] | None = None,
     notes: list[tuple[str, str]] | None = None,
+    handovers: list[PairedAction] | None = None,
 ) -> dict[str, list[Motion]]:
     """Every character's motion, one query node `<kind>:<name>:<k>` per action, in document order.
 
@@ -168,6 +172,7 @@ def segments(
     ``hidden``: the characters waiting outside ``door`` (services/orchestrator/staging.py): their next action
     comes in through it, and an exit walks out through it.
     ``notes`` collects (sentence id, what the motion service said) ("no free seat ...: Zoe stands instead").
+    ``handovers`` collects the actions that hand an object to another character (their next actions hold it).
     """
     states = {name: SegmentEndState(x=st[0], z=st[1], yaw=st[2]) for name, st in starts.items()}
     outside = set(hidden or ())
@@ -195,7 +200,7 @@ def segments(
             else:
                 outside.discard(name)
         single = CharacterNode(name=name, actions=asked)
-        view = _with_held(scene, scene_view(scene, action), state.holding)
+        view = _with_props(scene, _with_held(scene, scene_view(scene, action), state.holding), action)
         in_other_hands = {st.holding for other, st in states.items() if other != name and st.holding}
         if in_other_hands:  # one prop, one hand: what another character holds is not there to take
             view = msgspec.structs.replace(
@@ -233,6 +238,13 @@ def segments(
             # (unknown actions the parse already reported)
             notes.extend((sids[k], d) for d in reply.diagnostics if not d.startswith("unknown action"))
         states[name] = reply.end_states[-1] if reply.end_states else state
+        to = recipient(action, name, states)
+        if to and states[name].holding == "" and reply.motion.props:
+            # "gives the cup to Anna": let go of here, in Anna's hand from now on (services.motion.handover)
+            given = reply.motion.props[-1].object_id
+            states[to] = msgspec.structs.replace(states[to], holding=given)
+            if handovers is not None:
+                handovers.append(PairedAction(actor=name, action_index=k, action="present", partner=to))
     for name, (node, _) in characters.items():
         if not node.actions and upto is None:
             view = scene_view(scene, None)
@@ -255,6 +267,53 @@ def _with_held(scene: Scene, view: Scene, holding: str) -> Scene:
     return msgspec.structs.replace(view, objects=[*view.objects, *held]) if held else view
 
 
+def _taken_after(
+    beats: Sequence[Beat], handovers: Sequence[PairedAction]
+) -> dict[tuple[str, int], tuple[tuple[str, int], float]]:
+    """(receiver, k) -> ((giver, j), 0): the receiver's next action after a hand-over starts once it is done
+    ("Anna drinks the tea" with the cup John gave her), as timeline responses."""
+    out = {}
+    keys = [(b.character, b.k) for b in beats]
+    for pair in handovers:
+        given = (pair.actor, pair.action_index)
+        if given not in keys:
+            continue
+        later = keys[keys.index(given) + 1 :]
+        nxt = next((key for key in later if key[0] == pair.partner), None)
+        if nxt is not None:
+            out[nxt] = (given, 0.0)
+    return out
+
+
+def hands_over(action: ActionNode) -> bool:
+    """Whether an action hands an object to someone ("gives the cup to Anna", "hands him the book")."""
+    verb = action.verb.lower()
+    return action.action == "present" and any(verb == v or verb.startswith(v + " ") for v in HANDOVER_VERBS)
+
+
+def recipient(action: ActionNode, name: str, states: dict[str, SegmentEndState]) -> str:
+    """The character a hand-over action gives to ("" for any other action)."""
+    if not (action.verb == HANDOVER_VERB or hands_over(action)):
+        return ""
+    return next((r for r in (action.target, action.destination) if r in states and r != name), "")
+
+
+def _with_props(scene: Scene, view: Scene, action: ActionNode) -> Scene:
+    """The view with the props a held action can use when it names none that is in the view ("drinks
+    water": the cups on the table, with what they rest on), so that it walks up to one and takes it."""
+    tools = made_for(scene, action.action)
+    if not tools or any(o.id in {t.id for t in tools} for o in view.objects):
+        return view
+    by_id = {o.id: o for o in scene.objects}
+    wanted = {o.id for o in view.objects}
+    for t in tools:
+        ref = t.id
+        while ref and ref in by_id and ref not in wanted:
+            wanted.add(ref)
+            ref = by_id[ref].support
+    return msgspec.structs.replace(view, objects=[o for o in scene.objects if o.id in wanted])
+
+
 def _staged(
     scene: Scene,
     door: Doorway | None,
@@ -272,7 +331,7 @@ def _staged(
     who is off stage now).
     """
     waiting = name in hidden
-    plain = msgspec.structs.replace(action, verb="")
+    plain = msgspec.structs.replace(action, verb=HANDOVER_VERB if hands_over(action) else "")
     if door is None:
         return [plain], []
     here = (state.x, state.z)
@@ -363,6 +422,7 @@ def animate(
     out.scene = scene
     tick("motion", done, total)
     notes: list[tuple[str, str]] = []
+    handovers: list[PairedAction] = []
     pieces = segments(
         ctx,
         "segment",
@@ -374,6 +434,7 @@ def animate(
         door=door,
         hidden=hidden,
         notes=notes,
+        handovers=handovers,
     )
     spans = {s.id: Span(s.start, s.end) for s in sentences}
     for sid, why in dict.fromkeys(notes):
@@ -395,6 +456,7 @@ def animate(
         for r in (plan.responses if plan is not None else [])
         if r.response_index >= 0
     }
+    responses.update(_taken_after(beats, handovers))
     start_frames = schedule(beats, waits, [s.id for s in sentences], responses)
     length = max([start_frames[(b.character, b.k)] + b.frames for b in beats] or [1])
     for name, (node, _) in characters.items():
@@ -406,7 +468,9 @@ def animate(
         if door is not None and not on.all():
             motion = _wait_outside(motion, on, door.outside(waiting_place[name]))
         out.motions[name] = motion
-    fitted = fit_cast(ctx, out.motions, paired_actions(characters, plan))  # give way, touch on both bodies
+    fitted = fit_cast(
+        ctx, out.motions, [*paired_actions(characters, plan), *handovers]
+    )  # give way, touch on both bodies
     if fitted is not None:
         out.motions = dict(fitted.motions)
     out.motions = set_down_props(out.scene, out.motions, length)

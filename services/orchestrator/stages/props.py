@@ -107,6 +107,27 @@ def _made_for(scene: Scene, action: str) -> bool:
     return False
 
 
+def made_for(scene: Scene, action: str) -> list[PlacedObject]:
+    """The small objects of the room a held action can use when its sentence names none ("drinks water":
+    the cups; "calls someone": the phones): a "pick_up" point and the action's own point."""
+    try:
+        clip = get_clip(action) if action else None
+    except KeyError:
+        return []
+    if clip is None or clip.interaction is None or clip.interaction.object not in HELD_KINDS:
+        return []
+    keys = {action, action.split("_")[0]}
+    out = []
+    for o in scene.objects:
+        try:
+            points = set(_catalog().asset_for(o).contact_points)
+        except Exception:  # noqa: BLE001 - unknown category
+            continue
+        if "pick_up" in points and keys & points:
+            out.append(o)
+    return out
+
+
 def prop_needs(graphs: Sequence[SentenceGraph], sentence_ids: Sequence[str], scene: Scene) -> list[Need]:
     """The objects action sentences use that the room lacks, in story order (one per id)."""
     out: list[Need] = []
@@ -115,6 +136,14 @@ def prop_needs(graphs: Sequence[SentenceGraph], sentence_ids: Sequence[str], sce
 
     def present(ref: str) -> bool:
         return find_object(scene, ref) is not None or ref in wanted
+
+    def fits(ref: str, action: str, kind: str) -> bool:
+        """Whether a named object is the one the action uses ("with the hammer"), not what it works on
+        ("sweeps the floor", "hammers a nail": the broom, the hammer are still needed)."""
+        placed = find_object(scene, ref)
+        if placed is None:
+            return True  # to be added from the sentence's own object
+        return kind != "tool" or placed in made_for(scene, action)
 
     for g, sid in zip(graphs, sentence_ids, strict=True):
         if g.kind != "action":
@@ -137,7 +166,7 @@ def prop_needs(graphs: Sequence[SentenceGraph], sentence_ids: Sequence[str], sce
                     kind in HELD_KINDS
                     and default
                     and _known(default)
-                    and not any(present(r) for r in refs)
+                    and not any(present(r) and fits(r, a.action, kind) for r in refs)
                     and default not in wanted
                     and not _made_for(scene, a.action)
                 ):
@@ -333,4 +362,4 @@ def provide(
     return Scene(room=scene.room, objects=objects, seed=scene.seed), notes
 
 
-__all__ = ["DEFAULT_PROP", "Need", "place", "prop_needs", "provide"]
+__all__ = ["DEFAULT_PROP", "Need", "made_for", "place", "prop_needs", "provide"]

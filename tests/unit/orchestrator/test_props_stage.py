@@ -14,7 +14,7 @@ from proto.ssg import ActionNode, CharacterNode, ObjectNode, SentenceGraph
 from services.orchestrator.backend import InProcessBackend
 from services.orchestrator.document import Sentence
 from services.orchestrator.session import Orchestrator
-from services.orchestrator.stages.props import prop_needs, provide
+from services.orchestrator.stages.props import made_for, prop_needs, provide
 from wana.arrays import from_wire
 from wana.assets.catalog import world_bounds, world_support_surfaces
 
@@ -106,3 +106,14 @@ def test_coffee_named_only_in_an_action_is_a_cup_on_the_table_held_from_the_gras
     first = int(np.argmax(held))
     wave = next(s for s in motion.segments if s.action == "wave")
     assert 0 < first and held[first:].all() and wave.end_frame <= frames  # in the hand through the wave
+
+
+def test_sweeping_a_floor_object_still_gets_a_broom_and_drinking_sees_the_cups():
+    rug = PlacedObject(id="rug", category="rug", position=(0.0, 0.0, 0.0), yaw=0.0)
+    graphs = [_graph("s1", "Tom", ActionNode(verb="sweep", action="sweep", target="rug"),
+                     objects=(ObjectNode(id="rug", category="rug", word="rug"),))]  # fmt: skip
+    needs = prop_needs(graphs, ["s1"], Scene(room=ROOM, objects=[TABLE, rug]))
+    assert [n.node.category for n in needs] == ["broom"]  # the rug is what is swept, not the tool
+    cup = PlacedObject(id="cup", category="cup", position=(1.5, 0.76, -1.0), yaw=0.0, support="table")
+    assert [o.id for o in made_for(Scene(room=ROOM, objects=[TABLE, cup, rug]), "drink")] == ["cup"]
+    assert made_for(Scene(room=ROOM, objects=[TABLE, cup]), "sit") == []

@@ -106,6 +106,7 @@ def weights(b: Builder, p: Params, kind: str = "dumbbell") -> None:
             b.cyl((x - 0.015, r, 0), r * (1 - 0.12 * i), 0.03, p.body, axis="x", sections=16)
     if kind == "dumbbell":
         b.contact("lift", "RightHand", (0.0, r, 0.0))
+        b.contact("pick_up", "RightHand", (0.0, r, 0.0))  # taken by the bar before it is lifted
     else:
         b.two_hands("lift", r, 0.0, 0.6, finger=False)
 

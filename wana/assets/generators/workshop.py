@@ -49,6 +49,7 @@ def hand_tool(b: Builder, p: Params, kind: str = "hammer") -> None:
         grip = (0.0, h * 0.7, 0.0)
         act = "sweep"
         b.contact(act, "RightHand", grip, {"LeftHand": (0.0, h * 0.45, 0.0)})
+        b.contact("pick_up", "RightHand", grip)  # taken by the handle before it sweeps
         return
     else:  # vise
         b.box((-w / 2, 0, -d / 2), (w / 2, h * 0.3, d / 2), p.body)
