@@ -14,6 +14,7 @@ import { directorCamera } from "./directorcam.js";
 import { fillExamples, renderHelp } from "./help.js";
 import { VOCABULARY } from "./vocabulary.js";
 import { LiveDocument } from "./connection.js";
+import { DiagnosticsMerge } from "./diagmerge.js";
 import { Holdings } from "./holdings.js";
 import { TextPane } from "./textpane.js";
 import { Timeline } from "./timeline.js";
@@ -28,6 +29,7 @@ const state = {
   version: null, // version of the last animation shown
   animation: null,
   diagnostics: null,
+  diagMerge: null,
   progress: null,
   messages: 0,
   lastInput: -Infinity, // when the writer last typed in the text (performance.now())
@@ -162,10 +164,12 @@ function onMessage(msg) {
       state.progress = msg;
       showProgress(msg);
       break;
-    case "diagnostics":
-      state.diagnostics = msg;
-      pane.setDiagnostics(msg, state.live.version === msg.version ? state.live.confirmed : null);
+    case "diagnostics": {
+      const merged = state.diagMerge.apply(msg); // a delta: only the sentences whose diagnostics changed
+      state.diagnostics = merged;
+      pane.setDiagnostics(merged, state.live.version === merged.version ? state.live.confirmed : null);
       break;
+    }
     case "animation":
       showAnimation(msg);
       break;
@@ -182,6 +186,7 @@ async function open(docId) {
   state.docId = docId;
   state.version = null;
   state.holdings = new Holdings();
+  state.diagMerge = new DiagnosticsMerge();
   state.animation = null;
   state.pendingAnimation = null;
   state.directorCam = null;
