@@ -30,6 +30,7 @@ const state = {
   animation: null,
   diagnostics: null,
   diagMerge: null,
+  tracksSentences: null, // the sentences (id:start:end) the timeline's clips were labelled with
   progress: null,
   messages: 0,
   lastInput: -Infinity, // when the writer last typed in the text (performance.now())
@@ -139,6 +140,9 @@ function showWhenQuiet() {
   viewer.invalidate();
   timeline.setLength(msg.frames, msg.fps);
   tracks.render(msg, sentenceText);
+  state.tracksSentences = state.diagnostics?.version === msg.version
+    ? state.diagnostics.sentences.map((x) => `${x.id}:${x.start}:${x.end}`).join(",")
+    : null;
   updateExports();
   $("progress-bar").style.width = "0";
   $("progress-text").textContent = msg.characters.length || msg.objects.length
@@ -168,6 +172,12 @@ function onMessage(msg) {
       const merged = state.diagMerge.apply(msg); // a delta: only the sentences whose diagnostics changed
       state.diagnostics = merged;
       pane.setDiagnostics(merged, state.live.version === merged.version ? state.live.confirmed : null);
+      // the animation comes before its diagnostics: its clips get their sentences' text when they arrive
+      const key = merged.sentences.map((x) => `${x.id}:${x.start}:${x.end}`).join(",");
+      if (state.animation && key !== state.tracksSentences) {
+        state.tracksSentences = key;
+        tracks.render(state.animation, sentenceText);
+      }
       break;
     }
     case "animation":
