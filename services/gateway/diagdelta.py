@@ -23,9 +23,7 @@ _SEQ = itertools.count(1)
 
 def _relative(entry: dict[str, Any], origin: int) -> tuple[Any, ...]:
     """What makes two diagnostics of a sentence equal wherever the sentence is in the text."""
-    return tuple(
-        (k, entry[k] - origin if k in ("start", "end") else entry[k]) for k in sorted(entry)
-    )
+    return tuple((k, entry[k] - origin if k in ("start", "end") else entry[k]) for k in sorted(entry))
 
 
 @dataclass(frozen=True)
@@ -55,7 +53,10 @@ class DiagnosticsState:
         return out
 
     def carried_into(
-        self, version: int, sentences: list[dict[str, Any]], unavailable: dict[str, str],
+        self,
+        version: int,
+        sentences: list[dict[str, Any]],
+        unavailable: dict[str, str],
         entries: dict[str, list[dict[str, Any]]],
     ) -> DiagnosticsState:
         """A new version's pipeline diagnostics, with this state's verdicts (and their W401 warnings)

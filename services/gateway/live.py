@@ -325,9 +325,7 @@ class DocumentChannel:
             if self._judging is asyncio.current_task():
                 self._judging = None
 
-    def _compute(
-        self, loop: asyncio.AbstractEventLoop
-    ) -> tuple[PipelineResult, Document, EncodedAnimation]:
+    def _compute(self, loop: asyncio.AbstractEventLoop) -> tuple[PipelineResult, Document, EncodedAnimation]:
         """Runs in the compute pool: bring the session up to date and build (and encode) the animation."""
         version = self.version
         self._progress_sent.clear()
