@@ -20,8 +20,11 @@ Writes {"action_edit_p50_ms", "scene_edit_p50_ms", "full_ms", "ratio"} (stable k
 "gateway_share_p50_ms" (latency not spent in Session.compute), "animation_message_kib_p50" and
 "unchanged_character_share" (characters the gateway sent as `unchanged` stubs), "late_action_edit_p50_ms"
 and "late_action_animation_kib_p50", and "bytes_per_action_edit_p50": every byte the WebSocket received from
-sending a one-word action edit to its animation, in a 3-character document (issue 20: <= 50 kB); p95 is
-in the table. Animation messages are read as binary frames, as the editor reads them.
+sending a one-word action edit to its story verdicts (the animation, then the diagnostics deltas), in a
+3-character document (issue 20: <= 50 kB); p95 is in the table. Animation messages are read as binary
+frames, as the editor reads them. The verdicts follow the animation off the hot path:
+"verdicts_after_animation_p50_ms" is how long after it they arrive, "diagnostics_bytes_per_edit_p50" their
+bytes; each edit waits for them before the next is sent.
 """
 
 from __future__ import annotations
@@ -112,7 +115,10 @@ class LiveClient:
         self.overheads: list[float] = []  # ms of each edit's latency not spent in Session.compute
         self.animation_kb: list[float] = []  # size of each edit's animation message
         self.unchanged: list[int] = []  # characters each edit's animation message sent as `unchanged`
+        self.verdicts_ms: list[float] = []  # ms from each edit's animation to its story verdicts
+        self.diagnostics_bytes: list[int] = []  # bytes of each edit's diagnostics deltas
         self.last_size = 0  # characters of the last message received
+        self._diag_bytes = 0
         self._stack = contextlib.ExitStack()
         self.ws = self._stack.enter_context(
             connect(f"{ws_base}/api/documents/{doc_id}/live?wire=binary", max_size=None)
@@ -127,6 +133,8 @@ class LiveClient:
             raw = self.ws.recv(timeout=max(deadline - time.monotonic(), 0.01))
             msg = self._read_frame(raw) if isinstance(raw, bytes) else json.loads(raw)
             self.last_size = len(raw)
+            if isinstance(raw, str) and msg["type"] == "diagnostics":
+                self._diag_bytes += len(raw.encode("utf-8"))
             self.received_bytes += len(raw if isinstance(raw, bytes) else raw.encode("utf-8"))
             if msg["type"] == "error":
                 raise RuntimeError(f"gateway error {msg['code']}: {msg['message']}")
@@ -172,8 +180,19 @@ class LiveClient:
             lambda m: m["type"] == "animation" and m["version"] == ack["version"]
         )
         elapsed = (time.perf_counter() - t0) * 1000.0
-        self.overheads.append(elapsed - float(self.last_animation["stats"]["compute_ms"]))
         self.animation_kb.append(self.last_size / 1024.0)
+        # the story verdicts follow the animation as their own diagnostics delta: wait for them, so the
+        # next edit does not share the CPU with them (and their bytes count for this edit)
+        self.until(
+            lambda m: (
+                m["type"] == "diagnostics" and m["version"] == ack["version"] and not m["verdicts_pending"]
+            ),
+            timeout=120.0,
+        )
+        self.verdicts_ms.append((time.perf_counter() - t0) * 1000.0 - elapsed)
+        self.diagnostics_bytes.append(self._diag_bytes)
+        self._diag_bytes = 0
+        self.overheads.append(elapsed - float(self.last_animation["stats"]["compute_ms"]))
         self.unchanged.append(sum(1 for c in self.last_animation["characters"] if c.get("unchanged")))
         self.text = self.text[:start] + text + self.text[end:]
         self.version = ack["version"]
@@ -284,6 +303,8 @@ def run(reps: int, backend: str, progress: bool, budget_s: float | None = None) 
         "objects": len(anim["objects"]),
         "frames": anim["frames"],
         "edit_bytes": np.asarray(edit_bytes),
+        "verdicts_ms": np.asarray(client.verdicts_ms),
+        "diagnostics_bytes": np.asarray(client.diagnostics_bytes),
     }
 
 
@@ -334,6 +355,10 @@ def main(argv: list[str] | None = None) -> int:
         print(f"{'gateway share (not compute)':<28}{o50:>10.1f}{o95:>10.1f}{'':>14}")
         k50, k95 = np.percentile(r["animation_kb"], [50, 95])
         print(f"{'animation message (KiB)':<28}{k50:>10.1f}{k95:>10.1f}{'':>14}")
+        v50, v95 = np.percentile(r["verdicts_ms"], [50, 95])
+        print(f"{'animation -> verdicts':<28}{v50:>10.1f}{v95:>10.1f}{'':>14}")
+        d50 = float(np.percentile(r["diagnostics_bytes"], 50))
+        print(f"diagnostics deltas per edit: p50 {d50 / 1000:.1f} kB")
         print(
             f"characters sent as unchanged: {int(r['unchanged'].sum())} of "
             f"{len(r['unchanged']) * r['characters']} over {len(r['unchanged'])} action and scene edits "
@@ -361,6 +386,8 @@ def main(argv: list[str] | None = None) -> int:
         if len(r["overhead"]):  # added keys (the four above are stable)
             out["gateway_share_p50_ms"] = round(float(np.percentile(r["overhead"], 50)), 3)
             out["animation_message_kib_p50"] = round(float(np.percentile(r["animation_kb"], 50)), 1)
+            out["verdicts_after_animation_p50_ms"] = round(float(np.percentile(r["verdicts_ms"], 50)), 3)
+            out["diagnostics_bytes_per_edit_p50"] = int(np.percentile(r["diagnostics_bytes"], 50))
             out["unchanged_character_share"] = round(
                 float(r["unchanged"].sum()) / max(len(r["unchanged"]) * r["characters"], 1), 3
             )

@@ -14,6 +14,7 @@ import { directorCamera } from "./directorcam.js";
 import { fillExamples, renderHelp } from "./help.js";
 import { VOCABULARY } from "./vocabulary.js";
 import { LiveDocument } from "./connection.js";
+import { DiagnosticsMerge } from "./diagmerge.js";
 import { Holdings } from "./holdings.js";
 import { TextPane } from "./textpane.js";
 import { Timeline } from "./timeline.js";
@@ -28,6 +29,8 @@ const state = {
   version: null, // version of the last animation shown
   animation: null,
   diagnostics: null,
+  diagMerge: null,
+  tracksSentences: null, // the sentences (id:start:end) the timeline's clips were labelled with
   progress: null,
   messages: 0,
   lastInput: -Infinity, // when the writer last typed in the text (performance.now())
@@ -137,6 +140,9 @@ function showWhenQuiet() {
   viewer.invalidate();
   timeline.setLength(msg.frames, msg.fps);
   tracks.render(msg, sentenceText);
+  state.tracksSentences = state.diagnostics?.version === msg.version
+    ? state.diagnostics.sentences.map((x) => `${x.id}:${x.start}:${x.end}`).join(",")
+    : null;
   updateExports();
   $("progress-bar").style.width = "0";
   $("progress-text").textContent = msg.characters.length || msg.objects.length
@@ -162,10 +168,18 @@ function onMessage(msg) {
       state.progress = msg;
       showProgress(msg);
       break;
-    case "diagnostics":
-      state.diagnostics = msg;
-      pane.setDiagnostics(msg, state.live.version === msg.version ? state.live.confirmed : null);
+    case "diagnostics": {
+      const merged = state.diagMerge.apply(msg); // a delta: only the sentences whose diagnostics changed
+      state.diagnostics = merged;
+      pane.setDiagnostics(merged, state.live.version === merged.version ? state.live.confirmed : null);
+      // the animation comes before its diagnostics: its clips get their sentences' text when they arrive
+      const key = merged.sentences.map((x) => `${x.id}:${x.start}:${x.end}`).join(",");
+      if (state.animation && key !== state.tracksSentences) {
+        state.tracksSentences = key;
+        tracks.render(state.animation, sentenceText);
+      }
       break;
+    }
     case "animation":
       showAnimation(msg);
       break;
@@ -182,6 +196,7 @@ async function open(docId) {
   state.docId = docId;
   state.version = null;
   state.holdings = new Holdings();
+  state.diagMerge = new DiagnosticsMerge();
   state.animation = null;
   state.pendingAnimation = null;
   state.directorCam = null;

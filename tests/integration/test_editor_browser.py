@@ -70,7 +70,8 @@ def wait_synced(page: Any, timeout_ms: int = 120_000) -> dict[str, Any]:
     page.wait_for_function(
         """() => { const s = window.wana && window.wana.state; return s && s.live && s.live.ready && !s.live.inFlight
             && s.live.confirmed === wana.pane.getText() && !wana.state.live.unconfirmed().length && s.animation
-            && s.animation.version === s.live.version; }""",
+            && s.animation.version === s.live.version && s.diagnostics
+            && s.diagnostics.version === s.animation.version; }""",
         timeout=timeout_ms,
     )
     return page.evaluate(
