@@ -43,6 +43,7 @@ from services.orchestrator.staging import (
     presence,
     route,
     spot_near,
+    with_door,
 )
 from services.orchestrator.timeline import Beat, assemble, schedule
 from services.orchestrator.views import (
@@ -84,6 +85,7 @@ def synthesise(
     seats: dict[int, str] | None = None,
     spots: dict[int, tuple[float, float]] | None = None,
     occupied: list[tuple[float, float]] | None = None,
+    bodies: list[tuple[float, float]] | None = None,
 ) -> SynthesizeReply:
     request = SynthesizeRequest(
         header=ctx.header(),
@@ -97,6 +99,7 @@ def synthesise(
         seats=seats or {},
         spots=spots or {},
         occupied=occupied or [],
+        bodies=bodies or [],
     )
     return content_of(ctx.backend.call(request))
 
@@ -114,6 +117,26 @@ def seated_others(
         return []
     return sorted(
         (round(st.x, 3), round(st.z, 3)) for c, st in states.items() if c != name and st.posture != "stand"
+    )
+
+
+def standing_others(
+    action: ActionNode, name: str, states: dict[str, SegmentEndState], hidden: set[str]
+) -> list[tuple[float, float]]:
+    """Where the other characters on stage stand when an action that may walk starts (its route goes round
+    them, services/motion/routing.py); [] for an action that stays put, so its recompute does not depend on
+    them."""
+    try:
+        clip = get_clip(action.action) if action.action else None
+    except KeyError:
+        clip = None
+    walks = clip is not None and "locomotion" in clip.tags
+    if not (walks or action.target or action.destination or action.instrument):
+        return []
+    return sorted(
+        (round(st.x, 3), round(st.z, 3))
+        for c, st in states.items()
+        if c != name and c not in hidden and st.posture == "stand"
     )
 
 
@@ -169,14 +192,21 @@ def segments(
     ]
     for name, k in order:
         slotting.expect(name, characters[name][0].actions[k])
-    for name, k in order:
+    for i, (name, k) in enumerate(order):
         if upto is not None and k > upto.get(name, -1):
             continue
         node, sids = characters[name]
         action = node.actions[k]
         state = states[name]
         asked, routes = _staged(scene, door, name, action, state, states, outside)
-        claim = slotting.claim(name, asked[-1])
+        company = [
+            (states[o].x, states[o].z)
+            for o, j in order[i + 1 :]
+            if o != name
+            and characters[o][1][j] == sids[k]
+            and _same_goal(characters[o][0].actions[j], action)
+        ]
+        claim = slotting.claim(name, asked[-1], (state.x, state.z), company)
         asked[-1] = claim.action
         at = len(asked) - 1
         seats = {at: claim.seat} if claim.seat else {}
@@ -196,6 +226,7 @@ def segments(
         near_them = others(action, name, states, object_ids)
         near = {o: d for o, d in (distances or {}).get((name, k), {}).items() if o in near_them}
         seated = seated_others(action, name, states)
+        standing = standing_others(action, name, states, outside) if not routes else []
 
         def run(
             single: CharacterNode = single,
@@ -207,15 +238,20 @@ def segments(
             seats: dict[int, str] = seats,
             spots: dict[int, tuple[float, float]] = spots,
             seated: list[tuple[float, float]] = seated,
+            standing: list[tuple[float, float]] = standing,
         ) -> SynthesizeReply:
             start = (state.x, state.z, state.yaw)
-            return synthesise(ctx, single, view, state, start, near_them, near, routes, seats, spots, seated)
+            return synthesise(
+                ctx, single, view, state, start, near_them, near, routes, seats, spots, seated, standing
+            )
 
         inputs = [single, view, state, near_them, near] if near else [single, view, state, near_them]
         if routes or seats or spots:
             inputs.append([routes, sorted(seats.items()), sorted(spots.items())])
         if seated:  # only a seat-taking action depends on where the others sit
             inputs.append(seated)
+        if standing:  # only an action that may walk goes round the others standing
+            inputs.append(["standing", standing])
         reply = ctx.engine.query(f"{kind}:{name}:{k}", inputs, run)
         placed = [
             msgspec.structs.replace(seg, action_index=k, sentence_id=sids[k]) for seg in reply.motion.segments
@@ -237,6 +273,12 @@ def segments(
 
             pieces[name] = [ctx.engine.query(f"{kind}:{name}:idle", [name, view, st], idle).motion]
     return pieces
+
+
+def _same_goal(a: ActionNode, b: ActionNode) -> bool:
+    """Two actions of one sentence that go to the same object ("They sit at the table")."""
+    goal_a = a.destination or a.target or a.instrument
+    return bool(goal_a) and a.action == b.action and goal_a == (b.destination or b.target or b.instrument)
 
 
 def _with_held(scene: Scene, view: Scene, holding: str) -> Scene:
@@ -280,7 +322,7 @@ def _staged(
     if towards is not None and not is_entrance(action):
         goal = spot_near(scene, (towards.x, towards.z), taken)
     else:
-        goal = spot_near(scene, door.inside(1.6), taken, radii=(0.0, 0.6, 1.0, 1.5))
+        goal = spot_near(scene, door.way_in(here), taken, radii=(0.0, 0.6, 1.0, 1.5))
     way_in = [route(scene, here, (goal[0], goal[1]), taken)]
     if is_entrance(action):
         return [walk], way_in
@@ -300,6 +342,7 @@ def animate(
     characters = characters_of(graphs, [s.id for s in sentences])
     scene, provided = provide(scene, graphs, sentences, ctx.seed)  # props named only in action sentences
     scene, added = furnish(ctx, scene, graphs, sentences)  # a chair where a sit has no free seat
+    scene = with_door(scene)  # furnishing composes the room again, without the door the scene stage added
     added = [*provided, *added]
     door = doorway(scene)
     wait_ids = {sid for sid, c in commands if c.kind == "wait"}
