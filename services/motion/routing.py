@@ -225,6 +225,48 @@ def free_spot(
     return float(spot[0]), float(spot[1])
 
 
+SQUEEZE_M = 0.15  # metres: the clearance of a body turned sideways through a narrow way
+LAST_STEP_M = 1.2  # metres: the longest last step from the nearest reachable point into an enclosed goal
+
+
+def _reachable_near(
+    scene: Scene,
+    start_xz: tuple[float, float],
+    goal_xz: tuple[float, float],
+    ignore: frozenset[str],
+    bodies: Sequence[tuple[float, float]],
+) -> np.ndarray | None:
+    """A route to the reachable free cell nearest an enclosed goal (a chair pushed in between a table and the
+    fridge), then the last step in; None when that point is farther than LAST_STEP_M from the goal.
+
+    Better than the straight line from the start, which crosses the room through furniture and people.
+    """
+    from scipy import ndimage
+
+    grid = with_bodies(scene_grid(scene, ignore), bodies)
+    start = np.asarray(start_xz, dtype=np.float64)
+    goal = np.asarray(goal_xz, dtype=np.float64)
+    if not (np.isfinite(start).all() and np.isfinite(goal).all()) or grid.blocked.all():
+        return None
+    labels, _ = ndimage.label(~grid.blocked)
+    free = ~grid.blocked
+    rc = grid.to_cell(start)
+    if not free[rc[0], rc[1]]:
+        cells = np.argwhere(free)
+        rc = cells[int(np.argmin(np.linalg.norm(grid.to_world(cells) - start, axis=1)))]
+    mine = np.argwhere(labels == labels[rc[0], rc[1]])
+    pts = grid.to_world(mine)
+    gaps = np.linalg.norm(pts - goal, axis=1)
+    best = int(np.argmin(gaps))
+    if gaps[best] > LAST_STEP_M:
+        return None
+    try:
+        route = plan_route_on_grid(grid, start, pts[best])
+    except (NoRouteError, ValueError):
+        return None
+    return np.vstack([route, goal[None]])
+
+
 def scene_route(
     scene: Scene,
     start_xz: tuple[float, float],
@@ -235,7 +277,8 @@ def scene_route(
     """A collision-free route, or the straight line and a diagnostic when there is none.
 
     The route never ends inside other furniture (``into_hosts=False``); ``ignore`` should hold the
-    object walked to and what rests on it. ``bodies``: where other characters stand; the route goes
+    object walked to and what rests on it. Where a body's width has no way through, a sideways squeeze
+    (SQUEEZE_M) is tried, then the nearest reachable point and a last step in, before the straight line. ``bodies``: where other characters stand; the route goes
     round them (those within BODY_NEAR_END_M of the start or the goal excepted), or past them where
     they close the way.
 
@@ -258,6 +301,22 @@ def scene_route(
     try:
         return plan_scene_route(scene, start_xz, goal_xz, ignore=ignore, into_hosts=False), ""
     except NoRouteError as exc:
+        for squeeze in ([*around], []):  # a narrow way: sideways past the furniture (and the others)
+            try:
+                return plan_scene_route(
+                    scene,
+                    start_xz,
+                    goal_xz,
+                    ignore=ignore,
+                    into_hosts=False,
+                    bodies=squeeze,
+                    radius=SQUEEZE_M,
+                ), ""
+            except (NoRouteError, ValueError):
+                continue
+        near = _reachable_near(scene, start_xz, goal_xz, ignore, around)
+        if near is not None:
+            return near, ""
         line = np.array([start_xz, goal_xz], dtype=np.float64)
         return line, f"no free walking route, walking straight: {exc}"
     except ValueError as exc:  # non-finite points: plan_actions guards these, keep walking anyway

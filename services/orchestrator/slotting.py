@@ -28,6 +28,7 @@ from wana.domain.slots import SlotBook, seat_slots, stand_slots
 
 LYING = ("lie_down", "sleep")
 AROUND_M = 1.6  # metres: the seats "at" a table are within this of it
+CLEAR_M = 0.75  # metres from a bystander's hips within which a stand slot is not clear (arms that move)
 ELBOW_M = 0.7  # metres between two sitters' hips below which their arms and shoulders touch
 STAND_KEY = "#stand"  # a stand slot's object key in the book: "<object id>#stand"
 
@@ -93,13 +94,15 @@ class Slotting:
         action: ActionNode,
         here: tuple[float, float] | None = None,
         company: Sequence[tuple[float, float]] = (),
+        crowd: Sequence[tuple[float, float]] = (),
     ) -> Claim:
         """The slot ``who`` takes for ``action`` (or gives back), in story order.
 
         ``here``: where ``who`` is when the action starts; ``company``: where the others are who go to the same
         object in the same sentence and claim after it ("They walk to the statue"). With company the slots are
-        shared out so that the walks, together, are shortest (`_matched`): such paths never cross, so two
+        shared out so that the walks, together, are shortest (`matched`): such paths never cross, so two
         walking side by side stay side by side instead of walking through each other to swapped slots.
+        ``crowd``: where the others on stage stand; a stand slot within CLEAR_M of one is taken last.
         """
         clip = _clip(action)
         if clip is None:
@@ -112,11 +115,11 @@ class Slotting:
             if obj is None:
                 self.book.release(who)
                 return Claim(action)
-            return self._stand(who, action, obj, here, company)
+            return self._stand(who, action, obj, here, company, crowd)
         if kind and kind not in ("handheld", "person"):
             obj = find_object(self.scene, action.target or action.instrument or action.destination)
             if obj is not None:
-                return self._stand(who, action, obj, here, company)
+                return self._stand(who, action, obj, here, company, crowd)
         if clip.name == "stand":
             self.book.release(who)
         return Claim(action)
@@ -130,11 +133,11 @@ class Slotting:
         here: tuple[float, float] | None,
         company: Sequence[tuple[float, float]],
     ) -> list[str]:
-        """``slots`` with the one `_matched` gives ``who`` first (unchanged without company)."""
+        """``slots`` with the one `matched` gives ``who`` first (unchanged without company)."""
         if here is None or not company:
             return slots
         free = [i for i, n in enumerate(slots) if self.book.holder(object_id, n) in ("", who)]
-        pick = _matched([here, *company], [where[i] for i in free])
+        pick = matched([here, *company], [where[i] for i in free])
         if pick is None:
             return slots
         first = slots[free[pick]]
@@ -194,7 +197,7 @@ class Slotting:
 
         Seats whose slot is within ELBOW_M of one another already holds are passed over while others are
         free (two chairs pushed together seat two people shoulder in shoulder), and with company the seats
-        are shared out as `_matched` says (walks to them do not cross)."""
+        are shared out as `matched` says (walks to them do not cross)."""
         here_xz = np.array([obj.position[0], obj.position[2]])
         near = sorted(
             (
@@ -218,8 +221,8 @@ class Slotting:
         roomy = [f for f in free if all(np.hypot(f[2][0] - h[0], f[2][1] - h[1]) >= ELBOW_M for h in held)]
         free = roomy + [f for f in free if f not in roomy]
         if here is not None and company:
-            pick = _matched([here, *company], [f[2] for f in roomy]) if len(roomy) > len(company) else None
-            pick = pick if pick is not None else _matched([here, *company], [f[2] for f in free])
+            pick = matched([here, *company], [f[2] for f in roomy]) if len(roomy) > len(company) else None
+            pick = pick if pick is not None else matched([here, *company], [f[2] for f in free])
             if pick is not None:
                 free.insert(0, free.pop(pick))
         for seat, slots, _ in free:
@@ -252,23 +255,49 @@ class Slotting:
         obj: PlacedObject,
         here: tuple[float, float] | None = None,
         company: Sequence[tuple[float, float]] = (),
+        crowd: Sequence[tuple[float, float]] = (),
     ) -> Claim:
         spots = [p for p in stand_slots(obj, rows=2) if bool(self.grid.is_free_xz(np.asarray(p)))]
         spots = spots or stand_slots(obj)[:1]
+        crowd = [np.asarray(c, float) for c in crowd]
+        if crowd and all(_near_any(p, crowd) for p in spots):
+            spots = [*spots, *self._ring(obj, spots[0])]  # all taken by bystanders: round the object
         names = [str(i) for i in range(len(spots))]
         order = self._preferred(obj.id + STAND_KEY, names, spots, who, here, company)
+        clear = [n for n in order if not _near_any(spots[int(n)], crowd)]
+        order = [*clear, *(n for n in order if n not in clear)]
         taken = self.book.take(obj.id + STAND_KEY, order, who)
-        if taken is None or (taken == names[0] and len(self.standers.get(obj.id, ())) < 2):
+        if taken is None or (
+            taken == names[0] and len(self.standers.get(obj.id, ())) < 2 and not _near_any(spots[0], crowd)
+        ):
             return Claim(action)
         # Two or more at one object: the first is told its slot too (the planner's own spot, the middle of
-        # the front, would stand between the first two slots, within a body of the second).
+        # the front, would stand between the first two slots, within a body of the second); one whose
+        # default spot is where someone else stands is sent to a clear one.
         return Claim(action, spot=spots[int(taken)])
+
+    def _ring(self, obj: PlacedObject, front: tuple[float, float]) -> list[tuple[float, float]]:
+        """Free stand spots round an object, as far from it as its front spot, every 45 degrees."""
+        centre = np.array([obj.position[0], obj.position[2]], float)
+        d = np.asarray(front, float) - centre
+        r, a0 = float(np.linalg.norm(d)), float(np.arctan2(d[0], d[1]))
+        out = []
+        for k in (1, -1, 2, -2, 3, -3, 4):
+            a = a0 + k * np.pi / 4
+            p = centre + r * np.array([np.sin(a), np.cos(a)])
+            if bool(self.grid.is_free_xz(p)):
+                out.append((round(float(p[0]), 3), round(float(p[1]), 3)))
+        return out
+
+
+def _near_any(p: tuple[float, float], crowd: Sequence[np.ndarray]) -> bool:
+    return any(float(np.hypot(p[0] - c[0], p[1] - c[1])) < CLEAR_M for c in crowd)
 
 
 MATCH_MAX = 4  # characters shared out over slots together at most (beyond, in story order)
 
 
-def _matched(walkers: Sequence[tuple[float, float]], slots: Sequence[tuple[float, float]]) -> int | None:
+def matched(walkers: Sequence[tuple[float, float]], slots: Sequence[tuple[float, float]]) -> int | None:
     """The slot (an index into ``slots``) the first walker takes when every walker gets its own slot and the
     walks' total length is least; None when there are fewer slots than walkers or too many walkers.
 
@@ -316,4 +345,4 @@ def _stand_grid(scene: Scene) -> OccupancyGrid:
     return grid
 
 
-__all__ = ["Claim", "Slotting"]
+__all__ = ["Claim", "Slotting", "matched"]

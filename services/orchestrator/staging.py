@@ -49,11 +49,21 @@ BARE_ENTRANCE_VERBS = ("come", "walk", "run", "step")  # "in" dropped by the par
 def is_entrance(action: ActionNode) -> bool:
     """ "walks in", "enters", "comes in" (the verb as written; the action is usually plain "walk"), and a bare
     "come" / "walk" going nowhere named (the parser drops the particle of a plural: "Tom and Sam come in",
-    "Mary and John walk in"; a walk to nowhere is a way onto the stage too)."""
-    bare = action.verb.lower() in BARE_ENTRANCE_VERBS and not (
-        action.target or action.destination or action.instrument
-    )
+    "Mary and John walk in"; a walk to nowhere is a way onto the stage too), or only into the room itself
+    ("Sam walks into the workshop": the parser keeps "walk" and the room as its destination)."""
+    goals = [g for g in (action.target, action.destination, action.instrument) if g]
+    bare = action.verb.lower() in BARE_ENTRANCE_VERBS and all(_is_room_word(g) for g in goals)
     return _verb_is(action, ENTRANCE_VERBS) or bare
+
+
+def _is_room_word(ref: str) -> bool:
+    """True for a word naming the room itself ("the workshop" in "Sam walks into the workshop")."""
+    from wana.assets.vocabulary import ROOM_TYPES
+
+    word = ref.split("#")[0].split("/")[0].replace("_", " ").lower()
+    return word in ("room", "inside") or any(
+        word == room.replace("_", " ") or word in synonyms for room, synonyms in ROOM_TYPES.items()
+    )
 
 
 def is_exit(action: ActionNode) -> bool:

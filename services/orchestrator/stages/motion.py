@@ -28,7 +28,7 @@ from proto.social import SocialPlan
 from proto.ssg import ActionNode, CharacterNode, Command, Diagnostic, SentenceGraph
 from services.orchestrator.backend import StageFailed
 from services.orchestrator.document import Sentence
-from services.orchestrator.slotting import Slotting
+from services.orchestrator.slotting import Slotting, matched
 from services.orchestrator.stages import StageContext, content_of
 from services.orchestrator.stages.props import provide
 from services.orchestrator.stages.seats import furnish
@@ -59,6 +59,8 @@ from wana.domain.idle import attention, enliven_motion
 from wana.domain.object_geometry import find_object
 from wana.domain.style import MANNER_MOOD, restyle_motion
 
+TRAIL_STEP = 8  # frames between the points kept of a character's last walk
+TRAIL_MIN_M = 0.3  # metres: an action that moves its character less than this leaves no trail
 Characters = dict[str, tuple[CharacterNode, list[str]]]  # name -> (its actions in order, their sentence ids)
 Distances = dict[tuple[str, int], dict[str, float]]  # (name, k) -> {other: metres}
 
@@ -181,6 +183,11 @@ def segments(
     states = {name: SegmentEndState(x=st[0], z=st[1], yaw=st[2]) for name, st in starts.items()}
     outside = set(hidden or ())
     slotting = Slotting(scene)  # who holds which seat and stand slot, as the story runs
+    exit_lanes: dict[str, list[tuple[float, float]]] = {}  # sentence id -> the door's lanes still free
+    sentence_index = {s.id: i for i, s in enumerate(sentences)}
+    trails: dict[
+        str, tuple[int, list[tuple[float, float]]]
+    ] = {}  # name -> (sentence, where its last walk went)
     pieces: dict[str, list[Motion]] = {name: [] for name in characters}
     object_ids = {o.id for o in scene.objects}
     order = [
@@ -198,7 +205,6 @@ def segments(
         node, sids = characters[name]
         action = node.actions[k]
         state = states[name]
-        asked, routes = _staged(scene, door, name, action, state, states, outside)
         company = [
             (states[o].x, states[o].z)
             for o, j in order[i + 1 :]
@@ -206,7 +212,27 @@ def segments(
             and characters[o][1][j] == sids[k]
             and _same_goal(characters[o][0].actions[j], action)
         ]
-        claim = slotting.claim(name, asked[-1], (state.x, state.z), company)
+        lane = None
+        if door is not None and is_exit(action):  # "They leave": each its own lane through the door
+            going = [
+                (states[o].x, states[o].z)
+                for o, j in order[i + 1 :]
+                if o != name and characters[o][1][j] == sids[k] and is_exit(characters[o][0].actions[j])
+            ]
+            lanes = exit_lanes.setdefault(sids[k], [door.inside(beside=b) for b in range(len(going) + 1)])
+            pick = matched([(state.x, state.z), *going], lanes) if going else 0
+            lane = lanes.pop(pick or 0)
+        asked, routes = _staged(scene, door, name, action, state, states, outside, lane)
+        crowd = [
+            (st.x, st.z)
+            for o, st in states.items()
+            if o != name and o not in outside and st.posture == "stand" and (st.x, st.z) not in company
+        ]
+        here_at = sentence_index.get(sids[k], 0)
+        for o, (at, trail) in trails.items():  # the ways the others walk meanwhile are no place to stand
+            if o != name and at >= here_at - 1:
+                crowd.extend(trail)
+        claim = slotting.claim(name, asked[-1], (state.x, state.z), company, crowd)
         asked[-1] = claim.action
         at = len(asked) - 1
         seats = {at: claim.seat} if claim.seat else {}
@@ -261,6 +287,11 @@ def segments(
             # (unknown actions the parse already reported)
             notes.extend((sids[k], d) for d in reply.diagnostics if not d.startswith("unknown action"))
         states[name] = reply.end_states[-1] if reply.end_states else state
+        walked = from_wire(reply.motion.root_position)[::TRAIL_STEP, [0, 2]]
+        if len(walked) > 1 and float(np.linalg.norm(walked[-1] - walked[0])) > TRAIL_MIN_M:
+            trails[name] = (sentence_index.get(sids[k], 0), [(float(x), float(z)) for x, z in walked[:-1]])
+        else:
+            trails.pop(name, None)
     for name, (node, _) in characters.items():
         if not node.actions and upto is None:
             view = scene_view(scene, None)
@@ -297,12 +328,14 @@ def _staged(
     state: SegmentEndState,
     states: dict[str, SegmentEndState],
     hidden: set[str],
+    lane: tuple[float, float] | None = None,
 ) -> tuple[list[ActionNode], list[list[tuple[float, float]]]]:
     """The actions sent to motion for one story action, and the routes their walks take.
 
     A character waiting at the door (shown from the threshold on) walks in to a free spot: an entrance
     does only that, any other action walks in to a spot near where it acts first. An exit walks to the
-    door's threshold (the character is gone once there). Walks go around the others on stage (``hidden``:
+    door's threshold (``lane``: its own place there when several leave together; the character is gone once
+    there). Walks go around the others on stage (``hidden``:
     who is off stage now).
     """
     waiting = name in hidden
@@ -315,7 +348,7 @@ def _staged(
         plain, action=action.action or "walk", target="", destination="", instrument=""
     )
     if is_exit(action):
-        return [walk], [route(scene, here, door.inside(), taken)]
+        return [walk], [route(scene, here, lane or door.inside(), taken)]
     if not waiting:
         return [plain], []
     towards = states.get(action.target) or states.get(action.destination)
