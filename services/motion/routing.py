@@ -323,3 +323,32 @@ def scene_route(
         return np.array(
             [start_xz, goal_xz], dtype=np.float64
         ), f"route planning failed, walking straight: {exc}"
+
+
+def reachable_short_of(
+    scene: Scene, pos: tuple[float, float], other: tuple[float, float], distance: float
+) -> tuple[float, float] | None:
+    """Where to stop ``distance`` metres from a person at ``other``, walking from ``pos``, when the point short
+    of them on the straight line is inside furniture (the person stands behind the armchair the walker gets
+    up from): the free point on the circle round them nearest to ``pos``; None when the straight one is free
+    or none is. The route planner would otherwise end at the free cell nearest the blocked point, which can
+    be inside the person."""
+    grid = scene_grid(scene)
+    p, o = np.asarray(pos, float), np.asarray(other, float)
+    d = p - o
+    n = float(np.linalg.norm(d))
+    if n <= distance:
+        return None
+    straight = o + d / n * distance
+    if grid.is_free_xz(straight):
+        return None
+    a0 = float(np.arctan2(d[0], d[1]))
+    ring = [
+        o + distance * np.array([np.sin(a0 + k * np.pi / 12), np.cos(a0 + k * np.pi / 12)])
+        for k in range(-12, 12)
+    ]
+    free = [q for q in ring if grid.is_free_xz(q)]
+    if not free:
+        return None
+    best = min(free, key=lambda q: float(np.linalg.norm(q - p)))
+    return float(best[0]), float(best[1])
