@@ -160,19 +160,17 @@ class Slotting:
         default = slots[0]  # what the planner takes by itself
         rest: list[str] = []
         if len(self.sitters.get(obj.id, ())) == 2 and len(slots) >= 3:
-            slots, rest = (
-                slots[1:],
-                slots[:1],
-            )  # two on three cushions: the ends, with the middle between them
+            # two on three cushions: the ends, with the middle between them
+            slots, rest = slots[1:], slots[:1]
         slots = [*self._preferred(obj.id, slots, seat_points(obj, slots), who, here, company), *rest]
         taken = self.book.take(obj.id, slots, who)
         if taken is not None:
             return Claim(action, seat="" if taken == default else taken)
         # Full: the nearest object of the same kind with a free slot (a second chair at the table).
-        here = np.array([obj.position[0], obj.position[2]])
+        at = np.array([obj.position[0], obj.position[2]])
         same = sorted(
             (o for o in self.scene.objects if o.category == obj.category and o.id != obj.id),
-            key=lambda o: float(np.linalg.norm(np.array([o.position[0], o.position[2]]) - here)),
+            key=lambda o: float(np.linalg.norm(np.array([o.position[0], o.position[2]]) - at)),
         )
         for other in same:
             slots = seat_slots(other, kind)
@@ -259,7 +257,6 @@ class Slotting:
     ) -> Claim:
         spots = [p for p in stand_slots(obj, rows=2) if bool(self.grid.is_free_xz(np.asarray(p)))]
         spots = spots or stand_slots(obj)[:1]
-        crowd = [np.asarray(c, float) for c in crowd]
         if crowd and all(_near_any(p, crowd) for p in spots):
             spots = [*spots, *self._ring(obj, spots[0])]  # all taken by bystanders: round the object
         names = [str(i) for i in range(len(spots))]
@@ -290,7 +287,8 @@ class Slotting:
         return out
 
 
-def _near_any(p: tuple[float, float], crowd: Sequence[np.ndarray]) -> bool:
+def _near_any(p: tuple[float, float], crowd: Sequence[tuple[float, float]]) -> bool:
+    """True when ``p`` is within CLEAR_M of one of ``crowd`` (x, z)."""
     return any(float(np.hypot(p[0] - c[0], p[1] - c[1])) < CLEAR_M for c in crowd)
 
 

@@ -383,7 +383,7 @@ def animate(
     starts, hidden = _first_positions(scene, door, characters, sentences, wait_ids, answering)
     waiting_place = {name: i for i, name in enumerate(sorted(characters, key=lambda n: n not in hidden))}
     ids = {o.id for o in scene.objects}
-    out = Animated(scene=scene, diagnostics=list(added))
+    out = Animated(scene=scene, diagnostics=[*added, *_door_added(scene, characters, sentences, hidden)])
     # Interactions: actions that touch an object of the scene; the layout is optimised around each.
     interactions = [
         (name, k, a)
@@ -482,6 +482,31 @@ def animate(
     out.motions = _enlivened(out.scene, characters, _in_moods(characters, out.motions, moods))
     out.scene = with_states(out.scene, characters, out.motions, sentences)  # doors opened, lamps on
     return out
+
+
+def _door_added(
+    scene: Scene, characters: Characters, sentences: Sequence[Sentence], hidden: set[str]
+) -> list[tuple[str, Diagnostic]]:
+    """An info diagnostic on the first sentence that comes in or goes out through a door the text did not
+    name (staging.with_door added it): the user sees where the door came from."""
+    doors = [o for o in scene.objects if o.category == "door"]
+    if len(doors) != 1 or doors[0].from_text or doors[0].id.startswith("ctx_"):  # named, or composed
+        return []
+    spans = {s.id: s for s in sentences}
+    order = {s.id: i for i, s in enumerate(sentences)}
+    through = [
+        (order.get(sid, 0), sid, name)
+        for name, (node, sids) in characters.items()
+        for k, (action, sid) in enumerate(zip(node.actions, sids, strict=True))
+        if is_entrance(action) or is_exit(action) or (k == 0 and name in hidden)
+    ]
+    if not through:
+        return []
+    _, sid, name = min(through)
+    s = spans.get(sid)
+    message = f"added a door: the room had none for {name} to come in or go out"
+    span = Span(s.start, s.end) if s is not None else Span(0, 0)
+    return [(sid, Diagnostic(code="I202", message=message, span=span, severity="info"))]
 
 
 def _in_moods(

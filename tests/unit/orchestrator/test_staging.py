@@ -134,3 +134,20 @@ def test_those_who_come_in_side_by_side_head_in_on_their_own_sides_apart():
     for s, g in zip(starts, goals, strict=True):
         assert np.sign(door.side_of(s)) == np.sign(door.side_of(tuple(g)))  # no one crosses to the other side
     assert min(np.linalg.norm(a - b) for i, a in enumerate(goals) for b in goals[i + 1 :]) >= APART_M - 1e-6
+
+
+def test_a_door_the_text_did_not_name_is_reported_on_the_first_entrance():
+    from proto.ssg import CharacterNode
+    from services.orchestrator.document import Sentence
+    from services.orchestrator.stages.motion import _door_added
+
+    sentences = [Sentence("s1", 0, 12, "Tom waves."), Sentence("s2", 13, 30, "Ms Lee enters.")]
+    characters = {
+        "Tom": (CharacterNode(name="Tom", actions=[act("wave", "wave")]), ["s1"]),
+        "Ms Lee": (CharacterNode(name="Ms Lee", actions=[act("enter")]), ["s2"]),
+    }
+    added = with_door(Scene(room=ROOM))
+    ((sid, note),) = _door_added(added, characters, sentences, {"Ms Lee"})
+    assert sid == "s2" and "door" in note.message and "Ms Lee" in note.message
+    named = PlacedObject(id="door", category="door", position=(2.4, 0.0, 0.0), yaw=-np.pi / 2)
+    assert _door_added(Scene(room=ROOM, objects=[named]), characters, sentences, {"Ms Lee"}) == []
