@@ -107,7 +107,7 @@ def scene_grid(
     return OccupancyGrid(blocked=blocked, origin=origin, cell=cell)
 
 
-BODY_M = 0.22  # metres: a standing character's radius, as an obstacle (wana.domain.routes.body_footprints)
+BODY_M = 0.32  # metres: a standing character as an obstacle: its body and the swing of a passing arm
 BODY_NEAR_END_M = 0.7  # metres: a character this near the start or the goal is not walked around (the one
 # walked up to, or the one stood beside when setting off)
 

@@ -28,6 +28,7 @@ from wana.domain.slots import SlotBook, seat_slots, stand_slots
 
 LYING = ("lie_down", "sleep")
 AROUND_M = 1.6  # metres: the seats "at" a table are within this of it
+RING_M = 0.45  # metres from an object's centre at most for a stand spot round it
 CLEAR_M = 0.75  # metres from a bystander's hips within which a stand slot is not clear (arms that move)
 ELBOW_M = 0.7  # metres between two sitters' hips below which their arms and shoulders touch
 STAND_KEY = "#stand"  # a stand slot's object key in the book: "<object id>#stand"
@@ -257,8 +258,10 @@ class Slotting:
     ) -> Claim:
         spots = [p for p in stand_slots(obj, rows=2) if bool(self.grid.is_free_xz(np.asarray(p)))]
         spots = spots or stand_slots(obj)[:1]
-        if crowd and all(_near_any(p, crowd) for p in spots):
-            spots = [*spots, *self._ring(obj, spots[0])]  # all taken by bystanders: round the object
+        front = set(stand_slots(obj))  # the first row: within reach of the object
+        reach = [p for p in spots if p in front]
+        if crowd and reach and all(_near_any(p, crowd) for p in reach):  # bystanders there: round the object
+            spots = [*reach, *self._ring(obj, reach[0]), *(p for p in spots if p not in front)]
         names = [str(i) for i in range(len(spots))]
         order = self._preferred(obj.id + STAND_KEY, names, spots, who, here, company)
         clear = [n for n in order if not _near_any(spots[int(n)], crowd)]
@@ -274,10 +277,18 @@ class Slotting:
         return Claim(action, spot=spots[int(taken)])
 
     def _ring(self, obj: PlacedObject, front: tuple[float, float]) -> list[tuple[float, float]]:
-        """Free stand spots round an object, as far from it as its front spot, every 45 degrees."""
+        """Free stand spots round an object, as far from it as its front spot (RING_M at most: within reach of
+        a small thing), every 45 degrees."""
         centre = np.array([obj.position[0], obj.position[2]], float)
         d = np.asarray(front, float) - centre
-        r, a0 = float(np.linalg.norm(d)), float(np.arctan2(d[0], d[1]))
+        r, a0 = min(float(np.linalg.norm(d)), RING_M), float(np.arctan2(d[0], d[1]))
+        try:  # as far as the planner's own stand point (the catalog's), where the clip's reach fits
+            from wana.assets.catalog import asset_for, to_world
+
+            stand = to_world(obj, np.asarray(asset_for(obj).stand_point, float))
+            r = min(r, float(np.hypot(stand[0] - centre[0], stand[2] - centre[1])))
+        except Exception:  # noqa: BLE001 - an unknown category: the front spot's distance
+            pass
         out = []
         for k in (1, -1, 2, -2, 3, -3, 4):
             a = a0 + k * np.pi / 4

@@ -220,8 +220,8 @@ def segments(
                 if o != name and characters[o][1][j] == sids[k] and is_exit(characters[o][0].actions[j])
             ]
             lanes = exit_lanes.setdefault(sids[k], [door.inside(beside=b) for b in range(len(going) + 1)])
-            pick = matched([(state.x, state.z), *going], lanes) if going else 0
-            lane = lanes.pop(pick or 0)
+            pick = matched([(state.x, state.z), *going], lanes) if going and lanes else 0
+            lane = lanes.pop(pick or 0) if lanes else None  # ("gets out and leaves": one lane, two exits)
         asked, routes = _staged(scene, door, name, action, state, states, outside, lane)
         crowd = [
             (st.x, st.z)
