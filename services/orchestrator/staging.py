@@ -35,7 +35,7 @@ THRESHOLD_M = 0.45  # metres in front of the door where a character appears or d
 IN_WALL_M = 0.35  # metres: a door whose centre is this close to a wall is in it
 BESIDE_M = 0.6  # metres along the wall between characters coming in together
 BODY_M = 0.3  # metres: a body's radius for the starting-spot grid
-APART_M = 1.1  # metres between starting spots (arms out in a stretch still clear)
+APART_M = 1.25  # metres between starting spots (two stretching side by side, arms out, still clear)
 
 
 def _verb_is(action: ActionNode, verbs: Sequence[str]) -> bool:
