@@ -59,7 +59,6 @@ class Slotting:
     book: SlotBook = field(default_factory=SlotBook)
     sitters: dict[str, set[str]] = field(default_factory=dict)  # object id -> who sits on it in the story
     standers: dict[str, set[str]] = field(default_factory=dict)  # object id -> who stands at it in the story
-    grouped: set[str] = field(default_factory=set)  # slot keys a group is being shared out over now
     _grid: OccupancyGrid | None = None
 
     def expect(self, who: str, action: ActionNode) -> None:
@@ -135,14 +134,8 @@ class Slotting:
         here: tuple[float, float] | None,
         company: Sequence[tuple[float, float]],
     ) -> list[str]:
-        """``slots`` with the one `matched` gives ``who`` first (unchanged without company, except for the last
-        of a group: it takes the free slot nearest to it, the one the sharing-out left it)."""
-        last_of_group = object_id in self.grouped
-        if company:
-            self.grouped.add(object_id)
-        else:
-            self.grouped.discard(object_id)
-        if here is None or not (company or last_of_group):
+        """``slots`` with the one `matched` gives ``who`` first (unchanged without company)."""
+        if here is None or not company:
             return slots
         free = [i for i, n in enumerate(slots) if self.book.holder(object_id, n) in ("", who)]
         pick = matched([here, *company], [where[i] for i in free])
@@ -164,7 +157,7 @@ class Slotting:
             return Claim(action)
         slots = seat_slots(obj, kind)
         if not slots:  # "sits at the table": a free seat around it
-            return self._seat_at(who, action, obj, kind, here, company)
+            return self._seat_at(who, action, obj, kind)
         default = slots[0]  # what the planner takes by itself
         rest: list[str] = []
         if len(self.sitters.get(obj.id, ())) == 2 and len(slots) >= 3:
@@ -226,12 +219,7 @@ class Slotting:
         held = self._held_points(who)
         roomy = [f for f in free if all(np.hypot(f[2][0] - h[0], f[2][1] - h[1]) >= ELBOW_M for h in held)]
         free = roomy + [f for f in free if f not in roomy]
-        last_of_group = obj.id in self.grouped
-        if company:
-            self.grouped.add(obj.id)
-        else:
-            self.grouped.discard(obj.id)
-        if here is not None and (company or last_of_group):
+        if here is not None and company:
             pick = matched([here, *company], [f[2] for f in roomy]) if len(roomy) > len(company) else None
             pick = pick if pick is not None else matched([here, *company], [f[2] for f in free])
             if pick is not None:

@@ -86,19 +86,3 @@ def test_a_stand_slot_where_someone_already_stands_is_passed_over():
     default = stand_slots(COUNTER.objects[0], rows=2)[0]
     moved = slotting.claim("Ben", EAT, crowd=[default])  # Nora stands on the planner's spot
     assert moved.spot is not None and math.dist(moved.spot, default) >= 0.75
-
-
-def test_two_sitting_down_at_a_table_take_the_chairs_on_their_own_sides():
-    import numpy as np
-
-    table = PlacedObject(id="table", category="table", position=(0.0, 0.0, 0.0))
-    left = PlacedObject(id="chair", category="chair", position=(-0.9, 0.0, 0.0), yaw=np.pi / 2)
-    right = PlacedObject(id="chair/2", category="chair", position=(0.9, 0.0, 0.0), yaw=-np.pi / 2)
-    sit = ActionNode(verb="sit", action="sit", target="table")
-    slotting = Slotting(Scene(room=ROOM, objects=[table, left, right]))
-    walter, cheryl = (1.6, -1.0), (-1.6, -1.0)  # Walter comes from the right, Cheryl from the left
-    for who in ("Walter", "Cheryl"):
-        slotting.expect(who, sit)
-    first = slotting.claim("Walter", sit, walter, [cheryl])
-    second = slotting.claim("Cheryl", sit, cheryl)
-    assert first.action.target == "chair/2" and second.action.target == "chair"
