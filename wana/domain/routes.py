@@ -470,7 +470,7 @@ class Reservations:
             and swinging arms).
     """
 
-    clearance: float = 0.5
+    clearance: float = 0.6
     tracks: dict[str, np.ndarray] | None = None  # name -> (T, 2) x, z per frame, NaN off stage
 
     def reserve(self, name: str, xz: np.ndarray) -> None:
