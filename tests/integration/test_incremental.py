@@ -63,6 +63,7 @@ def test_editing_one_action_reruns_its_parse_and_that_action_of_that_character_o
         "resolve",
         "social",  # a new verb: Tom's emotions are sampled again; Eve never meets him, her face stays
         "segment:Tom:1",
+        "cast",  # Tom passes within 0.6 m of Eve (the give-way clearance): the cast fit sees the new motion
         "face:Tom",
     ]
     assert [seg.action for seg in result.motions["Tom"].segments][-1] == "clap"
@@ -84,7 +85,13 @@ def test_an_action_whose_end_state_changes_reruns_the_actions_after_it(session):
 def test_an_action_whose_end_state_is_unchanged_stops_early(session):
     replace(session, "Tom walks to the window", "Tom walks slowly to the window")
     result = session.compute()
-    assert result.ran == [f"parse:{sid_of(session, 'slowly')}", "resolve", "segment:Tom:0", "face:Tom"]
+    assert result.ran == [
+        f"parse:{sid_of(session, 'slowly')}",
+        "resolve",
+        "segment:Tom:0",
+        "cast",
+        "face:Tom",
+    ]
 
 
 def test_a_whitespace_only_edit_recomputes_nothing(session):
@@ -128,7 +135,7 @@ def test_changing_a_scene_object_recomposes_the_scene_and_the_motion_in_it(sessi
 def test_deleting_a_sentence_reruns_resolve_and_the_affected_character(session):
     replace(session, " Tom waves.", "")
     result = session.compute()
-    assert result.ran == ["resolve", "social", "face:Tom"]
+    assert result.ran == ["resolve", "social", "cast", "face:Tom"]
     assert all(seg.action != "wave" for seg in result.motions["Tom"].segments)
 
 
@@ -152,6 +159,7 @@ def test_inserting_an_action_runs_only_its_parse_and_its_new_motion_node(session
         "resolve",
         "social",
         "segment:Eve:2",
+        "cast",
         "face:Eve",
         "face:Tom",  # his sentences now start after Eve's new one
     ]
@@ -160,7 +168,7 @@ def test_inserting_an_action_runs_only_its_parse_and_its_new_motion_node(session
 def test_reordering_two_sentences_reparses_nothing_and_reruns_that_characters_motion(session):
     replace(session, "Tom walks to the window. Tom waves.", "Tom waves. Tom walks to the window.")
     result = session.compute()
-    assert result.ran == ["resolve", "social", "segment:Tom:0", "segment:Tom:1", "face:Tom"]
+    assert result.ran == ["resolve", "social", "segment:Tom:0", "segment:Tom:1", "cast", "face:Tom"]
     # Tom's first action is now the wave (after the walk in at the door: he comes in with his sentence).
     assert [s.action for s in result.motions["Tom"].segments if s.action_index == 0][-1] == "wave"
 
