@@ -12,6 +12,10 @@ other (one worker busy at a time), then both at once (one per worker); speed-up 
 time) / time(both at once). Worker start-up and the first scene build are not timed. The machine's CPU count and load are printed: on a shared 2-core machine the speed-up is
 bounded by the cores other processes leave free.
 
+speedup_2_processes: the same video through ``renderer.render_mp4`` in this process (1) and in two
+fork-server render processes on this machine (2), as ``wana animate`` renders; speed-up = time(1) / time(2),
+the processes' start included (``--processes`` to measure it).
+
 plan_seconds: building the staging of that video (rigs, tracks and the director's shot plan, which
 measures what each candidate camera shows), with the director and without it (``--no-director``
 renders with the commands' cameras alone, for comparing fps).
@@ -72,6 +76,19 @@ def measure_fps(frames: int, width: int, height: int, director: bool = True) -> 
         for _ in tqdm(r.frames(1, frames + 1), total=frames, desc="fps", unit="frame", leave=False):
             pass
         return frames / (time.perf_counter() - t0)
+
+
+def time_processes(frames: int, width: int, height: int) -> tuple[float, float]:
+    """Seconds for the demo video as one MP4 via render_mp4: (rendered here, in 2 render processes)."""
+    from services.render.renderer import FrameRenderer, render_mp4
+
+    out = []
+    with FrameRenderer(demo_scene(), demo_motions(frames), [], width=width, height=height) as r:
+        for k in (1, 2):
+            t0 = time.perf_counter()
+            render_mp4(r, io.BytesIO(), processes=k)
+            out.append(time.perf_counter() - t0)
+    return out[0], out[1]
 
 
 def _start_workers(url: str, n: int, logs: Path) -> list[subprocess.Popen]:
@@ -186,6 +203,7 @@ def main(argv: list[str] | None = None) -> dict:
     ap.add_argument("--height", type=int, default=480)
     ap.add_argument("--no-director", action="store_true", help="render with the commands' cameras alone")
     ap.add_argument("--fps-only", action="store_true", help="skip the 2-worker speed-up")
+    ap.add_argument("--processes", action="store_true", help="also time 2 local render processes")
     args = ap.parse_args(argv)
     frames = args.frames or (10 if args.quick else 120)
     fps = measure_fps(frames, args.width, args.height, director=not args.no_director)
@@ -195,8 +213,13 @@ def main(argv: list[str] | None = None) -> dict:
         t1 = t2 = float("nan")
     else:
         t1, t2 = time_chunked(frames, args.width, args.height)
+    p1 = p2 = float("nan")
+    if args.processes:
+        p1, p2 = time_processes(max(frames, 96), args.width, args.height)
     result = {
         "fps": round(fps, 2),
+        "speedup_2_processes": round(p1 / p2, 2),
+        "seconds_1_2_processes": [round(p1, 2), round(p2, 2)],
         "speedup_2_workers": round(t1 / t2, 2),
         "plan_seconds": round(plan, 3),
         "plan_seconds_no_director": round(plan_off, 3),
@@ -212,6 +235,7 @@ def main(argv: list[str] | None = None) -> dict:
     print(f"{'metric':<22}{'value':>10}")
     print(f"{'fps (1 worker)':<22}{result['fps']:>10}")
     print(f"{'speedup_2_workers':<22}{result['speedup_2_workers']:>10}")
+    print(f"{'speedup_2_processes':<22}{result['speedup_2_processes']:>10}")
     print(f"{'plan s, no director':<22}{result['plan_seconds']:>5} / {result['plan_seconds_no_director']}")
     print(f"{'seconds 1 / 2 workers':<22}{result['seconds_1_worker']:>5} / {result['seconds_2_workers']}")
     print(f"{'frames, size':<22}{frames:>5}, {args.width}x{args.height}")

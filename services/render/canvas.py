@@ -34,13 +34,16 @@ _LOCK = threading.Lock()  # guards _ACTIVE
 _ACTIVE: list[Canvas] = []  # the open canvas, if any
 
 
-def to_uint8(rgb: np.ndarray) -> np.ndarray:
+def to_uint8(rgb: np.ndarray, gain: np.ndarray | None = None) -> np.ndarray:
     """(H, W, 3) float read-back in [0, 1] -> uint8, rounded; in place on one float32 buffer.
 
     The legacy visualiser reads back only floats; one scaled float32 copy, clipped and added to in place,
     then one cast is half the cost of ``np.clip(rgb * 255 + 0.5, 0, 255)`` (float64 temporaries).
+    ``gain`` (3,) multiplies each channel in the same pass: the weather's light colour graded for free,
+    instead of a second pass over the uint8 picture.
     """
-    scaled = np.multiply(rgb, 255.0, dtype=np.float32)
+    scale = 255.0 if gain is None else (np.asarray(gain, dtype=np.float32) * np.float32(255.0))
+    scaled = np.multiply(rgb, scale, dtype=np.float32)
     scaled += 0.5
     np.clip(scaled, 0.0, 255.0, out=scaled)
     return scaled.astype(np.uint8)
@@ -167,6 +170,7 @@ class Canvas:
         background: tuple[float, float, float] = (0.8, 0.85, 0.9),
         *,
         with_depth: bool = False,
+        gain: np.ndarray | None = None,
     ) -> tuple[np.ndarray, np.ndarray | None]:
         """Render one frame.
 
@@ -174,6 +178,7 @@ class Canvas:
             pose: camera.
             background: RGB in [0, 1].
             with_depth: also read back the depth buffer.
+            gain: (3,) per-channel light multiplier applied while converting to uint8 (None: none).
 
         Returns:
             rgb (H, W, 3) uint8 and, when asked, depth (H, W) float32 metres along the view axis
@@ -191,7 +196,7 @@ class Canvas:
         ctl.set_constant_z_far(100.0)
         ctl.convert_from_pinhole_camera_parameters(params, allow_arbitrary=True)
         self._vis.update_renderer()
-        frame = to_uint8(np.asarray(self._vis.capture_screen_float_buffer(do_render=True)))
+        frame = to_uint8(np.asarray(self._vis.capture_screen_float_buffer(do_render=True)), gain)
         depth = None
         if with_depth:
             depth = np.asarray(self._vis.capture_depth_float_buffer(do_render=False), dtype=np.float32)

@@ -23,10 +23,10 @@ from services.render.bvh_export import write_character_bvh
 from services.render.camera_checks import staged_checks
 from services.render.director import shot_messages
 from services.render.gltf_export import write_glb
-from services.render.renderer import FrameRenderer
+from services.render.renderer import FrameRenderer, render_mp4
 from services.render.report import write_report
 from services.render.timeline import as_motion_list, make_captions, place_commands
-from services.render.video import FPS, encode_mp4
+from services.render.video import FPS
 
 
 class Outputs(dict[str, Path]):
@@ -85,7 +85,7 @@ def write_outputs(
         paths.checks = staged_checks(renderer.staging, sentence_list, width=width, height=height)
         with tqdm(total=n + 2 + len(mlist), desc="render", unit="frame", disable=not progress) as bar:
             video = out / "animation.mp4"
-            encode_mp4(renderer.frames(0, n, progress=bar.update), video, fps=FPS)
+            render_mp4(renderer, video, progress=bar.update)  # frame ranges in parallel where cores are free
             paths["animation.mp4"] = video
             render_s = time.perf_counter() - t0
             camera = renderer.staging.camera_track(width, height)

@@ -24,7 +24,7 @@ from services.render.cast_gltf import CastCharacter, load_cast
 from services.render.director import shot_messages
 from services.render.fbx_export import glb_to_fbx
 from services.render.gltf_export import scene_glb
-from services.render.renderer import FrameRenderer
+from services.render.renderer import FrameRenderer, render_mp4
 from services.render.staging import Staging
 from services.render.timeline import make_captions, place_commands
 from services.render.usd_export import scene_usd
@@ -241,8 +241,8 @@ def handle_export(req: ExportRequest) -> ExportReply:
         # The captions name the action sentences; commands carry their sentence ids.
         checks = staged_checks(r.staging, captions, width=req.width, height=req.height)
         buf = io.BytesIO()
-        encode_mp4(r.frames(0, r.n_frames), buf, fps=FPS)
-    if buf.tell() > MAX_REPLY_BYTES:
+        render_mp4(r, buf)  # frame ranges in parallel render processes where cores are free
+    if buf.getbuffer().nbytes > MAX_REPLY_BYTES:
         raise InvalidInput(
             "the video is larger than one reply may be; render it in chunks with RenderRequest"
         )

@@ -10,7 +10,12 @@ Any frame range can be rendered on its own and gives the same pixels as inside a
 
 from __future__ import annotations
 
+import io
+import multiprocessing
+import os
+import pickle
 from collections.abc import Callable, Iterator
+from pathlib import Path
 
 import numpy as np
 
@@ -33,7 +38,7 @@ from services.render.scene_geometry import (
     shadow_faces,
 )
 from services.render.staging import Staging
-from services.render.timeline import caption_at
+from services.render.timeline import caption_at, chunk_ranges
 from services.render.weather import background_for_render, grade, look_at, rain_segments, snow_points
 
 
@@ -106,6 +111,12 @@ class FrameRenderer:
             self._lit = tuple(0.0 for _ in lights_at(self._stateful, self.scene, 0))  # base colours: all off
         return self._canvas
 
+    def __getstate__(self) -> dict[str, object]:
+        """What a render process is handed: everything staged, no GL context (it opens its own)."""
+        state = dict(self.__dict__)
+        state.update(_canvas=None, _shadow_look=None, _lit=())
+        return state
+
     def close(self) -> None:
         if self._canvas is not None:
             self._canvas.close()
@@ -175,10 +186,14 @@ class FrameRenderer:
         room = self.scene.room
         c.set_lines("rain", rain_segments(f, room, look.rain), (0.78, 0.82, 0.9))
         c.set_points("snow", snow_points(f, room, look.snow), (1.0, 1.0, 1.0))
+        fog = look.fog > 1e-4
         rgb, depth = c.draw(
-            pose or self.camera(f), tuple(background_for_render(look)), with_depth=look.fog > 1e-4
+            pose or self.camera(f),
+            tuple(background_for_render(look)),
+            with_depth=fog,
+            gain=None if fog else look.gain,  # no fog: the light's gain is graded in the read-back
         )
-        img = grade(rgb, depth, look)
+        img = grade(rgb, depth, look) if fog else rgb
         text = caption_at(self.captions, f)
         if text:
             img = captions_mod.draw_caption(img, text)
@@ -227,3 +242,77 @@ class FrameRenderer:
                 if progress is not None:
                     progress(1)
                 yield img
+
+
+MIN_CHUNK_FRAMES = 48  # 2 s: below this a process's start (its own GL context) costs more than it saves
+_ADOPTED: list[FrameRenderer] = []  # in a render process: the renderer it was handed
+
+
+def render_processes() -> int:
+    """How many processes ``render_mp4`` uses by default: ``WANA_RENDER_PROCESSES``, else the CPUs other
+    processes leave free (at most 4; on a busy shared machine a second render process only adds its start)."""
+    env = os.environ.get("WANA_RENDER_PROCESSES", "")
+    if env.strip():
+        return max(1, int(env))
+    cpus = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+    free = cpus - os.getloadavg()[0] if hasattr(os, "getloadavg") else cpus
+    return max(1, min(4, int(free + 0.5)))
+
+
+def _adopt(staged: bytes) -> None:
+    """In a render process: keep the parent's staged renderer (pickled once per process, not per chunk)."""
+    _ADOPTED[:] = [pickle.loads(staged)]
+
+
+def _render_chunk(span: tuple[int, int]) -> tuple[int, bytes]:
+    """In a render process: frames [a, b) as one MP4 chunk (key frame first)."""
+    from services.render.video import encode_mp4
+
+    a, b = span
+    buf = io.BytesIO()
+    encode_mp4(_ADOPTED[0].frames(a, b), buf)
+    return b - a, buf.getvalue()
+
+
+def render_mp4(
+    renderer: FrameRenderer,
+    out: str | Path | io.BytesIO,
+    *,
+    processes: int = 0,
+    progress: Callable[[int], None] | None = None,
+) -> int:
+    """The whole animation as an H.264 MP4, its frame ranges rendered by several processes at once.
+
+    Every frame is a function of its index, and ``encode_mp4`` chunks start on a key frame with the same
+    encoder settings, so chunks rendered apart and joined (``video.join_chunks``: packets copied, no
+    re-encoding) play as one video. The processes come from a fork server (a process that never had a GL
+    context: a GL/EGL context does not survive a fork, and this process may hold one) with the render
+    modules imported once; each is handed the staged renderer, so nothing is planned twice, and opens its
+    own context. A short video, or a platform without a fork server, is rendered here.
+
+    Args:
+        renderer: the staged renderer.
+        out: file path or BytesIO.
+        processes: how many render processes (0 = ``render_processes()``, 1 = render here).
+        progress: called with the number of frames done, after each frame (here) or each chunk.
+
+    Returns:
+        The number of frames written.
+    """
+    from services.render.video import encode_mp4, join_chunks
+
+    n = renderer.n_frames
+    k = min(processes or render_processes(), n // MIN_CHUNK_FRAMES)
+    if k <= 1 or "forkserver" not in multiprocessing.get_all_start_methods():
+        return encode_mp4(renderer.frames(0, n, progress=progress), out)
+    staged = pickle.dumps(renderer, protocol=pickle.HIGHEST_PROTOCOL)  # without its GL context
+    spans = chunk_ranges(n, max(k, n // (MIN_CHUNK_FRAMES * 2)))  # a few chunks each: an even finish
+    ctx = multiprocessing.get_context("forkserver")
+    ctx.set_forkserver_preload(["services.render.renderer", "services.render.video", "open3d"])
+    chunks = []
+    with ctx.Pool(k, initializer=_adopt, initargs=(staged,)) as pool:
+        for done, video in pool.imap(_render_chunk, spans):
+            chunks.append(video)
+            if progress is not None:
+                progress(done)
+    return join_chunks(chunks, out)
