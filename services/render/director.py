@@ -701,7 +701,7 @@ def _per_beat(shot: Shot, beats: list[_Beat], tracks: Mapping[str, CharacterTrac
         lo, hi = max(shot.start, b.start), min(shot.end, b.end)
         if hi <= lo or b.lead not in tracks:
             continue
-        partner = next((a for a in b.acting[1:] if a in tracks), "")
+        partner = _widest(b.lead, b.acting[1:], tracks, lo)
         piece = replace(shot, start=lo, end=hi, subject=b.lead, partner=partner, acting=b.acting)
         if out and (hi - lo < MIN_SHOT_FRAMES or (out[-1].subject, out[-1].partner) == (b.lead, partner)):
             out[-1] = replace(out[-1], end=hi, acting=tuple(dict.fromkeys([*out[-1].acting, *b.acting])))
@@ -712,6 +712,20 @@ def _per_beat(shot: Shot, beats: list[_Beat], tracks: Mapping[str, CharacterTrac
     out[0] = replace(out[0], start=shot.start)  # the pieces cover the command's whole scope
     out[-1] = replace(out[-1], end=shot.end)
     return out
+
+
+def _widest(lead: str, others: Sequence[str], tracks: Mapping[str, CharacterTrack], frame: int) -> str:
+    """Who a view of ``lead`` pairs with so that everyone acting with them is in the picture: the one
+    farthest from the lead ("" when nobody). Sentences that start together ("Nora tells a story.",
+    "Max comes in", "John stands up" at once) all act in the beat; the pair at its two ends frames the rest
+    between them, where the first name alone left Nora and Max out of a "camera left" two-shot."""
+    here = tracks[lead].at(frame)[0]
+    near = [a for a in others if a in tracks]
+    return max(
+        near,
+        key=lambda a: (float(np.linalg.norm((tracks[a].at(frame)[0] - here)[[0, 2]])), a),
+        default="",
+    )
 
 
 def _overlay(base: list[Shot], commanded: list[Shot]) -> list[Shot]:
