@@ -318,6 +318,8 @@ LONGEST_HOLD = (
 JUMP_TURN = np.radians(30.0)  # a cut on the same subject must turn the view at least this much
 JUMP_SCALE = 0.25  # ... or change the distance by this share
 PREFERENCE = 0.004  # score given up per step down the candidate list (ties go to the preferred one)
+REPLAN_STEP = 5  # frames between the frames a failing shot is checked on for where it loses someone
+REPLAN_GAIN = 0.05  # how much more a new framing of a shot's rest must show to cut there
 OUTSIDE = 0.02  # score per metre the eye stands outside the room (readable views are from inside)
 
 
@@ -420,7 +422,9 @@ def _framed(
     track_map = dict(tracks)
     out: list[Shot] = []
     last: tuple[Shot, Any] | None = None  # the shot before and its camera on its last frame
-    for s in shots:
+    todo = list(reversed(shots))
+    while todo:
+        s = todo.pop()
         if (s.source == "command" and scorer is None) or (s.kind != "wide" and s.subject not in tracks):
             out.append(s)
             last = None
@@ -435,9 +439,72 @@ def _framed(
         if pair is not None and s.source == "director":  # a command's framing keeps no side of the line
             pair_side.setdefault(pair, found.side)
         framed = replace(s, side=found.side, adjust=found.adjust if scorer is not None else None)
+        if scorer is not None and not found.passes:  # a measured command's view too, on its side
+            split = _replan(framed, track_map, room, scorer, units, pair_side.get(pair) if pair else None)
+            if split is not None:
+                framed = replace(framed, end=split)
+                found = replace(found, end_pose=_pose(_key(framed), track_map, room, split - 1))
+                todo.append(replace(s, start=split))
         out.append(framed)
         last = (framed, found.end_pose) if found.end_pose is not None else None
     return out
+
+
+def _key(s: Shot) -> CameraKey:
+    """The camera of a framed shot."""
+    return CameraKey(
+        frame=s.start, mode=s.kind, character=s.subject, partner=s.partner, side=s.side, adjust=s.adjust
+    )
+
+
+def _lost_at(
+    s: Shot, tracks: dict[str, CharacterTrack], room: Room, scorer: Scorer, units: Sequence[_Unit]
+) -> int | None:
+    """The first frame (every REPLAN_STEP) where the framed shot loses a character whose sentence acts
+    then (someone walks into the line of sight, or the actor walks out of the picture); None: never."""
+    frames = list(range(s.start, s.end, REPLAN_STEP))
+    inside = [u for u in units if u.who in tracks and ((u.frames >= s.start) & (u.frames < s.end)).any()]
+    who = list(dict.fromkeys(u.who for u in inside))
+    if not who:
+        return None
+    key = _key(s)
+    poses = [_pose(key, tracks, room, f) for f in frames]
+    if any(p is None for p in poses):
+        return None
+    seen = scorer.shown_each(poses, frames, who)
+    fr = np.asarray(frames, dtype=np.int64)
+    lost = np.zeros(len(frames), dtype=bool)
+    for u in inside:
+        lost |= np.isin(fr, u.frames) & ~seen[:, who.index(u.who)]
+    hits = np.flatnonzero(lost)
+    return int(fr[hits[0]]) if len(hits) else None
+
+
+def _replan(
+    s: Shot,
+    tracks: dict[str, CharacterTrack],
+    room: Room,
+    scorer: Scorer,
+    units: Sequence[_Unit],
+    fixed_side: int | None,
+) -> int | None:
+    """Where a director's shot whose framing loses an acting character part-way is cut and re-framed:
+    at the frame it loses them (held MIN_SHOT_FRAMES first, and the rest at least as long), when another
+    framing of the rest (its side of the line kept; no jump cut from this one) shows clearly more of it
+    than this one does. None: the shot is kept whole."""
+    if s.end - s.start < 2 * MIN_SHOT_FRAMES:
+        return None
+    lost = _lost_at(s, tracks, room, scorer, units)
+    if lost is None:
+        return None
+    split = min(max(lost, s.start + MIN_SHOT_FRAMES), s.end - MIN_SHOT_FRAMES)
+    rest = replace(s, start=split)
+    kept = _search(rest, s.side, tracks, room, scorer, units, None, only=(s.side, s.adjust or Adjust()))
+    if kept.passes:
+        return None
+    end_pose = _pose(_key(s), tracks, room, split - 1)
+    other = _search(rest, fixed_side, tracks, room, scorer, units, (replace(s, end=split), end_pose))
+    return split if other.score > kept.score + REPLAN_GAIN else None
 
 
 @dataclass(frozen=True)
@@ -460,13 +527,15 @@ def _search(
     scorer: Scorer | None,
     units: Sequence[_Unit],
     last: tuple[Shot, Any] | None,
+    only: tuple[int, Adjust] | None = None,
 ) -> _Found:
-    """Measure a shot's candidates (preferred first) and keep the one that shows most."""
+    """Measure a shot's candidates (preferred first) and keep the one that shows most (``only``: measure
+    just that side and framing)."""
     frames = _samples(s, units)
     inside = [u for u in units if u.who in tracks and ((u.frames >= s.start) & (u.frames < s.end)).any()]
     who = list(dict.fromkeys([*(s.acting or (s.subject,)), *(u.who for u in inside)]))
     best = _Found(1, Adjust(), -np.inf, None, False)
-    main = _candidates(s, fixed_side)
+    main = [only] if only is not None else _candidates(s, fixed_side)
     for rank, (side, adj) in enumerate(main):
         key = CameraKey(
             frame=s.start, mode=s.kind, character=s.subject, partner=s.partner, side=side, adjust=adj
@@ -494,7 +563,7 @@ def _search(
             break  # without measuring, only the side is chosen
         if scorer is not None and best.score >= 1.0 - PREFERENCE * rank - 1e-9 and rank == 0:
             break  # the preferred framing shows everyone: nothing to improve
-    if scorer is not None and not best.passes:
+    if scorer is not None and not best.passes and only is None:
         best = _rescue(s, fixed_side, tracks, room, scorer, units, frames, who, inside, best, len(main))
     return best
 
@@ -632,7 +701,7 @@ def _per_beat(shot: Shot, beats: list[_Beat], tracks: Mapping[str, CharacterTrac
         lo, hi = max(shot.start, b.start), min(shot.end, b.end)
         if hi <= lo or b.lead not in tracks:
             continue
-        partner = next((a for a in b.acting[1:] if a in tracks), "")
+        partner = _widest(b.lead, b.acting[1:], tracks, lo)
         piece = replace(shot, start=lo, end=hi, subject=b.lead, partner=partner, acting=b.acting)
         if out and (hi - lo < MIN_SHOT_FRAMES or (out[-1].subject, out[-1].partner) == (b.lead, partner)):
             out[-1] = replace(out[-1], end=hi, acting=tuple(dict.fromkeys([*out[-1].acting, *b.acting])))
@@ -643,6 +712,20 @@ def _per_beat(shot: Shot, beats: list[_Beat], tracks: Mapping[str, CharacterTrac
     out[0] = replace(out[0], start=shot.start)  # the pieces cover the command's whole scope
     out[-1] = replace(out[-1], end=shot.end)
     return out
+
+
+def _widest(lead: str, others: Sequence[str], tracks: Mapping[str, CharacterTrack], frame: int) -> str:
+    """Who a view of ``lead`` pairs with so that everyone acting with them is in the picture: the one
+    farthest from the lead ("" when nobody). Sentences that start together ("Nora tells a story.",
+    "Max comes in", "John stands up" at once) all act in the beat; the pair at its two ends frames the rest
+    between them, where the first name alone left Nora and Max out of a "camera left" two-shot."""
+    here = tracks[lead].at(frame)[0]
+    near = [a for a in others if a in tracks]
+    return max(
+        near,
+        key=lambda a: (float(np.linalg.norm((tracks[a].at(frame)[0] - here)[[0, 2]])), a),
+        default="",
+    )
 
 
 def _overlay(base: list[Shot], commanded: list[Shot]) -> list[Shot]:
