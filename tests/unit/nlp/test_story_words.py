@@ -243,3 +243,25 @@ def test_the_chart_in_a_meeting_room_is_the_flip_chart():
     assert acts(graphs) == [("Leo", "walk", "flip_chart")]
     graphs = parse_document("In the meeting room there is a table$. Leo walks to the chart.")
     assert acts(graphs) == [("Leo", "walk", "flip_chart")]
+
+
+@pytest.mark.parametrize(
+    ("text", "said"),
+    [
+        ("A flip chart is in the corner$.", "flip_chart 'in the corner' (corner of the room)"),
+        ("A table is in the middle of the room$.", "table 'in the middle of the room' (middle of the room)"),
+        ("A sofa is at the back of the room$.", "sofa 'at the back of the room' (back of the room)"),
+    ],
+)
+def test_a_part_of_the_room_is_read_and_said_not_honoured(text, said):
+    """The layout places things relative to other things only: the part of the room is named, not lost."""
+    (graph,) = parse_document(text)
+    notes = [d for d in graph.diagnostics if d.code == "I114"]
+    assert len(notes) == 1 and said in notes[0].message and notes[0].severity == "info"
+    assert graph.relations == []
+
+
+def test_the_back_of_a_thing_and_by_the_door_are_relations_not_room_parts():
+    graphs = parse_document("A cushion is at the back of the sofa$. A lamp is by the door$.")
+    assert relations(graphs) == [("cushion", "behind", "sofa"), ("lamp", "near", "door")]
+    assert "I114" not in codes(graphs)
