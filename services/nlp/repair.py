@@ -349,6 +349,30 @@ def _repair_noun_conjunct_verb(sent: SpacySpan) -> bool:
     return changed
 
 
+def _repair_verb_conjunct_noun(sent: SpacySpan) -> bool:
+    """ "Dad comes in and lights/NOUN/conj the candles/obj": a verb the parser read as a noun coordinated
+    with the verb before it, its object hung under that verb -> a verb, the object after it its own.
+    Only for a bare plural-looking word right after "and"/"then" whose verb reading is an action."""
+    changed = False
+    for tok in sent:
+        verb = tok.head
+        if tok.dep_ != "conj" or tok.pos_ != "NOUN" or verb.pos_ != "VERB" or not tok.lower_.endswith("s"):
+            continue
+        if tok.i == 0 or tok.doc[tok.i - 1].lower_ not in ("and", "then"):
+            continue
+        if any(c.dep_ in ("det", "nmod:poss", "amod", "nummod", "compound") for c in tok.children):
+            continue  # "and the lights", "and two drinks": a noun
+        moved = [t for t in verb.children if t.i > tok.i and t.dep_ in ("obj", "obl", "iobj")]
+        lemma = action_reading(tok.lower_)
+        if not moved or not lemma:
+            continue  # "takes a cup and saucers": nothing after it to be a verb's argument
+        tok.pos_, tok.tag_, tok.lemma_ = "VERB", "VBZ", lemma
+        for t in moved:
+            t.head = tok
+        changed = True
+    return changed
+
+
 def repair_character_sentence(sent: SpacySpan) -> bool:
     """Repair the tree of one character sentence in place; True when something changed."""
     return (
@@ -359,6 +383,7 @@ def repair_character_sentence(sent: SpacySpan) -> bool:
         | _repair_clause_as_subject(sent)
         | _repair_pronoun_relative_clause(sent)
         | _repair_noun_conjunct_verb(sent)
+        | _repair_verb_conjunct_noun(sent)
     )
 
 

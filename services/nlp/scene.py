@@ -366,6 +366,7 @@ def extract_scene(sent: SpacySpan, builder: GraphBuilder) -> None:
                     end = anchor.idx + len(anchor.text)
                     builder.add_relation(sid, relation, anchor_id, min(start, s.idx), end)
     _with_relations(sent, builder)
+    _room_parts(sent, builder)
     # Verbs that are relations: "The sofa faces the TV", "a chair facing the window".
     for tok in sent:
         rel = lexicon.RELATION_VERBS.get(tok.lemma_.lower())
@@ -393,6 +394,60 @@ def extract_scene(sent: SpacySpan, builder: GraphBuilder) -> None:
                     builder.add_relation(
                         sid, rel, anchor_id, min(tok.idx, s.idx), anchor.idx + len(anchor.text)
                     )
+
+
+# Parts of a room a thing is placed by ("in the corner", "at the back of the room") -> the part's name.
+ROOM_PARTS = {
+    "corner": "corner",
+    "middle": "middle",
+    "center": "middle",
+    "centre": "middle",
+    "back": "back",
+    "rear": "back",
+    "front": "front",
+    "side": "side",
+    "end": "end",
+}
+
+
+def room_part(tok: Token) -> str:
+    """The part of the room ``tok`` names as a place ("in the corner", "in the middle of the room"), else
+    "" ("at the back of the sofa" is a relation to the sofa, not a part of the room)."""
+    part = ROOM_PARTS.get(tok.lemma_.lower(), "")
+    if not part or not _case_words(tok) or tok.pos_ not in ("NOUN", "ADV", "ADJ"):
+        return ""
+    of = [
+        c for c in tok.children if c.dep_ in ("nmod", "obl") and any(x.lower_ == "of" for x in _case_words(c))
+    ]
+    if of and not (_room(of[0]) or of[0].lemma_.lower() in ("room", "space", "hall")):
+        return ""
+    return part
+
+
+def _room_parts(sent: SpacySpan, builder: GraphBuilder) -> None:
+    """Say which things the text places by a part of the room: the layout places a thing relative to other
+    things only, so "in the corner" is read but not honoured (an info diagnostic names it)."""
+    for tok in sent:
+        part = room_part(tok)
+        if not part:
+            continue
+        ids = [builder._by_token.get(s.i) for s in _subjects_of(tok)]
+        names = [i for i in ids if i]
+        if not names:
+            continue
+        start_tok = _case_words(tok)[0].i
+        start = sent.doc[start_tok].idx
+        phrase = [
+            c for c in tok.subtree if not c.is_punct and c.dep_ not in SUBJECT_DEPS and c.i >= start_tok
+        ]
+        end = max([tok.idx + len(tok.text)] + [c.idx + len(c.text) for c in phrase])
+        builder.diagnose(
+            "I114",
+            f"{', '.join(names)} '{sent.doc.text[start:end]}' ({part} of the room): the layout places it "
+            "relative to the other things only",
+            start,
+            end,
+        )
 
 
 RELATIVE_PRONOUNS = frozenset({"which", "that", "whom", "where"})

@@ -5,6 +5,10 @@ A bare word that several catalog kinds share ("sink", "desk", "chair") means, in
 in the scene when the phrase is definite ("the sink", "her desk"), the kind it looks up to when that
 fits the room, then a kind that fits the room type (``wana.assets.vocabulary.sense_in_context``). The
 object keeps its node; its category and id change, and so do the relations and actions that name it.
+
+A definite thing the scene lacks that a kind in it carries as a part is that kind: "Dad lights the
+candles" after "A cake is on the table" is the cake's candles (the cake is made with them), not three
+more candles placed around the room.
 """
 
 from __future__ import annotations
@@ -16,6 +20,8 @@ import msgspec
 from proto.ssg import ActionNode, CharacterNode, ObjectNode, SentenceGraph
 from wana.assets import vocabulary
 
+# A kind -> the kinds that carry it as a part of their own mesh.
+CARRIED_BY: dict[str, tuple[str, ...]] = {"candle": ("cake",)}
 _DEFINITE = re.compile(r"\b(the|his|her|their|its|my|your|our|this|that|these|those)\s*$", re.IGNORECASE)
 
 
@@ -43,10 +49,13 @@ def room_senses(graphs: list[SentenceGraph], offsets: list[int] | None = None) -
             else:
                 seen = tuple(present) if _definite(graph, o, base) else ()
                 new_cat = vocabulary.sense_in_context(word, o.category, room, seen) if word else o.category
+                if o.category not in seen:
+                    new_cat = next((c for c in CARRIED_BY.get(o.category, ()) if c in seen), new_cat)
             if new_cat != o.category and new_cat in vocabulary.CATEGORIES:
                 suffix = o.id[len(o.category) :] if o.id.startswith(o.category) else ""
                 renames.setdefault(o.id, new_cat + suffix)
-                o = msgspec.structs.replace(o, category=new_cat, id=renames[o.id])
+                count = 1 if new_cat in CARRIED_BY.get(o.category, ()) else o.count
+                o = msgspec.structs.replace(o, category=new_cat, id=renames[o.id], count=count)
                 changed = True
             objects.append(o)
             if o.category not in present:

@@ -214,6 +214,7 @@ bathroom_sink | sink | washbasin, wash basin, basin, lavatory sink, vanity sink,
 towel_rack | bathroom_fixture | towel rail, towel holder, towel bar, towel stand | bathroom | SCM | floor
 towel | textile | bath towel, hand towel, towels, blanket, blankets, quilt, duvet, bedspread, shirt, shirts, t-shirt, clothes, clothing, garment, sweater, tea towel, rag, cloth | bathroom gym | SCX | surface
 washing_machine | appliance | washer, laundry machine, tumble dryer, dryer, washer dryer | bathroom kitchen | SC | floor
+boiler | appliance | water heater, hot water tank, hot water cylinder, furnace, heating boiler, combi boiler | kitchen bathroom garage workshop | SC | floor
 toothbrush | toiletry | tooth brush, toothpaste | bathroom | SC | surface
 soap | toiletry | soap bar, soap dispenser, bar of soap, shampoo | bathroom kitchen | SC | surface
 boxing_bag | boxing_equipment | punching bag, punch bag, heavy bag, punchbag, speed bag, kick bag, sandbag, boxingbag | gym | SCM | floor

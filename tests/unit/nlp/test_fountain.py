@@ -94,7 +94,8 @@ def test_the_converted_screenplay_parses_without_a_diagnostic():
 )
 def test_every_example_screenplay_parses_cleanly(name):
     graphs = parse_document(to_story((EXAMPLES / name).read_text()))
-    assert [d.message for g in graphs for d in g.diagnostics] == []
+    # info notes (a part of the room the layout does not honour) are no fault of the screenplay
+    assert [d.message for g in graphs for d in g.diagnostics if d.severity != "info"] == []
     assert sum(1 for g in graphs for c in g.characters for a in c.actions if a.action == "talk") >= 2
     assert any(g.room_type for g in graphs)
 

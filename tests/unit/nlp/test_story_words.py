@@ -208,3 +208,60 @@ def test_the_nurse_is_nurse_adaeze_and_everyone_stays_everyone():
         ("Max", "walk", ""),
         ("Max", "wave", "everyone"),
     ]
+
+
+def test_lighting_the_candles_after_coming_in_is_a_reach_at_the_candles():
+    """The parser reads "lights" as a noun coordinated with "comes" and hangs the candles under "comes"."""
+    graphs = parse_document("Two candles are on the small table$. Dad comes in and lights the candles.")
+    assert acts(graphs) == [("dad", "walk", ""), ("dad", "press_switch", "candle")]
+
+
+def test_the_candles_of_a_cake_in_the_scene_are_the_cakes():
+    """The cake is made with its candles: lighting and blowing them out is at the cake, no candles added."""
+    graphs = parse_document(
+        "A cake is on the small table$. Dad comes in and lights the candles. Lily blows out the candles."
+    )
+    assert acts(graphs) == [
+        ("dad", "walk", ""),
+        ("dad", "press_switch", "cake"),
+        ("Lily", "greet_bow", "cake"),
+    ]
+    assert objects(graphs) == [("cake", 1), ("cake", 1), ("cake", 1), ("side_table", 1)]
+    graphs = parse_document("Dad lights a candle.")  # none in the scene: a candle of its own
+    assert acts(graphs) == [("dad", "press_switch", "candle")]
+
+
+def test_a_boiler_is_a_kind_of_the_catalog():
+    graphs = parse_document("A boiler is next to the stairs$. The plumber walks to the water heater.")
+    assert [o.category for o in graphs[0].objects][:1] == ["boiler"]
+    assert acts(graphs)[-1][1:] == ("walk", "boiler")
+    assert "W101" not in codes(graphs)
+
+
+def test_the_chart_in_a_meeting_room_is_the_flip_chart():
+    graphs = parse_document("In the meeting room there is a table and a flip chart$. Leo walks to the chart.")
+    assert acts(graphs) == [("Leo", "walk", "flip_chart")]
+    graphs = parse_document("In the meeting room there is a table$. Leo walks to the chart.")
+    assert acts(graphs) == [("Leo", "walk", "flip_chart")]
+
+
+@pytest.mark.parametrize(
+    ("text", "said"),
+    [
+        ("A flip chart is in the corner$.", "flip_chart 'in the corner' (corner of the room)"),
+        ("A table is in the middle of the room$.", "table 'in the middle of the room' (middle of the room)"),
+        ("A sofa is at the back of the room$.", "sofa 'at the back of the room' (back of the room)"),
+    ],
+)
+def test_a_part_of_the_room_is_read_and_said_not_honoured(text, said):
+    """The layout places things relative to other things only: the part of the room is named, not lost."""
+    (graph,) = parse_document(text)
+    notes = [d for d in graph.diagnostics if d.code == "I114"]
+    assert len(notes) == 1 and said in notes[0].message and notes[0].severity == "info"
+    assert graph.relations == []
+
+
+def test_the_back_of_a_thing_and_by_the_door_are_relations_not_room_parts():
+    graphs = parse_document("A cushion is at the back of the sofa$. A lamp is by the door$.")
+    assert relations(graphs) == [("cushion", "behind", "sofa"), ("lamp", "near", "door")]
+    assert "I114" not in codes(graphs)

@@ -36,6 +36,12 @@ def appliance(b: Builder, p: Params, kind: str = "fridge") -> None:
         b.box((-w / 2 + 0.1, h - 0.1, fz), (w / 2 - 0.1, h - 0.08, fz + 0.03), handle)
         b.contact("open", "RightHand", (0.0, h - 0.09, fz + 0.05))
         b.surface(h, -w / 2 + 0.02, -d / 2 + 0.02, w / 2 - 0.02, d / 2 - 0.04)
+    elif kind == "boiler":  # a tall tank: a dial panel at chest height and pipes from its top to the wall
+        b.box((-w / 2 + 0.08, h * 0.55, fz - 0.02), (w / 2 - 0.08, h * 0.7, fz), p.tone("charcoal"))
+        b.cyl((0.0, h * 0.62, fz), 0.04, 0.02, p.tone("white"), axis="z", sections=12)
+        for x in (-w / 4, 0.0, w / 4):
+            b.cyl((x, h, 0.0), 0.025, 0.25, p.tone("gold", 0.8), sections=8)
+        b.contact("use", "RightHand", (0.0, h * 0.62, fz + 0.04))
     b.stand = (0.0, 0.0, d / 2 + 0.45)
 
 
@@ -170,6 +176,7 @@ register("refrigerator", appliance, (0.7, 1.8, 0.7), body="white", kind="fridge"
 register("stove", appliance, (0.6, 0.9, 0.6), body="white", kind="stove")
 register("dishwasher", appliance, (0.6, 0.85, 0.6), body="steel", kind="dishwasher")
 register("washing_machine", appliance, (0.6, 0.85, 0.6), body="white", kind="washer")
+register("boiler", appliance, (0.5, 1.6, 0.45), body="white", kind="boiler")
 register("kitchen_sink", sink, (1.0, 0.92, 0.6), body="stone", frame="white", kind="kitchen")
 register("bathroom_sink", sink, (0.55, 0.85, 0.45), body="white", frame="lightwood", kind="bathroom")
 register("toilet", toilet, (0.4, 0.8, 0.68), body="white")
