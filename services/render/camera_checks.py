@@ -2,8 +2,10 @@
 
 - ``in_view``: for each action sentence, each acting character is inside the picture and at least
   VISIBLE_SHARE unoccluded (services.render.visibility) on at least FRAME_SHARE of its action's frames. A
-  seated character is judged by its head, trunk and arms (its legs are under the table or the seat), and
-  the seat it sits on hides nothing of it (a sofa's back seen from behind hides what sitting hides).
+  character is judged by its head, trunk and arms: legs under a table, behind a chair or cut off by a
+  medium shot leave a person plainly seen (a standing woman behind a meeting table read as 37 % hidden).
+  The seat it sits on and the thing its hands are on hide nothing of it (a sofa's back seen from behind
+  hides what sitting hides; a typist is seen across her laptop's screen).
 - ``command_visible``: each camera or light/weather command is in force for at least
   MIN_COMMAND_FRAMES of the video (until a later command of the same kind replaces it, or the end).
 
@@ -157,7 +159,9 @@ def in_view_checks(
             view = body_view(who, frames, joints, track, furniture, stage.scene.room, width, height, radii)
             hips = joints[who][np.clip(frames, 0, len(joints[who]) - 1), JOINT_INDEX["Hips"]]
             view = unhide_own_seat(view, seat_under(hips, furniture))
-            shown = shown_share(view, hips[:, 1] < SEATED_HIPS_M) >= VISIBLE_SHARE
+            hands = joints[who][np.clip(frames, 0, len(joints[who]) - 1)][:, [JOINT_INDEX[h] for h in HANDS]]
+            view = unhide_own_seat(view, held_under(hands, furniture))
+            shown = shown_share(view) >= VISIBLE_SHARE
             share = float(shown.mean())
             if tally is not None:
                 framed = view.in_frame.mean(axis=1) >= VISIBLE_SHARE
@@ -214,16 +218,31 @@ def seat_under(hips: np.ndarray, furniture: Furniture) -> np.ndarray:
     return out
 
 
+HANDS = ("LeftHand", "RightHand")
+HAND_ON_M = 0.08  # metres: a hand this close to an object's box is on it (typing, holding, leaning)
+
+
+def held_under(hands: np.ndarray, furniture: Furniture) -> np.ndarray:
+    """(F,) index of the furniture a hand is on at each frame (hands (F, H, 3)), -1 when none: the nearest
+    object with a box within HAND_ON_M of a hand."""
+    out = np.full(len(hands), -1, dtype=np.int64)
+    best = np.full(len(hands), HAND_ON_M)
+    for k, boxes in enumerate(furniture.boxes):
+        lo, hi = boxes[None, None, :, 0], boxes[None, None, :, 1]  # (1, 1, N, 3)
+        p = hands[:, :, None]  # (F, H, 1, 3)
+        gap = np.linalg.norm(np.maximum(np.maximum(lo - p, p - hi), 0.0), axis=3).min(axis=(1, 2))
+        mine = gap < best
+        out[mine], best[mine] = k, gap[mine]
+    return out
+
+
 LEGS = np.array([n.removeprefix("Left").removeprefix("Right") in LEG_JOINTS for n in BODY_POINTS])
 
 
-def shown_share(view: BodyView, seated: np.ndarray) -> np.ndarray:
-    """(F,) the share of the body shown on each frame; a seated character's legs are under the table or
-    the seat (what sitting hides), so a seated frame counts the head, trunk and arms only."""
-    share = view.visible.mean(axis=1)
-    if seated.any():
-        share[seated] = view.visible[seated][:, ~LEGS].mean(axis=1)
-    return share
+def shown_share(view: BodyView) -> np.ndarray:
+    """(F,) the share of the head, trunk and arms shown on each frame: legs under a table, behind a chair
+    or a sofa, or below a medium shot's edge leave a person seen, seated (what sitting hides) or standing."""
+    return np.asarray(view.visible[:, ~LEGS].mean(axis=1))
 
 
 def unhide_own_seat(view: BodyView, seat: np.ndarray) -> BodyView:
@@ -244,7 +263,7 @@ def _in_view_failure(who: str, what: str, view: BodyView, shown: np.ndarray, sha
     if out_of_frame.any():
         parts.append(f"{who} is out of frame for {out_of_frame.sum() / FPS:.1f} s of {what}")
     if hidden.any():
-        covered = 1.0 - view.visible[hidden].mean()
+        covered = 1.0 - view.visible[hidden][:, ~LEGS].mean()
         blockers = Counter(int(k) for k in view.hidden_by[hidden].reshape(-1) if k >= 0)
         total = sum(blockers.values())
         top = [view.occluders[k] for k, n in blockers.most_common(2) if n >= 0.25 * total]
