@@ -36,7 +36,8 @@ into furniture in that sentence.
 JSON keys: check_agreement (share of counted labels that agree), per_check (name -> labels, agree,
 agreement, false_alarms (check fails, eye says ok), misses (check passes, eye says fail)), counted, stale,
 skipped, disagreements (each unit with both verdicts and the check's reason), by_group (dev, test, others,
-fresh -> agreement, counted, labels), agreement_dev / agreement_held_out / agreement_fresh, fidelity (for
+fresh, fresh2 -> agreement, counted, labels), agreement_dev / agreement_held_out / agreement_fresh /
+agreement_fresh2, fidelity (for
 --split: the split's sentence_fidelity and failures per check with these checks), samples (when --sample).
 """
 
@@ -303,8 +304,12 @@ def compare(
 
 
 def label_group(lab: dict[str, Any], splits: dict[str, str]) -> str:
-    """``fresh`` for a label drawn blind after the checks were fixed, else its story's split."""
-    return "fresh" if lab.get("fresh") else splits.get(lab["story"], "unknown")
+    """The blind set a label was drawn in (``fresh``; ``fresh2``, drawn after ``fresh`` was tuned on), else
+    its story's split."""
+    fresh = lab.get("fresh")
+    if fresh:
+        return fresh if isinstance(fresh, str) else "fresh"
+    return splits.get(lab["story"], "unknown")
 
 
 def compare_groups(
@@ -438,6 +443,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     for group, key in (
         ("test", "agreement_held_out"),
         ("fresh", "agreement_fresh"),
+        ("fresh2", "agreement_fresh2"),
         ("dev", "agreement_dev"),
     ):
         if group in summary["by_group"]:

@@ -2,8 +2,10 @@
 
 - ``in_view``: for each action sentence, each acting character is inside the picture and at least
   VISIBLE_SHARE unoccluded (services.render.visibility) on at least FRAME_SHARE of its action's frames. A
-  seated character is judged by its head, trunk and arms (its legs are under the table or the seat), and
-  the seat it sits on hides nothing of it (a sofa's back seen from behind hides what sitting hides).
+  character is judged by its head, trunk and arms: legs under a table, behind a chair or cut off by a
+  medium shot leave a person plainly seen (a standing woman behind a meeting table read as 37 % hidden).
+  The seat it sits on and the thing its hands are on hide nothing of it (a sofa's back seen from behind
+  hides what sitting hides; a typist is seen across her laptop's screen).
 - ``command_visible``: each camera or light/weather command is in force for at least
   MIN_COMMAND_FRAMES of the video (until a later command of the same kind replaces it, or the end).
 
@@ -43,13 +45,22 @@ from services.render.visibility import (
     VISIBLE_SHARE,
     BodyView,
     capsule_radii,
+    held_under,
     judged_view,
     seat_under,
     shown_share,
     unhide_own_seat,
 )
 
-__all__ = ["LEGS", "SEATED_HIPS_M", "VISIBLE_SHARE", "seat_under", "shown_share", "unhide_own_seat"]
+__all__ = [
+    "LEGS",
+    "SEATED_HIPS_M",
+    "VISIBLE_SHARE",
+    "held_under",
+    "seat_under",
+    "shown_share",
+    "unhide_own_seat",
+]
 
 FRAME_SHARE = 0.9  # of the action's frames that must show the character
 MIN_COMMAND_FRAMES = COMMAND_HOLD_FRAMES  # 1.5 s: what the render timeline holds the last command for
@@ -207,7 +218,7 @@ def _in_view_failure(who: str, what: str, view: BodyView, shown: np.ndarray, sha
     if out_of_frame.any():
         parts.append(f"{who} is out of frame for {out_of_frame.sum() / FPS:.1f} s of {what}")
     if hidden.any():
-        covered = 1.0 - view.visible[hidden].mean()
+        covered = 1.0 - view.visible[hidden][:, ~LEGS].mean()
         blockers = Counter(int(k) for k in view.hidden_by[hidden].reshape(-1) if k >= 0)
         total = sum(blockers.values())
         top = [view.occluders[k] for k, n in blockers.most_common(2) if n >= 0.25 * total]

@@ -286,13 +286,28 @@ def seat_under(hips: np.ndarray, furniture: Furniture) -> np.ndarray:
 LEGS = np.array([n.removeprefix("Left").removeprefix("Right") in LEG_JOINTS for n in BODY_POINTS])
 
 
-def shown_share(view: BodyView, seated: np.ndarray) -> np.ndarray:
-    """(F,) the share of the body shown on each frame; a seated character's legs are under the table or
-    the seat (what sitting hides), so a seated frame counts the head, trunk and arms only."""
-    share = view.visible.mean(axis=1)
-    if seated.any():
-        share[seated] = view.visible[seated][:, ~LEGS].mean(axis=1)
-    return share
+def shown_share(view: BodyView) -> np.ndarray:
+    """(F,) the share of the head, trunk and arms shown on each frame: legs under a table, behind a chair
+    or a sofa, or below a medium shot's edge leave a person seen, seated (what sitting hides) or standing."""
+    return np.asarray(view.visible[:, ~LEGS].mean(axis=1))
+
+
+HANDS = ("LeftHand", "RightHand")
+HAND_ON_M = 0.08  # metres: a hand this close to an object's box is on it (typing, holding, leaning)
+
+
+def held_under(hands: np.ndarray, furniture: Furniture) -> np.ndarray:
+    """(F,) index of the furniture a hand is on at each frame (hands (F, H, 3)), -1 when none: the nearest
+    object with a box within HAND_ON_M of a hand (what the hand works on does not hide its worker)."""
+    out = np.full(len(hands), -1, dtype=np.int64)
+    best = np.full(len(hands), HAND_ON_M)
+    for k, boxes in enumerate(furniture.boxes):
+        lo, hi = boxes[None, None, :, 0], boxes[None, None, :, 1]  # (1, 1, N, 3)
+        p = hands[:, :, None]  # (F, H, 1, 3)
+        gap = np.linalg.norm(np.maximum(np.maximum(lo - p, p - hi), 0.0), axis=3).min(axis=(1, 2))
+        mine = gap < best
+        out[mine], best[mine] = k, gap[mine]
+    return out
 
 
 def unhide_own_seat(view: BodyView, seat: np.ndarray) -> BodyView:
@@ -316,10 +331,12 @@ def judged_view(
     radii: dict[str, np.ndarray] | None = None,
 ) -> tuple[BodyView, np.ndarray]:
     """What the ``in_view`` check counts of one character: its view (its own seat hiding nothing) and
-    (F,) the share of its body shown per frame (seated: head, trunk and arms). The director scores its
+    (F,) the share of its head, trunk and arms shown per frame (its seat and what its hands are on hide nothing). The director scores its
     candidate cameras with this same function, so a framing it picks passes the check it was picked for."""
     view = body_view(name, frames, joints, track, furniture, room, width, height, radii)
     j = joints[name]
     hips = j[np.clip(np.asarray(frames, dtype=np.int64), 0, len(j) - 1), JOINT_INDEX["Hips"]]
     view = unhide_own_seat(view, seat_under(hips, furniture))
-    return view, shown_share(view, hips[:, 1] < SEATED_HIPS_M)
+    hands = j[np.clip(np.asarray(frames, dtype=np.int64), 0, len(j) - 1)][:, [JOINT_INDEX[h] for h in HANDS]]
+    view = unhide_own_seat(view, held_under(hands, furniture))
+    return view, shown_share(view)

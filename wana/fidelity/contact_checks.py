@@ -137,8 +137,9 @@ def reach(
 ) -> Reach | None:
     """The candidate object and contact point the body came closest to during the window, None if none fits.
 
-    A held object (a cup, a hammer) the character carries (a PropTrack of it) is in the hand on those frames:
-    its placed position is where it was picked up from, not where it is.
+    An object the character carries (a PropTrack of it: a cup, a hammer, the can it sets down) is in the hand
+    on those frames whatever the action's kind: its placed position is where it was picked up from, not where
+    it is (greenhouse s5: "sets the can back on the stool" read the can as 3.40 m off, at the stool it left).
     """
     clip = clip_needs(act.node.action)
     frames = window_frames(act)
@@ -148,7 +149,7 @@ def reach(
     best: Reach | None = None
     best_score = np.inf
     for placed in candidates:
-        held = carried(tracks, placed.id, np.asarray(frames)) if clip.object in HELD else None
+        held = carried(tracks, placed.id, np.asarray(frames))
         for name, targets in _fitting(clip, world.contact_points(placed)):
             dist = {j: np.linalg.norm(body.joint(j)[idx] - p, axis=1) for j, p in targets.items()}
             if clip.object in ACROSS:  # writing moves over the board: any point of its face is the contact
@@ -156,7 +157,7 @@ def reach(
                     j: np.minimum(d, np.maximum(surface_gap(placed, body.joint(j)[idx]) - _tip(j), 0.0))
                     for j, d in dist.items()
                 }
-            if held is not None and held.any():
+            if held.any():
                 dist = {j: np.where(held, 0.0, d) for j, d in dist.items()}
             score = float(np.mean([d.mean() for d in dist.values()]))
             if score < best_score:

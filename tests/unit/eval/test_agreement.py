@@ -97,7 +97,9 @@ def test_fresh_labels_are_counted_apart_from_the_split_their_story_is_in(agreeme
     labels = [
         {**unit, "human": "fail", "why": "-", "animation": "f1"},
         {**unit, "sentence": "s2", "human": "fail", "why": "-", "animation": "f1", "fresh": True},
+        {**unit, "sentence": "s3", "human": "ok", "why": "-", "animation": "f1", "fresh": "fresh2"},
     ]
     groups = agreement.compare_groups(labels, found, {("a", 0): "f1"}, {"a": "test"})
     assert groups["test"] == {"agreement": 1.0, "counted": 1, "labels": 1}
     assert groups["fresh"] == {"agreement": 0.0, "counted": 1, "labels": 1}  # s2 has no failing check
+    assert groups["fresh2"] == {"agreement": 1.0, "counted": 1, "labels": 1}  # a second blind set, apart
