@@ -35,9 +35,28 @@ def test_the_giver_takes_the_cup_walks_up_to_the_receiver_and_lets_go_between_th
     release = [s for s in plan.segments if s.prop_span == "release"][0]
     ((joint, point),) = release.targets
     assert abs(point[1] - 1.0) < 1e-6
-    walk = [s for s in plan.segments if s.kind == "locomotion"][-1]
+    at = plan.segments.index(release)
+    walk = [s for s in plan.segments[:at] if s.kind == "locomotion"][-1]
     stop = np.asarray(walk.waypoints[-1])
     assert abs(np.linalg.norm(stop - np.array([2.0, 2.0])) - 0.75) < 0.05  # arm's length from Anna
+
+
+def test_the_giver_steps_back_after_letting_go_still_facing_the_receiver():
+    john = CharacterNode(name="John", actions=[ActionNode(verb="give", action="present", target="cup", destination="Anna")])  # fmt: skip
+    plan = plan_actions(john, SCENE, (0.0, 1.5, np.pi), others={"Anna": (2.0, 2.0)})
+    present = max(i for i, s in enumerate(plan.segments) if s.action == "present")
+    (back,) = [s for s in plan.segments[present:] if s.kind == "locomotion"]
+    stop = np.asarray(back.waypoints[-1])
+    assert np.linalg.norm(stop - np.array([2.0, 2.0])) >= 1.1  # no longer at arm's length
+    to_anna = np.array([2.0, 2.0]) - stop
+    assert (
+        abs(
+            np.arctan2(
+                np.sin(back.face_yaw - np.arctan2(*to_anna)), np.cos(back.face_yaw - np.arctan2(*to_anna))
+            )
+        )
+        < 0.2
+    )
 
 
 def test_a_give_gesture_with_no_object_hands_nothing_over():
