@@ -19,7 +19,12 @@ ratio = action_edit_p50_ms / full_ms. Targets (issue 9): action edit p50 <= 150 
 Writes {"action_edit_p50_ms", "scene_edit_p50_ms", "full_ms", "ratio"} (stable keys), plus
 "gateway_share_p50_ms" (latency not spent in Session.compute), "animation_message_kib_p50" and
 "unchanged_character_share" (characters the gateway sent as `unchanged` stubs), "late_action_edit_p50_ms"
-and "late_action_animation_kib_p50"; p95 is in the table.
+and "late_action_animation_kib_p50", and "bytes_per_action_edit_p50": every byte the WebSocket received from
+sending a one-word action edit to its story verdicts (the animation, then the diagnostics deltas), in a
+3-character document (issue 20: <= 50 kB); p95 is in the table. Animation messages are read as binary
+frames, as the editor reads them. The verdicts follow the animation off the hot path:
+"verdicts_after_animation_p50_ms" is how long after it they arrive, "diagnostics_bytes_per_edit_p50" their
+bytes; each edit waits for them before the next is sent.
 """
 
 from __future__ import annotations
@@ -63,6 +68,22 @@ ACTIONS = [
     "night",
     "Eve walks to the sofa.",
 ]
+# bytes per action edit (issue 20): three characters whose sentences interleave, so every edit moves the
+# later frames of all three in time
+THREE = [
+    "Eve walks to the chair.",
+    "Eve sits on the chair.",
+    "Tom walks to the sofa.",
+    "Tom waves at Eve.",
+    "Ann walks to the lamp.",
+    "Tom sits on the sofa.",
+    "Ann walks to the window.",
+    "Eve stands up.",
+    "Eve walks to the window.",
+    "Ann walks to the desk.",
+    "Tom stands up.",
+    "Tom walks to the lamp.",
+]
 WARM_UP = "In the kitchen there is a table$. A cup is on the table$. Ann walks to the table. Ann drinks."
 
 
@@ -74,18 +95,34 @@ def document() -> str:
     return text
 
 
+def three_character_document() -> str:
+    """The 3-character document of the bytes-per-edit measure (the scene of `document`, 12 actions)."""
+    return "\n".join([" ".join(SCENE), *THREE])
+
+
 class LiveClient:
-    """A WebSocket client of one document that tracks the text and version."""
+    """A WebSocket client of one document that tracks the text and version.
+
+    It reads animation messages as the editor does (binary frames, `?wire=binary`) and rebuilds every
+    patched character from the one it holds, checking that it was sent everything it needs.
+    """
 
     def __init__(self, ws_base: str, doc_id: str) -> None:
         from websockets.sync.client import connect
 
+        self.held: dict[str, Any] = {}  # character hash -> its frames (animwire.Quantised)
+        self.received_bytes = 0  # bytes of every message received so far
         self.overheads: list[float] = []  # ms of each edit's latency not spent in Session.compute
         self.animation_kb: list[float] = []  # size of each edit's animation message
         self.unchanged: list[int] = []  # characters each edit's animation message sent as `unchanged`
+        self.verdicts_ms: list[float] = []  # ms from each edit's animation to its story verdicts
+        self.diagnostics_bytes: list[int] = []  # bytes of each edit's diagnostics deltas
         self.last_size = 0  # characters of the last message received
+        self._diag_bytes = 0
         self._stack = contextlib.ExitStack()
-        self.ws = self._stack.enter_context(connect(f"{ws_base}/api/documents/{doc_id}/live", max_size=None))
+        self.ws = self._stack.enter_context(
+            connect(f"{ws_base}/api/documents/{doc_id}/live?wire=binary", max_size=None)
+        )
         state = self.until(lambda m: m["type"] == "state")
         self.text, self.version = state["text"], state["version"]
         self.last_animation = self.until(lambda m: m["type"] == "animation" and m["version"] == self.version)
@@ -94,12 +131,35 @@ class LiveClient:
         deadline = time.monotonic() + timeout
         while True:
             raw = self.ws.recv(timeout=max(deadline - time.monotonic(), 0.01))
-            msg = json.loads(raw)
+            msg = self._read_frame(raw) if isinstance(raw, bytes) else json.loads(raw)
             self.last_size = len(raw)
+            if isinstance(raw, str) and msg["type"] == "diagnostics":
+                self._diag_bytes += len(raw.encode("utf-8"))
+            self.received_bytes += len(raw if isinstance(raw, bytes) else raw.encode("utf-8"))
             if msg["type"] == "error":
                 raise RuntimeError(f"gateway error {msg['code']}: {msg['message']}")
             if wanted(msg):
                 return msg
+
+    def _read_frame(self, raw: bytes) -> dict[str, Any]:
+        """A binary animation frame as a message; patched characters are rebuilt from the held ones."""
+        from services.gateway import animwire
+
+        header, blobs = animwire.unpack(raw)
+        held: dict[str, Any] = {}
+        for c in header["characters"]:
+            if c.get("unchanged"):
+                frames = self.held.get(c["hash"])
+            else:
+                base = self.held.get(c["patch"]) if c.get("patch") else None
+                if c.get("patch") and base is None:
+                    raise RuntimeError(f"patch of {c['name']} against a version this client does not hold")
+                frames = animwire.entry_frames(c, blobs, base)
+            if frames is None:
+                raise RuntimeError(f"{c['name']} sent unchanged, but this client does not hold it")
+            held[c["hash"]] = frames
+        self.held = held
+        return dict(header)
 
     def edit_to_animation(self, start: int, end: int, text: str) -> float:
         """Send one edit; milliseconds until the animation of the version it produced arrives."""
@@ -120,8 +180,19 @@ class LiveClient:
             lambda m: m["type"] == "animation" and m["version"] == ack["version"]
         )
         elapsed = (time.perf_counter() - t0) * 1000.0
-        self.overheads.append(elapsed - float(self.last_animation["stats"]["compute_ms"]))
         self.animation_kb.append(self.last_size / 1024.0)
+        # the story verdicts follow the animation as their own diagnostics delta: wait for them, so the
+        # next edit does not share the CPU with them (and their bytes count for this edit)
+        self.until(
+            lambda m: (
+                m["type"] == "diagnostics" and m["version"] == ack["version"] and not m["verdicts_pending"]
+            ),
+            timeout=120.0,
+        )
+        self.verdicts_ms.append((time.perf_counter() - t0) * 1000.0 - elapsed)
+        self.diagnostics_bytes.append(self._diag_bytes)
+        self._diag_bytes = 0
+        self.overheads.append(elapsed - float(self.last_animation["stats"]["compute_ms"]))
         self.unchanged.append(sum(1 for c in self.last_animation["characters"] if c.get("unchanged")))
         self.text = self.text[:start] + text + self.text[end:]
         self.version = ack["version"]
@@ -195,8 +266,24 @@ def run(reps: int, backend: str, progress: bool, budget_s: float | None = None) 
             old, new = places[k % 2]
             scene_ms.append(client.swap_word(old, new, 0))
             bar.update()
-        bar.close()
         client.close()
+        # bytes per action edit in a 3-character document: every byte received from the edit to its animation
+        # (at least three edits, so the p50 is a middle one)
+        three = LiveClient(
+            ws_base, http.post("/api/documents", json={"text": three_character_document()}).json()["doc_id"]
+        )
+        edit_bytes: list[int] = []
+        started = time.monotonic()
+        for k in range(reps):
+            if budget_s is not None and len(edit_bytes) >= 3 and time.monotonic() - started > budget_s:
+                break
+            old, new, occurrence = ("walks", "runs", k // 2) if k % 2 == 0 else ("runs", "walks", 0)
+            before = three.received_bytes
+            three.swap_word(old, new, occurrence)
+            edit_bytes.append(three.received_bytes - before)
+            bar.update()
+        three.close()
+        bar.close()
         http.close()
     finally:
         gateway.stop()
@@ -215,6 +302,9 @@ def run(reps: int, backend: str, progress: bool, budget_s: float | None = None) 
         "characters": len(anim["characters"]),
         "objects": len(anim["objects"]),
         "frames": anim["frames"],
+        "edit_bytes": np.asarray(edit_bytes),
+        "verdicts_ms": np.asarray(client.verdicts_ms),
+        "diagnostics_bytes": np.asarray(client.diagnostics_bytes),
     }
 
 
@@ -265,6 +355,10 @@ def main(argv: list[str] | None = None) -> int:
         print(f"{'gateway share (not compute)':<28}{o50:>10.1f}{o95:>10.1f}{'':>14}")
         k50, k95 = np.percentile(r["animation_kb"], [50, 95])
         print(f"{'animation message (KiB)':<28}{k50:>10.1f}{k95:>10.1f}{'':>14}")
+        v50, v95 = np.percentile(r["verdicts_ms"], [50, 95])
+        print(f"{'animation -> verdicts':<28}{v50:>10.1f}{v95:>10.1f}{'':>14}")
+        d50 = float(np.percentile(r["diagnostics_bytes"], 50))
+        print(f"diagnostics deltas per edit: p50 {d50 / 1000:.1f} kB")
         print(
             f"characters sent as unchanged: {int(r['unchanged'].sum())} of "
             f"{len(r['unchanged']) * r['characters']} over {len(r['unchanged'])} action and scene edits "
@@ -274,6 +368,12 @@ def main(argv: list[str] | None = None) -> int:
         print(
             f"late action edits: {int(r['late_unchanged'].sum())} of {len(r['late']) * r['characters']} "
             f"characters sent as unchanged; animation message p50 {late_kib_p50:.1f} KiB"
+        )
+    if len(r["edit_bytes"]):
+        b50, b95 = np.percentile(r["edit_bytes"], [50, 95])
+        print(
+            f"bytes per action edit, 3 characters: p50 {b50 / 1000:.1f} kB, p95 {b95 / 1000:.1f} kB "
+            f"over {len(r['edit_bytes'])} edits (target p50 <= 50 kB)"
         )
     if args.json:
         args.json.parent.mkdir(parents=True, exist_ok=True)
@@ -286,9 +386,13 @@ def main(argv: list[str] | None = None) -> int:
         if len(r["overhead"]):  # added keys (the four above are stable)
             out["gateway_share_p50_ms"] = round(float(np.percentile(r["overhead"], 50)), 3)
             out["animation_message_kib_p50"] = round(float(np.percentile(r["animation_kb"], 50)), 1)
+            out["verdicts_after_animation_p50_ms"] = round(float(np.percentile(r["verdicts_ms"], 50)), 3)
+            out["diagnostics_bytes_per_edit_p50"] = int(np.percentile(r["diagnostics_bytes"], 50))
             out["unchanged_character_share"] = round(
                 float(r["unchanged"].sum()) / max(len(r["unchanged"]) * r["characters"], 1), 3
             )
+        if len(r["edit_bytes"]):
+            out["bytes_per_action_edit_p50"] = int(np.percentile(r["edit_bytes"], 50))
         if len(r["late"]):
             out["late_action_edit_p50_ms"] = round(float(late_p50), 3)
             out["late_action_animation_kib_p50"] = round(late_kib_p50, 1)

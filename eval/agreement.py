@@ -1,7 +1,7 @@
 """Do the story checks agree with the eye? Sample checks, draw what they name, compare with a person's labels.
 
 Usage:
-    .venv/bin/python eval/agreement.py [--split dev|test|others|all] [--sample N] [--sample-seed 0]
+    .venv/bin/python eval/agreement.py [--split dev|test|others|all] [--sample N | --blind N] [--sample-seed 0]
                                        [--seed 0] [--quick | --labelled] [--json PATH] [--labels PATH] [--out DIR]
 
 Each story of the split is computed once (the whole pipeline in-process, as eval/story.py does) and kept in a
@@ -26,9 +26,18 @@ computed with that seed. ``--labelled`` compares every label and computes nothin
 the QUICK_STORIES stories with the most labels, from the cache (seconds once cached; a cold cache computes
 them first).
 
+``--blind N`` draws N unlabelled units of every computed story and writes sheets under
+``out/eval/agreement/blind/`` that show the frames but not the verdict, the reason or marked frames (only the
+question the check answers): labels drawn that way are marked ``fresh`` and reported on their own. A body
+check blames the sentence a fault began in and the character whose motion caused it, so the question of an
+``overlap`` unit is whether that character moved into someone, of a ``penetration`` unit whether the part went
+into furniture in that sentence.
+
 JSON keys: check_agreement (share of counted labels that agree), per_check (name -> labels, agree,
 agreement, false_alarms (check fails, eye says ok), misses (check passes, eye says fail)), counted, stale,
-skipped, disagreements (each unit with both verdicts and the check's reason), samples (when --sample).
+skipped, disagreements (each unit with both verdicts and the check's reason), by_group (dev, test, others,
+fresh -> agreement, counted, labels), agreement_dev / agreement_held_out / agreement_fresh, fidelity (for
+--split: the split's sentence_fidelity and failures per check with these checks), samples (when --sample).
 """
 
 from __future__ import annotations
@@ -293,6 +302,67 @@ def compare(
     }
 
 
+def label_group(lab: dict[str, Any], splits: dict[str, str]) -> str:
+    """``fresh`` for a label drawn blind after the checks were fixed, else its story's split."""
+    return "fresh" if lab.get("fresh") else splits.get(lab["story"], "unknown")
+
+
+def compare_groups(
+    labels: Sequence[dict[str, Any]],
+    found: dict[tuple[Any, ...], dict[str, Any]],
+    fingerprints: dict[tuple[str, int], str],
+    splits: dict[str, str],
+) -> dict[str, dict[str, Any]]:
+    """Group (dev, test, others, fresh) -> its agreement and counted labels: a target must hold on the labels
+    the checks were not fixed on (held-out test, fresh), not only on the dev labels they were."""
+    groups: dict[str, list[dict[str, Any]]] = collections.defaultdict(list)
+    for lab in labels:
+        groups[label_group(lab, splits)].append(lab)
+    out = {}
+    for name, labs in sorted(groups.items()):
+        c = compare(labs, found, fingerprints)
+        out[name] = {"agreement": c["check_agreement"], "counted": c["counted"], "labels": len(labs)}
+    return out
+
+
+# What each check asks, in the words a blind sheet gives the person labelling it (no verdict, no reason).
+QUESTIONS = {
+    "object_exists": "is every object the sentence names in the room, as many as it says?",
+    "relation_holds": "does the stated relation between the objects hold?",
+    "performed": "does the character do what the sentence says?",
+    "contact": "is the named object in the hand / under the body where the action needs it?",
+    "placement": "is the character where the sentence puts them?",
+    "supported": "is the character supported (no sitting, lying or leaning on air)?",
+    "penetration": "does a part of the character go visibly into furniture, begun in this sentence?",
+    "overlap": "does the character's own motion take its body into another's (not being walked into)?",
+    "continuity": "does the character move without jumps or pops?",
+    "entrance": "does the character come in from outside / a door, unseen before?",
+    "in_view": "is the character in the picture and mostly unhidden while acting?",
+    "command_visible": "is the command's effect shown for at least 1.5 s?",
+}
+
+
+def draw_blind_sheet(result: Any, u: dict[str, Any], path: Path, index: int) -> Path:
+    """A contact sheet that shows the frames the check looked at but not what it concluded: no verdict, no
+    reason, no marked frames (the person labels what they see, then the verdicts are compared)."""
+    from services.render.gallery import contact_sheet
+
+    total = max((m.root_position.shape[0] for m in result.motions.values()), default=1)
+    span = story_eval.sentence_frames(result.motions, u["sentence"])
+    named = list(u["frames"])
+    if u["check"] == "continuity":  # a jump is seen between two frames: show the one before each named
+        named = sorted({g for f in named[:4] for g in (f - 1, f) if g >= 0} | set(named))
+    frames = story_eval.sheet_frames(named, span, total)
+    if span and len(frames) < 4:
+        frames = story_eval.sheet_frames([], span, total)
+    who = f" about {u['character']}" if u["character"] else ""
+    question = QUESTIONS.get(u["check"], "does it look right?")
+    title = f"[{index}] {u['story']} {u['sentence']}: {u['text']}\n{u['check']}{who}: {question}"
+    return contact_sheet(
+        result.scene, result.motions, result.commands, result.sentences, frames, set(), title, path
+    )
+
+
 def print_table(summary: dict[str, Any]) -> None:
     print(f"{'check':16s} {'labels':>6s} {'agree':>6s} {'share':>6s} {'false alarms':>13s} {'misses':>7s}")
     for name, c in summary["per_check"].items():
@@ -311,6 +381,14 @@ def print_table(summary: dict[str, Any]) -> None:
     if summary["skipped"]:
         print(f"{len(summary['skipped'])} labels skipped (their story was not computed this run)")
     print(f"check_agreement {summary['check_agreement']:.3f} over {summary['counted']} labels")
+    for group, g in summary.get("by_group", {}).items():
+        print(f"  {group:8s} {g['agreement']:.3f} over {g['counted']} labels ({g['labels']} given)")
+    if "fidelity" in summary:
+        f = summary["fidelity"]
+        print(
+            f"sentence_fidelity {f['sentence_fidelity']:.3f} over {f['sentences']} sentences ({f['split']})"
+        )
+        print("  failures per check: " + ", ".join(f"{k} {v}" for k, v in f["checks"].items() if v))
 
 
 # --- the run --------------------------------------------------------------------------------------------
@@ -340,6 +418,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     found: dict[tuple[Any, ...], dict[str, Any]] = {}
     fingerprints: dict[tuple[str, int], str] = {}
     results: dict[tuple[str, int], Any] = {}
+    rows: dict[tuple[str, int], dict[str, Any]] = {}
     for stem, seed in wanted:
         path = every.get(stem)
         if path is None:
@@ -350,9 +429,41 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         camera = camera_checks_of(result, fp, cache / "camera")
         row = story_eval.check_result(stem, text, result, camera=camera)
         results[(stem, seed)] = result
+        rows[(stem, seed)] = row
         for u in units(row, fp, seed):
             found[unit_key(u)] = u
     summary = compare(labels, found, fingerprints)
+    splits = {p.stem: p.parent.name for p in every.values()}
+    summary["by_group"] = compare_groups(labels, found, fingerprints, splits)
+    for group, key in (
+        ("test", "agreement_held_out"),
+        ("fresh", "agreement_fresh"),
+        ("dev", "agreement_dev"),
+    ):
+        if group in summary["by_group"]:
+            summary[key] = summary["by_group"][group]["agreement"]
+    if not (args.quick or args.labelled):  # the split's own stories: its sentence_fidelity with these checks
+        mine = [
+            rows[(p.stem, args.seed)]
+            for p in story_eval.story_paths(args.split)
+            if (p.stem, args.seed) in rows
+        ]
+        fidelity = story_eval.summarise(mine, args.seed, args.split)
+        summary["fidelity"] = {k: v for k, v in fidelity.items() if k != "per_story"}
+    if args.blind:
+        labelled = {unit_key(lab) for lab in labels}
+        pool = [u for u in found.values() if unit_key(u) not in labelled]
+        picked = stratified_sample(pool, args.blind, args.sample_seed)
+        sheets = args.out / "blind"
+        sheets.mkdir(parents=True, exist_ok=True)
+        for i, u in enumerate(picked):
+            name = f"{i:02d}-{u['story']}-{u['sentence']}-{u['check']}-{u['character'] or 'scene'}"
+            result = results[(u["story"], u["seed"])]
+            u["sheet"] = str(draw_blind_sheet(result, u, sheets / f"{name.replace(' ', '_')}.png", i))
+            who = f" about {u['character']}" if u["character"] else ""
+            print(f"[{i}] {u['story']} {u['sentence']} {u['check']}{who}: {u['text']}")
+        keep = ("story", "seed", "sentence", "check", "character", "text", "animation", "sheet")
+        (sheets / "units.json").write_text(json.dumps([{k: u[k] for k in keep} for u in picked], indent=1))
     if args.sample:
         labelled = {unit_key(lab) for lab in labels}
         pool = [
@@ -384,6 +495,8 @@ def build_parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--split", choices=(*story_eval.SPLITS, "all"), default="dev")
     ap.add_argument("--sample", type=int, default=0, help="draw this many units and write their sheets")
+    ap.add_argument("--blind", type=int, default=0,
+                    help="draw this many unlabelled units of every computed story, sheets with no verdict")  # fmt: skip
     ap.add_argument("--relabel", action="store_true", help="let --sample draw units already labelled")
     ap.add_argument("--seed", type=int, default=0, help="the pipeline's seed for --split (default 0)")
     ap.add_argument("--sample-seed", type=int, default=0, help="the sample's seed (default 0)")

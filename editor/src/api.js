@@ -37,6 +37,7 @@ export function liveUrl(docId, version) {
   const url = new URL(apiUrl(`/api/documents/${encodeURIComponent(docId)}/live`));
   url.protocol = url.protocol === "https:" ? "wss:" : "ws:";
   if (version !== null && version !== undefined) url.searchParams.set("version", String(version));
+  url.searchParams.set("wire", "binary"); // animation messages as binary frames, characters as patches
   return url.toString();
 }
 
@@ -64,6 +65,7 @@ async function call(method, path, body) {
 export const listDocuments = () => call("GET", "/api/documents");
 export const createDocument = (text = "", title = "") => call("POST", "/api/documents", { text, title });
 export const deleteDocument = (docId) => call("DELETE", `/api/documents/${encodeURIComponent(docId)}`);
+export const renameDocument = (docId, title) => call("PATCH", `/api/documents/${encodeURIComponent(docId)}`, { title });
 export const getDocument = (docId) => call("GET", `/api/documents/${encodeURIComponent(docId)}`);
 
 /** An export's bytes (ArrayBuffer), e.g. scene.glb with the director's camera; throws on failure. */

@@ -4,8 +4,9 @@ import * as THREE from "three";
 
 const PALETTE = [0xf2a541, 0x4fc3f7, 0xe57373, 0x81c784, 0xba68c8, 0xffd54f];
 
-/** Decode base64 of little-endian float32 bytes. */
+/** Decode base64 of little-endian float32 bytes (a Float32Array, from a binary frame, as it is). */
 export function decodeF32(b64) {
+  if (typeof b64 !== "string") return b64;
   const bin = atob(b64);
   const bytes = new Uint8Array(bin.length);
   for (let i = 0; i < bin.length; i++) bytes[i] = bin.charCodeAt(i);

@@ -9,6 +9,7 @@
 // On reconnect the server's whole text is rebased onto as one remote change.
 
 import { getClientID, receiveUpdates, sendableUpdates } from "@codemirror/collab";
+import { decodeFrame } from "./animwire.js";
 import { liveUrl } from "./api.js";
 import { fromWire, toWire } from "./collabwire.js";
 import { applyChanges, diff } from "./textdiff.js";
@@ -46,7 +47,18 @@ export class LiveDocument {
       this.retryMs = 250;
       this.hooks.onStatus("online");
     };
-    ws.onmessage = (event) => this.receive(JSON.parse(event.data));
+    ws.binaryType = "arraybuffer";
+    this.frames = Promise.resolve(); // binary animation frames are decoded (inflated) in arrival order
+    ws.onmessage = (event) => {
+      if (typeof event.data === "string") this.receive(JSON.parse(event.data));
+      else {
+        const data = event.data;
+        this.frames = this.frames
+          .then(() => decodeFrame(data))
+          .then((msg) => ws === this.ws && this.receive(msg))
+          .catch((err) => console.error("animation frame:", err));
+      }
+    };
     ws.onclose = (event) => {
       this.ready = false;
       if (this.closed) return;

@@ -2,7 +2,10 @@
 //
 // The gateway sends an entry the client already holds as a stub `{name|id, hash, unchanged: true}`
 // (services/gateway/delta.py); `resolve` fills the stubs in from the previous message's entries and then
-// holds exactly this message's entries, as the gateway assumes.
+// holds exactly this message's entries, as the gateway assumes. A character of a binary frame comes with
+// `ops` (every frame, or a patch of the held entry it names: editor/src/animwire.js) and is rebuilt here.
+
+import { rebuild } from "./animwire.js";
 
 export class Holdings {
   constructor() {
@@ -28,6 +31,14 @@ export class Holdings {
     const unchanged = [];
     const fill = (entries, held) =>
       (entries || []).map((entry) => {
+        if (entry.ops) {
+          const base = entry.patch ? held.get(entry.patch) : null;
+          if (entry.patch && !base?._q) {
+            missing.push(entry.patch);
+            return entry;
+          }
+          return rebuild(entry, base);
+        }
         if (!entry.unchanged) return entry;
         const kept = held.get(entry.hash);
         if (!kept) missing.push(entry.hash);

@@ -1,11 +1,20 @@
 // The wana editor: text on the left, the live animation on the right, one WebSocket per document.
 
 import "./style.css";
-import { createDocument, deleteDocument, downloadExport, fetchExport, getDocument, listDocuments } from "./api.js";
+import {
+  createDocument,
+  deleteDocument,
+  downloadExport,
+  fetchExport,
+  getDocument,
+  listDocuments,
+  renameDocument,
+} from "./api.js";
 import { directorCamera } from "./directorcam.js";
 import { fillExamples, renderHelp } from "./help.js";
 import { VOCABULARY } from "./vocabulary.js";
 import { LiveDocument } from "./connection.js";
+import { DiagnosticsMerge } from "./diagmerge.js";
 import { Holdings } from "./holdings.js";
 import { TextPane } from "./textpane.js";
 import { Timeline } from "./timeline.js";
@@ -20,13 +29,26 @@ const state = {
   version: null, // version of the last animation shown
   animation: null,
   diagnostics: null,
+  diagMerge: null,
+  tracksSentences: null, // the sentences (id:start:end) the timeline's clips were labelled with
   progress: null,
   messages: 0,
+  lastInput: -Infinity, // when the writer last typed in the text (performance.now())
+  pendingAnimation: null, // the newest animation, resolved, waiting for the writer to stop typing
   holdings: new Holdings(), // characters and objects of the last animation, by hash
   received: null, // what the last animation message carried: {version, unchanged: [character names]}
 };
 
+const TYPING_QUIET_MS = 400;
 const viewer = new Viewer($("viewport"));
+// A key in the text counts as typing from its keydown (before CodeMirror handles it).
+document.addEventListener(
+  "keydown",
+  (e) => {
+    if (e.target.closest?.("#text")) state.lastInput = performance.now();
+  },
+  true,
+);
 const pane = new TextPane({
   parent: $("text"),
   list: $("diagnostics"),
@@ -90,6 +112,23 @@ function showAnimation(received) {
     state.live.resume();
     return;
   }
+  state.pendingAnimation = { msg, unchanged };
+  showWhenQuiet();
+}
+
+/** While the writer types the 3D view waits (keystrokes first); the newest animation is shown after. */
+function typing() {
+  return performance.now() - state.lastInput < TYPING_QUIET_MS;
+}
+function showWhenQuiet() {
+  if (!state.pendingAnimation) return;
+  if (typing()) {
+    clearTimeout(state.quietTimer);
+    state.quietTimer = setTimeout(showWhenQuiet, TYPING_QUIET_MS);
+    return;
+  }
+  const { msg, unchanged } = state.pendingAnimation;
+  state.pendingAnimation = null;
   state.received = { version: msg.version, unchanged };
   state.animation = msg;
   state.version = msg.version;
@@ -97,11 +136,13 @@ function showAnimation(received) {
   viewer.setObjects(msg.objects);
   viewer.setCharacters(msg.characters); // rebuilds only the figures whose hash changed
   viewer.setCommands(msg.commands);
-  if (state.directorOn) loadDirector();
-  else if (viewer.exportScene && viewer.exportVersion !== msg.version) viewer.useExport(null); // stale
+  scheduleSkinned(); // the skinned characters of this version, once the versions stop changing
   viewer.invalidate();
   timeline.setLength(msg.frames, msg.fps);
   tracks.render(msg, sentenceText);
+  state.tracksSentences = state.diagnostics?.version === msg.version
+    ? state.diagnostics.sentences.map((x) => `${x.id}:${x.start}:${x.end}`).join(",")
+    : null;
   updateExports();
   $("progress-bar").style.width = "0";
   $("progress-text").textContent = msg.characters.length || msg.objects.length
@@ -127,10 +168,18 @@ function onMessage(msg) {
       state.progress = msg;
       showProgress(msg);
       break;
-    case "diagnostics":
-      state.diagnostics = msg;
-      pane.setDiagnostics(msg, state.live.version === msg.version ? state.live.confirmed : null);
+    case "diagnostics": {
+      const merged = state.diagMerge.apply(msg); // a delta: only the sentences whose diagnostics changed
+      state.diagnostics = merged;
+      pane.setDiagnostics(merged, state.live.version === merged.version ? state.live.confirmed : null);
+      // the animation comes before its diagnostics: its clips get their sentences' text when they arrive
+      const key = merged.sentences.map((x) => `${x.id}:${x.start}:${x.end}`).join(",");
+      if (state.animation && key !== state.tracksSentences) {
+        state.tracksSentences = key;
+        tracks.render(state.animation, sentenceText);
+      }
       break;
+    }
     case "animation":
       showAnimation(msg);
       break;
@@ -147,7 +196,12 @@ async function open(docId) {
   state.docId = docId;
   state.version = null;
   state.holdings = new Holdings();
+  state.diagMerge = new DiagnosticsMerge();
   state.animation = null;
+  state.pendingAnimation = null;
+  state.directorCam = null;
+  if (viewer.exportScene) viewer.useExport(null); // the last document's skinned characters
+  viewer.exportDoc = null;
   updateExports();
   if (location.hash !== `#doc=${docId}`) history.replaceState(null, "", `#doc=${docId}`);
   state.live = new LiveDocument(docId, {
@@ -196,6 +250,19 @@ $("delete-doc").addEventListener("click", async () => {
   const next = docs.find((d) => d.doc_id !== gone) ?? (await createDocument("", "untitled"));
   await open(next.doc_id);
 });
+$("rename-doc").addEventListener("click", async () => {
+  const docId = state.docId;
+  const current = $("doc-picker").selectedOptions[0]?.dataset.title ?? "";
+  const title = window.prompt("Rename the document", current)?.trim();
+  if (!docId || !title || title === current) return;
+  try {
+    await renameDocument(docId, title);
+  } catch (err) {
+    $("export-status").textContent = `rename failed: ${err.message}`;
+    return;
+  }
+  await refreshPicker();
+});
 $("new-doc").addEventListener("click", async () => {
   const doc = await createDocument("", `untitled ${new Date().toLocaleString()}`);
   await open(doc.doc_id);
@@ -216,14 +283,11 @@ for (const button of document.querySelectorAll("#exports button[data-format]")) 
     const status = $("export-status");
     status.textContent = `${format.toUpperCase()}…`;
     if (format === "bvh") {
-      // one BVH per character of the animation shown
-      const names = (state.animation?.characters ?? []).map((c) => c.name);
-      const done = [];
-      for (const name of names) {
-        status.textContent = `BVH ${name} (${done.length + 1}/${names.length})…`;
-        done.push(await downloadExport(docId, "bvh", name));
-      }
-      if (docId === state.docId) status.textContent = done.join("; ");
+      // every character's BVH, in one zip
+      const count = (state.animation?.characters ?? []).length;
+      status.textContent = `BVH of ${count} character${count === 1 ? "" : "s"}…`;
+      const message = await downloadExport(docId, "bvh", "*").catch((err) => String(err.message || err));
+      if (docId === state.docId) status.textContent = message;
       return;
     }
     // MP4 and GLB render on the server: show the time it has taken, and let the writer cancel
@@ -287,19 +351,46 @@ directorButton.title = "play the director's camera (the MP4's) or orbit freely";
 directorButton.textContent = "Free camera";
 $("focus").after(directorButton);
 state.directorOn = false;
-async function loadDirector() {
-  if (!state.directorOn || !state.docId) return viewer.useDirector(null);
-  const version = state.version;
-  try {
-    const glb = await fetchExport(state.docId, "glb");
-    const cam = directorCamera(glb);
-    if (!state.directorOn || version !== state.version) return;
-    viewer.useDirector(cam);
-    // Preview = export: the MP4's own skinned characters, room and objects under the MP4's camera.
-    await viewer.useExport(glb, version);
-  } catch (err) {
-    $("export-status").textContent = String(err.message || err);
+// Both cameras show the render service's skinned characters (its scene.glb of the version shown: preview =
+// export), from the first animation on; it is fetched once the versions stop changing for SKIN_QUIET_MS, and
+// the capsule figures stand in until it arrives (or when the render service is not available).
+const SKIN_QUIET_MS = 600;
+let skinTimer = null;
+let skinning = false;
+function scheduleSkinned() {
+  clearTimeout(skinTimer);
+  skinTimer = setTimeout(loadSkinned, SKIN_QUIET_MS);
+}
+async function loadSkinned() {
+  const { docId, version } = state;
+  if (!docId || version === null || !(state.animation?.characters ?? []).length) {
+    if (viewer.exportScene) viewer.useExport(null);
+    return viewer.useDirector(null);
   }
+  if (viewer.exportVersion === version && viewer.exportDoc === docId) {
+    if (state.directorOn !== !!viewer.director) viewer.useDirector(state.directorOn ? state.directorCam : null);
+    return;
+  }
+  if (skinning || typing()) return scheduleSkinned();
+  skinning = true;
+  try {
+    const glb = await fetchExport(docId, "glb");
+    if (version !== state.version || docId !== state.docId) return;
+    state.directorCam = directorCamera(glb);
+    viewer.useDirector(state.directorOn ? state.directorCam : null);
+    await viewer.useExport(glb, version);
+    viewer.exportDoc = docId;
+  } catch (err) {
+    if (state.directorOn && docId === state.docId) $("export-status").textContent = String(err.message || err);
+    if (viewer.exportScene && viewer.exportDoc !== state.docId) viewer.useExport(null); // another document's
+  } finally {
+    skinning = false;
+  }
+}
+function loadDirector() {
+  if (!state.directorOn) viewer.useDirector(null);
+  else if (viewer.exportVersion === state.version && state.directorCam) viewer.useDirector(state.directorCam);
+  loadSkinned();
 }
 directorButton.addEventListener("click", () => {
   state.directorOn = !state.directorOn;
@@ -316,17 +407,12 @@ document.addEventListener("keydown", (e) => {
   }
 });
 
-// While the writer types, the 3D view draws at most every TYPING_FRAME_MS so keystrokes stay responsive;
-// the clock keeps running, so playback stays in time and catches up at once when typing stops.
-const TYPING_QUIET_MS = 400;
-const TYPING_FRAME_MS = 150;
-state.lastInput = -Infinity;
-state.lastDraw = 0;
-function frameLoop(now) {
-  const typing = now - state.lastInput < TYPING_QUIET_MS;
-  if (!typing || now - state.lastDraw >= TYPING_FRAME_MS) {
-    state.lastDraw = now;
-    timeline.tick(now); // poses the figures and highlights the sentences playing
+// While the writer types (and TYPING_QUIET_MS after the last key), the 3D view is not drawn and new
+// animations wait, so a keystroke never queues behind a frame of the (software-rendered) scene; playback
+// holds while the writer types and goes on when typing stops.
+function frameLoop() {
+  if (!typing()) {
+    timeline.tick(performance.now()); // poses the figures and highlights the sentences playing
     viewer.render();
   }
   requestAnimationFrame(frameLoop);

@@ -44,3 +44,33 @@ test("only the last message is held: a stub of an older entry is reported missin
   assert.deepEqual(missing, ["e1"]);
   assert.equal(h.characters.size, 0);
 });
+
+test("a binary patch of a version this page does not hold is missing: the page resumes", () => {
+  const h = new Holdings();
+  const patch = {
+    name: "Eve", hash: "e2", patch: "e1", frames: 1, ops: [[1, 0, 0]], scale: 32767, has_present: false,
+    _blobs: [new Int16Array(0), new Uint32Array(0), new Uint8Array(0)],
+  };
+  const { message, missing } = h.resolve(animation(2, [patch]));
+  assert.equal(message, null);
+  assert.deepEqual(missing, ["e1"]);
+});
+
+test("a full binary entry, then a patch of it, rebuild the frames from the held one", () => {
+  const h = new Holdings();
+  const full = {
+    name: "Eve", hash: "e1", frames: 2, joints: ["Hips"], parents: [-1], offsets: "AAAAAAAAAAAAAAAA",
+    ops: [[2, -1, 1]], scale: 32767, has_present: false,
+    _blobs: [Int16Array.from([0, 0, 0, 32767, 100, 0, 0, 32767]), new Uint32Array(6), new Uint8Array([1, 1])],
+  };
+  const first = h.resolve(animation(1, [full])).message.characters[0];
+  assert.equal(first.rotations[3], 1);
+  const patch = {
+    name: "Eve", hash: "e2", patch: "e1", frames: 3, ops: [[1, 1, 0], [2, 0, 1]], scale: 32767, has_present: false,
+    _blobs: [Int16Array.from([5, 0, 0, 0, 0, 0, 0, 0]), new Uint32Array(6), new Uint8Array(2)],
+  };
+  const second = h.resolve(animation(2, [patch])).message.characters[0];
+  assert.deepEqual(Array.from(second._q.rot), [100, 0, 0, 32767, 5, 0, 0, 32767, 100, 0, 0, 32767]);
+  assert.deepEqual(second.joints, ["Hips"]); // kept from the held entry
+  assert.equal(second.present, null);
+});

@@ -8,6 +8,10 @@ same backend as the pipeline; the render service places captions and commands on
 
 from __future__ import annotations
 
+import io
+import re
+import zipfile
+
 from proto.common import ErrorCode
 from services.orchestrator.backend import StageFailed, StageUnavailable
 from services.orchestrator.exports import export_request
@@ -57,7 +61,7 @@ def export_document(
         session: the open document.
         fmt: "mp4", "glb", "bvh", "usd" or "fbx" (the last two refused with a message naming the package
             when the render worker lacks it).
-        character: for BVH, the character to export ("" = the first one).
+        character: for BVH, the character to export ("" = the first one, "*" = every one, in a zip).
         width, height: video size in pixels (MP4).
 
     Returns:
@@ -86,7 +90,13 @@ def export_document(
     if fmt == "bvh" and not result.motions:
         why = result.unavailable.get("motion", "the text makes no character move yet")
         raise NothingToExport(f"no character motion to export as BVH: {why}")
-    request = export_request(result, fmt, character=character, width=width, height=height)  # type: ignore[arg-type]
+    if fmt == "bvh" and character == "*":
+        return _every_bvh(session, result)
+    return _call(session, result, fmt, character=character, width=width, height=height)
+
+
+def _call(session: Session, result: PipelineResult, fmt: str, **options: object) -> tuple[bytes, str, str]:
+    request = export_request(result, fmt, **options)  # type: ignore[arg-type]
     try:
         reply = session.pipeline.backend.call(request)
     except StageUnavailable as exc:
@@ -94,3 +104,13 @@ def export_document(
     except StageFailed as exc:
         raise ExportFailed(exc.code, str(exc)) from exc
     return bytes(reply.data), str(reply.media_type), str(reply.filename)
+
+
+def _every_bvh(session: Session, result: PipelineResult) -> tuple[bytes, str, str]:
+    """Every character's BVH in one zip, one `<name>.bvh` each (the editor's BVH button)."""
+    out = io.BytesIO()
+    with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as zf:
+        for name in sorted(result.motions):
+            data, _, _ = _call(session, result, "bvh", character=name)
+            zf.writestr(f"{re.sub(r'[^A-Za-z0-9_-]+', '_', name) or 'character'}.bvh", data)
+    return out.getvalue(), "application/zip", "characters-bvh.zip"

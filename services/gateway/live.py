@@ -5,6 +5,10 @@ client sends them; every edit marks the channel dirty. One compute loop per chan
 `Session.compute` (on a snapshot, without the document lock) in a thread pool, off the event loop; edits that arrive while it runs are coalesced into
 the next run, and results are pushed only when they belong to the newest version, so a fast typist never
 waits for intermediate versions.
+
+The animation goes out first, then the pipeline's diagnostics; the story checks (wana.fidelity) run after
+that as their own task, dropped when a newer version arrives, and their verdicts follow as one more
+diagnostics delta (services.gateway.diagdelta).
 """
 
 from __future__ import annotations
@@ -25,7 +29,9 @@ from starlette.websockets import WebSocket, WebSocketState
 from proto.common import ErrorCode
 from services.gateway import messages, metrics
 from services.gateway.delta import CharacterCache, EncodedAnimation, Holdings, encode_animation, encode_json
-from services.orchestrator.document import BadEdit, StaleEdit, TextChange
+from services.gateway.diagdelta import DiagnosticsState
+from services.orchestrator.document import BadEdit, Document, StaleEdit, TextChange
+from services.orchestrator.pipeline import PipelineResult
 from services.orchestrator.session import Orchestrator, Session
 
 log = logging.getLogger(__name__)
@@ -46,12 +52,19 @@ class Client:
     lock: asyncio.Lock = field(default_factory=asyncio.Lock)
     client_id: str = field(default_factory=lambda: secrets.token_hex(4))  # names its caret for the others
     holdings: Holdings = field(default_factory=Holdings)
+    binary: bool = (
+        False  # animation messages as binary frames, characters patched (services.gateway.animwire)
+    )
+    diag_seq: int | None = None  # the diagnostics state (DiagnosticsState.seq) this client holds
 
-    async def _send_text(self, text: str) -> bool:
+    async def _send_text(self, text: str | bytes) -> bool:
         if self.ws.client_state != WebSocketState.CONNECTED:
             return False
         try:
-            await self.ws.send_text(text)
+            if isinstance(text, bytes):
+                await self.ws.send_bytes(text)
+            else:
+                await self.ws.send_text(text)
         except Exception:  # a closed socket: the receive loop will detach it
             return False
         return True
@@ -65,14 +78,30 @@ class Client:
     async def send_animation(self, animation: EncodedAnimation) -> bool:
         """Send an animation message, with `unchanged` stubs for the entries this client holds."""
         async with self.lock:
-            text, holdings, _ = animation.text_for(self.holdings)
-            sent = await self._send_text(text)
+            data: str | bytes
+            if self.binary:
+                data, holdings, _ = animation.binary_for(self.holdings)
+            else:
+                data, holdings, _ = animation.text_for(self.holdings)
+            sent = await self._send_text(data)
             self.holdings = holdings if sent else Holdings()
             return sent
 
+    async def send_diagnostics(self, state: DiagnosticsState, delta: tuple[int, str] | None) -> bool:
+        """Send `state` as the delta (base seq, its text) when this client holds that base, else whole."""
+        async with self.lock:
+            if delta is not None and self.diag_seq == delta[0]:
+                text = delta[1]
+            else:
+                text = encode_json(state.message(None))
+            sent = await self._send_text(text)
+            self.diag_seq = state.seq if sent else None
+            return sent
+
     def forget_holdings(self) -> None:
-        """The next animation message goes to this client in full (it asked to resume)."""
+        """The next animation (and diagnostics) message goes to this client in full (it asked to resume)."""
         self.holdings = Holdings()
+        self.diag_seq = None
 
 
 class DocumentChannel:
@@ -83,7 +112,10 @@ class DocumentChannel:
         self.executor = executor
         self.title = title
         self.clients: set[Client] = set()
-        self.latest: tuple[dict[str, Any], EncodedAnimation] | None = None  # (diagnostics, animation)
+        self.latest: EncodedAnimation | None = None  # the newest version's animation
+        self.diag: DiagnosticsState | None = None  # the diagnostics last sent to every client
+        self._diag_lock = asyncio.Lock()  # one diagnostics state goes out at a time, in order
+        self._judging: asyncio.Task[None] | None = None  # the story checks of self.diag's version
         self._characters = CharacterCache()  # used by one compute at a time (the compute loop's)
         self._dirty = False
         self._task: asyncio.Task[None] | None = None
@@ -111,10 +143,11 @@ class DocumentChannel:
             state = await run_in_threadpool(self._state)
             state["resumed_from"] = known_version
             await client.send(state)
-        if self.latest is not None and self.latest[0]["version"] == self.version:
-            diagnostics, animation = self.latest
-            await client.send(diagnostics)
-            await client.send_animation(animation)
+        if self.latest is not None and self.latest.head["version"] == self.version:
+            await client.send_animation(self.latest)
+            async with self._diag_lock:
+                if self.diag is not None and self.diag.version == self.latest.head["version"]:
+                    await client.send_diagnostics(self.diag, None)
         else:
             self.request_compute()
 
@@ -142,6 +175,16 @@ class DocumentChannel:
         targets = list(self.clients)
         if targets:
             await asyncio.gather(*(c.send_animation(animation) for c in targets))
+
+    async def broadcast_diagnostics(self, state: DiagnosticsState) -> None:
+        """Make `state` the channel's diagnostics and send it: as a delta to the clients that hold the
+        previous one (encoded once), whole to the others. Call with `_diag_lock` held."""
+        base = self.diag
+        delta = None if base is None else (base.seq, encode_json(state.message(base)))
+        self.diag = state
+        targets = list(self.clients)
+        if targets:
+            await asyncio.gather(*(c.send_diagnostics(state, delta) for c in targets))
 
     def _state(self) -> dict[str, Any]:
         with self.session.lock:
@@ -193,15 +236,25 @@ class DocumentChannel:
 
     # -- computing -----------------------------------------------------------------------------------
     def request_compute(self) -> None:
-        """Mark the document dirty; start the compute loop unless one is running (it will pick this up)."""
+        """Mark the document dirty; start the compute loop unless one is running (it will pick this up).
+
+        The story checks of an older version are dropped: their verdicts would be outdated on arrival."""
         self._dirty = True
+        self._drop_judging()
         if self._task is None:
             self._task = asyncio.get_running_loop().create_task(self._compute_loop())
 
     async def wait_idle(self) -> None:
-        """Wait until no compute is pending (tests and benchmarks)."""
-        while self._task is not None:
-            await asyncio.shield(self._task)
+        """Wait until no compute (nor story check) is pending (tests and benchmarks)."""
+        while self._task is not None or self._judging is not None:
+            task = self._task or self._judging
+            assert task is not None
+            await asyncio.wait({task})  # a dropped story check ends cancelled: that is idle too
+
+    def _drop_judging(self) -> None:
+        if self._judging is not None:
+            self._judging.cancel()
+            self._judging = None
 
     async def _compute_loop(self) -> None:
         loop = asyncio.get_running_loop()
@@ -210,7 +263,7 @@ class DocumentChannel:
                 self._dirty = False
                 started = time.perf_counter()
                 try:
-                    diag, anim = await loop.run_in_executor(self.executor, self._compute, loop)
+                    result, doc, anim = await loop.run_in_executor(self.executor, self._compute, loop)
                 except Exception as exc:
                     metrics.COMPUTE_FAILURES.inc()
                     log.exception("compute of %s failed", self.session.doc_id)
@@ -222,18 +275,58 @@ class DocumentChannel:
                         }
                     )
                     continue
-                if diag["version"] != self.version:
+                if result.version != self.version:
                     self._dirty = True  # an edit landed meanwhile: only the newest version is pushed
                     continue
                 anim.head["stats"]["total_ms"] = round((time.perf_counter() - started) * 1000.0, 2)
-                self.latest = (diag, anim)
-                await self.broadcast(diag)
-                await self.broadcast_animation(anim)
+                self.latest = anim
+                self._drop_judging()
+                await self.broadcast_animation(anim)  # the preview first: it does not wait for diagnostics
+                async with self._diag_lock:
+                    await self.broadcast_diagnostics(self._pipeline_state(result, doc))
+                if not self._dirty:
+                    self._judging = loop.create_task(self._judge(result, self.diag))
         finally:
             self._task = None
 
-    def _compute(self, loop: asyncio.AbstractEventLoop) -> tuple[dict[str, Any], EncodedAnimation]:
-        """Runs in the compute pool: bring the session up to date and build (and encode) both messages."""
+    def _pipeline_state(self, result: PipelineResult, doc: Document) -> DiagnosticsState:
+        """The new version's pipeline diagnostics, the last verdicts kept until its own are judged."""
+        sentences = messages.sentence_list(result, doc)
+        unavailable = dict(result.unavailable)
+        entries = messages.pipeline_entries(result)
+        if self.diag is None:
+            return DiagnosticsState(result.version, sentences, unavailable, entries, {}, True)
+        return self.diag.carried_into(result.version, sentences, unavailable, entries)
+
+    async def _judge(self, result: PipelineResult, pipeline: DiagnosticsState | None) -> None:
+        """Run the story checks of `result` in the compute pool and send their verdicts, unless a newer
+        version came meanwhile (this task is then cancelled, or finds the channel moved on)."""
+        try:
+            judged = await asyncio.get_running_loop().run_in_executor(
+                self.executor, messages.story_verdicts, result
+            )
+            warnings, verdicts = messages.verdict_entries(result, judged)
+            async with self._diag_lock:
+                if pipeline is None or self.diag is not pipeline or self._dirty:
+                    return
+                entries = messages.pipeline_entries(result)
+                for sid, items in warnings.items():
+                    entries.setdefault(sid, []).extend(items)
+                state = DiagnosticsState(
+                    pipeline.version, pipeline.sentences, pipeline.unavailable, entries, verdicts, False
+                )
+                await self.broadcast_diagnostics(state)
+        except asyncio.CancelledError:
+            raise
+        except Exception:
+            metrics.COMPUTE_FAILURES.inc()
+            log.exception("story checks of %s failed", self.session.doc_id)
+        finally:
+            if self._judging is asyncio.current_task():
+                self._judging = None
+
+    def _compute(self, loop: asyncio.AbstractEventLoop) -> tuple[PipelineResult, Document, EncodedAnimation]:
+        """Runs in the compute pool: bring the session up to date and build (and encode) the animation."""
         version = self.version
         self._progress_sent.clear()
 
@@ -254,9 +347,8 @@ class DocumentChannel:
         metrics.COMPUTE_SECONDS.observe(compute_ms / 1000.0)
         with self.session.lock:  # a consistent copy of the sentences, for as long as that takes
             doc = dataclasses.replace(self.session.doc, sentences=list(self.session.doc.sentences))
-        diag = messages.diagnostics_message(result, doc)
         anim = encode_animation(result, self._characters, compute_ms=compute_ms)
-        return diag, anim
+        return result, doc, anim
 
 
 class LiveHub:

@@ -82,15 +82,12 @@ def check_entry(check: Check) -> dict[str, Any]:
     }
 
 
-def diagnostics_message(
-    result: PipelineResult, doc: Document, extra_checks: Mapping[str, list[Check]] | None = None
-) -> dict[str, Any]:
-    """Per-sentence diagnostics with document offsets, the stages that could not run, and each sentence's
-    verdict: every failed story check is also a W401 warning on its sentence's span."""
-    diags = []
+def pipeline_entries(result: PipelineResult) -> dict[str, list[dict[str, Any]]]:
+    """Sentence id -> the pipeline's diagnostics of it (document offsets): cheap, sent with the animation."""
+    out: dict[str, list[dict[str, Any]]] = {}
     for sid, items in result.diagnostics.items():
         for d in items:
-            diags.append(
+            out.setdefault(sid, []).append(
                 {
                     "sentence_id": sid,
                     "code": d.code,
@@ -100,13 +97,21 @@ def diagnostics_message(
                     "end": d.span.end,
                 }
             )
-    judged = story_verdicts(result, extra_checks)
+    return out
+
+
+def verdict_entries(
+    result: PipelineResult, judged: Mapping[str, SentenceVerdict]
+) -> tuple[dict[str, list[dict[str, Any]]], dict[str, dict[str, Any]]]:
+    """The story verdicts as W401 warnings on their sentences' spans (sentence id -> entries), and each
+    sentence's verdict as the editor reads it (sentence id -> verdict entry)."""
     spans = {s.id: (s.start, s.end) for s in result.sentences}
+    warnings: dict[str, list[dict[str, Any]]] = {}
     for sid, verdict in judged.items():
         start, end = spans.get(sid, (0, 0))
         for check in verdict.checks:
             if not check.ok:
-                diags.append(
+                warnings.setdefault(sid, []).append(
                     {
                         "sentence_id": sid,
                         "code": FIDELITY_CODE,
@@ -117,6 +122,22 @@ def diagnostics_message(
                         "check": check.name,
                     }
                 )
+    entries = {
+        sid: {"sentence_id": sid, "verdict": v.verdict, "checks": [check_entry(c) for c in v.checks]}
+        for sid, v in judged.items()
+    }
+    return warnings, entries
+
+
+def diagnostics_message(
+    result: PipelineResult, doc: Document, extra_checks: Mapping[str, list[Check]] | None = None
+) -> dict[str, Any]:
+    """Per-sentence diagnostics with document offsets, the stages that could not run, and each sentence's
+    verdict: every failed story check is also a W401 warning on its sentence's span. (The whole of it: the
+    live socket sends the same as deltas, services.gateway.diagdelta.)"""
+    warnings, judged = verdict_entries(result, story_verdicts(result, extra_checks))
+    diags = [e for items in pipeline_entries(result).values() for e in items]
+    diags += [e for items in warnings.values() for e in items]
     diags.sort(key=lambda d: (d["start"], d["end"], d["code"]))
     return {
         "type": "diagnostics",
@@ -124,10 +145,7 @@ def diagnostics_message(
         "sentences": sentence_list(result, doc),
         "diagnostics": diags,
         "unavailable": dict(result.unavailable),
-        "verdicts": [
-            {"sentence_id": sid, "verdict": v.verdict, "checks": [check_entry(c) for c in v.checks]}
-            for sid, v in judged.items()
-        ],
+        "verdicts": list(judged.values()),
     }
 
 

@@ -5,7 +5,8 @@ walking at the same time ("They walk to the desk", one coming in while another w
 on the way. Once the cast shares one time line, every character's trajectory is reserved frame by frame
 (wana.domain.routes.Reservations); a walker whose trajectory enters another's reserved disc at the same
 frame waits: it stops a few frames before (on a frame with both feet down, so the wait looks like a paused
-step) for as long as it takes the other to pass, then walks on. Of two walkers the one whose walk began
+step) for as long as it takes the other to pass, then walks on; where no stop on the way clears it (two
+setting off together whose ways cross), it waits before setting off and walks behind the other. Of two walkers the one whose walk began
 later waits. The time spent waiting is taken back from the walker's next hold (the gap before its next
 action), so the rest of the story keeps its timing; where no hold is long enough the story grows and the
 others hold their last pose. A walker blocked by someone standing still is not helped by waiting and is
@@ -292,8 +293,9 @@ def give_way(motions: Mapping[str, Motion]) -> tuple[dict[str, Motion], list[str
         skip = {walker} | {o for (w, s, o) in hopeless if w == walker and s == seg.start_frame}
         wait, stop = 0, seg.start_frame
         # Stop just before the meeting, or earlier when the other passes through that spot too.
-        for back in range(0, 6 * LEAD_FRAMES + 1, LEAD_FRAMES):
-            stop = _stop_frame(track, seg.start_frame, frame - back)
+        stops = [frame - back for back in range(0, 6 * LEAD_FRAMES + 1, LEAD_FRAMES)] + [seg.start_frame]
+        for at in stops:  # at the last, wait before setting off and walk behind the other
+            stop = _stop_frame(track, seg.start_frame, at)
             for count in range(STEP_FRAMES, MAX_WAIT_FRAMES + 1, STEP_FRAMES):
                 trial = _waited(paths[walker], stop, count)
                 tested = range(stop, min(len(trial), seg.end_frame + count))

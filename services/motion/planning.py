@@ -705,6 +705,10 @@ def plan_actions(
                     else PERSON_DISTANCE
                 )
                 goal = _short_of(pos, there, near)
+                from services.motion.routing import reachable_short_of
+
+                around = reachable_short_of(scene, (pos[0], pos[1]), (there[0], there[1]), near)
+                goal = goal if around is None else np.asarray(around)  # not the far side of the armchair
                 face = _yaw_to(goal, there, yaw)
                 if "locomotion" in clip.tags:
                     walk_to(goal, SPEEDS.get(name, 1.3) * speed_k, face, name, ai, person, node.manner)

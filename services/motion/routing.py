@@ -107,7 +107,7 @@ def scene_grid(
     return OccupancyGrid(blocked=blocked, origin=origin, cell=cell)
 
 
-BODY_M = 0.22  # metres: a standing character's radius, as an obstacle (wana.domain.routes.body_footprints)
+BODY_M = 0.32  # metres: a standing character as an obstacle: its body and the swing of a passing arm
 BODY_NEAR_END_M = 0.7  # metres: a character this near the start or the goal is not walked around (the one
 # walked up to, or the one stood beside when setting off)
 
@@ -225,6 +225,48 @@ def free_spot(
     return float(spot[0]), float(spot[1])
 
 
+SQUEEZE_M = 0.15  # metres: the clearance of a body turned sideways through a narrow way
+LAST_STEP_M = 1.2  # metres: the longest last step from the nearest reachable point into an enclosed goal
+
+
+def _reachable_near(
+    scene: Scene,
+    start_xz: tuple[float, float],
+    goal_xz: tuple[float, float],
+    ignore: frozenset[str],
+    bodies: Sequence[tuple[float, float]],
+) -> np.ndarray | None:
+    """A route to the reachable free cell nearest an enclosed goal (a chair pushed in between a table and the
+    fridge), then the last step in; None when that point is farther than LAST_STEP_M from the goal.
+
+    Better than the straight line from the start, which crosses the room through furniture and people.
+    """
+    from scipy import ndimage
+
+    grid = with_bodies(scene_grid(scene, ignore), bodies)
+    start = np.asarray(start_xz, dtype=np.float64)
+    goal = np.asarray(goal_xz, dtype=np.float64)
+    if not (np.isfinite(start).all() and np.isfinite(goal).all()) or grid.blocked.all():
+        return None
+    labels, _ = ndimage.label(~grid.blocked)
+    free = ~grid.blocked
+    rc = grid.to_cell(start)
+    if not free[rc[0], rc[1]]:
+        cells = np.argwhere(free)
+        rc = cells[int(np.argmin(np.linalg.norm(grid.to_world(cells) - start, axis=1)))]
+    mine = np.argwhere(labels == labels[rc[0], rc[1]])
+    pts = grid.to_world(mine)
+    gaps = np.linalg.norm(pts - goal, axis=1)
+    best = int(np.argmin(gaps))
+    if gaps[best] > LAST_STEP_M:
+        return None
+    try:
+        route = plan_route_on_grid(grid, start, pts[best])
+    except (NoRouteError, ValueError):
+        return None
+    return np.vstack([route, goal[None]])
+
+
 def scene_route(
     scene: Scene,
     start_xz: tuple[float, float],
@@ -235,7 +277,8 @@ def scene_route(
     """A collision-free route, or the straight line and a diagnostic when there is none.
 
     The route never ends inside other furniture (``into_hosts=False``); ``ignore`` should hold the
-    object walked to and what rests on it. ``bodies``: where other characters stand; the route goes
+    object walked to and what rests on it. Where a body's width has no way through, a sideways squeeze
+    (SQUEEZE_M) is tried, then the nearest reachable point and a last step in, before the straight line. ``bodies``: where other characters stand; the route goes
     round them (those within BODY_NEAR_END_M of the start or the goal excepted), or past them where
     they close the way.
 
@@ -258,9 +301,54 @@ def scene_route(
     try:
         return plan_scene_route(scene, start_xz, goal_xz, ignore=ignore, into_hosts=False), ""
     except NoRouteError as exc:
+        for squeeze in ([*around], []):  # a narrow way: sideways past the furniture (and the others)
+            try:
+                return plan_scene_route(
+                    scene,
+                    start_xz,
+                    goal_xz,
+                    ignore=ignore,
+                    into_hosts=False,
+                    bodies=squeeze,
+                    radius=SQUEEZE_M,
+                ), ""
+            except (NoRouteError, ValueError):
+                continue
+        near = _reachable_near(scene, start_xz, goal_xz, ignore, around)
+        if near is not None:
+            return near, ""
         line = np.array([start_xz, goal_xz], dtype=np.float64)
         return line, f"no free walking route, walking straight: {exc}"
     except ValueError as exc:  # non-finite points: plan_actions guards these, keep walking anyway
         return np.array(
             [start_xz, goal_xz], dtype=np.float64
         ), f"route planning failed, walking straight: {exc}"
+
+
+def reachable_short_of(
+    scene: Scene, pos: tuple[float, float], other: tuple[float, float], distance: float
+) -> tuple[float, float] | None:
+    """Where to stop ``distance`` metres from a person at ``other``, walking from ``pos``, when the point short
+    of them on the straight line is inside furniture (the person stands behind the armchair the walker gets
+    up from): the free point on the circle round them nearest to ``pos``; None when the straight one is free
+    or none is. The route planner would otherwise end at the free cell nearest the blocked point, which can
+    be inside the person."""
+    grid = scene_grid(scene)
+    p, o = np.asarray(pos, float), np.asarray(other, float)
+    d = p - o
+    n = float(np.linalg.norm(d))
+    if n <= distance:
+        return None
+    straight = o + d / n * distance
+    if grid.is_free_xz(straight):
+        return None
+    a0 = float(np.arctan2(d[0], d[1]))
+    ring = [
+        o + distance * np.array([np.sin(a0 + k * np.pi / 12), np.cos(a0 + k * np.pi / 12)])
+        for k in range(-12, 12)
+    ]
+    free = [q for q in ring if grid.is_free_xz(q)]
+    if not free:
+        return None
+    best = min(free, key=lambda q: float(np.linalg.norm(q - p)))
+    return float(best[0]), float(best[1])

@@ -60,6 +60,7 @@ def _subject_tokens(verb: Token) -> list[Token]:
     for _ in range(6):
         subj = [c for c in v.children if c.dep_ in SUBJECT_DEPS and (not climbed_from_conj or c.i < verb.i)]
         if subj and (v.pos_ in ("VERB", "AUX") or v is verb or any(c.dep_ == "cop" for c in v.children)):
+            subj = [_member_of(s) for s in subj]
             out: list[Token] = []
             for s in subj:  # "Peter and Kate walk": the parser may mark both as subjects
                 out += [t for t in _with_conj_people(s) if t not in out]
@@ -68,8 +69,13 @@ def _subject_tokens(verb: Token) -> list[Token]:
             climbed_from_conj = True
             v = v.head
             continue
-        if climbed_from_conj and v.dep_ in ("obj", "obl", "nmod") and v.head.i != v.i:
-            v = v.head  # "opens the door and leaves": "leaves" hangs under "door"
+        if (
+            climbed_from_conj
+            and v.dep_ in ("obj", "obl", "nmod", "advmod", "compound:prt")
+            and v.head.i != v.i
+        ):
+            # "opens the door and leaves": "leaves" hangs under "door"; "jump out and shout": under "out"
+            v = v.head
             continue
         break
     if climbed_from_conj and v is not verb and v.pos_ == "VERB":
@@ -78,6 +84,20 @@ def _subject_tokens(verb: Token) -> list[Token]:
         if lead and character_mention(lead[0]) is not None:
             return _with_conj_people(lead[0])
     return []
+
+
+def _member_of(tok: Token) -> Token:
+    """ "One of her teammates sits down": the teammate acts, not "one"."""
+    if tok.lower_ not in ("one", "each", "either", "neither") or character_mention(tok) is not None:
+        return tok
+    for c in tok.children:
+        if (
+            c.dep_ == "nmod"
+            and any(g.lower_ == "of" for g in c.children)
+            and character_mention(c) is not None
+        ):
+            return c
+    return tok
 
 
 def _with_conj_people(tok: Token) -> list[Token]:
@@ -173,6 +193,10 @@ def _verb_by_position(tok: Token) -> bool:
     return tok.dep_ == "conj" and tok.head.pos_ == "VERB" and lexicon.is_known_verb(verb_lemma(tok))
 
 
+# Verbs whose object is what gets made: the action happens at the instrument, not at the product.
+MAKING_VERBS = frozenset({"make", "brew", "cook", "bake", "prepare", "fix"})
+
+
 def _action(verb: Token, builder: GraphBuilder) -> tuple[ActionNode, str]:
     """The ActionNode of a verb clause and the verb its social meaning is read from ("hug" of "gives
     Mary a hug"; the verb's lemma otherwise)."""
@@ -238,6 +262,8 @@ def _action(verb: Token, builder: GraphBuilder) -> tuple[ActionNode, str]:
         )
     else:
         action = lexicon.action_for(lemma, particle, obj_words, prep, direction, person)
+    if lemma in MAKING_VERBS and instrument:
+        target = instrument  # "makes coffee with the coffee maker": the hands are at the machine
     if lemma in verbs.WITH_THING and primary is not None and primary.object_id and not person:
         action = verbs.WITH_THING[lemma]  # "balances three plates"
     if (

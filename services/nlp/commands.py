@@ -144,6 +144,15 @@ _WEATHER_SENTENCE = re.compile(
     r"(?:\s+(?:outside|again|heavily|hard|softly|gently))*$"
 )
 
+# A stage direction for the light: "lights dim to evening", "The lights go down", "lights up".
+_LIGHTS = re.compile(
+    r"^(?:the\s+)?(?:lights?|lighting)\s+(dim|dims|go down|goes down|fade|fades|fade out|darken|darkens|"
+    r"go up|goes up|come up|comes up|up|brighten|brightens)(?:\s+(?:to|into)\s+(?:the\s+)?([a-z]+))?$"
+)
+_LIGHTS_DOWN = frozenset(
+    {"dim", "dims", "go down", "goes down", "fade", "fades", "fade out", "darken", "darkens"}
+)
+
 
 def _clean(text: str) -> str:
     return re.sub(r"\s+", " ", text.strip().rstrip(".!?$;").strip())
@@ -201,6 +210,9 @@ def parse_command(text: str, offset: int = 0) -> Command | None:
         return Command(kind="wait", value="", seconds=seconds, span=span)
     if m := _WEATHER_SENTENCE.match(lower.replace("it's", "it 's")):
         return Command(kind="weather", value=WEATHER_VALUES[m.group(1)], span=span)
+    if m := _LIGHTS.match(lower):
+        value = WEATHER_VALUES.get(m.group(2) or "", "night" if m.group(1) in _LIGHTS_DOWN else "sunny")
+        return Command(kind="weather", value=value, span=span)
     if m := _WEATHER.match(lower):
         value = WEATHER_VALUES.get(m.group(1))
         if value is not None:

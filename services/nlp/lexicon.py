@@ -56,7 +56,8 @@ NON_OBJECT_NOUNS = (
         "song tune match game race fight lesson class meeting party break rest dream idea thought question "
         "answer reply news dust dirt soil mud sand flour dough water air smoke steam darkness shadow "
         "everything something nothing anything thing things piece pieces bit bits band crowd team family "
-        "way time surface surfaces clipping clippings crumb crumbs".split()
+        "way time surface surfaces clipping clippings crumb crumbs ping pong tennis chess cards badminton "
+        "tag puzzle homework notes".split()
     )
     | frozenset(
         # what a character wears: on the body, not in the room
@@ -212,6 +213,8 @@ PRONOUNS = {
     "you": "you",
     "we": "they",
     "us": "they",
+    "everyone": "all",
+    "everybody": "all",
 }
 OBJECT_PRONOUNS = frozenset({"it", "this", "that", "them"})
 FEMALE_NAMES = frozenset(
@@ -318,6 +321,7 @@ ASPECT_VERBS = frozenset(
         "need",
         "attempt",
         "come",
+        "burst",
     }
 )
 # Verbs whose meaning is social between two characters: action + SocialNode(kind="emotion").
@@ -432,6 +436,30 @@ ACTION_OVERRIDES: dict[tuple[str, str], str] = {
     ("play", "violin"): "play_violin",
     ("play", "cello"): "play_violin",
     ("play", "ball"): "kick",
+    ("play", "phone"): "text_on_phone",
+    ("burst", "tear"): "cry",
+    ("burst", "tears"): "cry",
+    ("burst", "laughter"): "laugh",
+    ("play", "tablet"): "use_tablet",
+    ("play", "game_console"): "use_tablet",
+    ("play", "computer"): "type",
+    ("play", "guitar"): "play_guitar",
+    ("play", "piano"): "play_piano",
+    ("play", "microphone"): "sing_with_microphone",
+    ("blow", "candle"): "greet_bow",
+    ("blow", "cake"): "greet_bow",
+    ("light", "candle"): "press_switch",
+    ("cut", "cake"): "chop",
+    ("eat", "cake"): "eat",
+    ("make", "coffee_maker"): "cook",
+    ("use", "coffee_maker"): "cook",
+    ("take", "pill_bottle"): "eat",
+    ("swallow", "pill_bottle"): "eat",
+    ("dry", "dish"): "wash_dishes",
+    ("dry", "plate"): "wash_dishes",
+    ("sweep", "floor"): "sweep",
+    ("sweep", "broom"): "sweep",
+    ("sign", "paper"): "write",
     ("throw", "ball"): "throw",
     ("shoot", "ball"): "shoot_basket",
     ("push", "person"): "push_person",
@@ -452,6 +480,9 @@ ACTION_OVERRIDES: dict[tuple[str, str], str] = {
     ("comb", "hair"): "comb_hair",
     ("kiss", "cheek"): "kiss_cheek",
 }
+# Verbs whose thing decides the clip ("plays the piano", "plays ping pong"): with a thing no entry
+# knows, no clip; alone ("the kids play") the verb's own row.
+OBJECT_NAMES_THE_ACTION = frozenset({"play"})
 # Verb lemma alone -> action name where the library's synonym table points elsewhere.
 VERB_OVERRIDES: dict[str, str] = {
     "listen": "look_at",
@@ -488,7 +519,6 @@ VERB_OVERRIDES: dict[str, str] = {
     "rest": "sit",
     "work": "type",
     "study": "read",
-    "play": "",
     "use": "",
     "do": "",
     "have": "",
@@ -572,7 +602,8 @@ def verb_words() -> frozenset[str]:
 def hyphenated_verbs() -> frozenset[str]:
     """Hyphenated action verbs ("high-five") the tokenizer must keep as one word (base forms)."""
     _, synonyms = _library()
-    return frozenset(w for w in SOCIAL_VERBS | RECIPROCAL_VERBS | set(synonyms) if "-" in w and " " not in w)
+    words = SOCIAL_VERBS | RECIPROCAL_VERBS | set(synonyms) | set(verbs.VERB_ACTIONS)
+    return frozenset(w for w in words if "-" in w and " " not in w)
 
 
 def _tokens(text: str) -> list[str]:
@@ -631,6 +662,12 @@ def action_for(
             synonyms.get(f"{verb} a {phrase_obj}"),  # "give a hug", "take a bow"
             synonyms.get(f"{verb} {prep} the {phrase_obj}") if prep else None,
         ]
+        # storytellers' verb phrases ("make coffee", "play ping pong", "take notes", "dry dishes")
+        specific += [
+            verbs.VERB_ACTIONS.get(f"{verb} {phrase_obj}"),
+            verbs.VERB_ACTIONS.get(f"{verb} the {phrase_obj}"),
+            verbs.VERB_ACTIONS.get(f"{verb} a {phrase_obj}"),
+        ]
     if prep:
         specific += [known(f"{verb}_{prep}"), synonyms.get(f"{verb} {prep}")]
     if particle:
@@ -649,6 +686,8 @@ def action_for(
                 return hit
     if verb in VERB_OVERRIDES:
         return VERB_OVERRIDES[verb]
+    if verb in OBJECT_NAMES_THE_ACTION and [o for o in objs if o != "person"]:
+        return ""  # "plays with the mirror": no clip plays a mirror, and skipping about is not it
     return known(verb) or synonyms.get(verb) or verbs.VERB_ACTIONS.get(verb, "")
 
 

@@ -30,6 +30,8 @@ QUANTITY_HEADS = {
     "pile": 3,
     "row": 3,
     "few": 3,
+    "piece": 1,
+    "slice": 1,
 }
 DEFINITE_DETS = frozenset(
     {"the", "this", "that", "these", "those", "its", "his", "her", "their", "my", "your"}
@@ -51,6 +53,26 @@ PLURALE_TANTUM = frozenset(
         "blinds",
         "curtains",
         "drapes",
+    }
+)
+
+
+# Heads that name the thing their compound names ("drum kit", "tea set"): the compound's category.
+COLLECTIVE_HEADS = frozenset({"kit", "set", "unit", "machine", "equipment", "gear", "system", "station"})
+# Families whose things hold or show what follows "of" ("a bowl of popcorn", "a negative of a photo"):
+# the "of" noun is their content, one object, never a second object nor an unknown word.
+CONTENT_HOLDERS = frozenset(
+    {
+        "container",
+        "drinkware",
+        "tableware",
+        "cookware",
+        "bag",
+        "food",
+        "stationery",
+        "artwork",
+        "decoration",
+        "medicine",
     }
 )
 
@@ -175,10 +197,64 @@ def _glued_attributes(parts: list[str], attributes: dict[str, str]) -> None:
             attributes.setdefault("kind", part)
 
 
+def of_complement(head: Token) -> Token | None:
+    """The noun after "of" that modifies ``head`` ("popcorn" of "a bowl of popcorn"), or None."""
+    for child in head.rights:
+        if child.dep_ in ("nmod", "obl") and child.pos_ in ("NOUN", "PROPN", "X", "ADJ"):
+            if any(c.dep_ == "case" and c.lower_ == "of" for c in child.children):
+                return child
+    return None
+
+
+_PICTURES = frozenset({"artwork", "stationery"})  # what shows a thing: "a photo of a cake" is one photo
+_EDIBLE = frozenset({"drinkware", "tableware", "food"})  # content words that name a vessel's food or drink
+
+
+def holder_families(holder: ObjectMention) -> list[str]:
+    return lexicon.hypernyms(holder.category)
+
+
+def holds_content(category: str) -> bool:
+    """True for a category whose "of" phrase is what it holds or shows (see CONTENT_HOLDERS)."""
+    return bool(CONTENT_HOLDERS.intersection(lexicon.hypernyms(category)))
+
+
+def is_content(tok: Token) -> bool:
+    """True when ``tok`` is what a container holds ("juice" of "a glass of juice")."""
+    head = tok.head
+    if head.i == tok.i or head.lower_ in QUANTITY_HEADS:
+        return False
+    content = of_complement(head)
+    if content is None or content.i != tok.i:
+        return False
+    holder = object_mention(head)
+    if holder is None or not holds_content(holder.category):
+        return False
+    own = lexicon.category_of(tok.lemma_) or lexicon.category_of(tok.text)
+    if (
+        own is None
+        or own == holder.category
+        or holds_content(own)
+        and _PICTURES & set(holder_families(holder))
+    ):
+        return True  # "popcorn", "juice" (a glass's own word), "a negative of a photo"
+    return bool(_EDIBLE.intersection(lexicon.hypernyms(own)))  # "a plate of sandwiches"; not "clothes"
+
+
 def object_mention(head: Token) -> ObjectMention | None:
     """The object a noun token names, with its attributes and count, or None."""
     if is_speech(head):
         return None
+    if head.dep_ in ("nmod", "obl") and is_content(head):
+        return None  # "juice" in "a glass of juice" is the glass's content
+    if head.pos_ in ("VERB", "AUX") and any(c.dep_ in ("nsubj", "nsubj:pass") for c in head.children):
+        return None  # "a whiteboard stands near the door": a verb with its subject, not a stand
+    if (
+        head.lower_.endswith("s")
+        and head.lower_[:-1] in lexicon.SCENE_VERBS
+        and any(c.dep_ in ("compound", "amod") and c.i < head.i for c in head.children)
+    ):
+        return None  # "on which a clock stands", tagged a plural noun with its subject glued on
     if head.text[:1].isupper() and (head.lower_ in lexicon.FEMALE_NAMES or head.lower_ in lexicon.MALE_NAMES):
         return None  # "Mike" is a person here, not a microphone
     if head.lower_ in lexicon.PERSON_NOUNS or head.lemma_.lower() in lexicon.PERSON_NOUNS:
@@ -215,6 +291,25 @@ def object_mention(head: Token) -> ObjectMention | None:
     if category is None:
         category = lexicon.category_of(head.lemma_) or lexicon.category_of(head.text)
         used = len(words) - 1
+    for poss in (c for c in head.lefts if c.dep_ == "nmod:poss" and c.pos_ == "NOUN"):
+        # "a teacher's desk": the catalog's teacher_desk, not a desk that belongs to a teacher
+        owned = exact_category([f"{poss.text}'s", *words[used if category else len(words) - 1 :]])
+        if owned is not None:
+            category, used = owned, len(words) - 1
+    if category is None and head.lemma_.lower() in COLLECTIVE_HEADS and len(words) > 1:
+        # "the drum kit", "a tea set": the thing the compound names
+        for k in range(len(words) - 1):
+            category = exact_category(words[k:-1])
+            if category is not None:
+                used = k
+                word = " ".join(words[k:])
+                break
+    content = of_complement(head)
+    if content is not None and head.lower_ not in QUANTITY_HEADS:
+        # "a box of chocolates" is a category of its own; "a bowl of popcorn" a bowl holding popcorn
+        whole = exact_category([*words[used if category else len(words) - 1 :], "of", content.text])
+        if whole is not None:
+            category, word = whole, f"{head.text} of {content.text}"
     if category is None:
         return None
     category = lexicon.VERB_SENSES.get((category, _governing_verb(head)), category)
@@ -229,6 +324,8 @@ def object_mention(head: Token) -> ObjectMention | None:
             hit = lexicon.attribute_of(part)
             if hit:
                 attributes.setdefault(hit[0], hit[1])
+    if content is not None and holds_content(category) and not word.endswith(f" of {content.text}"):
+        attributes.setdefault("content", content.lemma_.lower())
     # Predicative attributes come from the caller; only the phrase's own words are used here.
     definite = any(c.dep_ in ("det", "nmod:poss") and c.lower_ in DEFINITE_DETS for c in head.children)
     start_tok = min([head.i] + [c.i for c in head.lefts if c.dep_ in MODIFIER_DEPS or c in mods])
@@ -267,6 +364,12 @@ def is_unknown_object_word(head: Token) -> bool:
     """A common noun in an object slot that names no category, person, room or place (W101)."""
     if head.pos_ not in ("NOUN", "X") or head.lower_ in lexicon.OBJECT_PRONOUNS or is_speech(head):
         return False
+    if head.dep_ in ("nmod", "obl") and is_content(head):
+        return False
+    prev = head.doc[head.i - 1] if head.i > 0 else None
+    if prev is not None and (prev.head.i == head.i or head.head.i == prev.i):
+        if exact_category([prev.text, head.text]) is not None:
+            return False  # "kit" of "drum kit" misparsed as a verb: the word before names the thing
     lemma = head.lemma_.lower()
     if (
         lemma in lexicon.PERSON_NOUNS

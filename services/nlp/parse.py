@@ -109,10 +109,21 @@ def _glued_cans(text: str) -> str:
     return _CAN_COMPOUND.sub(glue, text) if " can" in text else text
 
 
+_NOUN_VERB = re.compile(r"\b(fist)[ ](pump|pumps|pumped|pumping)\b", re.IGNORECASE)
+
+
+def _glued_noun_verbs(text: str) -> str:
+    """ "fist pumps" -> "fist-pumps": one verb, else the parser reads a noun and a verb
+    (same length)."""
+    if "fist " not in text.lower():
+        return text
+    return _NOUN_VERB.sub(lambda m: f"{m.group(1)}-{m.group(2)}", text)
+
+
 def _parser_text(text: str) -> str:
     """The sentence as the parser reads it: a terminal "$" becomes "." and quoted speech is masked
     (same length, same offsets)."""
-    chars = list(_glued_cans(_masked_speech(text)))
+    chars = list(_glued_noun_verbs(_glued_cans(_masked_speech(text))))
     i = len(chars) - 1
     while i >= 0 and (chars[i] in ".!?$ " or chars[i] in "\"')"):
         if chars[i] == "$":

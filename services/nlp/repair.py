@@ -249,6 +249,39 @@ def _repair_verb_as_subject(sent: SpacySpan) -> bool:
     return False
 
 
+def _repair_clause_as_subject(sent: SpacySpan) -> bool:
+    """ "Nurse Adaeze strides/nsubj in briskly, checks/ROOT the chart": a verb with a person as its own
+    subject that the parser made the subject of the next verb -> the first clause, the next its conjunct."""
+    for tok in sent:
+        head = tok.head
+        if tok.dep_ != "nsubj" or tok.pos_ != "VERB" or head.pos_ != "VERB" or head.i <= tok.i:
+            continue
+        people = [c for c in tok.children if c.dep_ in ("nsubj", "nsubj:pass") and c.i < tok.i]
+        if not people or not (_is_person(people[0]) or people[0].lower_ in lexicon.PERSON_NOUNS):
+            continue
+        tok.dep_, tok.head = head.dep_, (tok if head.dep_ == "ROOT" else head.head)
+        head.dep_, head.head = "conj", tok
+        return True
+    return False
+
+
+def _repair_pronoun_relative_clause(sent: SpacySpan) -> bool:
+    """ "Jamal's string snaps/NOUN, he swears/acl:relcl, and everybody bursts out laughing": a clause
+    with a personal pronoun for subject is no relative clause -> a clause of its own (parataxis)."""
+    changed = False
+    for tok in sent:
+        if tok.dep_ != "acl:relcl" or tok.pos_ != "VERB":
+            continue
+        subj = [c for c in tok.children if c.dep_ in ("nsubj", "nsubj:pass")]
+        if not subj or subj[0].lower_ not in ("he", "she", "they", "i", "we", "you"):
+            continue
+        if not any(t.lower_ == "," for t in sent.doc[tok.head.i : subj[0].i]):
+            continue  # "the man he saw": a relative clause without "that"
+        tok.dep_ = "parataxis"
+        changed = True
+    return changed
+
+
 def _clause_verb(tok: Token) -> Token | None:
     """The verb a noun hangs under, through objects, obliques and compounds ("bench" of "sits on a bench")."""
     for _ in range(4):
@@ -323,6 +356,8 @@ def repair_character_sentence(sent: SpacySpan) -> bool:
         | _repair_verbless(sent)
         | _repair_conjoined_verb(sent)
         | _repair_verb_as_subject(sent)
+        | _repair_clause_as_subject(sent)
+        | _repair_pronoun_relative_clause(sent)
         | _repair_noun_conjunct_verb(sent)
     )
 

@@ -24,6 +24,7 @@ from proto.common import Span
 from proto.ssg import ActionNode, CharacterNode, Diagnostic, ObjectNode, SentenceGraph, SocialNode
 from services.nlp import lexicon
 from services.nlp.errors import diagnostic
+from services.nlp.senses import room_senses
 
 PRONOUN_WORDS = {
     "he": "he",
@@ -33,6 +34,8 @@ PRONOUN_WORDS = {
     "her": "she",
     "they": "they",
     "them": "they",
+    "everyone": "all",
+    "everybody": "all",
     "their": "they",
 }
 
@@ -75,6 +78,8 @@ class _State:
         return canonical
 
     def pronoun(self, pron: str, exclude: str = "") -> list[str]:
+        if pron == "all":  # "Everyone raises their glasses": every character named so far
+            return [c for c in self.characters if c != exclude]
         if pron == "they":
             group = [c for c in self.last_group if c != exclude]
             if len(group) >= 2 or (group and exclude):
@@ -134,12 +139,30 @@ def _resolve_ref(
     if lower == "them" and (thing := _thing_before(graph, state, before)):
         return thing  # "chops the onions and fries them"
     pron = _pronoun_of(lower)
+    if pron == "all":
+        return value  # "waves at everyone": at the room, not at one of them
     if pron:
         names = state.pronoun(pron, exclude=actor)
         return names[0] if names else (state.last_object if lower == "them" else "")
     if lower in state.spelling:
         return state.spelling[lower]
-    return value
+    return _titled_character(value, state)
+
+
+_TITLE_NOUNS = {
+    "doctor": ("dr", "doctor"),
+    "professor": ("prof", "professor"),
+    "detective": ("det", "detective"),
+}
+
+
+def _titled_character(name: str, state: _State) -> str:
+    """ "the nurse" after "Nurse Adaeze", "the coach" after "Coach Miller": the one character so titled."""
+    if not name or not name.islower() or " " in name or name not in lexicon.PERSON_NOUNS | lexicon.TITLES:
+        return name
+    titles = _TITLE_NOUNS.get(name, (name,))
+    hits = {c for c in state.characters if len(c.split()) > 1 and c.split()[0].lower().rstrip(".") in titles}
+    return hits.pop() if len(hits) == 1 else name
 
 
 def _same_thing(
@@ -221,7 +244,7 @@ def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> li
     Returns:
         New graphs; character names canonical, "they" expanded into one node per character.
     """
-    graphs = distinct_objects(graphs, offsets)
+    graphs = distinct_objects(room_senses(graphs, offsets), offsets)
     state = _State()
     out: list[SentenceGraph] = []
     multiword = state.multiword  # "can" -> the watering can
@@ -242,7 +265,7 @@ def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> li
         for char in graph.characters:
             first_span = char.actions[0].span if char.actions else Span(0, 0)
             if char.name:
-                names = [state.mention(char.name)]
+                names = [state.mention(_titled_character(char.name, state))]
             elif char.mention:
                 pron = _pronoun_of(char.mention)
                 names = state.pronoun(pron) if pron else []

@@ -257,10 +257,35 @@ def _room(tok: Token) -> str | None:
     return None
 
 
+# Catalog things built on their own stand: "a microphone on a stand" is one microphone.
+OWN_STAND = frozenset({"microphone", "guitar", "electric_guitar", "bass_guitar"})
+
+
+def _built_in_stands(sent: SpacySpan) -> set[int]:
+    """Token indices of a bare "stand" that the thing on it already has ("a guitar on a stand")."""
+    out: set[int] = set()
+    for tok in sent:
+        if tok.lemma_.lower() != "stand" or tok.pos_ not in ("NOUN", "PROPN"):
+            continue
+        m = object_mention(tok)
+        if m is None or m.word != "stand":
+            continue
+        found = relation_at(tok)
+        if found is None or found[0] != "on":
+            continue
+        subjects = [object_mention(s) for s in _subjects_of(found[2])]
+        if subjects and all(s is not None and s.category in OWN_STAND for s in subjects):
+            out.add(tok.i)
+    return out
+
+
 def extract_scene(sent: SpacySpan, builder: GraphBuilder) -> None:
     """Add the objects, attributes, relations and room type a scene sentence states."""
+    built_in = _built_in_stands(sent)
     # Objects, in text order, so that ids follow the order of first mention.
     for tok in sent:
+        if tok.i in built_in:
+            continue
         if tok.pos_ in ("NOUN", "PROPN", "X", "ADJ", "NUM") or tok.dep_ in (
             "nsubj",
             "obj",
@@ -326,6 +351,8 @@ def extract_scene(sent: SpacySpan, builder: GraphBuilder) -> None:
             relation = "hanging_above"
         for anchor in anchors:
             anchor = relative_antecedent(anchor)  # "a bed under which a box lies": under the bed
+            if anchor.i in built_in:
+                continue
             anchor_room = _room(anchor)
             if anchor_room:
                 builder.room_type = builder.room_type or anchor_room

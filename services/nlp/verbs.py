@@ -25,7 +25,7 @@ def _table(rows: str) -> dict[str, str]:
 
 VERB_ACTIONS: dict[str, str] = _table(
     """
-walk: squeeze in, squeeze through, squeeze past, weave, disappear, vanish, make one's way, stroll out, head down, wander down, burst through, burst in, amble, stroll, pace, wander, roam, head, proceed, advance, return, leave, exit, enter, cross, go,
+walk: squeeze in, squeeze through, squeeze past, weave, disappear, vanish, make one's way, stroll out, head down, wander down, burst through, burst in, amble, stroll, pace, wander, roam, head, proceed, advance, return, leave, exit, enter, cross, go, slip out, slip away, slip in, slip past, nip out,
     come, arrive, depart, follow, lead, stride, strut, trek, hike, patrol, travel, move, walk over,
     walk in, walk out, walk away, walk up, come in, come back, come over, go back, go out, go in,
     go over, get in, get out, head back, head out, make way, step in, step out, move over, accompany,
@@ -37,13 +37,13 @@ walk_slowly: shuffle, plod, trudge, dawdle, stroll slowly, crawl along, mosey, d
 tiptoe: sneak, creep, slink, prowl, tiptoe in, sneak in, sneak out, steal away
 limp: hobble, shamble, lurch
 march: parade, stomp off, storm, storm off, storm out, stalk
-skip: frolic, prance, caper, bounce along
+skip: frolic, prance, caper, bounce along, play, play a game, play games, play tag, play hide and seek, play together, romp
 crawl: slither, crawl in, crawl out, crawl under, wriggle
 step_back: back away, retreat, recoil, withdraw, step away, move back, shrink back, back up
 step_forward: step up, step closer, move forward, move closer, approach, come forward, lean forward
 step_left: step aside, move aside, make room
 stumble: stagger, trip, totter, wobble, falter, reel, slip
-jump: hop, leap, bounce, spring, vault, jump up, jump down, hop up, leap up, bound, pounce
+jump: hop, leap, bounce, spring, vault, jump up, jump down, hop up, leap up, bound, pounce, jump out, jump out from behind, leap out, pop out, spring out
 jump_forward: jump over, leap over, hurdle, jump across, leap forward
 climb: clamber, scramble, ascend, climb up, climb down, climb over, climb in, mount, descend
 fall_down: fall, collapse, tumble, faint, topple, drop down, fall over, keel over, pass out, slump
@@ -58,9 +58,9 @@ lie_down: lie, lay down, lie back, stretch out, sprawl, recline on, go to bed, s
     doze, doze off, drift off, fall asleep, slumber, rest on
 kneel: kneel down, get down, genuflect, drop to one's knees
 squat: dive, dodge, crouch, stoop down, hunker down, duck, bend down, huddle
-hide: cower, take cover, duck behind, hide behind, lurk, conceal oneself
+hide: cower, take cover, duck behind, hide behind, lurk, conceal oneself, hide under, hide in, duck down behind, crouch behind
 lean_on_wall: lean, lean against, lean back, lean on, rest against, prop oneself
-idle: wait around, stand around, linger, loiter, pause, stay, remain, freeze, hesitate, stop, halt,
+idle: wait around, stand around, linger, loiter, pause, stay, remain, freeze, hesitate, stop, halt,, say nothing, do nothing, keep quiet, fall silent, keep still
     pose, watch on, stand by
 wait: await, wait for, hold on, hang on, stay put
 stretch: limber up, warm up, loosen up, unwind
@@ -69,7 +69,7 @@ tai_chi: do tai chi
 push_up: do push-ups, do pushups
 squat_exercise: do squats, exercise, train, work out
 jumping_jacks: do jumping jacks
-lift_weights: lift weights, pump iron, bench press
+lift_weights: lift weights, pump iron, bench press, lift the dumbbells, lift dumbbells, curl, do curls, lift the barbell, press weights
 shadow_box: spar, box, shadowbox
 punch: hit, strike, smack, whack, jab, thump, sock, bash, wallop, beat, batter, pummel, attack
 punch_left: hook
@@ -99,7 +99,7 @@ talk: give a speech, make a speech, speechify, say, tell, speak, reply, answer, 
     chime in, negotiate, bargain, plead with, persuade, convince, complain, grumble, mutter, mumble,
     stammer, stutter, lie to, question, query, inquire, enquire, wonder aloud
 whisper: murmur, mutter softly, breathe, confide, hiss
-shout: yell, scream, shriek, cry out, call out, holler, roar, bellow, howl, exclaim loudly, screech
+shout: yell, scream, shriek, cry out, call out, holler, roar, bellow, howl, exclaim loudly, screech, swear, cuss, curse loudly
 quarrel: bicker, squabble, row, fight, wrangle, clash, feud
 argue: debate, dispute, contradict, protest, object, disagree with, challenge
 criticize: scold, reprimand, rebuke, lecture at, blame, reproach, chide, berate, nag, tell off, accuse
@@ -119,22 +119,22 @@ beckon: call in, usher, wave in, summon, call over, motion, gesture, invite, wav
 point: indicate, point out, gesture at, aim, direct, signpost
 point_up: raise a hand, raise one's hand, put up a hand
 bow: thank, curtsy, curtsey, bow down, take a bow, kowtow
-greet_bow: nod hello, bow to greet
+greet_bow: nod hello, bow to greet, blow out, blow out the candles, blow on, blow
 salute: salute smartly, give a salute
 nod: agree, accept, approve, nod along, confirm, acknowledge, consent, say yes
 shake_head: refuse, decline, deny, disagree, reject, say no, disapprove, forbid
 shrug: shrug off, not know, dismiss
 thumbs_up: like, endorse, okay
 clap: applaud, cheer on, give applause, clap along
-celebrate: cheer, rejoice, triumph, win, party, whoop, exult, jump for joy, hurrah
-fist_pump: punch the air, pump a fist
+celebrate: cheer, rejoice, triumph, win, party, whoop, exult, jump for joy, hurrah, win, dance with joy, punch the air with joy, throw one's arms up, leap for joy
+fist_pump: punch the air, pump a fist, pump, fist pump, fist-pump, fistpump, pump one's fist, fist bump the air
 laugh: smile, grin, giggle, chuckle, chortle, beam, smirk, snicker, guffaw, cackle, titter, laugh at,
     crack up, burst out laughing
 cry: weep, sob, wail, bawl, whimper, mourn, grieve, sniffle, tear up, break down, burst into tears
 cover_face: bury one's face, blush, hide one's face, cringe, despair
 facepalm: sigh, groan
 scratch_head: wonder, puzzle, ponder aloud, be puzzled, frown, scowl
-think: ponder, consider, contemplate, reflect, daydream, muse, brood, meditate on, plan, imagine,
+think: ponder, consider, contemplate, reflect, daydream, muse, brood, meditate on, plan, imagine,, play chess, play cards, play a board game, solve a puzzle, do a puzzle, do homework
     dream, worry, hesitate over, deliberate, concentrate, focus, recall, wonder about
 cross_arms: fold arms, sulk, pout, huff, fume
 hands_on_hips: stand akimbo, put hands on hips
@@ -146,7 +146,7 @@ sneeze: achoo
 cough: clear one's throat, choke, splutter, wheeze, gasp, pant
 wipe_sweat: mop the brow, wipe one's brow, sweat
 fan_self: fan, cool off, cool down
-rub_hands: warm one's hands, rub one's hands
+rub_hands: warm one's hands, rub one's hands, dry, dry off, dry one's hands, towel off, pat dry
 surrender: give up, raise hands, put hands up, yield, give in
 pray: beg, plead, implore, worship
 get_hit: flinch, wince, stagger back, be hit, get hurt, fall back
@@ -161,7 +161,7 @@ look_right: glance right
 read: peruse, skim, scan a page, read through, browse, leaf through, flip through, study a book, learn,
     revise, review, proofread, look through
 read_newspaper: read the paper
-write: scribble, jot, jot down, note, note down, sign, fill in, fill out, copy, take notes, record,
+write: scribble, jot, jot down, note, note down, sign, fill in, fill out, copy, take notes, record,, take notes, make notes, take a note, sign the form, sign the paper, fill in the form, write a letter, write notes
     print, doodle on paper, draft, compose, mark, grade, correct, address, label, autograph
 write_on_blackboard: teach, chalk, lecture on the board, write on the board
 draw: sketch, doodle, trace, illustrate, outline, colour, color, shade, design
@@ -176,11 +176,11 @@ pick_up_phone_answer: answer the phone, pick up the phone
 take_photo: photograph, snap, film, record video, take a selfie
 watch_tv: watch television, channel-surf
 listen_with_headphones: listen, hear, listen in, overhear, eavesdrop
-cook: fry, bake, boil, grill, roast, stir, simmer, saute, prepare, heat, toast, microwave, season,
+cook: fry, bake, boil, grill, roast, stir, simmer, saute, prepare, heat, toast, microwave, season,, brew, brew coffee, make a coffee, make some coffee, make espresso, make a cup of coffee, make a sandwich, make toast, make pancakes, bake a cake, fry eggs, make soup, put the kettle on
     mix, whisk, knead, scramble eggs, make breakfast, make dinner, make lunch, make tea, make coffee
 chop: snip, shear, slice, dice, cut, carve, mince, peel, grate, trim, cut up, chop up
 pour: fill, pour out, serve drinks, spill, refill, empty, top up
-eat: dine, feast, consume, devour, chew, gobble, swallow, taste, nibble on, have breakfast,
+eat: dine, feast, consume, devour, chew, gobble, swallow, taste, nibble on, have breakfast,, swallow, take a pill, take pills, take medicine, take a tablet, eat cake, eat a piece of cake, have a snack
     have lunch, have dinner, lunch, breakfast, sup
 eat_snack: snack, nibble, munch, bite, lick, crunch, graze
 drink: sip, gulp, swig, slurp, sup from, drain, toast with, quench
@@ -189,16 +189,16 @@ wash_hands: wash, rinse hands, scrub, soap, lather, bathe, shower
 wipe_table: wipe, dust, polish, clean, tidy, tidy up, clean up, scrub the table, clear the table, mop up
 wipe_window: wash the window, clean the glass, squeegee
 mop: mop the floor, swab
-sweep: brush the floor, sweep up
+sweep: brush the floor, sweep up, sweep the floor, sweep out, sweep away
 vacuum: hoover, vacuum the carpet
 iron: press, press clothes, iron clothes
-fold_clothes: fold, fold up, do the laundry, sort laundry, hang laundry
+fold_clothes: fold, fold up, do the laundry, sort laundry, hang laundry, tuck, tuck in, smooth, smooth out, straighten the blanket, make the bed
 water_plants: water, garden, weed, sprinkle, plant flowers
-open_door: open, unlock, open up, let in, let out
+open_door: open, unlock, open up, let in, let out, open the door, open the box, unwrap, unwrap the present, tear open
 close_door: close, shut, lock, slam, shut the door
 open_drawer: open the drawer, rummage, pull out the drawer
 open_fridge: open the fridge, raid the fridge
-press_switch: switch on, switch off, turn on, turn off, flip, toggle, light, dim, flick
+press_switch: switch on, switch off, turn on, turn off, flip, toggle, light, dim, flick, light the candles, light a candle, light up, switch the light on, turn on the light, turn off the light, blow out the lamp
 push_button: press the button, push the button, hit the button, buzz, ring the bell
 knock: rap, tap on, bang on, pound on, knock on
 hammer: nail, pound, bang, hammer in
@@ -211,16 +211,16 @@ comb_hair: comb, brush one's hair, style one's hair, do one's hair
 check_watch: check the time, look at the clock
 count_fingers: count, enumerate, list, tally
 play_piano: play the piano, play keys, compose music
-play_guitar: strum, pluck the guitar, play guitar, jam
+play_guitar: strum, pluck the guitar, play guitar, jam, play the guitar, play the electric guitar, play bass, play the bass, rock out, shred
 play_violin: fiddle, play the violin, bow the violin
-play_drums: drum, beat the drums, play the drums
+play_drums: drum, beat the drums, play the drums, play the drum kit, bang the drums, hit the drums, drum along
 play_flute: pipe, play the flute, blow the flute
 sing_with_microphone: sing, croon, chant, serenade, rap, perform, sing along, whistle, yodel
 conduct: wave a baton, direct the orchestra
 dance: boogie, groove, waltz, tango, shimmy, sway, jive, twist, rock, dance around, bop, salsa, disco
 dance_ballet: pirouette, plie, twirl gracefully
 dance_hiphop: breakdance, krump, moonwalk
-swing_arms: swing, flap, wave one's arms around
+swing_arms: swing, flap, wave one's arms around, play ping pong, play table tennis, play tennis, play badminton, play squash, swing a racket, serve the ball
 touch_toes: bend over, stoop, bow down low, reach down
 """
 )
@@ -287,6 +287,15 @@ BODY_PART_ACTIONS: dict[tuple[str, str], str] = {
     ("wash", "hands"): "wash_hands",
     ("wash", "face"): "wash_hands",
     ("wipe", "hands"): "rub_hands",
+    ("put", "arm"): "comfort",
+    ("put", "arms"): "hug",
+    ("wrap", "arms"): "hug",
+    ("throw", "arms"): "hug",
+    ("dry", "hands"): "rub_hands",
+    ("dry", "hand"): "rub_hands",
+    ("dry", "face"): "wipe_sweat",
+    ("dry", "hair"): "comb_hair",
+    ("pump", "fists"): "fist_pump",
     ("wipe", "hand"): "rub_hands",
     ("touch", "toes"): "touch_toes",
     ("point", "finger"): "point",

@@ -28,13 +28,10 @@ from proto.fidelity import Check
 from proto.render import CastMember, ExportFormat, ExportReply
 from services.orchestrator.backend import Backend, InProcessBackend, StageFailed, StageUnavailable
 from services.orchestrator.budget import BUDGET_CODE, Budget
-from services.orchestrator.cast import load_cast, unknown_names
 from services.orchestrator.exports import export
 from services.orchestrator.pipeline import PipelineResult
 from services.orchestrator.session import Orchestrator
 from services.orchestrator.timeline import FPS
-from wana.cast import CastError
-from wana.fidelity import story_checks, verdicts
 
 MAX_INPUT_BYTES = 1_000_000
 FORMATS: tuple[ExportFormat, ...] = ("mp4", "glb", "bvh", "usd", "fbx")
@@ -253,6 +250,8 @@ def summary(result: PipelineResult, extra_checks: Mapping[str, list[Check]] | No
         extra_checks: sentence id -> more checks to join into the verdicts (the render service's camera and
             command checks, which only it can compute).
     """
+    from wana.fidelity import story_checks, verdicts  # after the compute: not part of the start-up
+
     to_builtins = msgspec.to_builtins
     checks = story_checks(
         [(s.id, s.kind) for s in result.sentences],
@@ -400,6 +399,14 @@ def print_diagnostics(result: PipelineResult) -> None:
         print(f"{where} warning: {message}", file=sys.stderr)
 
 
+def _unknown_names(cast: list[CastMember], characters: list[str]) -> list[str]:
+    if not cast:
+        return []
+    from services.orchestrator.cast import unknown_names
+
+    return unknown_names(cast, characters)
+
+
 def main(argv: list[str]) -> int:
     args = build_parser().parse_args(argv)
     budget = budget_of(args)
@@ -409,11 +416,16 @@ def main(argv: list[str]) -> int:
             print(f"wana animate: {why}", file=sys.stderr)
         return 2
     text = read_story(args.file)
-    try:
-        cast = load_cast(args.cast, args.cast_map)
-    except CastError as exc:
-        print(f"wana animate: {exc}", file=sys.stderr)
-        return 2
+    cast = []
+    if args.cast or args.cast_map:  # rig reading (scipy, glTF) is imported only for a story with a cast
+        from services.orchestrator.cast import load_cast
+        from wana.cast import CastError
+
+        try:
+            cast = load_cast(args.cast, args.cast_map)
+        except CastError as exc:
+            print(f"wana animate: {exc}", file=sys.stderr)
+            return 2
     out = Path(args.out)
     if not text.strip():
         print("wana animate: the story is empty; wrote nothing", file=sys.stderr)
@@ -437,7 +449,7 @@ def main(argv: list[str]) -> int:
                     print(f"{sid} [{d.span.start}:{d.span.end}] {d.severity}: {d.message}", file=sys.stderr)
             print(f"wana animate: {empty}; wrote nothing", file=sys.stderr)
             return 2
-        strangers = unknown_names(cast, sorted(result.motions))
+        strangers = _unknown_names(cast, sorted(result.motions))
         if strangers:
             for why in strangers:
                 print(f"wana animate: {why}", file=sys.stderr)

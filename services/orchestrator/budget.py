@@ -43,7 +43,7 @@ class Budget:
     """What one compute of one document may spend. Defaults fit any story a person writes by hand."""
 
     max_seconds: float = 600.0  # wall time of one compute
-    max_sentences: int = 200  # the social stage plans at most 200 character sentences (proto/social.py)
+    max_sentences: int = 1000  # the social plan works window by window (services/social/windows.py)
     max_sentence_chars: int = 2000
     max_wait_s: float = 60.0  # one `wait` command
     max_duration_s: float = 600.0  # all `wait` commands of the document together

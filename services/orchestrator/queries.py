@@ -64,10 +64,18 @@ class QueryEngine:
     memos: dict[str, Memo] = field(default_factory=dict)
     log: list[LogEntry] = field(default_factory=list)
     _lock: threading.RLock = field(default_factory=threading.RLock)
+    _start: int = 0  # where the current revision's entries begin in the log
 
     def new_revision(self) -> int:
         self.revision += 1
+        self._start = len(self.log)
         return self.revision
+
+    def _entries(self, revision: int | None) -> list[LogEntry]:
+        """The log entries of a revision (the current one without scanning the older revisions' entries)."""
+        if revision is None or revision == self.revision:
+            return [e for e in self.log[self._start :] if e.revision == self.revision]
+        return [e for e in self.log if e.revision == revision]
 
     def query(self, key: str, inputs: Any, compute: Callable[[], T]) -> T:
         """Return the memoised value of `key` for these inputs, computing it only when they changed."""
@@ -100,12 +108,10 @@ class QueryEngine:
 
     def ran(self, revision: int | None = None) -> list[str]:
         """Keys of the queries that ran at a revision (default: the current one), in order."""
-        rev = self.revision if revision is None else revision
-        return [e.key for e in self.log if e.revision == rev and e.outcome == "ran"]
+        return [e.key for e in self._entries(revision) if e.outcome == "ran"]
 
     def reused(self, revision: int | None = None) -> list[str]:
-        rev = self.revision if revision is None else revision
-        return [e.key for e in self.log if e.revision == rev and e.outcome == "reused"]
+        return [e.key for e in self._entries(revision) if e.outcome == "reused"]
 
     def forget(self, keep: Callable[[str], bool]) -> None:
         """Drop memos whose key fails `keep` (sentences that no longer exist)."""
@@ -115,4 +121,7 @@ class QueryEngine:
 
     def trim_log(self, keep_revisions: int = 50) -> None:
         floor = self.revision - keep_revisions
+        if self.log and self.log[0].revision > floor:
+            return  # nothing that old yet
         self.log = [e for e in self.log if e.revision > floor]
+        self._start = next((i for i, e in enumerate(self.log) if e.revision == self.revision), len(self.log))

@@ -12,7 +12,9 @@ from __future__ import annotations
 
 import hashlib
 from collections import OrderedDict
+from collections.abc import Sequence
 from dataclasses import dataclass, field
+from itertools import permutations
 
 import msgspec
 import numpy as np
@@ -26,6 +28,9 @@ from wana.domain.slots import SlotBook, seat_slots, stand_slots
 
 LYING = ("lie_down", "sleep")
 AROUND_M = 1.6  # metres: the seats "at" a table are within this of it
+RING_M = 0.45  # metres from an object's centre at most for a stand spot round it
+CLEAR_M = 0.75  # metres from a bystander's hips within which a stand slot is not clear (arms that move)
+ELBOW_M = 0.7  # metres between two sitters' hips below which their arms and shoulders touch
 STAND_KEY = "#stand"  # a stand slot's object key in the book: "<object id>#stand"
 
 
@@ -84,91 +89,252 @@ class Slotting:
             self._grid = _stand_grid(self.scene)
         return self._grid
 
-    def claim(self, who: str, action: ActionNode) -> Claim:
-        """The slot ``who`` takes for ``action`` (or gives back), in story order."""
+    def claim(
+        self,
+        who: str,
+        action: ActionNode,
+        here: tuple[float, float] | None = None,
+        company: Sequence[tuple[float, float]] = (),
+        crowd: Sequence[tuple[float, float]] = (),
+    ) -> Claim:
+        """The slot ``who`` takes for ``action`` (or gives back), in story order.
+
+        ``here``: where ``who`` is when the action starts; ``company``: where the others are who go to the same
+        object in the same sentence and claim after it ("They walk to the statue"). With company the slots are
+        shared out so that the walks, together, are shortest (`matched`): such paths never cross, so two
+        walking side by side stay side by side instead of walking through each other to swapped slots.
+        ``crowd``: where the others on stage stand; a stand slot within CLEAR_M of one is taken last.
+        """
         clip = _clip(action)
         if clip is None:
             return Claim(action)
         kind = clip.interaction.object if clip.interaction is not None else ""
         if kind in ("seat", "bed"):
-            return self._seat(who, action, "lie" if clip.name in LYING else "sit")
+            return self._seat(who, action, "lie" if clip.name in LYING else "sit", here, company)
         if "locomotion" in clip.tags:
             obj = find_object(self.scene, action.destination or action.target)
             if obj is None:
                 self.book.release(who)
                 return Claim(action)
-            return self._stand(who, action, obj)
+            return self._stand(who, action, obj, here, company, crowd)
         if kind and kind not in ("handheld", "person"):
             obj = find_object(self.scene, action.target or action.instrument or action.destination)
             if obj is not None:
-                return self._stand(who, action, obj)
+                return self._stand(who, action, obj, here, company, crowd)
         if clip.name == "stand":
             self.book.release(who)
         return Claim(action)
 
-    def _seat(self, who: str, action: ActionNode, kind: str) -> Claim:
+    def _preferred(
+        self,
+        object_id: str,
+        slots: list[str],
+        where: Sequence[tuple[float, float]],
+        who: str,
+        here: tuple[float, float] | None,
+        company: Sequence[tuple[float, float]],
+    ) -> list[str]:
+        """``slots`` with the one `matched` gives ``who`` first (unchanged without company)."""
+        if here is None or not company:
+            return slots
+        free = [i for i, n in enumerate(slots) if self.book.holder(object_id, n) in ("", who)]
+        pick = matched([here, *company], [where[i] for i in free])
+        if pick is None:
+            return slots
+        first = slots[free[pick]]
+        return [first, *(n for n in slots if n != first)]
+
+    def _seat(
+        self,
+        who: str,
+        action: ActionNode,
+        kind: str,
+        here: tuple[float, float] | None = None,
+        company: Sequence[tuple[float, float]] = (),
+    ) -> Claim:
         obj = find_object(self.scene, action.target or action.instrument or action.destination)
         if obj is None:
             return Claim(action)
-        slots = seat_slots(obj, kind)
-        if not slots:  # "sits at the table": a free seat around it
+        every = seat_slots(obj, kind)
+        if not every:  # "sits at the table": a free seat around it
             return self._seat_at(who, action, obj, kind)
-        default = slots[0]  # what the planner takes by itself
+        default = every[0]  # what the planner takes by itself
+        slots = seat_slots(obj, kind, self.scene.objects)  # those no prop rests on
+        rest: list[str] = []
         if len(self.sitters.get(obj.id, ())) == 2 and len(slots) >= 3:
-            slots = [*slots[1:], slots[0]]  # two on three cushions: the ends, with the middle between them
+            # two on three cushions: the ends, with the middle between them
+            slots, rest = slots[1:], slots[:1]
+        slots = [*self._preferred(obj.id, slots, seat_points(obj, slots), who, here, company), *rest]
         taken = self.book.take(obj.id, slots, who)
         if taken is not None:
             return Claim(action, seat="" if taken == default else taken)
         # Full: the nearest object of the same kind with a free slot (a second chair at the table).
-        here = np.array([obj.position[0], obj.position[2]])
+        at = np.array([obj.position[0], obj.position[2]])
         same = sorted(
             (o for o in self.scene.objects if o.category == obj.category and o.id != obj.id),
-            key=lambda o: float(np.linalg.norm(np.array([o.position[0], o.position[2]]) - here)),
+            key=lambda o: float(np.linalg.norm(np.array([o.position[0], o.position[2]]) - at)),
         )
         for other in same:
-            slots = seat_slots(other, kind)
+            slots = seat_slots(other, kind, self.scene.objects)
             taken = self.book.take(other.id, slots, who) if slots else None
             if taken is not None:
                 moved = msgspec.structs.replace(action, target=other.id) if action.target else action
                 if not action.target:
                     moved = msgspec.structs.replace(action, destination=other.id)
-                return Claim(moved, seat="" if taken == slots[0] else taken)
+                return Claim(moved, seat="" if taken == seat_slots(other, kind)[0] else taken)
         return Claim(action)
 
-    def _seat_at(self, who: str, action: ActionNode, obj: PlacedObject, kind: str) -> Claim:
-        """A free seat slot of the seats within AROUND_M of an object that has none itself (a table)."""
-        here = np.array([obj.position[0], obj.position[2]])
+    def _seat_at(
+        self,
+        who: str,
+        action: ActionNode,
+        obj: PlacedObject,
+        kind: str,
+        here: tuple[float, float] | None = None,
+        company: Sequence[tuple[float, float]] = (),
+    ) -> Claim:
+        """A free seat slot of the seats within AROUND_M of an object that has none itself (a table).
+
+        Seats whose slot is within ELBOW_M of one another already holds are passed over while others are
+        free (two chairs pushed together seat two people shoulder in shoulder), and with company the seats
+        are shared out as `matched` says (walks to them do not cross)."""
+        here_xz = np.array([obj.position[0], obj.position[2]])
         near = sorted(
             (
-                (float(np.linalg.norm(np.array([o.position[0], o.position[2]]) - here)), o)
+                (float(np.linalg.norm(np.array([o.position[0], o.position[2]]) - here_xz)), o)
                 for o in self.scene.objects
                 if o.id != obj.id and not o.support
             ),
             key=lambda d_o: d_o[0],
         )
+        free: list[tuple[PlacedObject, list[str], tuple[float, float]]] = []
         for distance, seat in near:
             if distance > AROUND_M:
                 break
-            slots = seat_slots(seat, kind)
-            taken = self.book.take(seat.id, slots, who) if slots else None
+            slots = seat_slots(seat, kind, self.scene.objects)
+            if not slots:
+                continue
+            open_slots = [n for n in slots if self.book.holder(seat.id, n) in ("", who)]
+            if open_slots:
+                free.append((seat, slots, seat_points(seat, open_slots[:1])[0]))
+        held = self._held_points(who)
+        roomy = [f for f in free if all(np.hypot(f[2][0] - h[0], f[2][1] - h[1]) >= ELBOW_M for h in held)]
+        free = roomy + [f for f in free if f not in roomy]
+        if here is not None and company:
+            pick = matched([here, *company], [f[2] for f in roomy]) if len(roomy) > len(company) else None
+            pick = pick if pick is not None else matched([here, *company], [f[2] for f in free])
+            if pick is not None:
+                free.insert(0, free.pop(pick))
+        for seat, slots, _ in free:
+            taken = self.book.take(seat.id, slots, who)
             if taken is not None:
                 field_name = (
                     "target" if action.target == obj.id or action.target == obj.category else "destination"
                 )
                 moved = msgspec.structs.replace(action, **{field_name: seat.id})
-                return Claim(moved, seat="" if taken == slots[0] else taken)
+                return Claim(moved, seat="" if taken == seat_slots(seat, kind)[0] else taken)
         return Claim(action)
 
-    def _stand(self, who: str, action: ActionNode, obj: PlacedObject) -> Claim:
+    def _held_points(self, who: str) -> list[tuple[float, float]]:
+        """World (x, z) of the seat slots the others hold now."""
+        out: list[tuple[float, float]] = []
+        ids = {o.id: o for o in self.scene.objects}
+        for (object_id, slot), holder in self.book.held.items():
+            if holder == who or object_id not in ids or object_id.endswith(STAND_KEY):
+                continue
+            try:
+                out.extend(seat_points(ids[object_id], [slot]))
+            except (KeyError, ValueError):
+                continue
+        return out
+
+    def _stand(
+        self,
+        who: str,
+        action: ActionNode,
+        obj: PlacedObject,
+        here: tuple[float, float] | None = None,
+        company: Sequence[tuple[float, float]] = (),
+        crowd: Sequence[tuple[float, float]] = (),
+    ) -> Claim:
         spots = [p for p in stand_slots(obj, rows=2) if bool(self.grid.is_free_xz(np.asarray(p)))]
         spots = spots or stand_slots(obj)[:1]
+        front = set(stand_slots(obj))  # the first row: within reach of the object
+        reach = [p for p in spots if p in front]
+        if crowd and reach and all(_near_any(p, crowd) for p in reach):  # bystanders there: round the object
+            spots = [*reach, *self._ring(obj, reach[0]), *(p for p in spots if p not in front)]
         names = [str(i) for i in range(len(spots))]
-        taken = self.book.take(obj.id + STAND_KEY, names, who)
-        if taken is None or (taken == names[0] and len(self.standers.get(obj.id, ())) < 2):
+        order = self._preferred(obj.id + STAND_KEY, names, spots, who, here, company)
+        clear = [n for n in order if not _near_any(spots[int(n)], crowd)]
+        order = [*clear, *(n for n in order if n not in clear)]
+        taken = self.book.take(obj.id + STAND_KEY, order, who)
+        if taken is None or (
+            taken == names[0] and len(self.standers.get(obj.id, ())) < 2 and not _near_any(spots[0], crowd)
+        ):
             return Claim(action)
         # Two or more at one object: the first is told its slot too (the planner's own spot, the middle of
-        # the front, would stand between the first two slots, within a body of the second).
+        # the front, would stand between the first two slots, within a body of the second); one whose
+        # default spot is where someone else stands is sent to a clear one.
         return Claim(action, spot=spots[int(taken)])
+
+    def _ring(self, obj: PlacedObject, front: tuple[float, float]) -> list[tuple[float, float]]:
+        """Free stand spots round an object, as far from it as its front spot (RING_M at most: within reach of
+        a small thing), every 45 degrees."""
+        centre = np.array([obj.position[0], obj.position[2]], float)
+        d = np.asarray(front, float) - centre
+        r, a0 = min(float(np.linalg.norm(d)), RING_M), float(np.arctan2(d[0], d[1]))
+        try:  # as far as the planner's own stand point (the catalog's), where the clip's reach fits
+            from wana.assets.catalog import asset_for, to_world
+
+            stand = to_world(obj, np.asarray(asset_for(obj).stand_point, float))
+            r = min(r, float(np.hypot(stand[0] - centre[0], stand[2] - centre[1])))
+        except Exception:  # noqa: BLE001 - an unknown category: the front spot's distance
+            pass
+        out = []
+        for k in (1, -1, 2, -2, 3, -3, 4):
+            a = a0 + k * np.pi / 4
+            p = centre + r * np.array([np.sin(a), np.cos(a)])
+            if bool(self.grid.is_free_xz(p)):
+                out.append((round(float(p[0]), 3), round(float(p[1]), 3)))
+        return out
+
+
+def _near_any(p: tuple[float, float], crowd: Sequence[tuple[float, float]]) -> bool:
+    """True when ``p`` is within CLEAR_M of one of ``crowd`` (x, z)."""
+    return any(float(np.hypot(p[0] - c[0], p[1] - c[1])) < CLEAR_M for c in crowd)
+
+
+MATCH_MAX = 4  # characters shared out over slots together at most (beyond, in story order)
+
+
+def matched(walkers: Sequence[tuple[float, float]], slots: Sequence[tuple[float, float]]) -> int | None:
+    """The slot (an index into ``slots``) the first walker takes when every walker gets its own slot and the
+    walks' total length is least; None when there are fewer slots than walkers or too many walkers.
+
+    A shortest sharing-out has no two crossing walks (swap the ends of two crossing ones and both get
+    shorter), which is why it is used rather than giving each the slot nearest to it in turn.
+    """
+    if len(slots) < len(walkers) or not walkers or len(walkers) > MATCH_MAX:
+        return None
+    w = np.asarray(walkers, float)
+    p = np.asarray(slots, float)
+    cost = np.linalg.norm(w[:, None, :] - p[None, :, :], axis=2)
+    best, pick = float("inf"), None
+    for chosen in permutations(range(len(p)), len(w)):
+        total = float(cost[range(len(w)), chosen].sum())
+        if total < best - 1e-9:
+            best, pick = total, chosen[0]
+    return pick
+
+
+def seat_points(placed: PlacedObject, slots: Sequence[str]) -> list[tuple[float, float]]:
+    """World (x, z) of each named seat slot (a hip contact point) of an object."""
+    from wana.assets.catalog import asset_for, to_world
+
+    points = asset_for(placed).contact_points
+    local = np.array([points[n].position for n in slots], float).reshape(-1, 3)
+    world = to_world(placed, local)
+    return [(float(q[0]), float(q[2])) for q in world]
 
 
 _GRIDS: OrderedDict[bytes, OccupancyGrid] = OrderedDict()
@@ -189,4 +355,4 @@ def _stand_grid(scene: Scene) -> OccupancyGrid:
     return grid
 
 
-__all__ = ["Claim", "Slotting"]
+__all__ = ["Claim", "Slotting", "matched"]

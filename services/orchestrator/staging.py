@@ -35,7 +35,7 @@ THRESHOLD_M = 0.45  # metres in front of the door where a character appears or d
 IN_WALL_M = 0.35  # metres: a door whose centre is this close to a wall is in it
 BESIDE_M = 0.6  # metres along the wall between characters coming in together
 BODY_M = 0.3  # metres: a body's radius for the starting-spot grid
-APART_M = 1.1  # metres between starting spots (arms out in a stretch still clear)
+APART_M = 1.25  # metres between starting spots (two stretching side by side, arms out, still clear)
 
 
 def _verb_is(action: ActionNode, verbs: Sequence[str]) -> bool:
@@ -43,11 +43,27 @@ def _verb_is(action: ActionNode, verbs: Sequence[str]) -> bool:
     return any(verb == v or verb.startswith(v + " ") for v in verbs)
 
 
+BARE_ENTRANCE_VERBS = ("come", "walk", "run", "step")  # "in" dropped by the parser: "Mary and John walk in"
+
+
 def is_entrance(action: ActionNode) -> bool:
     """ "walks in", "enters", "comes in" (the verb as written; the action is usually plain "walk"), and a bare
-    "come" going nowhere named (the parser drops the particle of a plural: "Tom and Sam come in")."""
-    bare_come = action.verb.lower() == "come" and not (action.target or action.destination)
-    return _verb_is(action, ENTRANCE_VERBS) or bare_come
+    "come" / "walk" going nowhere named (the parser drops the particle of a plural: "Tom and Sam come in",
+    "Mary and John walk in"; a walk to nowhere is a way onto the stage too), or only into the room itself
+    ("Sam walks into the workshop": the parser keeps "walk" and the room as its destination)."""
+    goals = [g for g in (action.target, action.destination, action.instrument) if g]
+    bare = action.verb.lower() in BARE_ENTRANCE_VERBS and all(_is_room_word(g) for g in goals)
+    return _verb_is(action, ENTRANCE_VERBS) or bare
+
+
+def _is_room_word(ref: str) -> bool:
+    """True for a word naming the room itself ("the workshop" in "Sam walks into the workshop")."""
+    from wana.assets.vocabulary import ROOM_TYPES
+
+    word = ref.split("#")[0].split("/")[0].replace("_", " ").lower()
+    return word in ("room", "inside") or any(
+        word == room.replace("_", " ") or word in synonyms for room, synonyms in ROOM_TYPES.items()
+    )
 
 
 def is_exit(action: ActionNode) -> bool:
@@ -77,11 +93,29 @@ class Doorway:
         p = self.centre - self.inward * (OUTSIDE_M + QUEUE_M * i)
         return float(p[0]), float(p[1])
 
-    def inside(self, depth: float = THRESHOLD_M, beside: int = 0) -> tuple[float, float]:
-        """A point ``depth`` metres into the room from the door; ``beside`` steps along the wall (+1, -1, +2...)."""
-        along = np.array([self.inward[1], -self.inward[0]])
-        step = (beside + 1) // 2 * (1 if beside % 2 else -1) * BESIDE_M
-        p = self.centre + self.inward * depth + along * step
+    @property
+    def along(self) -> np.ndarray:
+        """(2,) unit floor direction along the door's wall."""
+        return np.array([self.inward[1], -self.inward[0]])
+
+    def inside(
+        self, depth: float = THRESHOLD_M, beside: int = 0, spacing: float = BESIDE_M
+    ) -> tuple[float, float]:
+        """A point ``depth`` metres into the room from the door; ``beside`` steps of ``spacing`` along the wall
+        (+1, -1, +2...)."""
+        step = (beside + 1) // 2 * (1 if beside % 2 else -1) * spacing
+        p = self.centre + self.inward * depth + self.along * step
+        return float(p[0]), float(p[1])
+
+    def side_of(self, xz: tuple[float, float]) -> float:
+        """Metres along the wall from the door's centre to a floor point (signed, as ``inside`` steps)."""
+        return float(np.dot(np.asarray(xz, float) - self.centre, self.along))
+
+    def way_in(self, xz: tuple[float, float], depth: float = 1.6) -> tuple[float, float]:
+        """Where one who came in at ``xz`` on the threshold heads first: ``depth`` into the room on its own side
+        of the door (those who came in side by side stay side by side, APART_M apart, and never cross)."""
+        offset = self.side_of(xz) * APART_M / BESIDE_M
+        p = self.centre + self.inward * depth + self.along * offset
         return float(p[0]), float(p[1])
 
 
@@ -104,8 +138,22 @@ def doorway(scene: Scene) -> Doorway | None:
     return None
 
 
+_GRIDS: dict[bytes, OccupancyGrid] = {}  # layout (room, objects) and radius -> its grid
+_GRID_KEY = msgspec.msgpack.Encoder(order="deterministic")
+
+
 def _grid(scene: Scene, radius: float = BODY_M) -> OccupancyGrid:
-    return occupancy_grid(scene.room, scene_footprints(scene), radius=radius, cell=0.05)
+    """The floor's occupancy grid, rasterised once per layout (every motion stage run asks for it, and
+    most edits leave the layout as it was)."""
+    key = _GRID_KEY.encode([scene.room, scene.objects, radius])
+    grid = _GRIDS.get(key)
+    if grid is None:
+        grid = occupancy_grid(scene.room, scene_footprints(scene), radius=radius, cell=0.05)
+        grid.blocked.setflags(write=False)  # shared between calls: nobody may mark it
+        if len(_GRIDS) >= 32:
+            _GRIDS.clear()
+        _GRIDS[key] = grid
+    return grid
 
 
 def with_door(scene: Scene) -> Scene:

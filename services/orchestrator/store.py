@@ -120,6 +120,13 @@ class SessionStore:
             doc.apply(version - 1, changes)
         return doc
 
+    def rename(self, doc_id: str, title: str) -> None:
+        """Set a document's title (raises DocumentNotFound for an unknown id)."""
+        with self._lock:
+            cur = self._conn.execute("UPDATE documents SET title=? WHERE doc_id=?", (title, doc_id))
+            if cur.rowcount == 0:
+                raise DocumentNotFound(doc_id)
+
     def delete(self, doc_id: str) -> None:
         with self._lock:
             self._conn.execute("DELETE FROM documents WHERE doc_id=?", (doc_id,))

@@ -150,6 +150,47 @@ def scene_view(scene: Scene, action: ActionNode | None) -> Scene:
     return msgspec.structs.replace(scene, objects=[o for o in scene.objects if o.id in wanted])
 
 
+APPEARANCE = frozenset({"colour", "material"})  # catalog knobs that paint an object and leave its shape
+
+
+def _looks_only(value: str) -> bool:
+    from wana.assets import vocabulary  # the catalog's own word table (a value may name another knob)
+
+    norm = vocabulary.normalize_attribute(str(value))
+    return norm is None or norm[0] in APPEARANCE
+
+
+def geometry_view(scene: Scene) -> Scene:
+    """The layout without what only paints it: every object's colour and material words dropped.
+
+    Motion, the optimiser, seats and routes read an object's shape (category, size, style, state, seed,
+    pose), never its paint (wana.assets.catalog builds the same boxes and contacts whatever the colour), so
+    the motion stage runs on this view and a colour or material edit re-runs none of its nodes.
+    ``with_looks`` puts the paint back on the final layout.
+    """
+    objects = [
+        o
+        if not any(_looks_only(v) for v in o.attributes.values())
+        else msgspec.structs.replace(
+            o, attributes={k: v for k, v in o.attributes.items() if not _looks_only(v)}
+        )
+        for o in scene.objects
+    ]
+    return msgspec.structs.replace(scene, objects=objects)
+
+
+def with_looks(scene: Scene, looks: Scene) -> Scene:
+    """``scene`` (a layout computed on ``geometry_view(looks)``) with each object's attributes from ``looks``."""
+    attributes = {o.id: o.attributes for o in looks.objects}
+    objects = [
+        msgspec.structs.replace(o, attributes=attributes[o.id])
+        if o.id in attributes and attributes[o.id] != o.attributes
+        else o
+        for o in scene.objects
+    ]
+    return msgspec.structs.replace(scene, objects=objects)
+
+
 def others(
     action: ActionNode, name: str, states: dict[str, SegmentEndState], object_ids: set[str]
 ) -> dict[str, tuple[float, float]]:

@@ -37,13 +37,20 @@ from services.render.timeline import (
     place_commands,
 )
 from services.render.video import FPS
-from services.render.visibility import BODY_POINTS, BodyView, body_view, capsule_radii
-from wana.domain.skeleton import JOINT_INDEX
+from services.render.visibility import (
+    LEGS,
+    SEATED_HIPS_M,
+    VISIBLE_SHARE,
+    BodyView,
+    capsule_radii,
+    judged_view,
+    seat_under,
+    shown_share,
+    unhide_own_seat,
+)
 
-VISIBLE_SHARE = 0.7  # of the body's sample points, for a frame to show the character
-SEATED_HIPS_M = 0.75  # hips lower than this are sitting or lying (standing hips are at about 0.9 m)
-SEAT_BELOW_M = 0.5  # the seat's top within this below the hips (a sofa's seat, a bed's mattress)
-LEG_JOINTS = ("Hips", "UpLeg", "Leg", "Foot", "ToeBase")
+__all__ = ["LEGS", "SEATED_HIPS_M", "VISIBLE_SHARE", "seat_under", "shown_share", "unhide_own_seat"]
+
 FRAME_SHARE = 0.9  # of the action's frames that must show the character
 MIN_COMMAND_FRAMES = COMMAND_HOLD_FRAMES  # 1.5 s: what the render timeline holds the last command for
 
@@ -154,10 +161,10 @@ def in_view_checks(
     for sid, chars in action_frames(stage.motions.values(), stage.n_frames).items():
         for who in sorted(chars):
             frames = chars[who]
-            view = body_view(who, frames, joints, track, furniture, stage.scene.room, width, height, radii)
-            hips = joints[who][np.clip(frames, 0, len(joints[who]) - 1), JOINT_INDEX["Hips"]]
-            view = unhide_own_seat(view, seat_under(hips, furniture))
-            shown = shown_share(view, hips[:, 1] < SEATED_HIPS_M) >= VISIBLE_SHARE
+            view, part = judged_view(
+                who, frames, joints, track, furniture, stage.scene.room, width, height, radii
+            )
+            shown = part >= VISIBLE_SHARE
             share = float(shown.mean())
             if tally is not None:
                 framed = view.in_frame.mean(axis=1) >= VISIBLE_SHARE
@@ -189,50 +196,6 @@ def in_view_checks(
                 )
             )
     return out
-
-
-def seat_under(hips: np.ndarray, furniture: Furniture) -> np.ndarray:
-    """(F,) index of the furniture a character sits or lies on at each frame (hips (F, 3)), -1 when none:
-    the object with a box under the low hips whose top is at most SEAT_BELOW_M below them."""
-    out = np.full(len(hips), -1, dtype=np.int64)
-    best = np.full(len(hips), np.inf)
-    low = hips[:, 1] < SEATED_HIPS_M
-    if not low.any():
-        return out
-    for k, boxes in enumerate(furniture.boxes):
-        under = (
-            (boxes[None, :, 0, 0] <= hips[:, None, 0])
-            & (hips[:, None, 0] <= boxes[None, :, 1, 0])
-            & (boxes[None, :, 0, 2] <= hips[:, None, 2])
-            & (hips[:, None, 2] <= boxes[None, :, 1, 2])
-            & (boxes[None, :, 1, 1] <= hips[:, None, 1] + 0.05)
-        )  # (F, N): boxes right under the hips, not above them
-        top = np.where(under, boxes[None, :, 1, 1], -np.inf).max(axis=1)
-        gap = hips[:, 1] - top
-        mine = low & np.isfinite(top) & (gap <= SEAT_BELOW_M) & (gap < best)
-        out[mine], best[mine] = k, gap[mine]
-    return out
-
-
-LEGS = np.array([n.removeprefix("Left").removeprefix("Right") in LEG_JOINTS for n in BODY_POINTS])
-
-
-def shown_share(view: BodyView, seated: np.ndarray) -> np.ndarray:
-    """(F,) the share of the body shown on each frame; a seated character's legs are under the table or
-    the seat (what sitting hides), so a seated frame counts the head, trunk and arms only."""
-    share = view.visible.mean(axis=1)
-    if seated.any():
-        share[seated] = view.visible[seated][:, ~LEGS].mean(axis=1)
-    return share
-
-
-def unhide_own_seat(view: BodyView, seat: np.ndarray) -> BodyView:
-    """The view with the points hidden by the character's own seat counted as shown: a sofa's back hides
-    a seated person's legs from behind as sitting does, and the sofa is where the sentence puts them."""
-    own = (seat[:, None] >= 0) & (view.hidden_by == seat[:, None])
-    if not own.any():
-        return view
-    return BodyView(view.frames, view.in_frame, np.where(own, -1, view.hidden_by), view.occluders)
 
 
 def _in_view_failure(who: str, what: str, view: BodyView, shown: np.ndarray, share: float) -> str:

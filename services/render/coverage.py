@@ -2,8 +2,11 @@
 
 The director (services.render.director) frames each shot from a few candidates (sides, turns, heights,
 distances) and keeps the one that shows its acting characters best over the shot, measured exactly as
-the ``in_view`` story check measures the video (services.render.visibility: body points in the picture
-and unhidden by furniture triangles, walls seen from inside and other characters' bodies).
+the ``in_view`` story check measures the video (services.render.visibility.judged_view: body points in
+the picture and unhidden by furniture triangles, walls seen from inside and other characters' bodies; a
+seated character by its head, trunk and arms, its own seat hiding nothing). Scoring every point of a
+seated body instead made every candidate fail on the legs under the table, so the table hid the hands
+and chest from whichever camera came first.
 
     cover = Coverage.from_rigs(rigs, scene, width=640, height=480)
     share = cover.shown(poses, frames, ["Tom", "Mary"])  # share of (frame, character) shown >= 70 %
@@ -21,9 +24,7 @@ from services.render.camera import CameraPose
 from services.render.sightlines import Furniture
 from services.render.skinning import Rig
 from services.render.staging import CameraTrack
-from services.render.visibility import body_view, capsule_radii
-
-VISIBLE_SHARE = 0.7  # as services.render.camera_checks: a frame shows a character when 70 % of it is seen
+from services.render.visibility import VISIBLE_SHARE, capsule_radii, judged_view
 
 
 @dataclass(frozen=True)
@@ -96,8 +97,8 @@ class Coverage:
         steps = np.arange(len(idx))
         for j, n in enumerate(who):
             if n in self.joints:
-                view = body_view(
+                _, part = judged_view(
                     n, steps, local, track, self.furniture, self.room, self.width, self.height, self.radii
                 )
-                out[:, j] = view.visible.mean(axis=1) >= VISIBLE_SHARE
+                out[:, j] = part >= VISIBLE_SHARE
         return out

@@ -20,8 +20,11 @@ whose camera shows the shot's acting characters best over sample frames wins, me
 furniture, walls seen from inside and other bodies), per sentence: each (sentence, acting character)
 in the shot counts by its own frames and counts double once it would pass the check, so a short action
 inside a long shot is not averaged away (services.render.camera_checks judges each one alone). A closer
-shot whose best framing still leaves one of them unseen becomes a wide shot when that shows more. The
-planned camera is played as it is. Walls
+shot whose best framing still leaves one of them unseen becomes a wide shot when that shows more; when no
+candidate lets every sentence pass, a few high angles looking down over what stands in front are measured
+too (RESCUE_CHOICES: a sitter hemmed in by the table, a partner's back). A seated character is measured
+by its head, trunk and arms, as the check judges it (services.render.visibility.judged_view). The
+planned camera is played as it is, commands framed by measuring included (they cut in). Walls
 between the camera and the room are cut away (one-sided, culled from behind), so a camera may stand
 outside the room; a small cost per metre outside keeps views inside when they see as well.
 
@@ -31,7 +34,9 @@ chose (the 180° rule), whatever a candidate on the other side would show.
 A camera command replaces the director from its frame until the next camera command; ``close`` and
 ``follow`` only until their subject's next action ends (at least MIN_SHOT_FRAMES), then the director
 resumes; they also cut away when someone else begins a sentence in their scope (after MIN_SHOT_FRAMES),
-so that a close-up of Ben does not leave Anna's wave off-screen. A view command (front, back, left, right, top) that named nobody turns to whoever acts in each
+so that a close-up of Ben does not leave Anna's wave off-screen; one that named nobody ("camera close")
+also frames that other character when it acts within those first MIN_SHOT_FRAMES (a named subject is
+the user's choice and is held alone). A view command (front, back, left, right, top) that named nobody turns to whoever acts in each
 sentence of its scope (a pair: their middle). Shots are what ``report.json`` lists.
 
 This module is over 400 lines because the shot rules, the framing search and the command scopes are
@@ -285,6 +290,20 @@ COMMAND_CHOICES = (
     Adjust(rise=1.0, scale=0.7),
     *(Adjust(turn=np.radians(60) * sg, rise=0.8) for sg in (1, -1)),  # last: a three-quarter view
 )
+# Last resorts, measured only when no candidate above lets every sentence in the shot pass: a high angle
+# looking down over what stands in front (a sitter hemmed in by the table, a partner's back, a chair),
+# from the shot's own side or turned a little; a wide shot from high above the middle of the room.
+RESCUE_CHOICES = tuple(
+    Adjust(turn=np.radians(a) * sg, rise=r, scale=k)
+    for r, k in ((1.6, 0.6), (2.2, 0.45))
+    for a in (0, 35)
+    for sg in ((1,) if a == 0 else (1, -1))
+)
+WIDE_RESCUE_CHOICES = tuple(
+    Adjust(turn=np.radians(a), rise=r, scale=k)
+    for r, k in ((1.0, 0.45), (1.6, 0.3))
+    for a in (0, 90, 180, 270)
+)
 LINE_CHOICE_TURN = np.radians(60.0)  # two-person shots keep to their side of the line
 SAMPLES = 8  # frames of a shot measured per candidate, at least
 SAMPLE_STEP = 15  # frames between measured frames of a long shot (at most MAX_SAMPLES)
@@ -371,15 +390,18 @@ def _unit_score(
     return (total / weight if weight > 0 else None), passes
 
 
-def _candidates(s: Shot, fixed_side: int | None) -> list[tuple[int, Adjust]]:
+def _candidates(s: Shot, fixed_side: int | None, rescue: bool = False) -> list[tuple[int, Adjust]]:
+    """The framings a shot is measured with, preferred first; ``rescue``: the last resorts instead."""
     sides = (fixed_side,) if fixed_side is not None else (1, -1)
     if s.source == "command":
-        return [(1, a) for a in COMMAND_CHOICES] if s.kind in COMMAND_VIEWS else []
+        if s.kind not in COMMAND_VIEWS or (rescue and s.kind == "top"):
+            return []
+        return [(1, a) for a in (RESCUE_CHOICES if rescue else COMMAND_CHOICES)]
     if s.kind == "wide":
-        return [(1, a) for a in OVERVIEW_CHOICES]
-    choices = SHOT_CHOICES
+        return [(1, a) for a in (WIDE_RESCUE_CHOICES if rescue else OVERVIEW_CHOICES)]
+    choices = RESCUE_CHOICES if rescue else SHOT_CHOICES
     if s.partner:
-        choices = tuple(a for a in SHOT_CHOICES if abs(a.turn) <= LINE_CHOICE_TURN + 1e-9)
+        choices = tuple(a for a in choices if abs(a.turn) <= LINE_CHOICE_TURN + 1e-9)
     return [(side, a) for a in choices for side in sides]
 
 
@@ -410,7 +432,7 @@ def _framed(
             other = _search(wide, None, track_map, room, scorer, units, last)
             if other.score > found.score + WIDE_GAIN:
                 s, found, pair = wide, other, None
-        if pair is not None:
+        if pair is not None and s.source == "director":  # a command's framing keeps no side of the line
             pair_side.setdefault(pair, found.side)
         framed = replace(s, side=found.side, adjust=found.adjust if scorer is not None else None)
         out.append(framed)
@@ -444,7 +466,8 @@ def _search(
     inside = [u for u in units if u.who in tracks and ((u.frames >= s.start) & (u.frames < s.end)).any()]
     who = list(dict.fromkeys([*(s.acting or (s.subject,)), *(u.who for u in inside)]))
     best = _Found(1, Adjust(), -np.inf, None, False)
-    for rank, (side, adj) in enumerate(_candidates(s, fixed_side)):
+    main = _candidates(s, fixed_side)
+    for rank, (side, adj) in enumerate(main):
         key = CameraKey(
             frame=s.start, mode=s.kind, character=s.subject, partner=s.partner, side=side, adjust=adj
         )
@@ -471,6 +494,45 @@ def _search(
             break  # without measuring, only the side is chosen
         if scorer is not None and best.score >= 1.0 - PREFERENCE * rank - 1e-9 and rank == 0:
             break  # the preferred framing shows everyone: nothing to improve
+    if scorer is not None and not best.passes:
+        best = _rescue(s, fixed_side, tracks, room, scorer, units, frames, who, inside, best, len(main))
+    return best
+
+
+def _rescue(
+    s: Shot,
+    fixed_side: int | None,
+    tracks: dict[str, CharacterTrack],
+    room: Room,
+    scorer: Scorer,
+    units: Sequence[_Unit],
+    frames: list[int],
+    who: list[str],
+    inside: list[_Unit],
+    best: _Found,
+    first_rank: int,
+) -> _Found:
+    """The last-resort framings (RESCUE_CHOICES), measured as the others, ranked after them: one wins
+    only when it shows more than every preferred framing did."""
+    for i, (side, adj) in enumerate(_candidates(s, fixed_side, rescue=True)):
+        key = CameraKey(
+            frame=s.start, mode=s.kind, character=s.subject, partner=s.partner, side=side, adjust=adj
+        )
+        poses = [_pose(key, tracks, room, f) for f in frames]
+        if any(p is None for p in poses):
+            break
+        seen = scorer.shown_each(poses, frames, who)
+        by_unit, passes = _unit_score(seen, frames, who, s, inside)
+        acting = [who.index(w) for w in (s.acting or (s.subject,)) if w in who]
+        fallback = float(seen[:, acting].mean()) if acting else 1.0
+        outside = float(np.mean([_outside(room, p.eye) for p in poses]))
+        score = (fallback if by_unit is None else by_unit) - OUTSIDE * outside
+        score -= PREFERENCE * (first_rank + i)
+        if score > best.score + 1e-12:
+            end_pose = _pose(key, tracks, room, max(s.start, s.end - 1))
+            best = _Found(side, adj, score, end_pose, passes)
+            if passes:
+                break
     return best
 
 
@@ -529,6 +591,8 @@ def _command_shots(
             continue
         acting = tuple(dict.fromkeys(a for b in beats if b.start < end and b.end > start for a in b.acting))
         shot = Shot(start, end, mode, who, "", tc.sentence_id, "command", acting=acting)
+        if mode in SCOPED_COMMANDS and tc.implied_target and (other := _co_actor(who, start, beats, tracks)):
+            shot = replace(shot, partner=other)  # both in the picture: the pair's middle, closer in
         if mode == "over_shoulder":  # over this character's shoulder onto the nearest other one
             other = _nearest(who, tracks, start)
             shot = replace(shot, subject=other or who, partner=who if other else "")
@@ -537,6 +601,19 @@ def _command_shots(
         else:
             out.append(shot)
     return out
+
+
+def _co_actor(who: str, start: int, beats: list[_Beat], tracks: Mapping[str, CharacterTrack]) -> str:
+    """Who else acts while an unnamed close-up or follow shot of ``who`` from ``start`` must hold (its first
+    MIN_SHOT_FRAMES, which no cut-away shortens): the nearest of them, "" when nobody. "camera close"
+    before "They sit on the sofa and talk" or "Ted walks in" would otherwise hold on one face for 1.5 s
+    while the other character's action happens off-screen; the command then frames both, closer in."""
+    hold = start + MIN_SHOT_FRAMES
+    others = {a for b in beats if b.start < hold and b.end > start for a in b.acting if a != who}
+    if who not in tracks or not (others := {a for a in others if a in tracks}):
+        return ""
+    here = tracks[who].at(start)[0]
+    return min(others, key=lambda a: (float(np.linalg.norm((tracks[a].at(start)[0] - here)[[0, 2]])), a))
 
 
 def _cut_away(who: str, start: int, beats: list[_Beat]) -> int:
@@ -613,7 +690,9 @@ def plan_shots(
 
 def shot_keys(shots: Iterable[Shot]) -> list[CameraKey]:
     """The camera keys that play the shots: the director cuts (and so does a view command turning to the
-    next sentence's character), a command eases in as it always did."""
+    next sentence's character, and any command framed by measuring: the framing that was measured is the
+    one on screen from its first frame, where an ease from the shot before could swing the lens through a
+    whiteboard or out past the character); a command planned without measuring eases in as it always did."""
     shots = list(shots)
     return [
         CameraKey(
@@ -624,6 +703,7 @@ def shot_keys(shots: Iterable[Shot]) -> list[CameraKey]:
             side=s.side,
             end=s.end,
             cut=s.source == "director"
+            or s.adjust is not None
             or (i > 0 and shots[i - 1].source == "command" and s.sentence_id == shots[i - 1].sentence_id),
             adjust=s.adjust,
         )

@@ -69,6 +69,10 @@ STOP_SHORT = 0.1  # metres a sight line stops before its body point (the seat un
 TOUCH = 0.05  # metres beyond a capsule's radius: another body this close to a body point cannot hide it
 # (a hand on a shoulder, arms round a partner in a hug: the body's surface lies outside the joint)
 NEAR_CLIP = 0.05  # metres: the renderer's near plane
+VISIBLE_SHARE = 0.7  # of the body's sample points, for a frame to show the character (the in_view check)
+SEATED_HIPS_M = 0.75  # hips lower than this are sitting or lying (standing hips are at about 0.9 m)
+SEAT_BELOW_M = 0.5  # the seat's top within this below the hips (a sofa's seat, a bed's mattress)
+LEG_JOINTS = ("Hips", "UpLeg", "Leg", "Foot", "ToeBase")
 
 
 @dataclass(frozen=True)
@@ -254,3 +258,68 @@ def body_view(
         by_body = ((dist < radius) & ~touching).any(axis=-1).reshape(-1)
         hidden[(hidden < 0) & by_body] = len(names) - 1
     return BodyView(frames=frames, in_frame=in_frame, hidden_by=hidden.reshape(n_f, n_p), occluders=names)
+
+
+def seat_under(hips: np.ndarray, furniture: Furniture) -> np.ndarray:
+    """(F,) index of the furniture a character sits or lies on at each frame (hips (F, 3)), -1 when none:
+    the object with a box under the low hips whose top is at most SEAT_BELOW_M below them."""
+    out = np.full(len(hips), -1, dtype=np.int64)
+    best = np.full(len(hips), np.inf)
+    low = hips[:, 1] < SEATED_HIPS_M
+    if not low.any():
+        return out
+    for k, boxes in enumerate(furniture.boxes):
+        under = (
+            (boxes[None, :, 0, 0] <= hips[:, None, 0])
+            & (hips[:, None, 0] <= boxes[None, :, 1, 0])
+            & (boxes[None, :, 0, 2] <= hips[:, None, 2])
+            & (hips[:, None, 2] <= boxes[None, :, 1, 2])
+            & (boxes[None, :, 1, 1] <= hips[:, None, 1] + 0.05)
+        )  # (F, N): boxes right under the hips, not above them
+        top = np.where(under, boxes[None, :, 1, 1], -np.inf).max(axis=1)
+        gap = hips[:, 1] - top
+        mine = low & np.isfinite(top) & (gap <= SEAT_BELOW_M) & (gap < best)
+        out[mine], best[mine] = k, gap[mine]
+    return out
+
+
+LEGS = np.array([n.removeprefix("Left").removeprefix("Right") in LEG_JOINTS for n in BODY_POINTS])
+
+
+def shown_share(view: BodyView, seated: np.ndarray) -> np.ndarray:
+    """(F,) the share of the body shown on each frame; a seated character's legs are under the table or
+    the seat (what sitting hides), so a seated frame counts the head, trunk and arms only."""
+    share = view.visible.mean(axis=1)
+    if seated.any():
+        share[seated] = view.visible[seated][:, ~LEGS].mean(axis=1)
+    return share
+
+
+def unhide_own_seat(view: BodyView, seat: np.ndarray) -> BodyView:
+    """The view with the points hidden by the character's own seat counted as shown: a sofa's back hides
+    a seated person's legs from behind as sitting does, and the sofa is where the sentence puts them."""
+    own = (seat[:, None] >= 0) & (view.hidden_by == seat[:, None])
+    if not own.any():
+        return view
+    return BodyView(view.frames, view.in_frame, np.where(own, -1, view.hidden_by), view.occluders)
+
+
+def judged_view(
+    name: str,
+    frames: np.ndarray,
+    joints: dict[str, np.ndarray],
+    track: CameraTrack,
+    furniture: Furniture,
+    room: Room,
+    width: int,
+    height: int,
+    radii: dict[str, np.ndarray] | None = None,
+) -> tuple[BodyView, np.ndarray]:
+    """What the ``in_view`` check counts of one character: its view (its own seat hiding nothing) and
+    (F,) the share of its body shown per frame (seated: head, trunk and arms). The director scores its
+    candidate cameras with this same function, so a framing it picks passes the check it was picked for."""
+    view = body_view(name, frames, joints, track, furniture, room, width, height, radii)
+    j = joints[name]
+    hips = j[np.clip(np.asarray(frames, dtype=np.int64), 0, len(j) - 1), JOINT_INDEX["Hips"]]
+    view = unhide_own_seat(view, seat_under(hips, furniture))
+    return view, shown_share(view, hips[:, 1] < SEATED_HIPS_M)

@@ -17,9 +17,10 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from services.retrieval.geometry import OVERLAP_EPS, first_overlapping
+from services.retrieval.geometry import OVERLAP_EPS, SITTER_Y_M, first_overlapping
 from services.retrieval.placement import Placed
 
+HIPS_BELOW_M = 0.15  # metres below a seat slot's hips point that a sitter's hips and thighs take
 NEAR_GROUPS_KEPT = 256  # concatenated box sets kept per index (distinct groups of near objects)
 
 
@@ -59,11 +60,27 @@ class ObstacleIndex:
         (found,) = np.nonzero(near)
         return found
 
+    def on_a_sitter(self, p: Placed) -> bool:
+        """Whether p rests where someone would sit on a seat of one slot (a box of chocolates in the middle of
+        the bench); on a sofa the cushions go where they will and the sitters take the free slots."""
+        k = self._index.get(p.support)
+        if k is None:
+            return False
+        seat = self.objects[k]
+        if seat.fp.sitters != 1:
+            return False
+        sitters = seat.boxes[-seat.fp.sitters :].copy()
+        sitters[:, 0, 1] -= SITTER_Y_M[0] + HIPS_BELOW_M  # down to the seat: where the hips and thighs go
+        return first_overlapping(p.boxes, sitters) >= 0
+
     def first_collider(self, p: Placed) -> str | None:
         """The first placed object (in placement order) whose collision boxes p's interpenetrate by
-        more than OVERLAP_EPS, what p rests on and what rests on p aside; None when there is none."""
+        more than OVERLAP_EPS, what p rests on and what rests on p aside (but for the sitter boxes of
+        the seat p rests on); None when there is none."""
         if not self.objects:
             return None
+        if self.on_a_sitter(p):
+            return p.support
         near = self.near(p)
         if len(near) == 0:
             return None
@@ -82,6 +99,15 @@ class ObstacleIndex:
         """
         out: list[str | None] = [None] * len(poses)
         if not self.objects or not poses:
+            return out
+        sitting = [c for c, p in enumerate(poses) if self.on_a_sitter(p)]
+        if sitting:  # rare (a prop on a bench): those poses one by one, the others as one batch
+            rest = [c for c in range(len(poses)) if c not in set(sitting)]
+            found = self.first_colliders([poses[c] for c in rest])
+            for c in sitting:
+                out[c] = poses[c].support
+            for c, f in zip(rest, found, strict=True):
+                out[c] = f
             return out
         box = np.array([p.box for p in poses])  # (C, 2, 3)
         inside = (box[:, None, 0] < self.upper_less_eps[None]) & (

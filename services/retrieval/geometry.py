@@ -18,6 +18,16 @@ from wana.assets.catalog import SupportSurface, make_object
 
 OVERLAP_EPS = 0.01  # metres two boxes must interpenetrate on every axis to count as overlapping
 
+# The space a seated person's torso takes above each seat slot (object frame, about the slot's hips point,
+# the sitter facing +Z): kept free like the seat itself, so that no table top, shelf or second table comes
+# to stand where the chest will be. A chair may still go under a table's top as far as the sitter's thighs
+# and knees (they sit below the top); its torso stays in front of the edge. Metres: half width, from the
+# hips' height up (above the thighs) to the top of the head's reach, and from just behind the hips to a
+# little past the belly (the torso's capsules are 0.11-0.12 m thick, wana.fidelity.bodies).
+SITTER_HALF_WIDTH_M = 0.17
+SITTER_Y_M = (0.12, 0.65)
+SITTER_Z_M = (-0.08, 0.16)
+
 
 @dataclass(frozen=True, eq=False)
 class Footprint:
@@ -26,10 +36,12 @@ class Footprint:
     Attributes:
         category, attributes, seed: the catalog variant.
         boxes: (N, 2, 3) collision boxes, object frame: the catalog's voxel cells merged into larger
-            boxes covering exactly the same cells (far fewer boxes to test).
-        bounds: (2, 3) object-frame AABB of the boxes.
+            boxes covering exactly the same cells (far fewer boxes to test), then one box per seat slot
+            for the sitter's torso (sitter_boxes).
+        bounds: (2, 3) object-frame AABB of the solid boxes (the sitters' aside: a chair is no taller).
         surfaces: support surfaces, object frame.
         mount: "floor", "surface" or "wall".
+        sitters: how many of the boxes, at the end, are sitter boxes (what rests on the seat keeps off them).
     """
 
     category: str
@@ -40,6 +52,7 @@ class Footprint:
     surfaces: tuple[SupportSurface, ...] = field(repr=False)
     mount: str
     extents_by_yaw: dict[float, np.ndarray] = field(default_factory=dict, repr=False)
+    sitters: int = 0
 
     @property
     def height(self) -> float:
@@ -53,7 +66,9 @@ def _footprint(category: str, attributes: tuple[tuple[str, str], ...], seed: int
     if len(boxes) == 0:  # a generator without solid parts still occupies its mesh box
         half = np.asarray(asset.dims) / 2.0
         boxes = np.array([[[-half[0], 0.0, -half[2]], [half[0], asset.dims[1], half[2]]]])
-    bounds = np.stack([boxes[:, 0].min(axis=0), boxes[:, 1].max(axis=0)])
+    bounds = np.stack([boxes[:, 0].min(axis=0), boxes[:, 1].max(axis=0)])  # the solid object's
+    sitters = sitter_boxes(asset)
+    boxes = np.concatenate([boxes, sitters])
     info = vocabulary.CATEGORIES.get(category)
     return Footprint(
         category,
@@ -63,7 +78,27 @@ def _footprint(category: str, attributes: tuple[tuple[str, str], ...], seed: int
         bounds,
         tuple(asset.support_surfaces),
         info.mount if info else "floor",
+        sitters=len(sitters),
     )
+
+
+def sitter_boxes(asset: object) -> np.ndarray:
+    """(S, 2, 3) object-frame boxes of the seated torsos above a catalog object's seat slots ("sit*" points at
+    the hips; none for objects without one)."""
+    points = getattr(asset, "contact_points", {})
+    hips = [
+        np.asarray(cp.position, dtype=np.float64)
+        for name, cp in sorted(points.items())
+        if name.startswith("sit") and cp.joint == "Hips"
+    ]
+    out = [
+        [
+            [h[0] - SITTER_HALF_WIDTH_M, h[1] + SITTER_Y_M[0], h[2] + SITTER_Z_M[0]],
+            [h[0] + SITTER_HALF_WIDTH_M, h[1] + SITTER_Y_M[1], h[2] + SITTER_Z_M[1]],
+        ]
+        for h in hips
+    ]
+    return np.asarray(out, dtype=np.float64).reshape(-1, 2, 3)
 
 
 def merge_cells(cells: np.ndarray) -> np.ndarray:

@@ -5,7 +5,8 @@ For a subject and an anchor already placed, each relation word yields poses in t
 past its back, "left of" on its left (+X, a character's left when it faces +Z), "right of" on -X,
 "next to" on either side, "near" on any side, "under" below its top, "above" over it, "facing" in front
 of it turned towards it, "around" one side per instance. Against a wall-mounted anchor (window,
-whiteboard) the subject keeps its back to that wall: below the anchor or beside it along the wall.
+whiteboard) the subject keeps its back to that wall: below the anchor or beside it along the wall; "in front
+of" it, a seat turns to face it and anything else keeps its back to it.
 The first pose of each list comes from the subject's own random generator (seeded by its id), so a
 subject's placement depends only on itself and its anchor; the rest are fixed alternatives.
 """
@@ -189,7 +190,11 @@ def relation_candidates(
             sides = sides[instance % len(sides) :] + sides[: instance % len(sides)]
         gaps = [float(rng.uniform(0.05, 0.3)), 0.05, 0.3, 0.6]
         for side in sides:
-            rel_yaws = [math.pi, 0.0] if side == "front" and relation == "in_front_of" else [0.0]
+            rel_yaws = [0.0]
+            if side == "front" and relation == "in_front_of":
+                # A seat faces what hangs on the wall (a sofa in front of the TV); what is used from its
+                # front keeps its back to it (a teacher's desk in front of the chalkboard faces the class).
+                rel_yaws = [math.pi, 0.0] if fp.sitters else [0.0, math.pi]
             lats = [lateral0 * half_w, 0.0, half_w, -half_w] if side in ("front", "below") else [0.0]
             for rel_yaw in rel_yaws:
                 for gap in gaps:
@@ -273,6 +278,19 @@ def _on_surface(
             yield _to_world(
                 anchor, float(cx), float(cz), float(anchor.position[1]) + float(s.height), rel_yaw, anchor.id
             )
+        # ... else slid to either end of it (a box too deep for a bench, kept off the sitter's place).
+        for rel_yaw in (0.0, math.pi / 2.0):
+            e = extents(fp, rel_yaw)
+            room = float(s.max_xz[0] - s.min_xz[0]) / 2.0 - float(e[1, 0] - e[0, 0]) / 2.0
+            for lx in (cx - room, cx + room) if room > 0.01 else ():
+                yield _to_world(
+                    anchor,
+                    float(lx),
+                    float(cz),
+                    float(anchor.position[1]) + float(s.height),
+                    rel_yaw,
+                    anchor.id,
+                )
 
 
 def _above(

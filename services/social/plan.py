@@ -11,6 +11,7 @@ after the last one it holds.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 import msgspec
 import numpy as np
@@ -26,12 +27,13 @@ from proto.social import (
     SocialPlan,
     StepEmotion,
 )
-from proto.ssg import SentenceGraph
+from proto.ssg import SentenceGraph, SocialNode
 from services.social.energy import build_model
 from services.social.face import expression_names, face_weights
 from services.social.relations import inverse_label
 from services.social.sampler import sample
 from services.social.story import Story, read_story
+from services.social.windows import merge_windows, plan_window, relations_before, story_windows
 from wana.domain.units import FPS
 
 ONSET_S = 0.4
@@ -69,8 +71,18 @@ def plan_social(graphs: list[SentenceGraph], *, seed: int = 0, steps: int = 0) -
         raise ValueError(f"steps must be in 0..{MAX_MH_STEPS}, got {steps}")
     groups = social_groups(graphs)
     if len(groups) <= 1:
-        return _plan_group(graphs, seed, steps)
-    return _merge([_plan_group(_only(graphs, group), seed, steps) for group in groups], seed)
+        return _plan_windows(graphs, seed, steps)
+    return _merge([_plan_windows(_only(graphs, group), seed, steps) for group in groups], seed)
+
+
+def _plan_windows(graphs: list[SentenceGraph], seed: int, steps: int) -> SocialPlan:
+    """One group's plan, window by window (services/social/windows.py: an edit re-plans its window only)."""
+    windows = story_windows(graphs)
+    plans = [
+        plan_window(win, relations_before(windows, w), seed, steps, _plan_group)
+        for w, win in enumerate(windows)
+    ]
+    return merge_windows(windows, plans, seed)
 
 
 def social_groups(graphs: list[SentenceGraph]) -> list[list[str]]:
@@ -141,9 +153,11 @@ def _merge(plans: list[SocialPlan], seed: int) -> SocialPlan:
     )
 
 
-def _plan_group(graphs: list[SentenceGraph], seed: int, steps: int) -> SocialPlan:
-    """plan_social for characters that all belong to one group."""
-    story = read_story(graphs)
+def _plan_group(
+    graphs: list[SentenceGraph], context: Sequence[SocialNode], seed: int, steps: int
+) -> SocialPlan:
+    """plan_social for characters that all belong to one group (``context``: relations stated before)."""
+    story = read_story(graphs, context)
     model = build_model(story)
     result = sample(model, seed=seed, steps=steps)
     x = result.x

@@ -6,9 +6,10 @@ A step is one sentence that involves characters (graph kind "action"). An act is
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
-from proto.ssg import SentenceGraph
+from proto.ssg import SentenceGraph, SocialNode
 from services.social.lexicon import action_vad, word_vad, word_variants
 from services.social.relations import DEFAULT_RELATION, canonical_label, relation_of
 
@@ -64,8 +65,9 @@ def _same_verb(label: str, act: Act) -> bool:
     return bool(forms & (set(word_variants(act.verb)) | {act.action}))
 
 
-def read_story(graphs: list[SentenceGraph]) -> Story:
-    """Collect the social story of a document.
+def read_story(graphs: list[SentenceGraph], context: Sequence[SocialNode] = ()) -> Story:
+    """Collect the social story of a document (``context``: relation nodes stated before these graphs,
+    services/social/windows.py, which hold between the characters they name).
 
     Raises:
         StoryError: more than MAX_CHARACTERS characters or MAX_STEPS character sentences.
@@ -91,6 +93,9 @@ def read_story(graphs: list[SentenceGraph]) -> Story:
         )
     story = Story(characters=names, steps=[])
     counts = dict.fromkeys(names, 0)
+    for s in context:
+        if s.kind == "relation":
+            _add_relation(story, [n for n in s.subjects if n in counts], s.label)
     for g in graphs:
         if g.kind != "action" or not (g.characters or g.social):
             continue

@@ -1,5 +1,8 @@
 """End to end in headless Chromium: type a scene and two characters' actions, see them, edit one, see the update.
 
+The free camera shows the render service's skinned characters from the first animation on (no capsule
+mannequins until "Director" is pressed).
+
 The edit changes only Eve's motion: the gateway sends Tom as an `unchanged` stub and the editor keeps his
 figure as it was (the same three.js object), while both stay on screen.
 
@@ -67,13 +70,14 @@ def wait_synced(page: Any, timeout_ms: int = 120_000) -> dict[str, Any]:
     page.wait_for_function(
         """() => { const s = window.wana && window.wana.state; return s && s.live && s.live.ready && !s.live.inFlight
             && s.live.confirmed === wana.pane.getText() && !wana.state.live.unconfirmed().length && s.animation
-            && s.animation.version === s.live.version; }""",
+            && s.animation.version === s.live.version && s.diagnostics
+            && s.diagnostics.version === s.animation.version; }""",
         timeout=timeout_ms,
     )
     return page.evaluate(
         """() => { const a = wana.state.animation; return {version: a.version, frames: a.frames,
             objects: a.objects.map(o => o.category), unavailable: a.unavailable,
-            characters: a.characters.map(c => ({name: c.name, root: c.root_position,
+            characters: a.characters.map(c => ({name: c.name, root: Array.from(c.root_position).join(','),
                 actions: c.segments.map(s => s.action)})),
             figures: wana.viewer.characterGroup.children.length,
             received: wana.state.received, update: wana.viewer.lastCharacterUpdate,
@@ -110,16 +114,27 @@ def test_typing_a_story_shows_the_character_and_an_edit_updates_it(browser: Any,
         names = [c["name"] for c in first["characters"]]
         assert names == ["Eve", "Tom"], names
 
+        # The skinned characters (the render service's scene.glb) replace the capsule figures from the start.
+        page.wait_for_function(
+            "() => wana.viewer.exportScene && wana.viewer.exportVersion === wana.state.version",
+            timeout=120_000,
+        )
+        assert page.evaluate("() => wana.viewer.exportCharacters.length") >= 2
+        assert page.evaluate("() => wana.viewer.characterGroup.visible") is False
         # The character is drawn: after Focus aims the camera at it, hiding it changes the viewer's pixels.
         page.click("#focus")
         page.wait_for_timeout(300)
         page.screenshot(path=str(ARTIFACTS / "editor_e2e_focus.png"))
         canvas = page.locator("#viewport canvas")
         with_figure = png_pixels(canvas.screenshot())
-        page.evaluate("() => { wana.viewer.characterGroup.visible = false; wana.viewer.render(true); }")
+        page.evaluate(
+            "() => { for (const m of wana.viewer.exportCharacters) m.visible = false; wana.viewer.render(true); }"
+        )
         page.wait_for_timeout(200)
         without_figure = png_pixels(canvas.screenshot())
-        page.evaluate("() => { wana.viewer.characterGroup.visible = true; wana.viewer.render(true); }")
+        page.evaluate(
+            "() => { for (const m of wana.viewer.exportCharacters) m.visible = true; wana.viewer.render(true); }"
+        )
         changed = int((np.abs(with_figure - without_figure).sum(axis=2) > 30).sum())
         assert changed > 150, f"only {changed} pixels belong to the character"
 

@@ -13,6 +13,7 @@ from services.gateway.settings import Settings
 pytestmark = [pytest.mark.integration, pytest.mark.slow]
 
 STORY = "In the office there is a desk$. Eve walks to the desk."
+TWO = "In the office there is a desk$. Eve walks to the desk. Tom waves at Eve."
 
 
 @pytest.fixture(scope="module")
@@ -24,10 +25,13 @@ def exported(tmp_path_factory: pytest.TempPathFactory) -> dict[str, httpx.Respon
         httpx.Client(base_url=gw.base_url, timeout=600) as http,
     ):
         doc_id = http.post("/api/documents", json={"text": STORY}).json()["doc_id"]
-        return {
+        out = {
             fmt: http.get(f"/api/documents/{doc_id}/export/{fmt}", params={"width": 96, "height": 64})
             for fmt in ("glb", "bvh", "mp4")
         }
+        two = http.post("/api/documents", json={"text": TWO}).json()["doc_id"]
+        out["bvh-zip"] = http.get(f"/api/documents/{two}/export/bvh", params={"character": "*"})
+        return out
 
 
 def _ok(r: httpx.Response) -> None:
@@ -49,6 +53,21 @@ def test_bvh_export_is_the_characters_motion(exported: dict[str, httpx.Response]
     text = r.content.decode()
     assert text.startswith("HIERARCHY") and "MOTION" in text and "Hips" in text
     assert 'filename="Eve.bvh"' in r.headers["content-disposition"]
+
+
+def test_every_characters_bvh_comes_in_one_zip(exported: dict[str, httpx.Response]) -> None:
+    import io
+    import zipfile
+
+    r = exported["bvh-zip"]
+    _ok(r)
+    assert r.headers["content-type"] == "application/zip"
+    assert 'filename="characters-bvh.zip"' in r.headers["content-disposition"]
+    with zipfile.ZipFile(io.BytesIO(r.content)) as zf:
+        assert sorted(zf.namelist()) == ["Eve.bvh", "Tom.bvh"]
+        for name in zf.namelist():
+            text = zf.read(name).decode()
+            assert text.startswith("HIERARCHY") and "MOTION" in text
 
 
 def test_mp4_export_is_a_video(exported: dict[str, httpx.Response], tmp_path: Path) -> None:

@@ -169,3 +169,43 @@ def test_a_pronoun_that_names_the_same_character_changes_no_motion(session):
     replace(session, "Tom waves", "He waves")
     result = session.compute()
     assert result.ran == [f"parse:{sid_of(session, 'He waves')}", "resolve"]
+
+
+def test_painting_an_object_recomposes_the_scene_and_no_motion(session):
+    before = session.compute()
+    replace(session, "A chair is in front", "A red chair is in front")
+    result = session.compute()
+    # motion, the optimiser and the routes read shapes only (views.geometry_view): no motion node re-runs
+    assert result.ran == [f"parse:{sid_of(session, 'A red chair')}", "resolve", "scene"]
+    chair = next(o for o in result.scene.objects if o.category == "chair")
+    assert chair.attributes.get("colour") == "red"  # the paint is back on the final layout
+    assert result.motions == before.motions
+    old = next(o for o in before.scene.objects if o.id == chair.id)
+    assert (chair.position, chair.yaw) == (old.position, old.yaw)
+
+
+LONG = (
+    "In the office there is a desk near a window$. A chair is in front of the desk$. "
+    "A sofa is next to the bookshelf$.\n"
+    + "\n".join(
+        ["Eve walks to the chair.", "Tom waves at Eve.", "Eve nods.", "Tom walks to the sofa.", "Eve waves."][
+            i % 5
+        ]
+        for i in range(70)
+    )
+)
+
+
+def test_an_action_edit_in_a_long_story_reruns_only_motion_near_it(orchestrator):
+    s = orchestrator.create(LONG)
+    s.compute()
+    target = [x for x in s.doc.sentences if x.text.startswith("Eve nods")][-2]
+    at = s.doc.text.index("nods", target.start)
+    s.edit(s.doc.version, [TextChange(start=at, end=at + 4, text="cheers")])
+    result = s.compute()
+    motion = [k for k in result.ran if k.split(":")[0] in ("draft", "optimise", "segment")]
+    assert any(k.startswith("segment:Eve:") for k in motion)
+    # the social plan is re-sampled in the edit's window only (services/social/windows.py): the actions of
+    # the story's first window keep their distances, so none of their motion nodes re-runs
+    assert all(int(k.rsplit(":", 1)[1]) >= 10 for k in motion), motion
+    assert len(motion) < 12

@@ -59,6 +59,8 @@ ABSTRACT_PARENTS: dict[str, str] = {
     "toy": "",
     "vehicle": "",
     "safety_equipment": "",
+    "food": "",
+    "medicine": "",
 }
 
 # fmt: off
@@ -146,7 +148,7 @@ bass_guitar | guitar | bass, electric bass, bass guitar | music_studio | SCT | f
 violin | string_instrument | fiddle, viola | music_studio classroom | SCTM | surface
 cello | string_instrument | violoncello, double bass, contrabass, upright bass | music_studio | SCTM | floor
 harp | string_instrument | concert harp, lyre | music_studio | SCM | floor
-drum_kit | percussion | drums, drum set, drumkit, drum, drumset | music_studio | SCT | floor
+drum_kit | percussion | drums, drum set, drumkit, drum, drumset, drum kit, drum kits, drum kit set | music_studio | SCT | floor
 trumpet | wind_instrument | horn, cornet, bugle, trombone | music_studio | SCM | surface
 saxophone | wind_instrument | sax, alto sax, tenor sax, clarinet | music_studio | SCM | surface
 flute | wind_instrument | piccolo, recorder flute, fife | music_studio classroom | SCM | surface
@@ -200,7 +202,7 @@ glass | drinkware | drinking glass, tumbler, wine glass, wineglass, goblet, wate
 bottle | drinkware | water bottle, wine bottle, flask, beer bottle, plastic bottle, water | kitchen dining_room gym office | SCTM | surface
 soda_can | drinkware | can, soda, coke, cola, soft drink, drink can, beer can, tin can, soda pop | kitchen living_room office | SC | surface
 plate | tableware | dish, dinner plate, saucer, platter, tray, serving tray, baking tray, tea tray, dinner, lunch, meal, food, sandwich, toast, pizza | kitchen dining_room cafe | SCM | surface
-bowl | tableware | salad bowl, soup bowl, fruit bowl, cereal bowl, soup, cereal, salad, porridge, noodles | kitchen dining_room | SCM | surface
+bowl | tableware | salad bowl, soup bowl, fruit bowl, cereal bowl, soup, cereal, salad, porridge, noodles, popcorn, popcorn bowl, crisps, chips, snacks, fruit | kitchen dining_room | SCM | surface
 pan | cookware | frying pan, skillet, wok, saucepan, fry pan | kitchen | SCM | surface
 pot | cookware | cooking pot, stockpot, casserole, stew pot | kitchen | SCM | surface
 knife | cookware | kitchen knife, chef knife, chefs knife, blade, bread knife | kitchen | SM | surface
@@ -241,6 +243,12 @@ paint_bucket | container | paint can, bucket, pail, paint tin, paint pot | works
 broom | tool | mop, sweeper, broomstick, brush | workshop garage kitchen | SCM | floor
 fire_extinguisher | safety_equipment | extinguisher, fire hose | office workshop garage kitchen | S | floor
 bicycle | vehicle | bike, cycle, push bike, mountain bike, road bike | garage | SCT | floor
+rug | textile | carpet, area rug, rugs, carpets, persian rug, doormat, door mat, floor mat, runner rug, throw rug | living_room bedroom kids_room lobby library home_office office | SCTM | floor
+instrument_stand | music_equipment | stand, guitar stand, instrument stand, keyboard stand, amp stand | music_studio | SCM | floor
+cake | food | birthday cake, cakes, pie, tart, cheesecake, cupcake, gateau, layer cake, sponge cake, chocolate cake | kids_room dining_room kitchen cafe living_room office | SCX | surface
+chocolate_box | food | box of chocolates, chocolates, chocolate box, candy box, candies, candy, sweets, bonbons, pralines, truffles, chocolate | lobby living_room bedroom dining_room | SC | surface
+film_negative | stationery | negative, negatives, photo negative, film negative, film strip, filmstrip, negative of a photo, contact sheet | gallery office home_office meeting_room | S | surface
+pill_bottle | medicine | pill, pills, pill bottle, pillbox, pill box, medicine, medicine bottle, medication, capsule, capsules, aspirin, painkiller, painkillers, vitamins | bathroom bedroom kitchen | SC | surface
 umbrella_stand | container | umbrella, umbrella holder, brolly stand | lobby | SC | floor
 """
 # fmt: on

@@ -13,6 +13,7 @@ import numpy as np
 
 from proto.scene import PlacedObject
 from proto.ssg import RELATIONS, RelationNode
+from wana.assets import vocabulary
 from wana.assets.catalog import asset_for, object_to_world, world_bounds
 
 NEAR_M = 1.0  # footprint gap for "near"
@@ -53,7 +54,37 @@ def _on(s: PlacedObject, a: PlacedObject) -> bool:
     return False
 
 
+WALL_UNDER_REACH_M = 0.3  # how far from the wall a subject "under" a window or mirror may stand
+WALL_UNDER_SLACK_M = 0.1  # metres its centre may reach past the side of the window
+# share of the window's height that a tap or a lamp on the subject may rise in front of
+WALL_UNDER_RISE = 1.0 / 3.0
+
+
+def _on_wall(a: PlacedObject) -> bool:
+    info = vocabulary.CATEGORIES.get(a.category)
+    return info is not None and info.mount == "wall"
+
+
+def _under_wall(s: PlacedObject, a: PlacedObject) -> bool:
+    """Under a window, mirror or painting: against its wall, below its bottom, centred within its width
+    (a desk under the window, a sink under the mirror, its tap in front of the window's lowest third);
+    nothing can stand inside a window's thin box, so the floor-object rule never holds against a wall."""
+    bs, ba = world_bounds(s), world_bounds(a)
+    corners = np.array([[x, 0.0, z] for x in bs[:, 0] for z in bs[:, 2]])
+    local = to_anchor_frame(a, corners)
+    centre = to_anchor_frame(a, _centre(s))
+    half = asset_for(a).dims / 2.0
+    back = float(local[:, 2].min())  # the subject's face nearest the wall, anchor frame (+Z into the room)
+    return bool(
+        abs(centre[0]) <= half[0] + WALL_UNDER_SLACK_M
+        and -half[2] - 0.05 <= back <= half[2] + WALL_UNDER_REACH_M
+        and bs[1, 1] <= ba[0, 1] + max(WALL_UNDER_SLACK_M, WALL_UNDER_RISE * float(ba[1, 1] - ba[0, 1]))
+    )
+
+
 def _under(s: PlacedObject, a: PlacedObject) -> bool:
+    if _on_wall(a):
+        return _under_wall(s, a)
     bs, ba = world_bounds(s), world_bounds(a)
     c = _centre(s)
     inside = ba[0, 0] <= c[0] <= ba[1, 0] and ba[0, 2] <= c[2] <= ba[1, 2]

@@ -253,6 +253,9 @@ _ARTICLES = {
 }
 
 
+_LEADING_ARTICLE = re.compile(r"^(?:a|an|the|some|this|that|his|her|their|my|your|its|our) ")
+
+
 def _singular(word: str) -> list[str]:
     out = [word]
     if word.endswith("ies") and len(word) > 4:
@@ -292,8 +295,8 @@ def lookup(word_or_phrase: str) -> str | None:
     phrase = _norm(word_or_phrase)
     if not phrase:
         return None
-    whole = _lookup_exact(phrase)
-    if whole is not None:  # "chest of drawers"
+    whole = _lookup_exact(phrase) or _lookup_exact(_LEADING_ARTICLE.sub("", phrase))
+    if whole is not None:  # "chest of drawers", "a box of chocolates"
         return whole
     if " of " in phrase:  # "a cup of coffee" -> cup, "a stack of paper" -> paper
         head, _, rest = phrase.partition(" of ")
@@ -402,3 +405,41 @@ def _check_table() -> None:
 
 
 _check_table()
+
+
+@lru_cache(maxsize=4096)
+def senses(word: str) -> tuple[str, ...]:
+    """Categories a bare word can name: those it is a synonym of and those whose name ends in it
+    ("sink" -> kitchen_sink, bathroom_sink; "desk" -> desk, standing_desk, teacher_desk, ...)."""
+    w = _norm(word)
+    if not w:
+        return ()
+    forms = {w, *_singular(w)}
+    out = [
+        info.name
+        for info in CATEGORIES.values()
+        if info.name.split("_")[-1] in forms
+        or _norm(info.name) in forms
+        or any(s in forms for s in info.synonyms)
+    ]
+    return tuple(out)
+
+
+def sense_in_context(word: str, category: str, room_type: str, present: tuple[str, ...] = ()) -> str:
+    """The category a bare word means here: a kind already in the scene first, then the category as
+    looked up when it fits the room, then the one kind that fits the room type; else ``category``.
+
+    "the sink" in a bathroom is the bathroom sink; "her desk" where a teacher's desk stands is that desk.
+    """
+    options = senses(word)
+    if category not in options or len(options) < 2:
+        return category
+    if category in present:
+        return category
+    for c in present:
+        if c in options:
+            return c
+    if not room_type or room_type in CATEGORIES[category].rooms:
+        return category
+    fitting = [c for c in options if room_type in CATEGORIES[c].rooms]
+    return fitting[0] if len(fitting) == 1 else category  # two that fit ("desk" in a classroom): as written

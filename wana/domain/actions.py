@@ -255,6 +255,7 @@ def load_library() -> dict[str, ActionClip]:
 def reload_library() -> dict[str, ActionClip]:
     """Forget the cache (after an import) and load again."""
     _load.cache_clear()
+    _synonyms.cache_clear()
     clip_headers.cache_clear()  # type: ignore[attr-defined]
     return load_library()
 
@@ -266,8 +267,14 @@ def action_names() -> list[str]:
 
 def synonym_index() -> dict[str, str]:
     """Lower-case phrase (name with spaces, or synonym) -> action name."""
+    return dict(_synonyms(tuple(library_dirs())))
+
+
+@functools.lru_cache(maxsize=4)
+def _synonyms(dirs: tuple[Path, ...]) -> dict[str, str]:
+    """synonym_index, built once per library load (get_clip asks it for every name that is not a clip)."""
     out: dict[str, str] = {}
-    for clip in load_library().values():
+    for clip in _load(dirs).values():
         out.setdefault(clip.name.replace("_", " "), clip.name)
         for s in clip.synonyms:
             out.setdefault(s.lower(), clip.name)
@@ -276,10 +283,11 @@ def synonym_index() -> dict[str, str]:
 
 def get_clip(name: str) -> ActionClip:
     """The clip called name; raises KeyError listing close names when unknown."""
-    lib = load_library()
+    dirs = tuple(library_dirs())
+    lib = _load(dirs)  # the cached table itself: get_clip runs for every segment of every motion
     if name in lib:
         return lib[name]
-    alias = synonym_index().get(name.replace("_", " ").lower())
+    alias = _synonyms(dirs).get(name.replace("_", " ").lower())
     if alias:
         return lib[alias]
     raise KeyError(f"unknown action {name!r}")

@@ -17,6 +17,7 @@ layer, the stretches it covers, attention and blinks together: they share one ti
 
 from __future__ import annotations
 
+import hashlib
 import zlib
 from collections.abc import Sequence
 
@@ -203,10 +204,26 @@ def enliven(
     rot0 = np.asarray(rot, dtype=np.float64)
     root0 = np.asarray(root, dtype=np.float64)
     rot, root = rot0.copy(), root0.copy()
-    t_count = len(rot)
     w = np.clip(np.asarray(weight, dtype=np.float64), 0.0, 1.0)
     hw = w if head_weight is None else np.maximum(w, np.clip(head_weight, 0.0, 1.0))
-    if t_count < 2 or not np.any(hw > 0):
+    g = None if gaze is None else np.asarray(gaze, dtype=np.float64)
+    # Each stretch the layer covers has its own clock, starting at 0: an edit that moves a stretch in time,
+    # or lengthens it, leaves its frames as they were, so the editor is sent only what the edit changed.
+    for a, b in _runs(hw > 0):
+        rot[a:b], root[a:b] = _enliven_run(
+            rot0[a:b], root0[a:b], w[a:b], hw[a:b], seed, None if g is None else g[a:b]
+        )
+    return rot, root
+
+
+def _enliven_run(
+    rot0: np.ndarray, root0: np.ndarray, w: np.ndarray, hw: np.ndarray, seed: int, gaze: np.ndarray | None
+) -> tuple[np.ndarray, np.ndarray]:
+    """``enliven`` over one stretch of frames, its clock starting at 0 (the weight shifts draw from their own
+    generator: how many there are depends on the stretch's length, and the other draws must not)."""
+    rot, root = rot0.copy(), root0.copy()
+    t_count = len(rot)
+    if t_count < 2:
         return rot, root
     rng = np.random.default_rng(seed)
     t = np.arange(t_count) / FPS
@@ -235,7 +252,7 @@ def enliven(
         _post(rot, f"{side}ForeArm", (0, 1, 0), s * 3.0 * _smooth_noise(rng, t, (2.3, 3.7)) * w * (1 - lying))
 
     # Standing: the weight goes from foot to foot; the pelvis rises on the loaded side, the chest counters.
-    shift = weight_shift(rng, t) * w * standing
+    shift = weight_shift(np.random.default_rng(seed + 1), t) * w * standing
     if np.any(shift != 0):
         ankles = pos[:, [JOINT_INDEX["LeftFoot"], JOINT_INDEX["RightFoot"]]]
         feet = grot[:, [JOINT_INDEX["LeftFoot"], JOINT_INDEX["RightFoot"]]]
@@ -253,7 +270,7 @@ def enliven(
     # Gaze: toward what calls for attention, else a slow wander; far turns bring the chest along.
     pos2, grot2 = forward_kinematics(rot, root)
     if gaze is not None:
-        yaw, pitch = _gaze_angles(rot, pos2, grot2, np.asarray(gaze, dtype=np.float64))
+        yaw, pitch = _gaze_angles(rot, pos2, grot2, gaze)
     else:
         yaw, pitch = np.zeros(t_count), np.zeros(t_count)
     wander = np.radians(6.0) * _smooth_noise(rng, t, (5.3, 8.9))
@@ -435,9 +452,15 @@ def attention(
 
 
 def enliven_motion(motion: Motion, gaze: np.ndarray | None = None, seed: int | None = None) -> Motion:
-    """A composed Motion with the idle layer over its idle stretches (``enliven``); props' frames untouched."""
-    root = from_wire(motion.root_position).astype(np.float64)
-    rot = from_wire(motion.rotations).astype(np.float64)
+    """A composed Motion with the idle layer over its idle stretches (``enliven``); props' frames untouched.
+
+    The layer is laid window by window (each run of frames it touches, ``_windows``), each in its own time
+    and seed, so a window is a function of its own frames only: an edit that shifts the time line
+    leaves every window it does not touch as it was, and those come from a cache (``_WINDOWS``) instead of
+    being laid again. What a story edit costs is then the windows near the edit, not the whole story.
+    """
+    root = from_wire(motion.root_position)  # as sent (float32): hashed per window as it is, widened there
+    rot = from_wire(motion.rotations)
     frames = len(root)
     held = [(p.start_frame, p.end_frame) for p in motion.props]
     weight = idle_weight(frames, idle_spans(motion.segments, frames, rot), held)
@@ -447,9 +470,56 @@ def enliven_motion(motion: Motion, gaze: np.ndarray | None = None, seed: int | N
     if not np.any(np.maximum(weight, head) > 0):
         return motion
     seed = seed_of(motion.character) if seed is None else seed
-    rot, root = enliven(rot, root, weight, seed, gaze, head)
-    return msgspec.structs.replace(
-        motion,
-        root_position=to_wire(root.astype(np.float32)),
-        rotations=to_wire(rot.astype(np.float32)),
-    )
+    out_rot, out_root = rot.astype(np.float32), root.astype(np.float32)
+    for a, b in _windows(np.maximum(weight, head) > 0):
+        look = None if gaze is None else np.asarray(gaze, dtype=np.float64)[a:b]
+        out_rot[a:b], out_root[a:b] = _window(rot[a:b], root[a:b], weight[a:b], seed, look, head[a:b])
+    return msgspec.structs.replace(motion, root_position=to_wire(out_root), rotations=to_wire(out_rot))
+
+
+WINDOW_GAP = 2  # frames: touched runs closer than this are laid as one window
+_WINDOWS: dict[bytes, tuple[np.ndarray, np.ndarray]] = {}  # content digest -> laid window (float32)
+_WINDOW_BYTES = [0]
+WINDOW_CACHE_BYTES = 96 * 2**20  # the cache is emptied when it holds more than this
+
+
+def _windows(touched: np.ndarray) -> list[tuple[int, int]]:
+    """[start, end) runs of touched frames, runs closer than WINDOW_GAP merged."""
+    runs = _runs(touched)
+    out: list[tuple[int, int]] = []
+    for a, b in runs:
+        if out and a - out[-1][1] < WINDOW_GAP:
+            out[-1] = (out[-1][0], b)
+        else:
+            out.append((a, b))
+    return out
+
+
+def _window(
+    rot: np.ndarray,
+    root: np.ndarray,
+    weight: np.ndarray,
+    seed: int,
+    gaze: np.ndarray | None,
+    head: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray]:
+    """``enliven`` over one window in its own time (t = 0 at its first frame), seeded by the character's
+    seed and the window's length (windows of one character differ; the same window is laid the same
+    wherever the story puts it), from the cache when these exact frames were laid before."""
+    parts = [rot, root, weight, head] + ([] if gaze is None else [gaze])
+    digest = hashlib.blake2b(f"{seed}:{len(rot)}:{gaze is None}".encode(), digest_size=16)
+    for part in parts:
+        digest.update(np.ascontiguousarray(part).tobytes())
+    key = digest.digest()
+    hit = _WINDOWS.get(key)
+    if hit is not None:
+        return hit
+    own_seed = (seed + 7919 * len(rot)) & 0x7FFFFFFF
+    r, p = enliven(rot.astype(np.float64), root.astype(np.float64), weight, own_seed, gaze, head)
+    laid = (r.astype(np.float32), p.astype(np.float32))
+    if _WINDOW_BYTES[0] > WINDOW_CACHE_BYTES:
+        _WINDOWS.clear()
+        _WINDOW_BYTES[0] = 0
+    _WINDOWS[key] = laid
+    _WINDOW_BYTES[0] += laid[0].nbytes + laid[1].nbytes
+    return laid

@@ -7,7 +7,6 @@ Rotation is used for Euler conversions only.
 from __future__ import annotations
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
 
 def identity(shape: tuple[int, ...] = ()) -> np.ndarray:
@@ -119,6 +118,8 @@ def between(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 def from_euler(order: str, degrees_xyz: np.ndarray) -> np.ndarray:
     """Quaternions from intrinsic Euler angles (upper-case order as in BVH, e.g. "ZYX"), degrees (..., 3)."""
+    from scipy.spatial.transform import Rotation  # 1 s to import: only where Euler angles are read
+
     a = np.asarray(degrees_xyz, dtype=np.float64)
     return (
         Rotation.from_euler(order.upper(), a.reshape(-1, 3), degrees=True)
@@ -129,6 +130,8 @@ def from_euler(order: str, degrees_xyz: np.ndarray) -> np.ndarray:
 
 def to_euler(order: str, q: np.ndarray) -> np.ndarray:
     """Intrinsic Euler angles in degrees (..., 3) in the given order (e.g. "ZYX")."""
+    from scipy.spatial.transform import Rotation
+
     q = np.asarray(q, dtype=np.float64)
     return (
         Rotation.from_quat(q.reshape(-1, 4))

@@ -24,7 +24,6 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import ndimage
 
 from proto.scene import Room, Scene
 
@@ -173,6 +172,9 @@ def point_rect_distance(points: np.ndarray, fp: Footprints) -> np.ndarray:
     return np.hypot(ex, ez)
 
 
+FLOOR_COVERING_M = 0.03  # metres: a box no taller than this is walked over
+
+
 def occupancy_grid(
     room: Room, footprints: Footprints, *, radius: float = 0.25, cell: float = 0.05, max_height: float = 1.8
 ) -> OccupancyGrid:
@@ -203,7 +205,9 @@ def occupancy_grid(
     blocked = np.zeros((h, w), dtype=bool)
     blocked[:, (xs < -room.width / 2 + radius) | (xs > room.width / 2 - radius)] = True
     blocked[(zs < -room.depth / 2 + radius) | (zs > room.depth / 2 - radius), :] = True
-    fp = footprints.select(footprints.y_min < max_height) if len(footprints) else footprints
+    # Boxes starting overhead do not block, nor floor coverings (a rug, a mat) one steps over.
+    walk_over = footprints.y_max <= FLOOR_COVERING_M
+    fp = footprints.select((footprints.y_min < max_height) & ~walk_over) if len(footprints) else footprints
     if len(fp) == 0:
         return OccupancyGrid(blocked=blocked, origin=origin, cell=cell)
     # Voxelised objects stack many boxes on one footprint: keep each distinct rectangle once.
@@ -243,6 +247,8 @@ def _nearest_free(grid: OccupancyGrid, rc: np.ndarray) -> np.ndarray:
         return rc
     if grid.blocked.all():
         raise NoRouteError("every cell of the room is blocked for a character of this radius")
+    from scipy import ndimage  # imported when a route is planned, not when the orchestrator starts
+
     _, (ri, ci) = ndimage.distance_transform_edt(grid.blocked, return_indices=True)
     return np.array([ri[rc[0], rc[1]], ci[rc[0], rc[1]]])
 
@@ -364,6 +370,8 @@ def plan_route_on_grid(grid: OccupancyGrid, start_xz: np.ndarray, goal_xz: np.nd
         raise ValueError(f"start and goal must be finite, got {start}, {goal}")
     s_rc = _nearest_free(grid, grid.to_cell(start))
     g_rc = _nearest_free(grid, grid.to_cell(goal))
+    from scipy import ndimage
+
     labels, _ = ndimage.label(~grid.blocked)  # 4-connected: exactly what no-corner-cutting A* reaches
     if labels[s_rc[0], s_rc[1]] != labels[g_rc[0], g_rc[1]]:
         raise NoRouteError(
@@ -462,7 +470,7 @@ class Reservations:
             and swinging arms).
     """
 
-    clearance: float = 0.5
+    clearance: float = 0.6
     tracks: dict[str, np.ndarray] | None = None  # name -> (T, 2) x, z per frame, NaN off stage
 
     def reserve(self, name: str, xz: np.ndarray) -> None:

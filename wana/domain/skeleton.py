@@ -8,7 +8,8 @@ scalar last (as glTF and scipy).
 from __future__ import annotations
 
 import numpy as np
-from scipy.spatial.transform import Rotation
+
+from wana.domain import quat
 
 # (name, parent, rest offset from parent in metres) for a 1.75 m reference character.
 _JOINTS: tuple[tuple[str, str | None, tuple[float, float, float]], ...] = (
@@ -77,18 +78,19 @@ def forward_kinematics(
         raise ValueError(f"root_position must be ({rotations.shape[0]}, 3), got {root_position.shape}")
     offsets = REST_OFFSETS if offsets is None else np.asarray(offsets, dtype=np.float64)
     t = rotations.shape[0]
-    global_rot: list[Rotation] = []
+    # numpy quaternions (wana.domain.quat), not scipy's Rotation: the same products to 1e-15, a few
+    # times faster on long time lines (the idle layer runs this over a whole story).
+    local = quat.normalize(rotations)
+    quats = np.empty_like(local)
     positions = np.zeros((t, N_JOINTS, 3))
     for j in range(N_JOINTS):
-        local = Rotation.from_quat(rotations[:, j])
         p = PARENTS[j]
         if p < 0:
-            global_rot.append(local)
+            quats[:, j] = local[:, j]
             positions[:, j] = root_position
         else:
-            global_rot.append(global_rot[p] * local)
-            positions[:, j] = positions[:, p] + global_rot[p].apply(offsets[j])
-    quats = np.stack([r.as_quat() for r in global_rot], axis=1)
+            quats[:, j] = quat.mul(quats[:, p], local[:, j])
+            positions[:, j] = positions[:, p] + quat.rotate(quats[:, p], offsets[j])
     return positions, quats
 
 

@@ -9,6 +9,7 @@ two sent to one counter stand side by side instead of in one body.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -21,14 +22,19 @@ STAND_OUT_M = 0.45  # metres in front of an object's edge where a stand slot is
 TABLE_WORDS = ("table", "desk")  # stand slots on both long sides
 
 
-def seat_slots(placed: PlacedObject, kind: str = "sit") -> list[str]:
+COVERED_M = 0.1  # metres around what rests on a seat within which a slot's hips point is taken by it
+
+
+def seat_slots(placed: PlacedObject, kind: str = "sit", resting: Iterable[PlacedObject] = ()) -> list[str]:
     """Names of an object's seat slots for ``kind`` ("sit" or "lie": contact points with a hip target
     named so, "sit", "sit_0", ...), the preferred first.
 
     ``kind`` itself (the catalog's default, the middle of a sofa) comes first, then the others by their
-    distance from it, so one sitter takes the middle and the next one the cushion beside it.
+    distance from it, so one sitter takes the middle and the next one the cushion beside it. Given the
+    room's objects as ``resting``, a slot under one that rests on the seat (a box of chocolates on the
+    bench, a laptop on the sofa's middle cushion) is left out: nobody sits on it.
     """
-    from wana.assets.catalog import asset_for
+    from wana.assets.catalog import asset_for, to_world, world_bounds
 
     try:
         obj = asset_for(placed)
@@ -43,7 +49,22 @@ def seat_slots(placed: PlacedObject, kind: str = "sit") -> list[str]:
     if not points:
         return []
     first = kind if kind in points else sorted(points)[0]
-    return sorted(points, key=lambda n: (n != first, float(np.linalg.norm(points[n] - points[first])), n))
+    names = sorted(points, key=lambda n: (n != first, float(np.linalg.norm(points[n] - points[first])), n))
+    on_it = []
+    for o in resting:
+        if o.support == placed.id:
+            try:
+                on_it.append(world_bounds(o)[:, [0, 2]])
+            except KeyError:  # not in the catalog: no footprint to keep off
+                continue
+    if not on_it:
+        return names
+    hips = {n: to_world(placed, points[n])[[0, 2]] for n in names}
+    return [
+        n
+        for n in names
+        if not any(np.all(hips[n] >= b[0] - COVERED_M) and np.all(hips[n] <= b[1] + COVERED_M) for b in on_it)
+    ]
 
 
 def stand_slots(placed: PlacedObject, rows: int = 1) -> list[tuple[float, float]]:

@@ -9,6 +9,8 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from proto.motion_data import Motion, Segment
 from proto.ssg import ActionNode, SentenceGraph
 from wana.fidelity.clips import clip_needs
@@ -139,8 +141,70 @@ def owned_frames(acts: list[Act], motion: Motion) -> dict[str, range]:
     return out
 
 
+IDLE = ("hold", "idle")  # segments that play nothing the story asked for
+
+
+@dataclass(frozen=True)
+class Activity:
+    """What a character is doing on each frame, to tell who caused a fault two characters share.
+
+    Attributes:
+        since: (T,) the start frame of the action segment playing (a sentence's approach walk or clip),
+            -1 where the character only holds its pose.
+        walking: (T,) a locomotion segment plays (the character moves across the room).
+        last: (T,) the start frame of the latest action segment begun by then (-1 before the first).
+    """
+
+    since: np.ndarray
+    walking: np.ndarray
+    last: np.ndarray
+
+
+def activity(motion: Motion, frames: int) -> Activity:
+    """Per frame: which action plays, whether it walks, and when the character last began one."""
+    since = np.full(frames, -1, np.int64)
+    walking = np.zeros(frames, bool)
+    begun = np.full(frames, -1, np.int64)
+    for seg in sorted(motion.segments, key=lambda s: s.start_frame):
+        a, b = max(seg.start_frame, 0), min(seg.end_frame, frames)
+        if b <= a:
+            continue
+        if is_locomotion(seg.action):
+            walking[a:b] = True
+        if seg.action in IDLE or (seg.action_index < 0 and not is_locomotion(seg.action)):
+            continue
+        since[a:b] = a
+        begun[a] = max(begun[a], a)
+    return Activity(since, walking, np.maximum.accumulate(begun))
+
+
+def to_blame(a: Activity, b: Activity, frames: int) -> tuple[np.ndarray, np.ndarray]:
+    """(frames,) bool per side: the frames on which a fault the two characters share is that side's doing.
+
+    The one acting is blamed, not the one holding its pose (an idle character is not at fault for someone
+    walking into them); of two acting, the one walking, else the one whose action began later (the sentence
+    being acted at that frame); of two idle, the one who last began an action (who came there last). A tie
+    blames both (one sentence that moves both, "Mary and John walk in").
+    """
+    sa, sb = a.since[:frames], b.since[:frames]
+    wa, wb = a.walking[:frames], b.walking[:frames]
+    la, lb = a.last[:frames], b.last[:frames]
+    act_a, act_b = sa >= 0, sb >= 0
+    both = act_a & act_b
+    walk_one = both & (wa != wb)
+    key_a = np.where(both, sa, la)
+    key_b = np.where(both, sb, lb)
+    blame_a = np.where(act_a != act_b, act_a, np.where(walk_one, wa, key_a >= key_b))
+    blame_b = np.where(act_a != act_b, act_b, np.where(walk_one, wb, key_b >= key_a))
+    return blame_a.astype(bool), blame_b.astype(bool)
+
+
 __all__ = [
+    "IDLE",
     "LOCOMOTION",
+    "Activity",
+    "activity",
+    "to_blame",
     "SEATING",
     "Act",
     "is_locomotion",

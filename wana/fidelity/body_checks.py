@@ -88,6 +88,22 @@ def lasting(failing: np.ndarray, frames: int = MIN_RUN) -> np.ndarray:
     return out
 
 
+def runs(failing: np.ndarray, what: np.ndarray | None = None) -> list[tuple[int, int]]:
+    """(start, end) of each run of consecutive failing frames (split where `what` is at fault changes)."""
+    out = []
+    t, n = 0, len(failing)
+    while t < n:
+        if not failing[t]:
+            t += 1
+            continue
+        end = t + 1
+        while end < n and failing[end] and (what is None or what[end] == what[t]):
+            end += 1
+        out.append((t, end))
+        t = end
+    return out
+
+
 def penetration(body: Body, world: World, exempt: dict[str, np.ndarray]) -> FrameFailures:
     """Frames where a body part is visibly inside a piece of furniture (see DEEP_M, SOFT_M, MIN_RUN).
 
@@ -223,4 +239,4 @@ def pops(body: Body, boundaries: list[int]) -> FrameFailures:
     return out
 
 
-__all__ = ["FrameFailures", "overlap", "penetration", "pops", "speeds"]
+__all__ = ["FrameFailures", "overlap", "penetration", "pops", "runs", "speeds"]

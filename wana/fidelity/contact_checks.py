@@ -8,6 +8,7 @@ closest to; with none in the room the check fails and says so (nothing dropped p
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from functools import partial
@@ -24,6 +25,7 @@ from wana.fidelity.acts import Act, is_locomotion, window_frames
 from wana.fidelity.bodies import Body
 from wana.fidelity.clips import ClipNeeds, clip_needs
 from wana.fidelity.handover import handover, is_handover
+from wana.fidelity.solids import depth_inside
 from wana.fidelity.words import frame_list, joint_words, stays, third_person
 from wana.fidelity.world import World, base_id, display
 
@@ -62,6 +64,10 @@ KIND_WORDS = {
     "floor_item": "thing to pick up",
 }
 HELD = ("handheld", "tool")
+# Objects an action works across (writing on a board or a desk, painting): the hand is on the object when it
+# is on its face anywhere, not only at the one contact point the catalog names (seen on the contact sheets:
+# a teacher's hand moving over the blackboard read as 18 cm from its middle).
+ACROSS = ("surface",)
 HOLDABLE_M = 0.6  # metres: the largest side of a surface thing one holds in a hand
 
 
@@ -73,6 +79,19 @@ class Reach:
     point: str  # contact point name on the object
     targets: dict[str, np.ndarray]  # body joint -> (3,) world target
     distance: dict[str, np.ndarray]  # body joint -> (W,) metres over the window frames
+
+
+FINGERTIP_M = 0.07  # metres from the middle finger's first joint (the skeleton's last hand joint) to its tip
+
+
+def _tip(joint: str) -> float:
+    """How far beyond the joint the body reaches: a finger joint's tip touches the board, not its knuckle."""
+    return FINGERTIP_M if joint.endswith("HandMiddle1") else 0.0
+
+
+def surface_gap(placed: PlacedObject, points: np.ndarray) -> np.ndarray:
+    """(n,) metres from each point to the object's solid surface (0 on or inside it)."""
+    return np.maximum(-depth_inside(placed, points, np.zeros(len(points))), 0.0)
 
 
 def _limb(joint: str) -> str:
@@ -132,6 +151,11 @@ def reach(
         held = carried(tracks, placed.id, np.asarray(frames)) if clip.object in HELD else None
         for name, targets in _fitting(clip, world.contact_points(placed)):
             dist = {j: np.linalg.norm(body.joint(j)[idx] - p, axis=1) for j, p in targets.items()}
+            if clip.object in ACROSS:  # writing moves over the board: any point of its face is the contact
+                dist = {
+                    j: np.minimum(d, np.maximum(surface_gap(placed, body.joint(j)[idx]) - _tip(j), 0.0))
+                    for j, d in dist.items()
+                }
             if held is not None and held.any():
                 dist = {j: np.where(held, 0.0, d) for j, d in dist.items()}
             score = float(np.mean([d.mean() for d in dist.values()]))
@@ -160,6 +184,28 @@ def _holdable(world: World, placed: PlacedObject) -> bool:
     return _mount(placed.category) == "surface" and float(np.max(b[1] - b[0])) <= HOLDABLE_M
 
 
+# The actor's own body named as the object ("snaps his fingers", "washes her hands", "checks his watch"): no
+# thing in the room is meant, the hand or the clip's own object (the sink) is.
+BODY_PARTS = frozenset(
+    "finger fingers hand hands head face arm arms leg legs foot feet knee knees shoulder shoulders eye eyes "
+    "nose tooth teeth hair chin brow forehead neck back chest belly stomach lip lips mouth ear ears toe toes "
+    "wrist wrists watch".split()
+)
+OWN_PART = re.compile(
+    r"\b(?:his|her|their|my|your|its)\s+(?:own\s+)?(" + "|".join(sorted(BODY_PARTS)) + r")\b"
+)
+
+
+def is_body_part(ref: str) -> bool:
+    """An object word that is a part of the body (or worn on it), not a thing in the room."""
+    return ref.lower().replace("_", " ").split(" ")[-1] in BODY_PARTS
+
+
+def names_own_body(act: Act) -> bool:
+    """The sentence names the actor's own body part ("Ted snaps his fingers at Walter")."""
+    return OWN_PART.search(act.text.lower()) is not None
+
+
 def _candidates(act: Act, world: World, characters: set[str]) -> tuple[list[PlacedObject], str]:
     """The objects the action may use, and the word the text used for them ("" when it named none).
 
@@ -174,7 +220,7 @@ def _candidates(act: Act, world: World, characters: set[str]) -> tuple[list[Plac
     meant = {action, action.split("_")[0]}
     missing = ""  # a named object the room lacks ("drinks from the cup" with no cup)
     for ref in (act.node.instrument, act.node.target, act.node.destination):
-        if ref and ref not in characters:
+        if ref and ref not in characters and not (is_body_part(ref) and names_own_body(act)):
             found = world.find(ref)
             if not held:
                 return found, ref
@@ -243,6 +289,8 @@ def contact(
     if clip.object == "person":
         return _touch_person(act, body, bodies, frames), {}
     candidates, word = _candidates(act, world, set(bodies))
+    if not candidates and clip.object in HELD and names_own_body(act):
+        return None, {}  # a gesture of the body itself ("snaps his fingers"): no tool is asked for
     if not candidates:
         if clip.object in HELD:
             what = f"no {display(word)} in the room" if word else f"nothing in the room to {verb} with"

@@ -23,7 +23,7 @@ from wana.domain.skeleton import JOINT_NAMES
 from wana.fidelity import action_checks as ac
 from wana.fidelity import body_checks as bc
 from wana.fidelity import contact_checks as cc
-from wana.fidelity.acts import Act, owned_frames, stays_until, story_acts
+from wana.fidelity.acts import Act, activity, owned_frames, stays_until, story_acts, to_blame
 from wana.fidelity.bodies import Body, body_of
 from wana.fidelity.clips import clip_needs
 from wana.fidelity.places import placement
@@ -277,6 +277,7 @@ def _body_checks(
     names = sorted(bodies)
     on_stage = {name: presence(motions[name], bodies[name].frames) for name in names}
     apart: dict[str, list[bc.FrameFailures]] = {name: [] for name in names}
+    doing = {name: activity(motions[name], bodies[name].frames) for name in names}
     for i, a in enumerate(names):
         for b in names[i + 1 :]:
             n = min(bodies[a].frames, bodies[b].frames)
@@ -284,8 +285,12 @@ def _body_checks(
             allowed = touching.get((a, b))
             allowed = off if allowed is None else (allowed[:n] | off)
             fa, fb = bc.overlap(bodies[a], bodies[b], allowed)
-            apart[a].append(fa)
-            apart[b].append(fb)
+            # One fault, one culprit: the frames go to the sentence of whoever caused them, not to both.
+            blame_a, blame_b = to_blame(doing[a], doing[b], n)
+            for start, end in bc.runs(fa.failing[:n] | fb.failing[:n]):  # one run, one cause: its start's
+                blame_a[start:end], blame_b[start:end] = blame_a[start], blame_b[start]
+            apart[a].append(_only(fa, blame_a))
+            apart[b].append(_only(fb, blame_b))
     for name in names:
         body, motion = bodies[name], motions[name]
         mine = [a for a in acts if a.character == name]
@@ -304,13 +309,52 @@ def _body_checks(
         inside.failing[:] &= here
         fast.failing[:] &= seen
         popped.failing[:] &= seen
+        owner = np.full(body.frames, "", object)  # the sentence each frame of this character belongs to
+        for sid, frames in owned.items():
+            owner[frames.start : min(frames.stop, body.frames)] = sid
+        # A fault that lasts is the doing of the sentence it began in (a chest sunk into the table when
+        # sitting down stays the sit's, not the fault of each later "looks down" played in that pose).
+        inside_cause = _caused_by(inside, owner)
+        merged = _merged(apart[name]) if apart[name] else None
+        overlap_cause = _caused_by(merged, owner) if merged is not None else None
         for sid, frames in owned.items():
             f = np.arange(frames.start, min(frames.stop, body.frames))
             checks = out.setdefault(sid, [])
-            checks.append(_penetration_check(name, inside, f))
-            if apart[name]:
-                checks.append(_overlap_check(name, apart[name], f))
+            checks.append(_penetration_check(name, inside, np.nonzero(inside_cause == sid)[0]))
+            if merged is not None and overlap_cause is not None:
+                checks.append(_overlap_check(name, merged, np.nonzero(overlap_cause == sid)[0]))
             checks.append(_continuity_check(name, fast, popped, f))
+
+
+def _caused_by(fail: bc.FrameFailures, owner: np.ndarray) -> np.ndarray:
+    """(T,) per failing frame the sentence its run began in ("" where fine or before any sentence)."""
+    cause = np.full(len(fail.failing), "", object)
+    for start, end in bc.runs(fail.failing, fail.what):
+        cause[start:end] = owner[start]
+    return cause
+
+
+def _merged(fails: list[bc.FrameFailures]) -> bc.FrameFailures:
+    """The worst of several failures per frame (one character against each of the others)."""
+    merged = bc.FrameFailures.none(len(fails[0].failing))
+    for x in fails:
+        worse = x.failing & (x.amount > merged.amount)
+        merged.failing[worse] = True
+        merged.amount[worse] = x.amount[worse]
+        merged.what[worse] = x.what[worse]
+        merged.joint[worse] = x.joint[worse]
+    return merged
+
+
+def _only(fail: bc.FrameFailures, blamed: np.ndarray) -> bc.FrameFailures:
+    """The failures on the frames this side is blamed for (the rest are the other side's doing)."""
+    keep = np.zeros(len(fail.failing), bool)
+    keep[: len(blamed)] = blamed
+    drop = ~keep
+    failing = fail.failing & keep
+    amount, what, joint = fail.amount.copy(), fail.what.copy(), fail.joint.copy()
+    amount[drop], what[drop], joint[drop] = 0.0, "", -1
+    return bc.FrameFailures(failing, amount, what, joint)
 
 
 def _joint_word(j: int) -> str:
@@ -364,14 +408,7 @@ def _penetration_check(name: str, fail: bc.FrameFailures, f: np.ndarray) -> Chec
     )
 
 
-def _overlap_check(name: str, fails: list[bc.FrameFailures], f: np.ndarray) -> Check:
-    merged = bc.FrameFailures.none(len(fails[0].failing))
-    for x in fails:
-        worse = x.failing & (x.amount > merged.amount)
-        merged.failing[worse] = True
-        merged.amount[worse] = x.amount[worse]
-        merged.what[worse] = x.what[worse]
-        merged.joint[worse] = x.joint[worse]
+def _overlap_check(name: str, merged: bc.FrameFailures, f: np.ndarray) -> Check:
     bad, w = _worst(merged, f)
     if w < 0:
         return Check(

@@ -27,6 +27,10 @@ class DocumentCreate(BaseModel):
     )
 
 
+class DocumentRename(BaseModel):
+    title: str = Field(..., max_length=200, description="the new title")
+
+
 class TextReplace(BaseModel):
     text: str = Field(..., max_length=MAX_DOCUMENT_CHARS, description="the whole new text")
     base_version: int | None = Field(None, description="fail with 409 unless the document is at this version")
@@ -143,6 +147,20 @@ async def replace_text(doc_id: str, body: TextReplace, orch: OrchestratorDep, hu
         )
     if reply["type"] == "error":
         raise error(422, reply["code"], reply["message"])
+    return await run_in_threadpool(_out, orch, doc_id)
+
+
+@router.patch("/{doc_id}", response_model=DocumentOut, summary="Rename a document")
+async def rename_document(
+    doc_id: str, body: DocumentRename, orch: OrchestratorDep, hub: HubDep
+) -> DocumentOut:
+    try:
+        await run_in_threadpool(orch.store.rename, doc_id, body.title.strip())
+    except DocumentNotFound:
+        raise error(404, ErrorCode.INVALID_INPUT, f"no document {doc_id!r}") from None
+    channel = hub.channels.get(doc_id)
+    if channel is not None:
+        channel.title = body.title.strip()
     return await run_in_threadpool(_out, orch, doc_id)
 
 

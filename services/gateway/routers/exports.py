@@ -25,7 +25,7 @@ router = APIRouter(prefix="/api/documents", tags=["exports"])
     "/{doc_id}/export/{fmt}",
     summary="Download the animation as MP4, USD or FBX, the scene as animated GLB, or a character's motion as BVH",
     responses={
-        200: {"content": {m: {} for m in FORMATS.values()}},
+        200: {"content": {m: {} for m in [*FORMATS.values(), "application/zip"]}},
         409: {"description": "nothing to export yet (no scene, or no motion for BVH)"},
         422: {"description": "the render service refused the request"},
         503: {"description": "the render/export service is not available"},
@@ -36,7 +36,9 @@ async def export(
     doc_id: str,
     fmt: Literal["mp4", "glb", "bvh", "usd", "fbx"],
     orch: OrchestratorDep,
-    character: str = Query("", max_length=100, description="BVH: which character ('' = the first)"),
+    character: str = Query(
+        "", max_length=100, description="BVH: which character ('' = the first, '*' = every one, as a zip)"
+    ),
     width: int = Query(640, ge=16, le=2048, description="MP4: width in pixels"),
     height: int = Query(480, ge=16, le=2048, description="MP4: height in pixels"),
 ) -> Response:

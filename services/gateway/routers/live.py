@@ -20,8 +20,9 @@ CLOSE_NOT_FOUND = 4404
 
 
 @router.websocket("/api/documents/{doc_id}/live")
-async def live(websocket: WebSocket, doc_id: str, version: int | None = None) -> None:
-    """One editor connection to one document. `?version=N` resumes from the last version the client saw."""
+async def live(websocket: WebSocket, doc_id: str, version: int | None = None, wire: str = "json") -> None:
+    """One editor connection to one document. `?version=N` resumes from the last version the client saw;
+    `?wire=binary` asks for animation messages as binary frames (services.gateway.animwire)."""
     settings: Settings = websocket.app.state.settings
     hub: LiveHub = websocket.app.state.hub
     if not token_ok(settings.token, websocket.headers, websocket.cookies):
@@ -39,7 +40,7 @@ async def live(websocket: WebSocket, doc_id: str, version: int | None = None) ->
         )
         await websocket.close(code=CLOSE_NOT_FOUND, reason="no such document")
         return
-    client = Client(websocket)
+    client = Client(websocket, binary=wire == "binary")
     await channel.attach(client, version)
     try:
         while True:

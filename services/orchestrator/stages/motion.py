@@ -28,9 +28,10 @@ from proto.social import SocialPlan
 from proto.ssg import ActionNode, CharacterNode, Command, Diagnostic, SentenceGraph
 from services.orchestrator.backend import StageFailed
 from services.orchestrator.document import Sentence
-from services.orchestrator.slotting import Slotting
+from services.orchestrator.slotting import Slotting, matched
 from services.orchestrator.stages import StageContext, content_of
 from services.orchestrator.stages.props import made_for, provide
+from services.orchestrator.stages.scene import keep_relations
 from services.orchestrator.stages.seats import furnish
 from services.orchestrator.stages.social import fit_cast, frame_count, paired_actions
 from services.orchestrator.stages.states import with_states
@@ -43,14 +44,18 @@ from services.orchestrator.staging import (
     presence,
     route,
     spot_near,
+    with_door,
 )
 from services.orchestrator.timeline import Beat, assemble, schedule
 from services.orchestrator.views import (
     characters_of,
+    geometry_view,
     others,
+    scene_part,
     scene_view,
     social_distances,
     social_moods,
+    with_looks,
 )
 from wana.arrays import from_wire, to_wire
 from wana.domain.actions import get_clip
@@ -61,6 +66,8 @@ from wana.fidelity.handover import HANDOVER_VERBS
 
 HANDOVER_VERB = "give"  # the verb an action that hands an object over keeps for the motion service (planning)
 
+TRAIL_STEP = 8  # frames between the points kept of a character's last walk
+TRAIL_MIN_M = 0.3  # metres: an action that moves its character less than this leaves no trail
 Characters = dict[str, tuple[CharacterNode, list[str]]]  # name -> (its actions in order, their sentence ids)
 Distances = dict[tuple[str, int], dict[str, float]]  # (name, k) -> {other: metres}
 
@@ -87,6 +94,7 @@ def synthesise(
     seats: dict[int, str] | None = None,
     spots: dict[int, tuple[float, float]] | None = None,
     occupied: list[tuple[float, float]] | None = None,
+    bodies: list[tuple[float, float]] | None = None,
 ) -> SynthesizeReply:
     request = SynthesizeRequest(
         header=ctx.header(),
@@ -100,6 +108,7 @@ def synthesise(
         seats=seats or {},
         spots=spots or {},
         occupied=occupied or [],
+        bodies=bodies or [],
     )
     return content_of(ctx.backend.call(request))
 
@@ -120,6 +129,26 @@ def seated_others(
     )
 
 
+def standing_others(
+    action: ActionNode, name: str, states: dict[str, SegmentEndState], hidden: set[str]
+) -> list[tuple[float, float]]:
+    """Where the other characters on stage stand when an action that may walk starts (its route goes round
+    them, services/motion/routing.py); [] for an action that stays put, so its recompute does not depend on
+    them."""
+    try:
+        clip = get_clip(action.action) if action.action else None
+    except KeyError:
+        clip = None
+    walks = clip is not None and "locomotion" in clip.tags
+    if not (walks or action.target or action.destination or action.instrument):
+        return []
+    return sorted(
+        (round(st.x, 3), round(st.z, 3))
+        for c, st in states.items()
+        if c != name and c not in hidden and st.posture == "stand"
+    )
+
+
 def optimise(
     ctx: StageContext, scene: Scene, motion: Motion, character: str, action: ActionNode
 ) -> OptimiseReply:
@@ -132,6 +161,16 @@ def optimise(
         settings=OptimiseSettings(seed=ctx.seed),
     )
     return content_of(ctx.backend.call(request))
+
+
+def story_order(characters: Characters, sentences: Sequence[Sentence]) -> list[tuple[str, int]]:
+    """(name, k) of every action in story order: by sentence, then by character, then by k (one pass over
+    the actions, not one per sentence: a long story's edit should not pay actions x sentences)."""
+    by_sentence: dict[str, list[tuple[str, int]]] = {}
+    for name, (_, sids) in characters.items():
+        for k, sid in enumerate(sids):
+            by_sentence.setdefault(sid, []).append((name, k))
+    return [x for s in sentences for x in by_sentence.get(s.id, [])]
 
 
 def segments(
@@ -163,25 +202,50 @@ def segments(
     states = {name: SegmentEndState(x=st[0], z=st[1], yaw=st[2]) for name, st in starts.items()}
     outside = set(hidden or ())
     slotting = Slotting(scene)  # who holds which seat and stand slot, as the story runs
+    exit_lanes: dict[str, list[tuple[float, float]]] = {}  # sentence id -> the door's lanes still free
+    sentence_index = {s.id: i for i, s in enumerate(sentences)}
+    trails: dict[
+        str, tuple[int, list[tuple[float, float]]]
+    ] = {}  # name -> (sentence, where its last walk went)
     pieces: dict[str, list[Motion]] = {name: [] for name in characters}
     object_ids = {o.id for o in scene.objects}
-    order = [
-        (name, k)
-        for s in sentences
-        for name, (_, sids) in characters.items()
-        for k, sid in enumerate(sids)
-        if sid == s.id
-    ]
+    order = story_order(characters, sentences)
     for name, k in order:
         slotting.expect(name, characters[name][0].actions[k])
-    for name, k in order:
+    for i, (name, k) in enumerate(order):
         if upto is not None and k > upto.get(name, -1):
             continue
         node, sids = characters[name]
         action = node.actions[k]
         state = states[name]
-        asked, routes = _staged(scene, door, name, action, state, states, outside)
-        claim = slotting.claim(name, asked[-1])
+        company = [
+            (states[o].x, states[o].z)
+            for o, j in order[i + 1 :]
+            if o != name
+            and characters[o][1][j] == sids[k]
+            and _same_goal(characters[o][0].actions[j], action)
+        ]
+        lane = None
+        if door is not None and is_exit(action):  # "They leave": each its own lane through the door
+            going = [
+                (states[o].x, states[o].z)
+                for o, j in order[i + 1 :]
+                if o != name and characters[o][1][j] == sids[k] and is_exit(characters[o][0].actions[j])
+            ]
+            lanes = exit_lanes.setdefault(sids[k], [door.inside(beside=b) for b in range(len(going) + 1)])
+            pick = matched([(state.x, state.z), *going], lanes) if going and lanes else 0
+            lane = lanes.pop(pick or 0) if lanes else None  # ("gets out and leaves": one lane, two exits)
+        asked, routes = _staged(scene, door, name, action, state, states, outside, lane)
+        crowd = [
+            (st.x, st.z)
+            for o, st in states.items()
+            if o != name and o not in outside and st.posture == "stand" and (st.x, st.z) not in company
+        ]
+        here_at = sentence_index.get(sids[k], 0)
+        for o, (at, trail) in trails.items():  # the ways the others walk meanwhile are no place to stand
+            if o != name and at >= here_at - 1:
+                crowd.extend(trail)
+        claim = slotting.claim(name, asked[-1], (state.x, state.z), company, crowd)
         asked[-1] = claim.action
         at = len(asked) - 1
         seats = {at: claim.seat} if claim.seat else {}
@@ -201,6 +265,7 @@ def segments(
         near_them = others(action, name, states, object_ids)
         near = {o: d for o, d in (distances or {}).get((name, k), {}).items() if o in near_them}
         seated = seated_others(action, name, states)
+        standing = standing_others(action, name, states, outside) if not routes else []
 
         def run(
             single: CharacterNode = single,
@@ -212,15 +277,20 @@ def segments(
             seats: dict[int, str] = seats,
             spots: dict[int, tuple[float, float]] = spots,
             seated: list[tuple[float, float]] = seated,
+            standing: list[tuple[float, float]] = standing,
         ) -> SynthesizeReply:
             start = (state.x, state.z, state.yaw)
-            return synthesise(ctx, single, view, state, start, near_them, near, routes, seats, spots, seated)
+            return synthesise(
+                ctx, single, view, state, start, near_them, near, routes, seats, spots, seated, standing
+            )
 
         inputs = [single, view, state, near_them, near] if near else [single, view, state, near_them]
         if routes or seats or spots:
             inputs.append([routes, sorted(seats.items()), sorted(spots.items())])
         if seated:  # only a seat-taking action depends on where the others sit
             inputs.append(seated)
+        if standing:  # only an action that may walk goes round the others standing
+            inputs.append(["standing", standing])
         reply = ctx.engine.query(f"{kind}:{name}:{k}", inputs, run)
         placed = [
             msgspec.structs.replace(seg, action_index=k, sentence_id=sids[k]) for seg in reply.motion.segments
@@ -237,6 +307,11 @@ def segments(
             states[to] = msgspec.structs.replace(states[to], holding=given)
             if handovers is not None:
                 handovers.append(PairedAction(actor=name, action_index=k, action="present", partner=to))
+        walked = from_wire(reply.motion.root_position)[::TRAIL_STEP, [0, 2]]
+        if len(walked) > 1 and float(np.linalg.norm(walked[-1] - walked[0])) > TRAIL_MIN_M:
+            trails[name] = (sentence_index.get(sids[k], 0), [(float(x), float(z)) for x, z in walked[:-1]])
+        else:
+            trails.pop(name, None)
     for name, (node, _) in characters.items():
         if not node.actions and upto is None:
             view = scene_view(scene, None)
@@ -249,6 +324,12 @@ def segments(
 
             pieces[name] = [ctx.engine.query(f"{kind}:{name}:idle", [name, view, st], idle).motion]
     return pieces
+
+
+def _same_goal(a: ActionNode, b: ActionNode) -> bool:
+    """Two actions of one sentence that go to the same object ("They sit at the table")."""
+    goal_a = a.destination or a.target or a.instrument
+    return bool(goal_a) and a.action == b.action and goal_a == (b.destination or b.target or b.instrument)
 
 
 def _with_held(scene: Scene, view: Scene, holding: str) -> Scene:
@@ -314,12 +395,14 @@ def _staged(
     state: SegmentEndState,
     states: dict[str, SegmentEndState],
     hidden: set[str],
+    lane: tuple[float, float] | None = None,
 ) -> tuple[list[ActionNode], list[list[tuple[float, float]]]]:
     """The actions sent to motion for one story action, and the routes their walks take.
 
     A character waiting at the door (shown from the threshold on) walks in to a free spot: an entrance
     does only that, any other action walks in to a spot near where it acts first. An exit walks to the
-    door's threshold (the character is gone once there). Walks go around the others on stage (``hidden``:
+    door's threshold (``lane``: its own place there when several leave together; the character is gone once
+    there). Walks go around the others on stage (``hidden``:
     who is off stage now).
     """
     waiting = name in hidden
@@ -332,14 +415,14 @@ def _staged(
         plain, action=action.action or "walk", target="", destination="", instrument=""
     )
     if is_exit(action):
-        return [walk], [route(scene, here, door.inside(), taken)]
+        return [walk], [route(scene, here, lane or door.inside(), taken)]
     if not waiting:
         return [plain], []
     towards = states.get(action.target) or states.get(action.destination)
     if towards is not None and not is_entrance(action):
         goal = spot_near(scene, (towards.x, towards.z), taken)
     else:
-        goal = spot_near(scene, door.inside(1.6), taken, radii=(0.0, 0.6, 1.0, 1.5))
+        goal = spot_near(scene, door.way_in(here), taken, radii=(0.0, 0.6, 1.0, 1.5))
     way_in = [route(scene, here, (goal[0], goal[1]), taken)]
     if is_entrance(action):
         return [walk], way_in
@@ -359,14 +442,17 @@ def animate(
     characters = characters_of(graphs, [s.id for s in sentences])
     scene, provided = provide(scene, graphs, sentences, ctx.seed)  # props named only in action sentences
     scene, added = furnish(ctx, scene, graphs, sentences)  # a chair where a sit has no free seat
+    scene = with_door(scene)  # furnishing composes the room again, without the door the scene stage added
     added = [*provided, *added]
+    looks, scene = scene, geometry_view(scene)  # the nodes below read shapes, not paint
     door = doorway(scene)
     wait_ids = {sid for sid, c in commands if c.kind == "wait"}
     answering = {r.responder for r in (plan.responses if plan is not None else []) if r.response_index == 0}
     starts, hidden = _first_positions(scene, door, characters, sentences, wait_ids, answering)
     waiting_place = {name: i for i, name in enumerate(sorted(characters, key=lambda n: n not in hidden))}
     ids = {o.id for o in scene.objects}
-    out = Animated(scene=scene, diagnostics=list(added))
+    out = Animated(scene=scene, diagnostics=[*added, *_door_added(scene, characters, sentences, hidden)])
+    stated = scene_part(graphs).relations  # kept true through every optimisation
     # Interactions: actions that touch an object of the scene; the layout is optimised around each.
     interactions = [
         (name, k, a)
@@ -406,7 +492,7 @@ def animate(
             warning = Diagnostic(code="W301", message=why, span=Span(0, 0), severity="warning")
             out.diagnostics.append((characters[name][1][k], warning))
             continue
-        scene = reply.scene
+        scene = keep_relations(scene, reply.scene, stated)
         out.optimisations.append(reply)
         done += 1
     out.scene = scene
@@ -437,11 +523,8 @@ def animate(
     tick("motion", total, total)
     # Story timing: sentence order sets when actions start; gaps hold the pose.
     beats = [
-        Beat(sid, name, k, frame_count(pieces[name][k]))
-        for s in sentences
-        for name, (node, sids) in characters.items()
-        for k, sid in enumerate(sids)
-        if sid == s.id
+        Beat(characters[name][1][k], name, k, frame_count(pieces[name][k]))
+        for name, k in story_order(characters, sentences)
     ]
     waits = {sid: c.seconds for sid, c in commands if c.kind == "wait"}
     responses = {
@@ -468,8 +551,34 @@ def animate(
         out.motions = dict(fitted.motions)
     out.motions = set_down_props(out.scene, out.motions, length)
     out.motions = _enlivened(out.scene, characters, _in_moods(characters, out.motions, moods))
+    out.scene = with_looks(out.scene, looks)
     out.scene = with_states(out.scene, characters, out.motions, sentences)  # doors opened, lamps on
     return out
+
+
+def _door_added(
+    scene: Scene, characters: Characters, sentences: Sequence[Sentence], hidden: set[str]
+) -> list[tuple[str, Diagnostic]]:
+    """An info diagnostic on the first sentence that comes in or goes out through a door the text did not
+    name (staging.with_door added it): the user sees where the door came from."""
+    doors = [o for o in scene.objects if o.category == "door"]
+    if len(doors) != 1 or doors[0].from_text or doors[0].id.startswith("ctx_"):  # named, or composed
+        return []
+    spans = {s.id: s for s in sentences}
+    order = {s.id: i for i, s in enumerate(sentences)}
+    through = [
+        (order.get(sid, 0), sid, name)
+        for name, (node, sids) in characters.items()
+        for k, (action, sid) in enumerate(zip(node.actions, sids, strict=True))
+        if is_entrance(action) or is_exit(action) or (k == 0 and name in hidden)
+    ]
+    if not through:
+        return []
+    _, sid, name = min(through)
+    s = spans.get(sid)
+    message = f"added a door: the room had none for {name} to come in or go out"
+    span = Span(s.start, s.end) if s is not None else Span(0, 0)
+    return [(sid, Diagnostic(code="I202", message=message, span=span, severity="info"))]
 
 
 def _in_moods(

@@ -61,3 +61,18 @@ def test_under_above_and_facing():
     chair_away = _at("chair", 0.0, 1.2, yaw=0.0)  # in front of the desk but looking away
     assert not relation_holds("facing", chair_away, DESK)
     assert "in_front_of" in relations_between(chair_away, DESK)
+
+
+def test_under_a_window_is_against_its_wall_below_it_and_within_its_width():
+    # A window on the back wall (z = 0) facing into the room (+Z), its bottom at 0.9 m.
+    window = PlacedObject(id="window", category="window", position=(0.0, 0.9, 0.0))
+    d = catalog.make_object("desk").dims
+    w = catalog.make_object("window").dims
+    against = _at("desk", 0.0, w[2] / 2 + d[2] / 2 + 0.01)
+    assert relation_holds("under", against, window)
+    assert not relation_holds("under", _at("desk", 0.0, w[2] / 2 + d[2] / 2 + 1.0), window)  # out in the room
+    beside = _at("desk", w[0] / 2 + d[0], w[2] / 2 + d[2] / 2 + 0.01)
+    assert not relation_holds("under", beside, window)
+    wardrobe = catalog.make_object("wardrobe").dims
+    too_tall = _at("wardrobe", 0.0, w[2] / 2 + wardrobe[2] / 2 + 0.01)
+    assert not relation_holds("under", too_tall, window)

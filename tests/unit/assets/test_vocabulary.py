@@ -83,3 +83,21 @@ def test_every_category_declares_valid_knobs_and_mount():
         assert set(info.knobs) <= set(v.KNOBS), info.name
         assert info.mount in v.MOUNTS
         assert info.rooms, info.name
+
+
+@pytest.mark.parametrize(
+    ("phrase", "category"),
+    [
+        ("carpet", "rug"),
+        ("a box of chocolates", "chocolate_box"),
+        ("birthday cake", "cake"),
+        ("photo negative", "film_negative"),
+        ("pills", "pill_bottle"),
+        ("guitar stand", "instrument_stand"),
+        ("microphone stand", "microphone"),
+        ("drum kit", "drum_kit"),
+        ("popcorn", "bowl"),
+    ],
+)
+def test_things_stories_name_are_catalog_kinds(phrase, category):
+    assert v.lookup(phrase) == category

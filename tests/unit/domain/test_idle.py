@@ -174,3 +174,47 @@ def test_tiny_motions_pass_through(frames: int):
     rot, root = rot[:frames], root[:frames]
     out_rot, out_root = idle.enliven(rot, root, np.ones(frames), 1)
     assert out_rot.shape == rot.shape and out_root.shape == root.shape
+
+
+def test_an_idle_stretch_moved_in_time_or_lengthened_keeps_its_frames_bit_for_bit():
+    """Each stretch has its own clock: an edit earlier in the story that moves a hold by a few frames (or one
+    that lengthens it) changes none of the hold's frames, so the editor is sent only what the edit changed."""
+    rot, root = _standing(400)
+    first = idle.enliven(rot, root, idle.idle_weight(400, [(40, 200), (260, 380)]), 7)
+    moved = idle.enliven(rot, root, idle.idle_weight(400, [(40, 200), (253, 373)]), 7)
+    longer = idle.enliven(rot, root, idle.idle_weight(400, [(40, 260), (260, 380)]), 7)
+    for a, b in ((first, moved), (first, longer)):
+        assert np.array_equal(a[0][40:180], b[0][40:180]) and np.array_equal(a[1][40:180], b[1][40:180])
+    assert np.array_equal(first[0][260:380], moved[0][253:373])
+    assert np.array_equal(first[1][260:380], moved[1][253:373])
+    assert not np.array_equal(first[0][260:380], first[0][40:160])  # the layer still moves (not frozen)
+
+
+def _held_then_acting(lead: int) -> Motion:
+    """``lead`` frames of a drink, then a 4 s hold, a 1 s drink and a 3 s hold."""
+    frames = lead + 120 + 30 + 90
+    rot, root = _standing(frames)
+    bounds = [(0, lead, "drink"), (lead, lead + 120, "hold"), (lead + 120, lead + 150, "drink")]
+    bounds.append((lead + 150, frames, "hold"))
+    return Motion(
+        character="Eve",
+        root_position=to_wire(root.astype(np.float32)),
+        rotations=to_wire(rot.astype(np.float32)),
+        segments=[
+            Segment(index=i, action=a, start_frame=s, end_frame=e)
+            for i, (s, e, a) in enumerate(bounds)
+            if e > s
+        ],
+    )
+
+
+def test_the_layer_of_a_stretch_moves_with_it_when_the_time_line_shifts():
+    """An edit that makes an earlier action longer shifts the holds after it: each is laid in its own time,
+    so it comes out the same, only later (and from the window cache: an edit costs the windows it touches)."""
+    early, late = idle.enliven_motion(_held_then_acting(30)), idle.enliven_motion(_held_then_acting(75))
+    a, b = from_wire(early.rotations), from_wire(late.rotations)
+    assert np.array_equal(a[30:], b[75:])
+    assert not np.array_equal(a[30:150], from_wire(_held_then_acting(30).rotations)[30:150])  # it did move
+    laid = len(idle._WINDOWS)
+    idle.enliven_motion(_held_then_acting(52))
+    assert len(idle._WINDOWS) == laid  # both holds were laid before, at other frames

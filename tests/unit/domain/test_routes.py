@@ -116,3 +116,12 @@ def test_route_is_deterministic():
     a = plan_route_on_grid(grid, np.array([-1.5, -1.5]), np.array([1.5, 1.5]))
     b = plan_route_on_grid(grid, np.array([-1.5, -1.5]), np.array([1.5, 1.5]))
     np.testing.assert_array_equal(a, b)
+
+
+def test_a_rug_on_the_floor_is_walked_over():
+    rug = _box(-2.0, 2.0, -0.5, 0.5, y0=0.0, y1=0.012)
+    grid = occupancy_grid(ROOM, Footprints.from_aabbs(np.array([rug])), radius=0.25, cell=0.05)
+    assert not grid.blocked[10:-10, 10:-10].any()
+    step = _box(-2.0, 2.0, -0.5, 0.5, y0=0.0, y1=0.1)  # a low platform still blocks
+    grid = occupancy_grid(ROOM, Footprints.from_aabbs(np.array([step])), radius=0.25, cell=0.05)
+    assert grid.blocked[40, 10:-10].all()

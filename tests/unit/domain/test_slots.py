@@ -67,3 +67,14 @@ def test_a_second_row_of_stand_slots_lies_behind_the_first():
     assert two[: len(one)] == one and len(two) == 2 * len(one)
     behind = np.array(two[len(one) :])[:, 1]
     assert np.all(behind > max(z for _, z in one) + 0.5)  # the window faces +z: the second row is further out
+
+
+def test_a_slot_something_rests_on_is_not_offered():
+    sofa = placed("sofa")
+    middle = to_world(sofa, np.asarray(asset_for(sofa).contact_points["sit"].position, float))
+    laptop = PlacedObject(
+        id="laptop", category="laptop", position=(float(middle[0]), 0.45, float(middle[2])), support="sofa"
+    )
+    elsewhere = PlacedObject(id="mug", category="mug", position=(float(middle[0]), 0.0, 2.0))
+    assert seat_slots(sofa, "sit", [laptop, elsewhere]) == ["sit_0", "sit_2"]
+    assert seat_slots(sofa, "sit", [elsewhere]) == ["sit", "sit_0", "sit_2"]

@@ -88,3 +88,16 @@ def test_the_committed_labels_are_at_least_forty_and_each_says_why(agreement):
     assert len(keys) == len(set(keys))
     quick = agreement.quick_stories(labels)
     assert len(quick) == agreement.QUICK_STORIES
+
+
+def test_fresh_labels_are_counted_apart_from_the_split_their_story_is_in(agreement):
+    """The target must hold on labels the checks were not fixed on: fresh ones are their own group."""
+    unit = {"story": "a", "seed": 0, "sentence": "s1", "check": "contact", "character": "Tom"}
+    found = {agreement.unit_key(unit): {**unit, "check_verdict": "fail", "reason": "r"}}
+    labels = [
+        {**unit, "human": "fail", "why": "-", "animation": "f1"},
+        {**unit, "sentence": "s2", "human": "fail", "why": "-", "animation": "f1", "fresh": True},
+    ]
+    groups = agreement.compare_groups(labels, found, {("a", 0): "f1"}, {"a": "test"})
+    assert groups["test"] == {"agreement": 1.0, "counted": 1, "labels": 1}
+    assert groups["fresh"] == {"agreement": 0.0, "counted": 1, "labels": 1}  # s2 has no failing check

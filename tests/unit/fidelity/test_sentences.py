@@ -180,3 +180,48 @@ def test_a_chair_the_text_names_is_also_the_dining_chair_the_room_has(make):
     assert [o.id for o in world.find("chair")] == ["dining_chair"]
     assert [o.id for o in world.find("seat")] == ["dining_chair"]
     assert world.find("sofa") == []
+
+
+def test_writing_with_the_hand_on_the_boards_face_away_from_its_middle_is_contact(make):
+    """Seen on the contact sheets: a teacher's hand moving over the blackboard read as 18 cm from it (from its
+    one contact point); writing is on the board anywhere on its face, and a hand a stride off is not."""
+    from wana.assets.catalog import world_bounds
+    from wana.fidelity.bodies import body_of
+    from wana.fidelity.contact_checks import surface_gap
+
+    board = PlacedObject(id="blackboard", category="blackboard", position=(0.0, 1.0, 0.0))
+    b = world_bounds(board)
+    frames = round(clip_needs("write_on_blackboard").duration_s * 30)
+    probe = body_of(make.motion("Eve", make.still(0.0, 0.95, 0.0, 1), []))
+    finger = probe.joint("RightHandMiddle1")[0] - np.array([0.0, 0.95, 0.0])
+    graphs = {"s1": make.action_graph("s1", "Eve", "write", "write_on_blackboard", target="blackboard")}
+    results = {}
+    for off in (0.01, 0.35):
+        at = np.array([b[0, 0] + 0.8 * (b[1, 0] - b[0, 0]), (b[0, 1] + b[1, 1]) / 2, off])  # its face: z = 0
+        if off < 0.05:
+            assert surface_gap(board, at[None])[0] < 0.05  # on the face, well away from the middle
+        eve = make.motion(
+            "Eve", make.still(*(at - finger), frames), [("write_on_blackboard", 0, frames, "s1", 0)]
+        )
+        checks = story_checks([("s1", "action")], graphs, make.scene(board), {"Eve": eve})["s1"]
+        results[off] = next(c for c in checks if c.name == "contact")
+    assert results[0.01].ok, results[0.01].reason
+    assert not results[0.35].ok and "from the blackboard" in results[0.35].reason
+
+
+def test_snapping_ones_fingers_asks_for_no_tool_but_taking_a_photo_does(make):
+    """ "Ted snaps his fingers at Walter" was read as the photo verb "snap": the fingers are Ted's own, so no
+    camera is missing; "Ted takes a photo" with no camera in the room still has an empty hand."""
+    import msgspec
+
+    frames = round(clip_needs("take_photo").duration_s * 30)
+    ted = make.motion("Ted", make.still(0.0, 0.95, 0.0, frames), [("take_photo", 0, frames, "s1", 0)])
+    graph = make.action_graph("s1", "Ted", "snap", "take_photo")
+    for text, asks in (("Ted snaps his fingers at Walter.", False), ("Ted takes a photo.", True)):
+        graphs = {"s1": msgspec.structs.replace(graph, text=text)}
+        checks = story_checks([("s1", "action")], graphs, make.scene(), {"Ted": ted})["s1"]
+        contact = [c for c in checks if c.name == "contact"]
+        if asks:
+            assert contact and not contact[0].ok and "empty hand" in contact[0].reason
+        else:
+            assert not contact, contact

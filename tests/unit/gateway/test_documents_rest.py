@@ -44,6 +44,16 @@ def test_replace_text_bumps_the_version_and_refuses_a_stale_base(gateway) -> Non
     assert gateway.http.get(f"/api/documents/{doc_id}").json()["text"] == "Tom runs."
 
 
+def test_rename_sets_the_title_the_list_shows_and_an_unknown_id_is_404(gateway) -> None:
+    doc = gateway.http.post("/api/documents", json={"text": "Eve walks.", "title": "untitled"}).json()
+    r = gateway.http.patch(f"/api/documents/{doc['doc_id']}", json={"title": "  the office  "})
+    assert r.status_code == 200 and r.json()["title"] == "the office"
+    listed = {d["doc_id"]: d["title"] for d in gateway.http.get("/api/documents").json()}
+    assert listed[doc["doc_id"]] == "the office"
+    assert gateway.http.patch("/api/documents/nosuchdoc", json={"title": "x"}).status_code == 404
+    assert gateway.http.patch(f"/api/documents/{doc['doc_id']}", json={"title": "x" * 201}).status_code == 422
+
+
 def test_delete_removes_the_document(gateway) -> None:
     doc_id = gateway.http.post("/api/documents", json={"text": "x."}).json()["doc_id"]
     assert gateway.http.delete(f"/api/documents/{doc_id}").status_code == 204

@@ -49,9 +49,11 @@ def test_connecting_sends_the_text_then_diagnostics_and_animation_for_that_versi
     with connect(f"{gateway.ws_base}/api/documents/{doc_id}/live") as ws:
         first = json.loads(ws.recv(timeout=10))
         assert first["type"] == "state" and first["text"] == "A desk$. Eve walks." and first["version"] == 0
-        seen = receive_until(ws, lambda m: m["type"] == "animation")
+        seen = receive_until(ws, lambda m: m["type"] == "diagnostics" and not m["verdicts_pending"])
+        animation = next(m for m in seen if m["type"] == "animation")
         diags = [m for m in seen if m["type"] == "diagnostics"]
-        assert diags and diags[-1]["version"] == 0 and seen[-1]["version"] == 0
+        assert diags and diags[-1]["version"] == 0 and animation["version"] == 0
+        assert seen.index(animation) < seen.index(diags[0])  # the preview does not wait for diagnostics
         assert [(s["start"], s["end"]) for s in diags[-1]["sentences"]] == [(0, 8), (9, 19)]
 
 
@@ -233,8 +235,8 @@ def test_with_only_the_parser_enabled_sentences_get_kinds_and_the_rest_is_report
     gw = gateway_factory(services=("nlp",))
     doc_id = new_doc(gw, "In the office there is a desk$. Eve walks to the desk.")
     with connect(f"{gw.ws_base}/api/documents/{doc_id}/live") as ws:
-        seen = receive_until(ws, lambda m: m["type"] == "animation", timeout=120)
-    diags = [m for m in seen if m["type"] == "diagnostics"][-1]
+        seen = receive_until(ws, lambda m: m["type"] == "diagnostics", timeout=120)
+    diags = seen[-1]
     assert [s["kind"] for s in diags["sentences"]] == ["scene", "action"]
     assert "parse" not in diags["unavailable"] and "scene" in diags["unavailable"]
     assert "not enabled" in diags["unavailable"]["scene"]

@@ -56,3 +56,27 @@ def test_a_walk_synthesised_with_bodies_never_passes_through_them():
     reply = call_in_process(CONTRACT, req)
     hips = from_wire(reply.motion.root_position)[:, [0, 2]]
     assert float(np.linalg.norm(hips - np.asarray(PETE), axis=1).min()) > 0.4
+
+
+ARMCHAIR = Scene(
+    room=Room(room_type="living_room", width=6, depth=5, height=2.8),
+    objects=[PlacedObject(id="armchair", category="armchair", position=(-0.62, 0.0, -0.49), yaw=-np.pi / 2)],
+)
+
+
+def test_walking_up_to_someone_behind_the_armchair_stops_short_of_them_not_inside_them():
+    from services.motion.routing import reachable_short_of, scene_grid
+
+    tom, ben = (-0.89, -0.49), (0.21, -0.35)  # Tom gets up from the armchair, Ben stands behind it
+    stop = reachable_short_of(ARMCHAIR, tom, ben, 0.45)
+    assert stop is not None  # the point short of Ben on the straight line is inside the armchair
+    assert abs(np.hypot(stop[0] - ben[0], stop[1] - ben[1]) - 0.45) < 1e-6
+    assert scene_grid(ARMCHAIR).is_free_xz(np.asarray(stop))
+    route, why = scene_route(ARMCHAIR, tom, stop)
+    assert why == "" and np.hypot(route[-1][0] - ben[0], route[-1][1] - ben[1]) > 0.4
+
+
+def test_with_nothing_between_them_the_straight_stop_stands():
+    from services.motion.routing import reachable_short_of
+
+    assert reachable_short_of(EMPTY, (-2.0, 0.0), (0.0, 0.0), 0.45) is None

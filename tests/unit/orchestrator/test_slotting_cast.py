@@ -31,3 +31,58 @@ def test_one_at_a_counter_stands_where_the_planner_puts_it():
     slotting = Slotting(COUNTER)
     slotting.expect("Ben", EAT)
     assert slotting.claim("Ben", EAT).spot is None
+
+
+STATUE = Scene(
+    room=ROOM, objects=[PlacedObject(id="counter", category="kitchen_counter", position=(0.0, 0.0, 2.0))]
+)
+WALK_TO = ActionNode(verb="walk", action="walk", destination="counter")
+
+
+def _crosses(a0, a1, b0, b1) -> bool:
+    """True when the segments a0-a1 and b0-b1 cross."""
+
+    def side(p, q, r):
+        return (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0])
+
+    return side(a0, a1, b0) * side(a0, a1, b1) < 0 and side(b0, b1, a0) * side(b0, b1, a1) < 0
+
+
+def test_shortest_sharing_out_gives_each_walker_the_slot_on_its_own_side():
+    from services.orchestrator.slotting import matched
+
+    walkers = [(-1.0, 0.0), (1.0, 0.0)]
+    slots = [(1.0, 2.0), (-1.0, 2.0)]
+    assert matched(walkers, slots) == 1  # the left walker takes the left slot, not the first one
+    assert matched(walkers, slots[:1]) is None  # fewer slots than walkers: nothing to share out
+
+
+def test_two_walking_to_one_counter_together_do_not_cross_each_others_way():
+    for left_first in (True, False):
+        slotting = Slotting(STATUE)
+        for who in ("Mary", "John"):
+            slotting.expect(who, WALK_TO)
+        here = (
+            {"Mary": (-0.9, -1.0), "John": (0.9, -1.0)}
+            if left_first
+            else {"Mary": (0.9, -1.0), "John": (-0.9, -1.0)}
+        )
+        mary = slotting.claim("Mary", WALK_TO, here["Mary"], [here["John"]])
+        john = slotting.claim("John", WALK_TO, here["John"])
+        assert mary.spot is not None and john.spot is not None
+        assert math.dist(mary.spot, john.spot) >= 0.6
+        assert not _crosses(here["Mary"], mary.spot, here["John"], john.spot)
+
+
+def test_a_stand_slot_where_someone_already_stands_is_passed_over():
+    slotting = Slotting(COUNTER)
+    slotting.expect("Ben", EAT)
+    plain = slotting.claim("Ben", EAT)
+    assert plain.spot is None  # alone: the planner's own spot
+    slotting = Slotting(COUNTER)
+    slotting.expect("Ben", EAT)
+    from wana.domain.slots import stand_slots
+
+    default = stand_slots(COUNTER.objects[0], rows=2)[0]
+    moved = slotting.claim("Ben", EAT, crowd=[default])  # Nora stands on the planner's spot
+    assert moved.spot is not None and math.dist(moved.spot, default) >= 0.75

@@ -109,3 +109,45 @@ def test_presence_starts_at_the_first_action_and_ends_after_an_exit():
 def test_a_character_on_stage_from_the_start_is_present_from_frame_zero():
     on = presence(40, [15], [10], [act("wave", "wave")], on_at_zero=True)
     assert on.all()
+
+
+@pytest.mark.parametrize(
+    "node",
+    [
+        ActionNode(verb="walk", action="walk"),  # "Mary and John walk in": the parser drops "in"
+        ActionNode(verb="walk", action="walk", destination="workshop"),  # "Sam walks into the workshop"
+        ActionNode(verb="walk", action="walk", destination="room"),
+    ],
+)
+def test_a_walk_onto_the_stage_or_into_the_room_itself_is_an_entrance(node):
+    assert is_entrance(node)
+
+
+def test_walking_to_a_sofa_is_no_entrance():
+    assert not is_entrance(ActionNode(verb="walk", action="walk", destination="sofa"))
+
+
+def test_those_who_come_in_side_by_side_head_in_on_their_own_sides_apart():
+    door = doorway(with_door(Scene(room=ROOM)))
+    starts = [door.inside(beside=b) for b in range(3)]
+    goals = [np.array(door.way_in(s)) for s in starts]
+    for s, g in zip(starts, goals, strict=True):
+        assert np.sign(door.side_of(s)) == np.sign(door.side_of(tuple(g)))  # no one crosses to the other side
+    assert min(np.linalg.norm(a - b) for i, a in enumerate(goals) for b in goals[i + 1 :]) >= APART_M - 1e-6
+
+
+def test_a_door_the_text_did_not_name_is_reported_on_the_first_entrance():
+    from proto.ssg import CharacterNode
+    from services.orchestrator.document import Sentence
+    from services.orchestrator.stages.motion import _door_added
+
+    sentences = [Sentence("s1", 0, 12, "Tom waves."), Sentence("s2", 13, 30, "Ms Lee enters.")]
+    characters = {
+        "Tom": (CharacterNode(name="Tom", actions=[act("wave", "wave")]), ["s1"]),
+        "Ms Lee": (CharacterNode(name="Ms Lee", actions=[act("enter")]), ["s2"]),
+    }
+    added = with_door(Scene(room=ROOM))
+    ((sid, note),) = _door_added(added, characters, sentences, {"Ms Lee"})
+    assert sid == "s2" and "door" in note.message and "Ms Lee" in note.message
+    named = PlacedObject(id="door", category="door", position=(2.4, 0.0, 0.0), yaw=-np.pi / 2)
+    assert _door_added(Scene(room=ROOM, objects=[named]), characters, sentences, {"Ms Lee"}) == []

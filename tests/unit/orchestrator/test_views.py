@@ -9,6 +9,7 @@ from __future__ import annotations
 from typing import Any
 
 import msgspec
+import numpy as np
 
 from proto.common import Span, reply_header
 from proto.motion import SegmentEndState
@@ -186,3 +187,27 @@ def test_characters_collect_their_actions_in_order_without_spans():
 def test_spans_of_the_normalised_text_map_back_to_the_text_as_written():
     written = "Eve   walks  to the chair."
     assert map_span(Span(4, 9), written) == Span(6, 11)  # "walks"
+
+
+def test_the_geometry_view_drops_paint_only_and_the_looks_come_back():
+    from services.orchestrator.views import geometry_view, with_looks
+    from wana.domain.object_geometry import object_shape
+
+    painted = Scene(
+        room=Room(room_type="office", width=5.0, depth=4.0, height=2.8),
+        objects=[
+            PlacedObject(id="chair", category="chair", attributes={"colour": "red", "material": "wooden"}),
+            # a size word under the colour knob is still a size (the catalog moves it to its own knob)
+            PlacedObject(id="desk", category="desk", attributes={"colour": "big", "style": "modern"}),
+        ],
+    )
+    shapes = geometry_view(painted)
+    assert [o.attributes for o in shapes.objects] == [{}, {"colour": "big", "style": "modern"}]
+    for a, b in zip(painted.objects, shapes.objects, strict=True):  # the catalog builds the same shape
+        assert np.array_equal(object_shape(a).boxes, object_shape(b).boxes)
+    moved = msgspec.structs.replace(
+        shapes, objects=[msgspec.structs.replace(o, position=(1.0, 0.0, 0.5)) for o in shapes.objects]
+    )
+    back = with_looks(moved, painted)
+    assert [o.attributes for o in back.objects] == [o.attributes for o in painted.objects]
+    assert all(o.position == (1.0, 0.0, 0.5) for o in back.objects)

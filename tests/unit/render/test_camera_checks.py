@@ -114,16 +114,24 @@ def test_a_body_part_sunk_into_furniture_is_not_hidden_by_it_but_one_behind_it_i
     assert feet_hidden([[-0.5, 0.0, -0.45], [0.5, 0.45, 1.5]], low).all()  # entered 1 m before the feet
 
 
-def test_a_commanded_close_up_of_tom_loses_eve_acting_elsewhere_end_to_end():
+def test_a_commanded_close_up_of_tom_keeps_eve_acting_elsewhere_in_view_end_to_end():
+    """The measured close-up of Tom is played from its first frame (no ease from the overview that lost
+    Eve for 0.4 s), turned until Eve, who acts, is in the picture too; a close-up that frames Tom
+    alone loses her, and the check says so."""
     eve = standing("Eve", -2.0, 0.0)
     tom = standing("Tom", 2.0, -1.0, sentence_id="")
     sentences = [("s0", "camera close"), ("s1", "Eve waves at Tom.")]
     commands = [("s0", Command(kind="camera", value="close", target="Tom"))]
     checks = camera_checks(demo_scene(), [eve, tom], commands, sentences, width=320, height=240)
     eve_check = next(c for c in checks["s1"] if c.name == "in_view")
-    assert not eve_check.ok and "Eve is out of frame" in eve_check.reason
-    opened = camera_checks(demo_scene(), [eve, tom], [], sentences[1:], width=320, height=240)
-    assert [c.ok for c in opened["s1"]] == [True], opened["s1"]  # the overview shows her
+    assert eve_check.ok, eve_check.reason
+    stage = Staging.build(demo_scene(), [eve, tom], place_commands(commands, sentences, [eve, tom]))
+    [close] = [s for s in stage.shots if s.source == "command"]
+    assert (close.kind, close.subject, close.start) == ("close", "Tom", 0)
+    tom_only = fixed_camera((3.2, 1.3, -0.2), (2.0, 1.0, -1.0))  # in front of Tom, Eve behind the lens
+    lost = staged_checks(stage, sentences[1:], width=320, height=240, track=tom_only)["s1"]
+    lost_eve = next(c for c in lost if c.name == "in_view")
+    assert not lost_eve.ok and "Eve is out of frame" in lost_eve.reason
 
 
 def test_the_camera_track_is_the_camera_the_video_uses():

@@ -241,3 +241,30 @@ def test_every_shot_with_one_of_eves_sentences_is_framed_from_where_she_is_seen(
         if "Eve" in s.acting:
             mid = (s.start + s.end) // 2
             assert camera_at(mid, keys, stage.tracks, ROOM).eye[2] < 0, (s, k)
+
+
+def test_an_unnamed_close_up_frames_the_character_who_acts_beside_its_subject() -> None:
+    """Seen on the sheets: "camera close" before "They sit on the sofa and talk" held on Forrest's face
+    for 1.5 s while Jenny sat down off-screen; "camera close on Tom" names Tom and is held on him."""
+    from services.render.camera_checks import camera_checks
+
+    tom = actor("Tom", 1.2, 0.0, 150, [("clap", 0, 150, "s2")])
+    eve = actor("Eve", -1.2, -0.4, 150, [("wave", 0, 150, "s2")])
+    implied = TimedCommand(
+        frame=0,
+        command=Command(kind="camera", value="close", target="Tom"),
+        sentence_id="s1",
+        implied_target=True,
+    )
+    stage = Staging.build(SCENE, [tom, eve], [implied])
+    [close] = [s for s in stage.shots if s.source == "command"]
+    assert (close.kind, close.subject, close.partner) == ("close", "Tom", "Eve")
+    cmds = [("s1", Command(kind="camera", value="close"))]
+    sentences = [("s1", "camera close"), ("s2", "Tom and Eve wave.")]
+    checks = camera_checks(SCENE, [tom, eve], cmds, sentences, width=320, height=240)
+    assert all(c.ok for c in checks["s2"] if c.name == "in_view"), checks["s2"]
+    named = TimedCommand(
+        frame=0, command=Command(kind="camera", value="close", target="Tom"), sentence_id="s1"
+    )
+    [held] = [s for s in Staging.build(SCENE, [tom, eve], [named]).shots if s.source == "command"]
+    assert (held.subject, held.partner) == ("Tom", "")

@@ -8,6 +8,7 @@ from __future__ import annotations
 from wana.assets.generators import (  # noqa: F401  (registration side effects)
     electronics,
     gym,
+    household,
     instruments,
     kitchen_bath,
     seating,

@@ -1,0 +1,54 @@
+"""A seat keeps the space of its sitter's torso free: a chair may slide under a table up to the knees, not the chest."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from services.retrieval.collide import ObstacleIndex
+from services.retrieval.geometry import footprint, sitter_boxes
+from services.retrieval.placement import Placed
+from wana.assets.catalog import make_object
+
+
+def test_each_seat_slot_has_a_sitter_box_above_it_and_a_table_none():
+    chair = make_object("chair")
+    boxes = sitter_boxes(chair)
+    hips = np.asarray(chair.contact_points["sit"].position)
+    assert boxes.shape == (1, 2, 3)
+    assert boxes[0, 0, 1] > hips[1] and boxes[0, 1, 1] > hips[1] + 0.5  # above the seat, up to the head
+    assert len(sitter_boxes(make_object("sofa"))) == 3  # one per slot
+    assert len(sitter_boxes(make_object("dining_table"))) == 0
+    fp = footprint("chair", {}, 0)
+    assert fp.height == float(fp.bounds[1, 1] - fp.bounds[0, 1]) < 1.0  # the chair itself is no taller
+
+
+def _chair_facing_table(tuck: float) -> str | None:
+    """The first collider of a chair facing a table's +Z edge, its front edge ``tuck`` metres under the top."""
+    table_fp = footprint("dining_table", {}, 0)
+    table = Placed("table", table_fp, np.zeros(3), 0.0)
+    chair_fp = footprint("chair", {}, 0)
+    half = float(make_object("chair").dims[2]) / 2
+    z = float(table_fp.bounds[1, 2]) + half - tuck
+    chair = Placed("chair", chair_fp, np.array([0.0, 0.0, z]), math.pi)  # facing -Z, toward the table
+    return ObstacleIndex([table]).first_collider(chair)
+
+
+def test_a_chair_tucked_chest_deep_under_a_table_collides_but_one_at_its_edge_does_not():
+    assert _chair_facing_table(-0.05) is None  # 5 cm in front of the edge
+    assert _chair_facing_table(0.04) is None  # the front of the seat just under the top: knees under it
+    assert _chair_facing_table(0.25) == "table"  # the seat under the top: the chest would be in the table
+
+
+def test_what_rests_on_a_bench_keeps_off_its_sitters_place():
+    bench_fp = footprint("bench", {}, 0)
+    bench = Placed("bench", bench_fp, np.zeros(3), 0.0)
+    top = float(bench_fp.surfaces[0].height)
+    box_fp = footprint("box", {}, 0)
+    index = ObstacleIndex([bench])
+    middle = Placed("box", box_fp, np.array([0.0, top, 0.0]), 0.0, support="bench")
+    end = Placed("box", box_fp, np.array([0.5, top, 0.0]), 0.0, support="bench")
+    assert index.first_collider(middle) == "bench"
+    assert index.first_collider(end) is None
+    assert index.first_colliders([middle, end]) == ["bench", None]
