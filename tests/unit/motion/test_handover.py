@@ -92,3 +92,23 @@ def test_the_cup_passes_from_the_givers_hand_to_the_receivers_and_stays_there():
         held[t.start_frame : t.end_frame] = True
     assert held[drink.start_frame : drink.end_frame].all()  # the cup John gave her, not one from the table
     assert drink.start_frame >= gave.end_frame
+
+
+def test_handing_someone_what_is_in_the_hand_when_the_sentence_names_only_them():
+    """ "Lily hands him the book": the parse has only him; she hands over the book she holds."""
+    from proto.motion import SegmentEndState
+    from services.orchestrator.stages.motion import _staged
+
+    states = {"Lily": SegmentEndState(holding="cup"), "Max": SegmentEndState()}
+    hand = ActionNode(verb="hand", action="present", target="Max")
+    ((sent,), _) = _staged(SCENE, None, "Lily", hand, states["Lily"], states, set())
+    assert sent.instrument == "cup" and sent.verb == "give"
+    plan = plan_actions(CharacterNode(name="Lily", actions=[ActionNode(verb="pick up", action="pick_up", target="cup"), sent]),
+                        SCENE, (0.0, 1.5, np.pi), others={"Max": (2.0, 2.0)})  # fmt: skip
+    (release,) = [s for s in plan.segments if s.prop_span == "release"]
+    assert release.prop == "cup"
+    smile = ActionNode(
+        verb="give", action="present", target="Max"
+    )  # "gives him a smile": nothing named, no hand-over
+    ((sent,), _) = _staged(SCENE, None, "Lily", smile, states["Lily"], states, set())
+    assert sent.instrument == ""
