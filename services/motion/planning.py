@@ -57,6 +57,7 @@ REACH = 0.42  # metres from the contact points to where the character stands
 PERSON_DISTANCE = 0.8  # metres between two characters after one walks up to the other
 HANDOVER_VERB = "give"  # ActionNode.verb the orchestrator keeps on an action that hands an object over
 HANDOVER_DISTANCE = 0.75  # metres between the two hips while one hands the other an object
+HANDOVER_STEP_BACK = 1.2  # metres between the two hips once the giver has let go and stepped back
 HANDOVER_HEIGHT = 1.0  # metres above the floor where the object passes from hand to hand
 HANDOVER_GESTURE_S = 1.2  # seconds of the presenting gesture after letting go
 CLOSE_DISTANCE = {"hug": 0.45, "shake_hands": 0.75, "high_five": 0.75}  # metres, per touching action
@@ -270,6 +271,30 @@ def made_for_action(placed: PlacedObject | None, action: str) -> bool:
         return "tool" in hypernyms(placed.category)
     except KeyError:
         return True
+
+
+WORK_AT_M = 1.6  # metres: how far what an action is done at may stand from the thing the sentence names
+
+
+def work_place(scene: Scene, obj: PlacedObject, action: str) -> PlacedObject:
+    """What a surface action is done at: the named object when it offers the action's own point, else the
+    nearest object within WORK_AT_M of it that does ("washes the dishes": the sink they are in, not a plate)."""
+    meant = {action, action.split("_")[0]} - {"touch", "pick_up"}  # points every thing has move nothing
+
+    def offers(o: PlacedObject) -> bool:
+        geo = _object_geometry(o)
+        return geo is not None and bool(meant & set(geo[1]))
+
+    if not meant or offers(obj):
+        return obj
+    here = np.array([obj.position[0], obj.position[2]])
+    near = [
+        (float(np.hypot(o.position[0] - here[0], o.position[2] - here[1])), o)
+        for o in scene.objects
+        if o.id != obj.id
+    ]
+    fit = [(d, o) for d, o in near if d <= WORK_AT_M and offers(o)]
+    return min(fit, key=lambda t: t[0])[1] if fit else obj
 
 
 def _grasp(placed: PlacedObject) -> tuple[str, tuple[float, float, float], tuple[float, float, float]] | None:
@@ -637,6 +662,12 @@ def plan_actions(
         hand.clear()
         add(kind="action", action="present", duration_s=duration_s or HANDOVER_GESTURE_S, target_id=person,
             action_index=ai)  # fmt: skip
+        # then a step back, still facing the receiver: the two do not stay bunched at arm's length
+        off = pos - there
+        away = there + off / max(float(np.linalg.norm(off)), 1e-6) * HANDOVER_STEP_BACK
+        back = _free_beside(scene, away, there, HANDOVER_STEP_BACK)
+        if np.linalg.norm(back - there) > np.linalg.norm(pos - there) + 0.1:
+            walk_to(back, 0.8, face, "walk_backward" if "walk_backward" in lib else "walk", ai, person)
         return True
 
     node: ActionNode
@@ -867,6 +898,8 @@ def plan_actions(
             )
             set_down(dest, ai)
             continue
+        if obj is not None and clip.interaction and kind not in ("handheld", "person", "seat", "bed"):
+            obj = work_place(scene, obj, name)
         if obj is not None and clip.interaction and kind not in ("handheld", "person"):
             geo = _object_geometry(obj) or _fallback_geometry(obj)
             stand, points = geo

@@ -64,6 +64,10 @@ from wana.domain.object_geometry import find_object
 from wana.domain.style import MANNER_MOOD, restyle_motion
 from wana.fidelity.handover import HANDOVER_VERBS
 
+HANDS_WHAT_HELD = (
+    "hand",
+    "pass",
+)  # hand-over verbs that always pass an object ("gives her a smile" need not)
 HANDOVER_VERB = "give"  # the verb an action that hands an object over keeps for the motion service (planning)
 
 TRAIL_STEP = 8  # frames between the points kept of a character's last walk
@@ -407,6 +411,10 @@ def _staged(
     """
     waiting = name in hidden
     plain = msgspec.structs.replace(action, verb=HANDOVER_VERB if hands_over(action) else "")
+    named = [r for r in (action.target, action.instrument, action.destination) if r and r not in states]
+    if hands_over(action) and state.holding and not named and action.verb.lower().startswith(HANDS_WHAT_HELD):
+        # "hands him the book": the parse keeps only him; what is handed is what is in the hand
+        plain = msgspec.structs.replace(plain, instrument=state.holding)
     if door is None:
         return [plain], []
     here = (state.x, state.z)

@@ -63,6 +63,7 @@ class Need:
     node: ObjectNode
     sentence_id: str
     near: tuple[str, ...]  # object ids to put it on / beside, best first
+    action: str = ""  # the action that works on it there ("wash_dishes": the dishes go where one washes)
 
 
 def _catalog() -> ModuleType:
@@ -153,12 +154,15 @@ def prop_needs(graphs: Sequence[SentenceGraph], sentence_ids: Sequence[str], sce
             for a in c.actions:
                 refs = [r for r in (a.target, a.instrument, a.destination) if r]
                 here = [r for r in refs if find_object(scene, r) is not None]
+                # what else the sentence names in the room comes next ("washes the dishes at the sink":
+                # the parse keeps the dishes only; they go in the sink, not on the table last sat at)
+                here += [o.id for o in g.objects if o.id not in refs and find_object(scene, o.id) is not None]
                 for ref in refs:
                     node = named.get(ref)
                     if node is None or present(ref) or present(node.category) or not _known(node.category):
                         continue
                     near = (*here, *reversed(last_at.get(c.name, [])))
-                    out.append(Need(node, sid, tuple(dict.fromkeys(near))))
+                    out.append(Need(node, sid, tuple(dict.fromkeys(near)), a.action))
                     wanted |= {node.id, node.category}
                 kind = _clip_kind(a)
                 default = DEFAULT_PROP.get(a.action, "")
@@ -245,6 +249,25 @@ def _on_surface(scene: Scene, anchor: PlacedObject, fp: np.ndarray, height: floa
     return None
 
 
+def _at_work_point(anchor: PlacedObject, need: Need) -> tuple | None:
+    """(x, y, z) of the anchor's own point of the need's action, for a named anchor with no room on top
+    ("washes the dishes in the sink": the dishes lie in the basin, where the hands wash), else None."""
+    if not need.action or anchor.id not in need.near:
+        return None
+    meant = {need.action, need.action.split("_")[0]} - {"touch", "pick_up"}
+    try:
+        points = _catalog().asset_for(anchor).contact_points
+        name = next((n for n in points if n in meant), None)
+        if name is None:
+            return None
+        cp = points[name]
+        hands = np.asarray([cp.position, *cp.extra.values()], float)  # between the two hands
+        x, y, z = _catalog().to_world(anchor, hands.mean(axis=0, keepdims=True))[0]
+    except Exception:  # noqa: BLE001 - unknown category: no point to put it at
+        return None
+    return float(x), float(y), float(z)
+
+
 def _beside(scene: Scene, anchor: PlacedObject | None, fp: np.ndarray, height: float) -> tuple | None:
     """(x, 0, z) of a free floor spot beside the anchor (the room's middle without one), inside the walls."""
     others = _boxes_xz(scene)
@@ -295,7 +318,7 @@ def place(scene: Scene, need: Need, seed: int = 0) -> tuple[PlacedObject, str] |
     candidates = list({o.id: o for o in found}.values())  # by id, the first kept
     if _mount(node.category) == "surface":
         for anchor in candidates:
-            spot = _on_surface(scene, anchor, fp, height)
+            spot = _on_surface(scene, anchor, fp, height) or _at_work_point(anchor, need)
             if spot is not None:
                 return _placed(node, attrs, seed, spot, anchor.id), anchor.id
         return None

@@ -35,9 +35,28 @@ def test_the_giver_takes_the_cup_walks_up_to_the_receiver_and_lets_go_between_th
     release = [s for s in plan.segments if s.prop_span == "release"][0]
     ((joint, point),) = release.targets
     assert abs(point[1] - 1.0) < 1e-6
-    walk = [s for s in plan.segments if s.kind == "locomotion"][-1]
+    at = plan.segments.index(release)
+    walk = [s for s in plan.segments[:at] if s.kind == "locomotion"][-1]
     stop = np.asarray(walk.waypoints[-1])
     assert abs(np.linalg.norm(stop - np.array([2.0, 2.0])) - 0.75) < 0.05  # arm's length from Anna
+
+
+def test_the_giver_steps_back_after_letting_go_still_facing_the_receiver():
+    john = CharacterNode(name="John", actions=[ActionNode(verb="give", action="present", target="cup", destination="Anna")])  # fmt: skip
+    plan = plan_actions(john, SCENE, (0.0, 1.5, np.pi), others={"Anna": (2.0, 2.0)})
+    present = max(i for i, s in enumerate(plan.segments) if s.action == "present")
+    (back,) = [s for s in plan.segments[present:] if s.kind == "locomotion"]
+    stop = np.asarray(back.waypoints[-1])
+    assert np.linalg.norm(stop - np.array([2.0, 2.0])) >= 1.1  # no longer at arm's length
+    to_anna = np.array([2.0, 2.0]) - stop
+    assert (
+        abs(
+            np.arctan2(
+                np.sin(back.face_yaw - np.arctan2(*to_anna)), np.cos(back.face_yaw - np.arctan2(*to_anna))
+            )
+        )
+        < 0.2
+    )
 
 
 def test_a_give_gesture_with_no_object_hands_nothing_over():
@@ -73,3 +92,23 @@ def test_the_cup_passes_from_the_givers_hand_to_the_receivers_and_stays_there():
         held[t.start_frame : t.end_frame] = True
     assert held[drink.start_frame : drink.end_frame].all()  # the cup John gave her, not one from the table
     assert drink.start_frame >= gave.end_frame
+
+
+def test_handing_someone_what_is_in_the_hand_when_the_sentence_names_only_them():
+    """ "Lily hands him the book": the parse has only him; she hands over the book she holds."""
+    from proto.motion import SegmentEndState
+    from services.orchestrator.stages.motion import _staged
+
+    states = {"Lily": SegmentEndState(holding="cup"), "Max": SegmentEndState()}
+    hand = ActionNode(verb="hand", action="present", target="Max")
+    ((sent,), _) = _staged(SCENE, None, "Lily", hand, states["Lily"], states, set())
+    assert sent.instrument == "cup" and sent.verb == "give"
+    plan = plan_actions(CharacterNode(name="Lily", actions=[ActionNode(verb="pick up", action="pick_up", target="cup"), sent]),
+                        SCENE, (0.0, 1.5, np.pi), others={"Max": (2.0, 2.0)})  # fmt: skip
+    (release,) = [s for s in plan.segments if s.prop_span == "release"]
+    assert release.prop == "cup"
+    smile = ActionNode(
+        verb="give", action="present", target="Max"
+    )  # "gives him a smile": nothing named, no hand-over
+    ((sent,), _) = _staged(SCENE, None, "Lily", smile, states["Lily"], states, set())
+    assert sent.instrument == ""

@@ -117,3 +117,21 @@ def test_sweeping_a_floor_object_still_gets_a_broom_and_drinking_sees_the_cups()
     cup = PlacedObject(id="cup", category="cup", position=(1.5, 0.76, -1.0), yaw=0.0, support="table")
     assert [o.id for o in made_for(Scene(room=ROOM, objects=[TABLE, cup, rug]), "drink")] == ["cup"]
     assert made_for(Scene(room=ROOM, objects=[TABLE, cup]), "sit") == []
+
+
+def test_dishes_washed_at_a_sink_the_parse_dropped_go_in_the_sink_and_the_hands_go_to_its_basin():
+    from services.motion.planning import plan_actions
+
+    sink = PlacedObject(id="kitchen_sink", category="kitchen_sink", position=(0.0, 0.0, 2.5), yaw=np.pi)
+    scene = Scene(room=ROOM, objects=[TABLE, sink])
+    wash = ActionNode(verb="wash", action="wash_dishes", target="plate")  # "at the sink": not in the action
+    graphs = [_graph("s1", "Tom", wash, objects=(
+        ObjectNode(id="plate", category="plate", word="dishes"),
+        ObjectNode(id="kitchen_sink", category="kitchen_sink", word="sink"),
+    ))]  # fmt: skip
+    furnished, _ = provide(scene, graphs, _sentences("s1"))
+    plate = next(o for o in furnished.objects if o.id == "plate")
+    assert plate.support == "kitchen_sink"  # not on the table, the room's largest surface
+    plan = plan_actions(graphs[0].characters[0], furnished, (0.0, 0.0, 0.0))
+    (act,) = [s for s in plan.segments if s.action == "wash_dishes"]
+    assert act.target_id == "kitchen_sink" and act.targets  # the basin's own two-hand point
