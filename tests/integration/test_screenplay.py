@@ -59,4 +59,5 @@ def test_every_line_of_dialogue_is_a_talking_action_captioned_by_its_words(repor
     captions = {c["text"] for c in report["render"]["captions"]}
     assert {s["text"] for s in spoken} <= captions  # the line is on screen while it is said
     assert 'Ada angrily says "Where is the milk"' in captions
-    assert not [d for s in report["sentences"] for d in s["diagnostics"]]
+    # nothing to warn about (an info note, e.g. "at the back of the room" placed relative to things, is fine)
+    assert not [d for s in report["sentences"] for d in s["diagnostics"] if d["severity"] != "info"]
