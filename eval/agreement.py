@@ -52,7 +52,7 @@ import pickle
 import random
 import sys
 import time
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -460,12 +460,8 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         labelled = {unit_key(lab) for lab in labels}
         pool = [u for u in found.values() if unit_key(u) not in labelled]
         picked = stratified_sample(pool, args.blind, args.sample_seed)
-        sheets = args.out / "blind"
-        sheets.mkdir(parents=True, exist_ok=True)
+        sheets = draw_sheets(picked, results, args.out / "blind", draw_blind_sheet)
         for i, u in enumerate(picked):
-            name = f"{i:02d}-{u['story']}-{u['sentence']}-{u['check']}-{u['character'] or 'scene'}"
-            result = results[(u["story"], u["seed"])]
-            u["sheet"] = str(draw_blind_sheet(result, u, sheets / f"{name.replace(' ', '_')}.png", i))
             who = f" about {u['character']}" if u["character"] else ""
             print(f"[{i}] {u['story']} {u['sentence']} {u['check']}{who}: {u['text']}")
         keep = ("story", "seed", "sentence", "check", "character", "text", "animation", "sheet")
@@ -478,12 +474,8 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
             if u["seed"] == args.seed and (unit_key(u) not in labelled or args.relabel)
         ]
         picked = stratified_sample(pool, args.sample, args.sample_seed)
-        sheets = args.out / "sheets"
-        sheets.mkdir(parents=True, exist_ok=True)
+        draw_sheets(picked, results, args.out / "sheets", draw_sheet)
         for i, u in enumerate(picked):
-            name = f"{i:02d}-{u['story']}-{u['sentence']}-{u['check']}-{u['character'] or 'scene'}"
-            result = results[(u["story"], u["seed"])]
-            u["sheet"] = str(draw_sheet(result, u, sheets / f"{name.replace(' ', '_')}.png", i))
             who = f" ({u['character']})" if u["character"] else ""
             print(f"[{i}] {u['story']} {u['sentence']} {u['check']}{who} {u['check_verdict']}: {u['reason']}")
         (args.out / "samples.json").write_text(json.dumps(picked, indent=1))
@@ -512,6 +504,22 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--out", type=Path, default=OUT, help="cache, sheets and samples (out/eval/agreement)")
     ap.add_argument("--json", type=Path, default=None, help="write the agreement summary here")
     return ap
+
+
+def draw_sheets(
+    picked: list[dict[str, Any]],
+    results: dict[Any, Any],
+    folder: Path,
+    draw: Callable[[Any, dict[str, Any], Path, int], Path],
+) -> Path:
+    """Draw each picked unit's sheet with ``draw`` (verdict or blind) into ``folder``, numbered in order, and
+    note its path in the unit's "sheet"; returns the folder."""
+    folder.mkdir(parents=True, exist_ok=True)
+    for i, u in enumerate(picked):
+        name = f"{i:02d}-{u['story']}-{u['sentence']}-{u['check']}-{u['character'] or 'scene'}"
+        result = results[(u["story"], u["seed"])]
+        u["sheet"] = str(draw(result, u, folder / f"{name.replace(' ', '_')}.png", i))
+    return folder
 
 
 def main(argv: list[str] | None = None) -> int:

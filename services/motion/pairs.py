@@ -120,14 +120,9 @@ PAIRS: dict[str, PairSpec] = {
 def offsets_of(name: str) -> np.ndarray:
     """(J, 3) rest offsets of the character who plays ``name`` (the renderer's pick; an unknown name gets a
     built-in character chosen by the sum of its letters, as wana.fidelity.bodies does)."""
-    from wana.assets.characters import character_names, make_character
+    from wana.assets.characters import character_for
 
-    try:
-        character = make_character(name)
-    except KeyError:
-        names = character_names()
-        character = make_character(names[sum(ord(c) for c in name) % len(names)])
-    return np.asarray(character.offsets, dtype=np.float64)
+    return np.asarray(character_for(name).offsets, dtype=np.float64)
 
 
 def _smooth(u: np.ndarray) -> np.ndarray:

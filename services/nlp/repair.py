@@ -205,6 +205,14 @@ def _repair_progressive(sent: SpacySpan) -> bool:
     return changed
 
 
+def _prepositions_as_obliques(verb: Token) -> None:
+    """A noun read as a verb kept its prepositional phrases as noun modifiers ("to the door"/nmod): under a
+    verb they are obliques (obl), where the argument reader looks for destinations and targets."""
+    for c in verb.children:
+        if c.dep_ == "nmod" and any(g.dep_ == "case" for g in c.children):
+            c.dep_ = "obl"
+
+
 def _repair_conjoined_verb(sent: SpacySpan) -> bool:
     """ "He stops and stares/NOUN/obj at his hands" -> stares/VERB a conjunct of "stops"."""
     changed = False
@@ -221,9 +229,7 @@ def _repair_conjoined_verb(sent: SpacySpan) -> bool:
         tok.pos_ = "VERB"
         tok.lemma_ = lemma
         tok.dep_ = "conj"
-        for c in tok.children:
-            if c.dep_ == "nmod" and any(g.dep_ == "case" for g in c.children):
-                c.dep_ = "obl"
+        _prepositions_as_obliques(tok)
         changed = True
     return changed
 
@@ -342,9 +348,7 @@ def _repair_noun_conjunct_verb(sent: SpacySpan) -> bool:
                     t.dep_ = "obj"
                 elif t.dep_ == "nmod":
                     t.dep_ = "obl"
-        for c in tok.children:
-            if c.dep_ == "nmod" and any(g.dep_ == "case" for g in c.children):
-                c.dep_ = "obl"
+        _prepositions_as_obliques(tok)
         changed = True
     return changed
 

@@ -16,18 +16,8 @@ from scipy.spatial.transform import Rotation
 from proto.motion_data import Motion
 from services.render.camera import CharacterTrack
 from wana.arrays import from_wire
-from wana.assets.characters import EXPRESSIONS, Character, character_names, make_character
+from wana.assets.characters import EXPRESSIONS, Character, character_for
 from wana.domain.skeleton import JOINT_INDEX, JOINT_NAMES, N_JOINTS, forward_kinematics
-
-
-def character_for(name: str) -> Character:
-    """The built-in character of that name; an unknown name gets a built-in look chosen by its hash."""
-    try:
-        return make_character(name)
-    except KeyError:
-        names = character_names()
-        code = sum(ord(c) for c in name)  # deterministic across processes (unlike hash())
-        return make_character(names[code % len(names)])
 
 
 def motion_arrays(motion: Motion) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:

@@ -330,13 +330,12 @@ def judged_view(
     height: int,
     radii: dict[str, np.ndarray] | None = None,
 ) -> tuple[BodyView, np.ndarray]:
-    """What the ``in_view`` check counts of one character: its view (its own seat hiding nothing) and
-    (F,) the share of its head, trunk and arms shown per frame (its seat and what its hands are on hide nothing). The director scores its
+    """What the ``in_view`` check counts of one character: its view (its own seat and what its hands are on
+    hiding nothing) and (F,) the share of its head, trunk and arms shown per frame. The director scores its
     candidate cameras with this same function, so a framing it picks passes the check it was picked for."""
     view = body_view(name, frames, joints, track, furniture, room, width, height, radii)
     j = joints[name]
-    hips = j[np.clip(np.asarray(frames, dtype=np.int64), 0, len(j) - 1), JOINT_INDEX["Hips"]]
-    view = unhide_own_seat(view, seat_under(hips, furniture))
-    hands = j[np.clip(np.asarray(frames, dtype=np.int64), 0, len(j) - 1)][:, [JOINT_INDEX[h] for h in HANDS]]
-    view = unhide_own_seat(view, held_under(hands, furniture))
+    pose = j[np.clip(np.asarray(frames, dtype=np.int64), 0, len(j) - 1)]  # (F, J, 3)
+    view = unhide_own_seat(view, seat_under(pose[:, JOINT_INDEX["Hips"]], furniture))
+    view = unhide_own_seat(view, held_under(pose[:, [JOINT_INDEX[h] for h in HANDS]], furniture))
     return view, shown_share(view)

@@ -164,6 +164,17 @@ def make_character(name: str) -> Character:
     return _build(spec)
 
 
+def character_for(name: str) -> Character:
+    """The built-in character of that name; an unknown name gets a built-in look chosen by the sum of its
+    letters (deterministic across processes, unlike hash()): what the renderer, the motion service and the
+    story checks all play a story's character with."""
+    try:
+        return make_character(name)
+    except KeyError:
+        names = character_names()
+        return make_character(names[sum(ord(c) for c in name) % len(names)])
+
+
 class _Body:
     """Accumulates parts with their bone, segment and face group."""
 

@@ -16,7 +16,7 @@ from scipy.spatial.transform import Rotation
 
 from proto.motion_data import Motion
 from wana.arrays import from_wire
-from wana.assets.characters import character_names, make_character
+from wana.assets.characters import character_for
 from wana.domain.skeleton import JOINT_INDEX, JOINT_NAMES, PARENTS, forward_kinematics
 
 # metres, by the bone's child joint (the bone runs parent -> child)
@@ -106,12 +106,7 @@ _SPEC_SHARE = np.array([s[2] for s in _SPEC])[None, :, None]
 def skeleton_offsets(name: str) -> np.ndarray:
     """(J, 3) rest offsets of the character who plays `name`, as the renderer picks it (an unknown name gets a
     built-in character chosen by the sum of its letters)."""
-    try:
-        character = make_character(name)
-    except KeyError:
-        names = character_names()
-        character = make_character(names[sum(ord(c) for c in name) % len(names)])
-    return np.asarray(character.offsets, dtype=np.float64)
+    return np.asarray(character_for(name).offsets, dtype=np.float64)
 
 
 BODY_CACHE_SIZE = 32  # bodies kept: an edit usually leaves most characters' motions as they were

@@ -95,17 +95,23 @@ def _clip_kind(action: ActionNode) -> str:
     return clip.interaction.object if clip is not None and clip.interaction is not None else ""
 
 
-def _made_for(scene: Scene, action: str) -> bool:
-    """Whether the room already has a small object the action can use (a "pick_up" and the action's point)."""
+def _usable(scene: Scene, action: str) -> list[PlacedObject]:
+    """The small objects of the room the action can use: a "pick_up" point and the action's own point."""
     keys = {action, action.split("_")[0]}
+    out = []
     for o in scene.objects:
         try:
             points = set(_catalog().asset_for(o).contact_points)
         except Exception:  # noqa: BLE001 - unknown category
             continue
         if "pick_up" in points and keys & points:
-            return True
-    return False
+            out.append(o)
+    return out
+
+
+def _made_for(scene: Scene, action: str) -> bool:
+    """Whether the room already has a small object the action can use."""
+    return bool(_usable(scene, action))
 
 
 def made_for(scene: Scene, action: str) -> list[PlacedObject]:
@@ -117,16 +123,7 @@ def made_for(scene: Scene, action: str) -> list[PlacedObject]:
         return []
     if clip is None or clip.interaction is None or clip.interaction.object not in HELD_KINDS:
         return []
-    keys = {action, action.split("_")[0]}
-    out = []
-    for o in scene.objects:
-        try:
-            points = set(_catalog().asset_for(o).contact_points)
-        except Exception:  # noqa: BLE001 - unknown category
-            continue
-        if "pick_up" in points and keys & points:
-            out.append(o)
-    return out
+    return _usable(scene, action)
 
 
 def prop_needs(graphs: Sequence[SentenceGraph], sentence_ids: Sequence[str], scene: Scene) -> list[Need]:
