@@ -22,7 +22,8 @@ Writes {"action_edit_p50_ms", "scene_edit_p50_ms", "full_ms", "ratio"} (stable k
 and "late_action_animation_kib_p50", and "bytes_per_action_edit_p50": every byte the WebSocket received from
 sending a one-word action edit to its story verdicts (the animation, then the diagnostics deltas), in a
 3-character document (issue 20: <= 50 kB); p95 is in the table. Animation messages are read as binary
-frames, as the editor reads them. The verdicts follow the animation off the hot path:
+frames, as the editor reads them (and large JSON messages as the WJZ1 frames they come as: their
+compressed bytes count). The verdicts follow the animation off the hot path:
 "verdicts_after_animation_p50_ms" is how long after it they arrive, "diagnostics_bytes_per_edit_p50" their
 bytes; each edit waits for them before the next is sent.
 """
@@ -41,6 +42,8 @@ from typing import Any
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from services.gateway import animwire  # noqa: E402  (after the repository is on the path)
 
 SEED = 0  # the pipeline's seed: the same edits give the same animations
 
@@ -131,11 +134,14 @@ class LiveClient:
         deadline = time.monotonic() + timeout
         while True:
             raw = self.ws.recv(timeout=max(deadline - time.monotonic(), 0.01))
+            size = len(raw if isinstance(raw, bytes) else raw.encode("utf-8"))  # the bytes that came
+            if isinstance(raw, bytes) and raw[:4] == animwire.TEXT_MAGIC:  # a compressed JSON message
+                raw = animwire.decompress_text(raw)
             msg = self._read_frame(raw) if isinstance(raw, bytes) else json.loads(raw)
-            self.last_size = len(raw)
+            self.last_size = size
             if isinstance(raw, str) and msg["type"] == "diagnostics":
-                self._diag_bytes += len(raw.encode("utf-8"))
-            self.received_bytes += len(raw if isinstance(raw, bytes) else raw.encode("utf-8"))
+                self._diag_bytes += size
+            self.received_bytes += size
             if msg["type"] == "error":
                 raise RuntimeError(f"gateway error {msg['code']}: {msg['message']}")
             if wanted(msg):
@@ -143,8 +149,6 @@ class LiveClient:
 
     def _read_frame(self, raw: bytes) -> dict[str, Any]:
         """A binary animation frame as a message; patched characters are rebuilt from the held ones."""
-        from services.gateway import animwire
-
         header, blobs = animwire.unpack(raw)
         held: dict[str, Any] = {}
         for c in header["characters"]:

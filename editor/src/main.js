@@ -36,7 +36,7 @@ const state = {
   lastInput: -Infinity, // when the writer last typed in the text (performance.now())
   pendingAnimation: null, // the newest animation, resolved, waiting for the writer to stop typing
   holdings: new Holdings(), // characters and objects of the last animation, by hash
-  received: null, // what the last animation message carried: {version, unchanged: [character names]}
+  received: null, // what the last animation message carried: {version, unchanged, patched: [character names]}
 };
 
 const TYPING_QUIET_MS = 400;
@@ -105,14 +105,14 @@ function showProgress(msg) {
 
 /** Show an animation message; its `unchanged` entries are filled from the last one (by content hash). */
 function showAnimation(received) {
-  const { message: msg, missing, unchanged } = state.holdings.resolve(received);
+  const { message: msg, missing, unchanged, patched } = state.holdings.resolve(received);
   if (!msg) {
     // A stub of something this page does not hold (should not happen): get everything again.
     console.warn(`animation v${received.version}: ${missing.length} entries missing, resuming`);
     state.live.resume();
     return;
   }
-  state.pendingAnimation = { msg, unchanged };
+  state.pendingAnimation = { msg, unchanged, patched };
   showWhenQuiet();
 }
 
@@ -127,9 +127,9 @@ function showWhenQuiet() {
     state.quietTimer = setTimeout(showWhenQuiet, TYPING_QUIET_MS);
     return;
   }
-  const { msg, unchanged } = state.pendingAnimation;
+  const { msg, unchanged, patched } = state.pendingAnimation;
   state.pendingAnimation = null;
-  state.received = { version: msg.version, unchanged };
+  state.received = { version: msg.version, unchanged, patched };
   state.animation = msg;
   state.version = msg.version;
   viewer.setRoom(msg.room);
