@@ -5,6 +5,7 @@ import {
   createDocument,
   deleteDocument,
   downloadExport,
+  exportVideo,
   fetchExport,
   getDocument,
   listDocuments,
@@ -192,6 +193,7 @@ function onMessage(msg) {
 }
 
 async function open(docId) {
+  state.exportAbort?.abort(); // an export of the last document is cancelled: its status belonged there
   state.live?.close();
   state.docId = docId;
   state.version = null;
@@ -290,23 +292,46 @@ for (const button of document.querySelectorAll("#exports button[data-format]")) 
       if (docId === state.docId) status.textContent = message;
       return;
     }
-    // MP4 and GLB render on the server: show the time it has taken, and let the writer cancel
+    // The others render on the server and may be cancelled; the MP4 is a job that reports the frames
+    // rendered of the total (services/gateway/videojobs.py), the rest show the time taken.
     const abort = new AbortController();
     const started = performance.now();
     const cancel = $("export-cancel");
+    const bar = $("export-progress");
     cancel.hidden = false;
     cancel.onclick = () => abort.abort();
-    const ticker = setInterval(() => {
-      if (docId === state.docId) status.textContent = `${format.toUpperCase()} rendering… ${((performance.now() - started) / 1000).toFixed(0)} s`;
-    }, 500);
+    state.exportAbort = abort; // opening another document cancels it
+    const label = format.toUpperCase();
+    const ticker =
+      format === "mp4"
+        ? null
+        : setInterval(() => {
+            if (docId === state.docId) status.textContent = `${label} rendering… ${((performance.now() - started) / 1000).toFixed(0)} s`;
+          }, 500);
+    const onProgress = (job) => {
+      if (docId !== state.docId) return;
+      bar.hidden = false;
+      bar.value = job.percent;
+      status.textContent =
+        job.total && job.stage === "rendering"
+          ? `MP4 ${Math.floor(job.percent)}% (${job.done} of ${job.total} frames)`
+          : job.stage === "joining"
+            ? `MP4 100% (${job.total} frames), joining…`
+            : `MP4 ${job.stage}…`;
+    };
     let message;
     try {
-      message = await downloadExport(docId, format, "", abort.signal);
+      message =
+        format === "mp4"
+          ? await exportVideo(docId, onProgress, abort.signal)
+          : await downloadExport(docId, format, "", abort.signal);
     } catch (err) {
       message = String(err.message || err);
     } finally {
       clearInterval(ticker);
       cancel.hidden = true;
+      bar.hidden = true;
+      if (state.exportAbort === abort) state.exportAbort = null;
     }
     if (docId === state.docId) status.textContent = message;
   });
