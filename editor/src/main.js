@@ -194,6 +194,7 @@ function onMessage(msg) {
 
 async function open(docId) {
   state.exportAbort?.abort(); // an export of the last document is cancelled: its status belonged there
+  state.exportAbort = null;
   state.live?.close();
   state.docId = docId;
   state.version = null;
@@ -270,12 +271,12 @@ $("new-doc").addEventListener("click", async () => {
   await open(doc.doc_id);
   pane.view.focus();
 });
-/** Exports need something to export: a non-empty text (and, for BVH, a character). */
+/** Exports need something to export: a non-empty text (and, for BVH, a character); one at a time. */
 function updateExports() {
   const empty = !pane.getText().trim();
   for (const button of document.querySelectorAll("#exports button[data-format]")) {
     const noCharacters = button.dataset.format === "bvh" && !(state.animation?.characters ?? []).length;
-    button.disabled = empty || noCharacters;
+    button.disabled = empty || noCharacters || !!state.exportAbort;
   }
 }
 for (const button of document.querySelectorAll("#exports button[data-format]")) {
@@ -301,6 +302,7 @@ for (const button of document.querySelectorAll("#exports button[data-format]")) 
     cancel.hidden = false;
     cancel.onclick = () => abort.abort();
     state.exportAbort = abort; // opening another document cancels it
+    updateExports();
     const label = format.toUpperCase();
     const ticker =
       format === "mp4"
@@ -332,6 +334,7 @@ for (const button of document.querySelectorAll("#exports button[data-format]")) 
       cancel.hidden = true;
       bar.hidden = true;
       if (state.exportAbort === abort) state.exportAbort = null;
+      updateExports();
     }
     if (docId === state.docId) status.textContent = message;
   });

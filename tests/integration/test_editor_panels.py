@@ -173,10 +173,15 @@ def test_the_mp4_button_shows_the_frames_rendered_as_a_percentage_and_cancel_sto
         polling=20,
     )
     assert page.evaluate("() => document.getElementById('export-progress').hidden") is False
+    # one export at a time: the buttons wait while this one runs
+    assert page.evaluate(
+        "() => [...document.querySelectorAll('#exports button[data-format]')].every(b => b.disabled)"
+    )
     page.click("#export-cancel")
     page.wait_for_function(
         "() => document.getElementById('export-status').textContent === 'MP4 cancelled'", timeout=60_000
     )
+    assert page.evaluate("() => document.querySelector('#exports button[data-format=mp4]').disabled") is False
     doc_id = page.evaluate("() => wana.state.docId")
     job = page.evaluate("() => window.jobs[0]")
     status = httpx.get(f"{gateway.base_url}/api/documents/{doc_id}/export/mp4/jobs/{job}").json()
