@@ -49,22 +49,22 @@ export class LiveDocument {
     };
     ws.binaryType = "arraybuffer";
     // messages are handled in arrival order; binary ones (animation frames, compressed JSON) are inflated
-    // first, and a text message that arrives meanwhile waits for them
-    this.frames = Promise.resolve();
-    this.decoding = 0;
+    // first, and a text message that arrives meanwhile waits for them (per connection)
+    let queue = Promise.resolve();
+    let decoding = 0;
     ws.onmessage = (event) => {
       const data = event.data;
-      if (typeof data === "string" && !this.decoding) {
+      if (typeof data === "string" && !decoding) {
         this.receive(JSON.parse(data));
         return;
       }
-      this.decoding += 1;
-      this.frames = this.frames
+      decoding += 1;
+      queue = queue
         .then(() => (typeof data === "string" ? JSON.parse(data) : decodeMessage(data)))
         .then((msg) => ws === this.ws && this.receive(msg))
         .catch((err) => console.error("live message:", err))
         .finally(() => {
-          this.decoding -= 1;
+          decoding -= 1;
         });
     };
     ws.onclose = (event) => {
