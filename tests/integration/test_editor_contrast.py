@@ -49,7 +49,9 @@ def test_text_controls_lint_marks_and_focus_rings_meet_wcag_aa_contrast(browser:
         assert part in elements, part
     bad = _failing(found)
     for f in sorted(found, key=lambda f: f["ratio"] / f["need"])[:8]:  # the closest calls
-        print(f"{f['kind']:<10}{f['element'][:40]:<42}{f['text'][:24]!r:<28}{f['ratio']:6.2f} (need {f['need']})")
+        print(
+            f"{f['kind']:<10}{f['element'][:40]:<42}{f['text'][:24]!r:<28}{f['ratio']:6.2f} (need {f['need']})"
+        )
 
     # a lint mark's hover text
     page.locator(".cm-lintRange").first.hover()
