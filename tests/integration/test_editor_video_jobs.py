@@ -36,7 +36,7 @@ def gw(tmp_path_factory: pytest.TempPathFactory) -> Any:
 def _frames(video: bytes) -> list[np.ndarray]:
     import av
 
-    with av.open(io.BytesIO(video)) as container:
+    with av.open(io.BytesIO(video), mode="r") as container:
         return [f.to_ndarray(format="rgb24") for f in container.decode(video=0)]
 
 
