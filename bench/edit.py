@@ -21,8 +21,10 @@ Writes {"action_edit_p50_ms", "scene_edit_p50_ms", "full_ms", "ratio"} (stable k
 "unchanged_character_share" (characters the gateway sent as `unchanged` stubs), "late_action_edit_p50_ms"
 and "late_action_animation_kib_p50", and "bytes_per_action_edit_p50": every byte the WebSocket received from
 sending a one-word action edit to its story verdicts (the animation, then the diagnostics deltas), in a
-3-character document (issue 20: <= 50 kB); p95 is in the table. Animation messages are read as binary
-frames, as the editor reads them. The verdicts follow the animation off the hot path:
+3-character document (issue 20: <= 50 kB); p95 is in the table, and "bytes_per_action_edit_by_type_p50"
+splits it by message type (animation, diagnostics, progress, ack). Animation messages are read as binary
+frames, as the editor reads them (and large JSON messages as the WJZ1 frames they come as: their
+compressed bytes count). The verdicts follow the animation off the hot path:
 "verdicts_after_animation_p50_ms" is how long after it they arrive, "diagnostics_bytes_per_edit_p50" their
 bytes; each edit waits for them before the next is sent.
 """
@@ -41,6 +43,8 @@ from typing import Any
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from services.gateway import animwire  # noqa: E402  (after the repository is on the path)
 
 SEED = 0  # the pipeline's seed: the same edits give the same animations
 
@@ -112,6 +116,7 @@ class LiveClient:
 
         self.held: dict[str, Any] = {}  # character hash -> its frames (animwire.Quantised)
         self.received_bytes = 0  # bytes of every message received so far
+        self.bytes_by_type: dict[str, int] = {}  # the same, by message type
         self.overheads: list[float] = []  # ms of each edit's latency not spent in Session.compute
         self.animation_kb: list[float] = []  # size of each edit's animation message
         self.unchanged: list[int] = []  # characters each edit's animation message sent as `unchanged`
@@ -131,11 +136,15 @@ class LiveClient:
         deadline = time.monotonic() + timeout
         while True:
             raw = self.ws.recv(timeout=max(deadline - time.monotonic(), 0.01))
+            size = len(raw if isinstance(raw, bytes) else raw.encode("utf-8"))  # the bytes that came
+            if isinstance(raw, bytes) and raw[:4] == animwire.TEXT_MAGIC:  # a compressed JSON message
+                raw = animwire.decompress_text(raw)
             msg = self._read_frame(raw) if isinstance(raw, bytes) else json.loads(raw)
-            self.last_size = len(raw)
+            self.last_size = size
             if isinstance(raw, str) and msg["type"] == "diagnostics":
-                self._diag_bytes += len(raw.encode("utf-8"))
-            self.received_bytes += len(raw if isinstance(raw, bytes) else raw.encode("utf-8"))
+                self._diag_bytes += size
+            self.received_bytes += size
+            self.bytes_by_type[msg["type"]] = self.bytes_by_type.get(msg["type"], 0) + size
             if msg["type"] == "error":
                 raise RuntimeError(f"gateway error {msg['code']}: {msg['message']}")
             if wanted(msg):
@@ -143,8 +152,6 @@ class LiveClient:
 
     def _read_frame(self, raw: bytes) -> dict[str, Any]:
         """A binary animation frame as a message; patched characters are rebuilt from the held ones."""
-        from services.gateway import animwire
-
         header, blobs = animwire.unpack(raw)
         held: dict[str, Any] = {}
         for c in header["characters"]:
@@ -234,7 +241,8 @@ def run(reps: int, backend: str, progress: bool, budget_s: float | None = None) 
         full_ms = (time.perf_counter() - t0) * 1000.0
         anim = client.last_animation
 
-        action_ms, scene_ms = [], []
+        action_ms: list[float] = []
+        scene_ms: list[float] = []
         bar = tqdm(total=3 * reps, desc="edits", disable=not progress, unit="edit")
         started = time.monotonic()
         for k in range(reps):  # walks -> runs in the next action sentence, then back
@@ -245,7 +253,9 @@ def run(reps: int, backend: str, progress: bool, budget_s: float | None = None) 
             bar.update()
         if "runs" in client.text:  # leave the action sentences as written
             client.swap_word("runs", "walks", 0)
-        late_ms, late_kib, late_unchanged = [], [], []
+        late_ms: list[float] = []
+        late_kib: list[float] = []
+        late_unchanged: list[int] = []
         started = time.monotonic()
         for k in range(reps):
             if budget_s is not None and late_ms and time.monotonic() - started > budget_s:
@@ -273,14 +283,16 @@ def run(reps: int, backend: str, progress: bool, budget_s: float | None = None) 
             ws_base, http.post("/api/documents", json={"text": three_character_document()}).json()["doc_id"]
         )
         edit_bytes: list[int] = []
+        by_type: list[dict[str, int]] = []
         started = time.monotonic()
         for k in range(reps):
             if budget_s is not None and len(edit_bytes) >= 3 and time.monotonic() - started > budget_s:
                 break
             old, new, occurrence = ("walks", "runs", k // 2) if k % 2 == 0 else ("runs", "walks", 0)
-            before = three.received_bytes
+            before, types_before = three.received_bytes, dict(three.bytes_by_type)
             three.swap_word(old, new, occurrence)
             edit_bytes.append(three.received_bytes - before)
+            by_type.append({t: n - types_before.get(t, 0) for t, n in three.bytes_by_type.items()})
             bar.update()
         three.close()
         bar.close()
@@ -303,6 +315,10 @@ def run(reps: int, backend: str, progress: bool, budget_s: float | None = None) 
         "objects": len(anim["objects"]),
         "frames": anim["frames"],
         "edit_bytes": np.asarray(edit_bytes),
+        "edit_bytes_by_type": {
+            t: int(np.percentile([b.get(t, 0) for b in by_type], 50))
+            for t in sorted({*(k for b in by_type for k in b)})
+        },
         "verdicts_ms": np.asarray(client.verdicts_ms),
         "diagnostics_bytes": np.asarray(client.diagnostics_bytes),
     }
@@ -375,6 +391,10 @@ def main(argv: list[str] | None = None) -> int:
             f"bytes per action edit, 3 characters: p50 {b50 / 1000:.1f} kB, p95 {b95 / 1000:.1f} kB "
             f"over {len(r['edit_bytes'])} edits (target p50 <= 50 kB)"
         )
+        print(
+            "  by message type, p50: "
+            + ", ".join(f"{t} {n / 1000:.1f} kB" for t, n in r["edit_bytes_by_type"].items() if n)
+        )
     if args.json:
         args.json.parent.mkdir(parents=True, exist_ok=True)
         out = {
@@ -393,6 +413,7 @@ def main(argv: list[str] | None = None) -> int:
             )
         if len(r["edit_bytes"]):
             out["bytes_per_action_edit_p50"] = int(np.percentile(r["edit_bytes"], 50))
+            out["bytes_per_action_edit_by_type_p50"] = r["edit_bytes_by_type"]
         if len(r["late"]):
             out["late_action_edit_p50_ms"] = round(float(late_p50), 3)
             out["late_action_animation_kib_p50"] = round(late_kib_p50, 1)

@@ -1,10 +1,12 @@
 // Binary animation frames from the gateway (services/gateway/animwire.py), and rebuilding a character's
 // frames from a patch against the version this page holds.
 //
-// Frame: "WAN1" | u32 header length | header JSON | padding to 8 | zlib of the blobs. Each character entry
+// Frame: "WAN2" | zlib( u32 header length | header JSON | padding to 8 | blobs ). Each character entry
 // carries `ops`: [n, src, residual] runs that rebuild its frames in order from the held frames src.. (src
 // -1: zeros), adding the next n residual rows when residual is 1 (wrapping integer sums). Rotations travel
-// as int16 (x `scale`), root positions as the bits of float32, presence as uint8.
+// as int16 (x `scale`), root positions as the bits of float32, presence as uint8. Each blob is filtered
+// ("delta-planes"): row deltas, stored column by column, byte plane by byte plane (undone in `unfilter`).
+// A large JSON message comes as "WJZ1" | zlib(its text) (`decodeMessage`).
 
 const DTYPES = { i16: Int16Array, u32: Uint32Array, u8: Uint8Array };
 
@@ -13,20 +15,51 @@ async function inflate(bytes) {
   return new Response(stream).arrayBuffer();
 }
 
-/** Decode one binary frame into its message; each entry's blobs are attached as `_blobs`. */
+function magicOf(buffer) {
+  return String.fromCharCode(...new Uint8Array(buffer, 0, 4));
+}
+
+/** A blob of `shape` from its filtered bytes: byte b of column c, row r at b*C*R + c*R + r; rows summed. */
+export function unfilter(bytes, Type, shape) {
+  const rows = shape[0] ?? 0;
+  const cols = shape.slice(1).reduce((a, b) => a * b, 1);
+  const size = Type.BYTES_PER_ELEMENT;
+  const out = new Type(rows * cols);
+  const plane = rows * cols;
+  for (let c = 0; c < cols; c++) {
+    let acc = 0;
+    for (let r = 0; r < rows; r++) {
+      const at = c * rows + r;
+      let v = bytes[at];
+      if (size > 1) v |= bytes[plane + at] << 8;
+      if (size > 2) v |= (bytes[2 * plane + at] << 16) | (bytes[3 * plane + at] << 24);
+      acc = size === 4 ? (acc + v) >>> 0 : acc + v;
+      out[r * cols + c] = acc; // the typed array wraps the sum to its width
+      acc = out[r * cols + c];
+    }
+  }
+  return out;
+}
+
+/**
+ * Decode one binary message: an animation frame (each entry's blobs attached as `_blobs`), or a
+ * compressed JSON message.
+ */
+export async function decodeMessage(buffer) {
+  if (magicOf(buffer) === "WJZ1") return JSON.parse(new TextDecoder().decode(await inflate(buffer.slice(4))));
+  return decodeFrame(buffer);
+}
+
+/** Decode one binary animation frame into its message; each entry's blobs are attached as `_blobs`. */
 export async function decodeFrame(buffer) {
-  const view = new DataView(buffer);
-  const magic = String.fromCharCode(...new Uint8Array(buffer, 0, 4));
-  if (magic !== "WAN1") throw new Error("not a wana binary animation frame");
-  const length = view.getUint32(4, true);
-  const msg = JSON.parse(new TextDecoder().decode(new Uint8Array(buffer, 8, length)));
-  const start = 8 + length + ((8 - ((8 + length) % 8)) % 8);
-  let section = buffer.slice(start);
-  if (msg.deflate) section = await inflate(section);
-  const blobs = msg.blobs.map(([offset, nbytes, dtype]) => {
-    const Type = DTYPES[dtype];
-    return new Type(section, offset, nbytes / Type.BYTES_PER_ELEMENT);
-  });
+  if (magicOf(buffer) !== "WAN2") throw new Error("not a wana binary animation frame");
+  const body = await inflate(buffer.slice(4));
+  const length = new DataView(body).getUint32(0, true);
+  const msg = JSON.parse(new TextDecoder().decode(new Uint8Array(body, 4, length)));
+  const start = 4 + length + ((8 - ((4 + length) % 8)) % 8);
+  const blobs = msg.blobs.map(([offset, nbytes, dtype, shape]) =>
+    unfilter(new Uint8Array(body, start + offset, nbytes), DTYPES[dtype], shape),
+  );
   for (const c of msg.characters) if (c.ops) c._blobs = blobs.slice(c.blob_base, c.blob_base + 3);
   delete msg.blobs;
   return msg;

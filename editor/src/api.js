@@ -77,8 +77,37 @@ export async function fetchExport(docId, format) {
   return response.arrayBuffer();
 }
 
+/**
+ * Render the MP4 as a job on the gateway (services/gateway/videojobs.py): `onProgress(status)` with the frames
+ * rendered of the total as they grow; resolves to a message for the status line once the file is downloaded,
+ * cancelled (`signal`: the job is deleted, and rendering stops on the server) or failed.
+ */
+export async function exportVideo(docId, onProgress, signal) {
+  const base = apiUrl(`/api/documents/${encodeURIComponent(docId)}/export/mp4/jobs`);
+  const started = await fetch(base, { method: "POST", headers: authHeaders() });
+  if (!started.ok) return `MP4 export failed (${started.status})`;
+  let status = await started.json();
+  const url = `${base}/${status.job_id}`;
+  const cancel = () => fetch(url, { method: "DELETE", headers: authHeaders() }).catch(() => {});
+  signal?.addEventListener("abort", cancel, { once: true });
+  try {
+    while (status.state === "running") {
+      onProgress(status);
+      await new Promise((resolve) => setTimeout(resolve, 250));
+      const response = await fetch(url, { headers: authHeaders() });
+      if (!response.ok) return `MP4 export failed (${response.status})`;
+      status = await response.json();
+    }
+    onProgress(status);
+    if (status.state !== "done") return status.state === "cancelled" ? "MP4 cancelled" : status.message || "MP4 export failed";
+    return await downloadExport(docId, `mp4/jobs/${status.job_id}/file`, "", signal, "MP4");
+  } finally {
+    signal?.removeEventListener("abort", cancel);
+  }
+}
+
 /** Download an export; resolves to a message for the status line. */
-export async function downloadExport(docId, format, character = "", signal = undefined) {
+export async function downloadExport(docId, format, character = "", signal = undefined, label = format.toUpperCase()) {
   const query = character ? `?character=${encodeURIComponent(character)}` : "";
   let response;
   try {
@@ -87,11 +116,11 @@ export async function downloadExport(docId, format, character = "", signal = und
       signal,
     });
   } catch (err) {
-    if (err.name === "AbortError") return `${format.toUpperCase()} cancelled`;
+    if (err.name === "AbortError") return `${label} cancelled`;
     throw err;
   }
   if (!response.ok) {
-    let message = `${format.toUpperCase()} export failed (${response.status})`;
+    let message = `${label} export failed (${response.status})`;
     try {
       message = (await response.json()).detail?.message || message;
     } catch {

@@ -9,7 +9,7 @@
 // On reconnect the server's whole text is rebased onto as one remote change.
 
 import { getClientID, receiveUpdates, sendableUpdates } from "@codemirror/collab";
-import { decodeFrame } from "./animwire.js";
+import { decodeMessage } from "./animwire.js";
 import { liveUrl } from "./api.js";
 import { fromWire, toWire } from "./collabwire.js";
 import { applyChanges, diff } from "./textdiff.js";
@@ -48,16 +48,24 @@ export class LiveDocument {
       this.hooks.onStatus("online");
     };
     ws.binaryType = "arraybuffer";
-    this.frames = Promise.resolve(); // binary animation frames are decoded (inflated) in arrival order
+    // messages are handled in arrival order; binary ones (animation frames, compressed JSON) are inflated
+    // first, and a text message that arrives meanwhile waits for them (per connection)
+    let queue = Promise.resolve();
+    let decoding = 0;
     ws.onmessage = (event) => {
-      if (typeof event.data === "string") this.receive(JSON.parse(event.data));
-      else {
-        const data = event.data;
-        this.frames = this.frames
-          .then(() => decodeFrame(data))
-          .then((msg) => ws === this.ws && this.receive(msg))
-          .catch((err) => console.error("animation frame:", err));
+      const data = event.data;
+      if (typeof data === "string" && !decoding) {
+        this.receive(JSON.parse(data));
+        return;
       }
+      decoding += 1;
+      queue = queue
+        .then(() => (typeof data === "string" ? JSON.parse(data) : decodeMessage(data)))
+        .then((msg) => ws === this.ws && this.receive(msg))
+        .catch((err) => console.error("live message:", err))
+        .finally(() => {
+          decoding -= 1;
+        });
     };
     ws.onclose = (event) => {
       this.ready = false;

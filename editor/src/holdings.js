@@ -22,9 +22,9 @@ export class Holdings {
   /**
    * Fill the `unchanged` stubs of an animation message from the entries held.
    * @param {object} msg an animation message as received
-   * @returns {{message: object|null, missing: string[], unchanged: string[]}} the message with every entry in
-   *   full (null when a stub names a hash not held: ask the gateway to resume), the missing hashes, and the
-   *   names of the characters that were sent as unchanged.
+   * @returns {{message: object|null, missing: string[], unchanged: string[], patched: string[]}} the message
+   *   with every entry in full (null when a stub names a hash not held: ask the gateway to resume), the
+   *   missing hashes, and the names of the characters that were sent as unchanged and as patches.
    */
   resolve(msg) {
     const missing = [];
@@ -45,14 +45,15 @@ export class Holdings {
         return kept || entry;
       });
     for (const c of msg.characters || []) if (c.unchanged) unchanged.push(c.name);
+    const patched = (msg.characters || []).filter((c) => c.patch).map((c) => c.name);
     const characters = fill(msg.characters, this.characters);
     const objects = fill(msg.objects, this.objects);
     if (missing.length) {
       this.clear();
-      return { message: null, missing, unchanged };
+      return { message: null, missing, unchanged, patched };
     }
     this.characters = new Map(characters.filter((c) => c.hash).map((c) => [c.hash, c]));
     this.objects = new Map(objects.filter((o) => o.hash).map((o) => [o.hash, o]));
-    return { message: { ...msg, characters, objects }, missing, unchanged };
+    return { message: { ...msg, characters, objects }, missing, unchanged, patched };
   }
 }

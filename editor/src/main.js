@@ -5,6 +5,7 @@ import {
   createDocument,
   deleteDocument,
   downloadExport,
+  exportVideo,
   fetchExport,
   getDocument,
   listDocuments,
@@ -36,7 +37,7 @@ const state = {
   lastInput: -Infinity, // when the writer last typed in the text (performance.now())
   pendingAnimation: null, // the newest animation, resolved, waiting for the writer to stop typing
   holdings: new Holdings(), // characters and objects of the last animation, by hash
-  received: null, // what the last animation message carried: {version, unchanged: [character names]}
+  received: null, // what the last animation message carried: {version, unchanged, patched: [character names]}
 };
 
 const TYPING_QUIET_MS = 400;
@@ -105,14 +106,14 @@ function showProgress(msg) {
 
 /** Show an animation message; its `unchanged` entries are filled from the last one (by content hash). */
 function showAnimation(received) {
-  const { message: msg, missing, unchanged } = state.holdings.resolve(received);
+  const { message: msg, missing, unchanged, patched } = state.holdings.resolve(received);
   if (!msg) {
     // A stub of something this page does not hold (should not happen): get everything again.
     console.warn(`animation v${received.version}: ${missing.length} entries missing, resuming`);
     state.live.resume();
     return;
   }
-  state.pendingAnimation = { msg, unchanged };
+  state.pendingAnimation = { msg, unchanged, patched };
   showWhenQuiet();
 }
 
@@ -127,9 +128,9 @@ function showWhenQuiet() {
     state.quietTimer = setTimeout(showWhenQuiet, TYPING_QUIET_MS);
     return;
   }
-  const { msg, unchanged } = state.pendingAnimation;
+  const { msg, unchanged, patched } = state.pendingAnimation;
   state.pendingAnimation = null;
-  state.received = { version: msg.version, unchanged };
+  state.received = { version: msg.version, unchanged, patched };
   state.animation = msg;
   state.version = msg.version;
   viewer.setRoom(msg.room);
@@ -192,6 +193,8 @@ function onMessage(msg) {
 }
 
 async function open(docId) {
+  state.exportAbort?.abort(); // an export of the last document is cancelled: its status belonged there
+  state.exportAbort = null;
   state.live?.close();
   state.docId = docId;
   state.version = null;
@@ -268,12 +271,12 @@ $("new-doc").addEventListener("click", async () => {
   await open(doc.doc_id);
   pane.view.focus();
 });
-/** Exports need something to export: a non-empty text (and, for BVH, a character). */
+/** Exports need something to export: a non-empty text (and, for BVH, a character); one at a time. */
 function updateExports() {
   const empty = !pane.getText().trim();
   for (const button of document.querySelectorAll("#exports button[data-format]")) {
     const noCharacters = button.dataset.format === "bvh" && !(state.animation?.characters ?? []).length;
-    button.disabled = empty || noCharacters;
+    button.disabled = empty || noCharacters || !!state.exportAbort;
   }
 }
 for (const button of document.querySelectorAll("#exports button[data-format]")) {
@@ -290,23 +293,48 @@ for (const button of document.querySelectorAll("#exports button[data-format]")) 
       if (docId === state.docId) status.textContent = message;
       return;
     }
-    // MP4 and GLB render on the server: show the time it has taken, and let the writer cancel
+    // The others render on the server and may be cancelled; the MP4 is a job that reports the frames
+    // rendered of the total (services/gateway/videojobs.py), the rest show the time taken.
     const abort = new AbortController();
     const started = performance.now();
     const cancel = $("export-cancel");
+    const bar = $("export-progress");
     cancel.hidden = false;
     cancel.onclick = () => abort.abort();
-    const ticker = setInterval(() => {
-      if (docId === state.docId) status.textContent = `${format.toUpperCase()} rendering… ${((performance.now() - started) / 1000).toFixed(0)} s`;
-    }, 500);
+    state.exportAbort = abort; // opening another document cancels it
+    updateExports();
+    const label = format.toUpperCase();
+    const ticker =
+      format === "mp4"
+        ? null
+        : setInterval(() => {
+            if (docId === state.docId) status.textContent = `${label} rendering… ${((performance.now() - started) / 1000).toFixed(0)} s`;
+          }, 500);
+    const onProgress = (job) => {
+      if (docId !== state.docId) return;
+      bar.hidden = false;
+      bar.value = job.percent;
+      status.textContent =
+        job.total && job.stage === "rendering"
+          ? `MP4 ${Math.floor(job.percent)}% (${job.done} of ${job.total} frames)`
+          : job.stage === "joining"
+            ? `MP4 100% (${job.total} frames), joining…`
+            : `MP4 ${job.stage}…`;
+    };
     let message;
     try {
-      message = await downloadExport(docId, format, "", abort.signal);
+      message =
+        format === "mp4"
+          ? await exportVideo(docId, onProgress, abort.signal)
+          : await downloadExport(docId, format, "", abort.signal);
     } catch (err) {
       message = String(err.message || err);
     } finally {
       clearInterval(ticker);
       cancel.hidden = true;
+      bar.hidden = true;
+      if (state.exportAbort === abort) state.exportAbort = null;
+      updateExports();
     }
     if (docId === state.docId) status.textContent = message;
   });

@@ -50,7 +50,7 @@ const theme = EditorView.theme(
     ".cm-scene": { backgroundColor: "rgba(90, 169, 255, 0.10)" },
     ".cm-active-sentence": { backgroundColor: "rgba(255, 210, 80, 0.25)" },
     "&.cm-focused .cm-selectionBackground, .cm-selectionBackground": { backgroundColor: "#3a4f73" },
-    ".cm-tooltip": { backgroundColor: "var(--panel)", color: "var(--text)", border: "1px solid #3a3f4a" },
+    ".cm-tooltip": { backgroundColor: "var(--panel)", color: "var(--text)", border: "1px solid var(--control-border)" },
     ".cm-diagnosticAction": { backgroundColor: "#2b5ea8", color: "#fff" },
   },
   { dark: true },

@@ -27,7 +27,7 @@ from starlette.concurrency import run_in_threadpool
 from starlette.websockets import WebSocket, WebSocketState
 
 from proto.common import ErrorCode
-from services.gateway import messages, metrics
+from services.gateway import animwire, messages, metrics
 from services.gateway.delta import CharacterCache, EncodedAnimation, Holdings, encode_animation, encode_json
 from services.gateway.diagdelta import DiagnosticsState
 from services.orchestrator.document import BadEdit, Document, StaleEdit, TextChange
@@ -60,6 +60,8 @@ class Client:
     async def _send_text(self, text: str | bytes) -> bool:
         if self.ws.client_state != WebSocketState.CONNECTED:
             return False
+        if self.binary and isinstance(text, str):
+            text = animwire.compress_text(text)  # a large JSON message (diagnostics) as a WJZ1 frame
         try:
             if isinstance(text, bytes):
                 await self.ws.send_bytes(text)

@@ -127,3 +127,64 @@ def test_keystrokes_reach_the_screen_within_50_ms_while_the_animation_plays(
     wait_synced(page, timeout_ms=180_000)
     assert not errors, errors
     page.close()
+
+
+def test_the_mp4_button_shows_the_frames_rendered_as_a_percentage_and_cancel_stops_it(
+    browser: Any,  # noqa: F811
+    gateway: Any,
+) -> None:
+    pytest.importorskip("services.render.handlers", reason="needs the render service")
+    errors: list[str] = []
+    page = open_doc(browser, gateway, STORY, errors)
+    synced = wait_synced(page, timeout_ms=180_000)
+    if not synced["characters"]:
+        pytest.skip(f"no character motion in this build: {synced['unavailable']}")
+    page.evaluate(
+        """() => { window.seenStatus = []; new MutationObserver(() => window.seenStatus.push(
+            document.getElementById('export-status').textContent)).observe(
+            document.getElementById('export-status'), {childList: true, characterData: true, subtree: true}); }"""
+    )
+    with page.expect_download(timeout=300_000) as download:
+        page.click("#exports button[data-format=mp4]")
+    assert download.value.suggested_filename == "animation.mp4"
+    assert open(download.value.path(), "rb").read()[4:8] == b"ftyp"
+    page.wait_for_function(
+        "() => document.getElementById('export-status').textContent === 'saved animation.mp4'", timeout=60_000
+    )
+    seen = page.evaluate("() => window.seenStatus")
+    percents = [s for s in seen if "%" in s and " of " in s]
+    assert percents, seen
+    values = [float(s.split("MP4 ")[1].split("%")[0]) for s in percents]
+    assert values == sorted(values) and values[0] < 100, values  # it grows, from below 100
+    assert any(f"of {synced['frames']} frames" in s for s in percents), (percents, synced["frames"])
+    assert page.evaluate("() => document.getElementById('export-progress').hidden") is True
+
+    # cancel: the job stops on the gateway (its state is cancelled, with frames left unrendered)
+    page.evaluate(
+        "() => { window.jobs = []; const f = window.fetch; window.fetch = (u, o) => {"
+        " if (String(u).endsWith('/mp4/jobs')) return f(u, o).then(r => { r.clone().json().then(j => jobs.push(j.job_id)); return r; });"
+        " return f(u, o); }; }"
+    )
+    page.click("#exports button[data-format=mp4]")
+    page.wait_for_function(
+        "() => /MP4 \\d+% \\(\\d+ of/.test(document.getElementById('export-status').textContent)"
+        " && !/100%/.test(document.getElementById('export-status').textContent)",
+        timeout=300_000,
+        polling=20,
+    )
+    assert page.evaluate("() => document.getElementById('export-progress').hidden") is False
+    # one export at a time: the buttons wait while this one runs
+    assert page.evaluate(
+        "() => [...document.querySelectorAll('#exports button[data-format]')].every(b => b.disabled)"
+    )
+    page.click("#export-cancel")
+    page.wait_for_function(
+        "() => document.getElementById('export-status').textContent === 'MP4 cancelled'", timeout=60_000
+    )
+    assert page.evaluate("() => document.querySelector('#exports button[data-format=mp4]').disabled") is False
+    doc_id = page.evaluate("() => wana.state.docId")
+    job = page.evaluate("() => window.jobs[0]")
+    status = httpx.get(f"{gateway.base_url}/api/documents/{doc_id}/export/mp4/jobs/{job}").json()
+    assert status["state"] == "cancelled" and status["done"] < status["total"], status
+    assert not errors, errors
+    page.close()

@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
+import asyncio
 from typing import Literal
 
-from fastapi import APIRouter, Query, Response
+from fastapi import APIRouter, Query, Request, Response
 from starlette.concurrency import run_in_threadpool
 
 from proto.common import ErrorCode
@@ -16,6 +17,7 @@ from services.gateway.exports import (
     NothingToExport,
     export_document,
 )
+from services.gateway.videojobs import VideoJob, VideoJobs, run_job
 from services.orchestrator.store import DocumentNotFound
 
 router = APIRouter(prefix="/api/documents", tags=["exports"])
@@ -58,4 +60,75 @@ async def export(
         raise error(422, exc.code, str(exc)) from None
     return Response(
         data, media_type=media_type, headers={"Content-Disposition": f'attachment; filename="{filename}"'}
+    )
+
+
+def _jobs(request: Request) -> VideoJobs:
+    jobs: VideoJobs | None = getattr(request.app.state, "video_jobs", None)
+    if jobs is None:
+        jobs = request.app.state.video_jobs = VideoJobs()
+    return jobs
+
+
+def _job(request: Request, doc_id: str, job_id: str) -> VideoJob:
+    job = _jobs(request).get(job_id)
+    if job is None or job.doc_id != doc_id:
+        raise error(404, ErrorCode.INVALID_INPUT, f"no MP4 export job {job_id!r} of document {doc_id!r}")
+    return job
+
+
+_running: set[asyncio.Task[None]] = set()  # the jobs' tasks (kept referenced until they end)
+
+
+@router.post(
+    "/{doc_id}/export/mp4/jobs",
+    status_code=202,
+    summary="Start rendering the MP4 (poll its progress, fetch the file once done, DELETE to cancel)",
+)
+async def start_video_job(
+    doc_id: str,
+    request: Request,
+    orch: OrchestratorDep,
+    width: int = Query(640, ge=16, le=2048, description="width in pixels"),
+    height: int = Query(480, ge=16, le=2048, description="height in pixels"),
+) -> dict[str, object]:
+    try:
+        session = await run_in_threadpool(orch.open, doc_id)
+    except DocumentNotFound:
+        raise error(404, ErrorCode.INVALID_INPUT, f"no document {doc_id!r}") from None
+    job = _jobs(request).add(VideoJob(doc_id=doc_id, width=width, height=height))
+    task = asyncio.create_task(run_in_threadpool(run_job, session, job))
+    _running.add(task)
+    task.add_done_callback(_running.discard)
+    return job.status()
+
+
+@router.get(
+    "/{doc_id}/export/mp4/jobs/{job_id}", summary="An MP4 job's state and frames rendered of the total"
+)
+async def video_job(doc_id: str, job_id: str, request: Request) -> dict[str, object]:
+    return _job(request, doc_id, job_id).status()
+
+
+@router.delete("/{doc_id}/export/mp4/jobs/{job_id}", summary="Cancel an MP4 job (rendering stops)")
+async def cancel_video_job(doc_id: str, job_id: str, request: Request) -> dict[str, object]:
+    job = _job(request, doc_id, job_id)
+    job.cancel.set()
+    return job.status()
+
+
+@router.get(
+    "/{doc_id}/export/mp4/jobs/{job_id}/file",
+    summary="The finished MP4 of a job",
+    responses={200: {"content": {"video/mp4": {}}}, 409: {"description": "the job has not finished"}},
+    response_class=Response,
+)
+async def video_job_file(doc_id: str, job_id: str, request: Request) -> Response:
+    job = _job(request, doc_id, job_id)
+    if job.state != "done":
+        raise error(409, job.code or ErrorCode.INVALID_INPUT, f"the MP4 job is {job.state}: {job.message}")
+    return Response(
+        job.data,
+        media_type="video/mp4",
+        headers={"Content-Disposition": 'attachment; filename="animation.mp4"'},
     )

@@ -26,7 +26,9 @@ def _until_animation(ws: Any, version: int | None) -> tuple[dict[str, Any], list
     deadline = time.monotonic() + TIMEOUT_S
     while True:
         raw = ws.recv(timeout=max(deadline - time.monotonic(), 0.01))
-        if isinstance(raw, bytes):
+        if isinstance(raw, bytes) and raw[:4] == animwire.TEXT_MAGIC:
+            assert json.loads(animwire.decompress_text(raw))["type"] != "animation"
+        elif isinstance(raw, bytes):
             header, blobs = animwire.unpack(raw)
             if version is None or header["version"] == version:
                 return header, blobs, len(raw)
