@@ -363,7 +363,9 @@ def write_exports(
         if fmt not in formats:
             continue
         if fmt == "bvh":
-            replies += [export(backend, result, "bvh", character=name) for name in sorted(result.motions)]
+            replies += [
+                export(backend, result, "bvh", character=name, cast=cast) for name in sorted(result.motions)
+            ]
         else:
             replies.append(
                 export(

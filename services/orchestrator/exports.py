@@ -56,8 +56,7 @@ def export_request(
         width=width,
         height=height,
         story=story_of(result),
-        # the formats that carry the user's meshes (the Cycles video renders the GLB)
-        cast=list(cast) if fmt in ("glb", "fbx") or (fmt == "mp4" and renderer == "blender") else [],
+        cast=list(cast),  # every format shows the user's characters (USD: the built-in skeleton still)
         renderer=renderer if fmt == "mp4" else "open3d",
         samples=samples if fmt == "mp4" else 0,
         render_workers=render_workers if fmt == "mp4" else 0,

@@ -65,6 +65,7 @@ def _renderer_for(req: RenderRequest | ExportRequest, n_frames: int = 0) -> Fram
             req.height,
             n_frames,
             getattr(req, "show_captions", True),
+            getattr(req, "cast", []),
         ]
     )
     key = hashlib.sha256(key_src).hexdigest()
@@ -85,6 +86,7 @@ def _renderer_for(req: RenderRequest | ExportRequest, n_frames: int = 0) -> Fram
             n_frames=n_frames,
             width=req.width,
             height=req.height,
+            cast=_cast(req) if isinstance(req, ExportRequest) else None,
         )
     except (ValueError, KeyError) as exc:
         raise InvalidInput(str(exc)) from exc
@@ -268,7 +270,7 @@ def handle_export(req: ExportRequest) -> ExportReply:
                 format="bvh",
                 filename=f"{safe_filename(m.character)}.bvh",
                 media_type="application/octet-stream",
-                data=motion_bvh(m).encode(),
+                data=motion_bvh(m, _cast(req).get(m.character)).encode(),  # the user's rig when cast
             )
     except (ValueError, KeyError) as exc:
         if isinstance(exc, InvalidInput):
