@@ -56,7 +56,7 @@ def export_request(
         width=width,
         height=height,
         story=story_of(result),
-        cast=list(cast),  # every format shows the user's characters (USD: the built-in skeleton still)
+        cast=list(cast),  # every format shows the user's characters (services.render.cast_skin)
         renderer=renderer if fmt == "mp4" else "open3d",
         samples=samples if fmt == "mp4" else 0,
         render_workers=render_workers if fmt == "mp4" else 0,

@@ -27,21 +27,29 @@ from wana.domain.bvh import BvhClip
 SRGB_GAMMA = 2.2  # glTF base colour factors are linear; the renderer's vertex colours are sRGB
 
 
-def posed_world(cast: CastCharacter, motion: Motion) -> np.ndarray:
-    """(T, J, 4, 4) world matrices of the rig's joints on every frame (the GLB's animation, evaluated):
-    rest translations and scales, the retargeted rotations, the Hips' translation, scale 0 off stage."""
+def posed_local(cast: CastCharacter, motion: Motion, *, off_stage_scale: bool = True) -> np.ndarray:
+    """(T, J, 4, 4) local matrices of the rig's joints on every frame, as the GLB animates them: rest
+    translations and scales, the retargeted rotations, the Hips' translation; with ``off_stage_scale`` the
+    Hips scaled to 0 where the character is off stage (USD hides it by visibility instead)."""
     rig = cast.rig
     pose = cast_pose(cast, motion)
     t = pose.rotation.shape[0]
-    local = np.repeat(rig.local_matrices()[None], t, axis=0)  # (T, J, 4, 4)
+    local = np.repeat(rig.local_matrices()[None], t, axis=0)
     q = pose.rotation / np.linalg.norm(pose.rotation, axis=-1, keepdims=True)
     local[:, :, :3, :3] = Rotation.from_quat(q.reshape(-1, 4)).as_matrix().reshape(t, -1, 3, 3)
     local[:, :, :3, :3] *= rig.scale[None, :, None, :]
     local[:, pose.hips, :3, 3] = pose.hips_translation
-    if motion.present is not None:
+    if off_stage_scale and motion.present is not None:
         present = from_wire(motion.present).astype(bool)
         if len(present) == t:
             local[~present, pose.hips, :3, :3] = 0.0
+    return local
+
+
+def posed_world(cast: CastCharacter, motion: Motion) -> np.ndarray:
+    """(T, J, 4, 4) world matrices of the rig's joints on every frame (the GLB's animation, evaluated)."""
+    rig = cast.rig
+    local = posed_local(cast, motion)
     world = np.zeros_like(local)
     for j in topological(rig.parents):
         p = int(rig.parents[j])
@@ -49,7 +57,7 @@ def posed_world(cast: CastCharacter, motion: Motion) -> np.ndarray:
     return world
 
 
-def _vertex_colours(prim: Primitive) -> np.ndarray:
+def vertex_colours(prim: Primitive) -> np.ndarray:
     """(V, 3) sRGB 0..1: the base colour texture sampled at each vertex's UV, times the base colour."""
     factor = np.clip(np.asarray(prim.colour[:3], dtype=np.float64), 0.0, 1.0) ** (1.0 / SRGB_GAMMA)
     out = np.tile(factor, (len(prim.positions), 1))
@@ -87,7 +95,7 @@ class CastBody:
         faces, colours, start = [], [], 0
         for prim in cast.rig.primitives:
             faces.append(prim.indices.reshape(-1, 3).astype(np.int64) + start)
-            colours.append(_vertex_colours(prim))
+            colours.append(vertex_colours(prim))
             start += len(prim.positions)
         return cls(
             rig=cast.rig,

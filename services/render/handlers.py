@@ -232,7 +232,8 @@ def handle_export(req: ExportRequest) -> ExportReply:
             camera = stage.camera_track(req.width, req.height)
             try:
                 if req.format == "usd":
-                    data, filename = scene_usd(req.scene, list(req.motions), camera, FPS), "animation.usdc"
+                    usd = scene_usd(req.scene, list(req.motions), camera, FPS, cast=_cast(req))
+                    data, filename = usd, "animation.usdc"
                 else:
                     glb = scene_glb(
                         req.scene, list(req.motions), camera=camera, armature_nodes=True, cast=_cast(req)

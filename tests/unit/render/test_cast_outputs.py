@@ -108,3 +108,44 @@ def test_the_mp4_export_wears_the_cast(walk):
     builtin = handle_export(ExportRequest(**base, height=72))
     assert own.n_frames == builtin.n_frames == probe(own.data)["frames"]
     assert own.data != builtin.data
+
+
+@pytest.mark.parametrize("kind", sorted(RIGS))
+def test_the_usd_has_the_users_skeleton_and_skin(kind, walk, tmp_path):
+    pytest.importorskip("pxr", reason="needs Pixar's usd-core (pip install usd-core)")
+    from pxr import Usd, UsdGeom, UsdSkel
+
+    from tests.unit.render.test_export_usd import _validation_errors
+
+    member = _member(kind)
+    reply = handle_export(
+        ExportRequest(header=Header(), format="usd", scene=demo_scene(), motions=[walk], cast=[member])
+    )
+    path = tmp_path / "animation.usdc"
+    path.write_bytes(reply.data)
+    stage = Usd.Stage.Open(str(path))
+    assert _validation_errors(stage) == []
+    cast = load_cast([member])["Eve"]
+    skel = UsdSkel.Skeleton(stage.GetPrimAtPath("/World/Eve/Skeleton"))
+    assert sorted(skel.GetJointNamesAttr().Get()) == sorted(cast.rig.names)  # the file's own names
+    cache = UsdSkel.Cache()
+    cache.Populate(UsdSkel.Root(stage.GetPrimAtPath("/World/Eve")), Usd.TraverseInstanceProxies())
+    query = cache.GetSkelQuery(skel)
+    order = [list(cast.rig.names).index(n) for n in skel.GetJointNamesAttr().Get()]
+    world = posed_world(cast, walk)
+    body = CastBody.build(cast, walk)
+    for f in FRAMES:
+        t = Usd.TimeCode(f)
+        joints = np.array(
+            [m.ExtractTranslation() for m in query.ComputeJointWorldTransforms(UsdGeom.XformCache(t))]
+        )
+        # 1 mm: UsdSkel's scales are half floats, and a Mixamo rig's root carries its armature's 0.01
+        assert np.abs(joints - world[f][order][:, :3, 3]).max() < 1e-3
+        xforms = query.ComputeSkinningTransforms(t)
+        skinned = []
+        for k in range(len(cast.rig.primitives)):
+            prim = stage.GetPrimAtPath("/World/Eve/Body" if k == 0 else f"/World/Eve/Body_{k}")
+            points = UsdGeom.Mesh(prim).GetPointsAttr().Get(t)
+            assert cache.GetSkinningQuery(prim).ComputeSkinnedPoints(xforms, points, t)
+            skinned.append(np.array(points))
+        assert np.abs(np.concatenate(skinned) - body.vertices([f])[0]).max() < 1e-3  # the MP4's mesh
