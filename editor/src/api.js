@@ -78,8 +78,9 @@ export async function fetchExport(docId, format) {
 }
 
 /** Download an export; resolves to a message for the status line. */
-export async function downloadExport(docId, format, character = "", signal = undefined) {
-  const query = character ? `?character=${encodeURIComponent(character)}` : "";
+export async function downloadExport(docId, format, character = "", signal = undefined, params = {}) {
+  const search = new URLSearchParams({ ...(character ? { character } : {}), ...params }).toString();
+  const query = search ? `?${search}` : "";
   let response;
   try {
     response = await fetch(apiUrl(`/api/documents/${encodeURIComponent(docId)}/export/${format}${query}`), {
@@ -107,4 +108,28 @@ export async function downloadExport(docId, format, character = "", signal = und
   link.click();
   setTimeout(() => URL.revokeObjectURL(link.href), 10000);
   return `saved ${name}`;
+}
+
+/** The document's own characters (story name -> {bytes, mapped}). */
+export const listCast = (docId) => call("GET", `/api/documents/${encodeURIComponent(docId)}/cast`);
+export const deleteCast = (docId, name) =>
+  call("DELETE", `/api/documents/${encodeURIComponent(docId)}/cast/${encodeURIComponent(name)}`);
+
+/** Upload a .glb/.vrm to play the story character `name`; resolves to the server's answer or throws. */
+export async function putCast(docId, name, file) {
+  const response = await fetch(apiUrl(`/api/documents/${encodeURIComponent(docId)}/cast/${encodeURIComponent(name)}`), {
+    method: "PUT",
+    headers: { ...authHeaders(), "Content-Type": "application/octet-stream" },
+    body: file,
+  });
+  if (!response.ok) {
+    let message = `upload failed (${response.status})`;
+    try {
+      message = (await response.json()).detail?.message || message;
+    } catch {
+      /* not JSON */
+    }
+    throw new Error(message);
+  }
+  return response.json();
 }

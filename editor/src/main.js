@@ -4,8 +4,11 @@ import "./style.css";
 import {
   createDocument,
   deleteDocument,
+  deleteCast,
   downloadExport,
   fetchExport,
+  listCast,
+  putCast,
   getDocument,
   listDocuments,
   renameDocument,
@@ -203,6 +206,9 @@ async function open(docId) {
   if (viewer.exportScene) viewer.useExport(null); // the last document's skinned characters
   viewer.exportDoc = null;
   updateExports();
+  $("cast-list").replaceChildren();
+  $("cast-status").textContent = "";
+  refreshCast(docId);
   if (location.hash !== `#doc=${docId}`) history.replaceState(null, "", `#doc=${docId}`);
   state.live = new LiveDocument(docId, {
     view: () => pane.view,
@@ -275,7 +281,66 @@ function updateExports() {
     const noCharacters = button.dataset.format === "bvh" && !(state.animation?.characters ?? []).length;
     button.disabled = empty || noCharacters;
   }
+  updateCastNames();
 }
+
+/** The cast row: the story's characters to pick from, and the ones your files play. */
+function updateCastNames() {
+  const select = $("cast-name");
+  const names = (state.animation?.characters ?? []).map((c) => (typeof c === "string" ? c : c.name)).filter(Boolean);
+  const have = [...select.options].map((o) => o.value);
+  if (names.join("\n") === have.join("\n")) return;
+  const chosen = select.value;
+  select.replaceChildren(...names.map((n) => new Option(n, n, false, n === chosen)));
+  $("cast-file").disabled = !names.length;
+}
+
+async function refreshCast(docId = state.docId) {
+  if (!docId) return;
+  let cast = {};
+  try {
+    cast = await listCast(docId);
+  } catch (err) {
+    $("cast-status").textContent = String(err.message || err);
+    return;
+  }
+  if (docId !== state.docId) return;
+  $("cast-list").replaceChildren(
+    ...Object.keys(cast).map((name) => {
+      const item = document.createElement("li");
+      item.dataset.name = name;
+      item.append(`${name} `);
+      const remove = document.createElement("button");
+      remove.type = "button";
+      remove.textContent = "×";
+      remove.setAttribute("aria-label", `play ${name} with the built-in character again`);
+      remove.addEventListener("click", async () => {
+        await deleteCast(docId, name).catch(() => null);
+        $("cast-status").textContent = `${name}: built-in character`;
+        await refreshCast(docId);
+      });
+      item.append(remove);
+      return item;
+    }),
+  );
+}
+
+$("cast-file").addEventListener("change", async (e) => {
+  const file = e.target.files?.[0];
+  const name = $("cast-name").value;
+  const docId = state.docId;
+  e.target.value = "";
+  if (!file || !name || !docId) return;
+  const status = $("cast-status");
+  status.textContent = `${name}: reading ${file.name}…`;
+  try {
+    const answer = await putCast(docId, name, file);
+    status.textContent = `${name} plays ${file.name} (${answer.mapped} joints mapped); every export wears it`;
+  } catch (err) {
+    status.textContent = `${name}: ${err.message || err}`;
+  }
+  await refreshCast(docId);
+});
 for (const button of document.querySelectorAll("#exports button[data-format]")) {
   button.addEventListener("click", async () => {
     const format = button.dataset.format;
@@ -301,7 +366,8 @@ for (const button of document.querySelectorAll("#exports button[data-format]")) 
     }, 500);
     let message;
     try {
-      message = await downloadExport(docId, format, "", abort.signal);
+      const cycles = format === "mp4" && $("export-cycles").checked ? { renderer: "blender" } : {};
+      message = await downloadExport(docId, format, "", abort.signal, cycles);
     } catch (err) {
       message = String(err.message || err);
     } finally {
