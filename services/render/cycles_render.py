@@ -22,6 +22,7 @@ import io
 import json
 import os
 import subprocess
+import sys
 import tempfile
 import time
 from collections.abc import Iterator, Mapping
@@ -148,6 +149,18 @@ class RangeRun:
     log: Path
 
 
+def _die_with_parent() -> None:
+    """In the Blender child, before exec: on Linux, end with the render process (a killed worker leaves no
+    Blender rendering on)."""
+    try:
+        import ctypes
+        import signal
+
+        ctypes.CDLL("libc.so.6", use_errno=True).prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG
+    except (OSError, AttributeError):  # not Linux: the finally in cycles_frames still ends them
+        pass
+
+
 def _launch(job: CyclesJob, glb: Path, start: int, end: int, tmp: Path, threads: int) -> RangeRun:
     folder = tmp / f"frames_{start:05d}_{end:05d}"
     folder.mkdir()
@@ -160,6 +173,7 @@ def _launch(job: CyclesJob, glb: Path, start: int, end: int, tmp: Path, threads:
             stdout=out,
             stderr=subprocess.STDOUT,
             env={**os.environ, "PYTHONNOUSERSITE": "1"},
+            preexec_fn=_die_with_parent if sys.platform.startswith("linux") else None,  # noqa: PLW1509
         )
     return RangeRun(start, end, folder, process, log)
 
