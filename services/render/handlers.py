@@ -281,20 +281,21 @@ def handle_export(req: ExportRequest) -> ExportReply:
     commands, captions = placed(req)
     with _lock:
         buf = io.BytesIO()
+        staged: Staging | None
         if req.renderer == "blender":  # the user's cast wears its mesh, as in the GLB the frames come from
             job = _cycles_job(req, cast=_cast(req))
-            stage, n_frames = job.staging, job.n_frames
-            assert stage is not None  # CyclesJob.build keeps it
+            staged, n_frames = job.staging, job.n_frames  # CyclesJob.build keeps the staging
             try:
                 render_mp4_cycles(job, buf, workers=req.render_workers)  # frame ranges, one Blender each
             except ModuleNotFoundError as exc:
                 raise InvalidInput(str(exc)) from exc
         else:
             r = _renderer_for(req)
-            stage, n_frames = r.staging, r.n_frames
+            staged, n_frames = r.staging, r.n_frames
             render_mp4(r, buf, processes=req.render_workers)  # frame ranges in parallel render processes
+        assert staged is not None
         # The captions name the action sentences; commands carry their sentence ids.
-        checks = staged_checks(stage, captions, width=req.width, height=req.height)
+        checks = staged_checks(staged, captions, width=req.width, height=req.height)
     if buf.getbuffer().nbytes > MAX_REPLY_BYTES:
         raise InvalidInput(
             "the video is larger than one reply may be; render it in chunks with RenderRequest"
@@ -309,7 +310,7 @@ def handle_export(req: ExportRequest) -> ExportReply:
         commands=commands,
         captions=captions,
         checks=checks,
-        shots=shot_messages(stage.shots),
+        shots=shot_messages(staged.shots),
     )
 
 
