@@ -85,6 +85,7 @@ class RenderRequest(Request["RenderReply"], frozen=True, kw_only=True, tag="rend
     story: list[StorySentence] = []
     renderer: Renderer = "open3d"
     samples: int = 0  # blender: Cycles samples per pixel (0 = 16)
+    cast: list[CastMember] = []  # these characters wear the user's mesh (as ExportRequest.cast)
 
 
 class RenderReply(msgspec.Struct, frozen=True, kw_only=True, tag="render_reply"):
@@ -132,7 +133,7 @@ class ExportRequest(Request["ExportReply"], frozen=True, kw_only=True, tag="expo
     width: int = 640
     height: int = 480
     story: list[StorySentence] = []  # as RenderRequest.story
-    cast: list[CastMember] = []  # GLB and FBX: these characters wear the user's mesh, on its own joints
+    cast: list[CastMember] = []  # every format: these characters wear the user's mesh, on its own joints
     renderer: Renderer = "open3d"  # MP4: which renderer draws the frames (blender: the cast wears its mesh)
     samples: int = 0  # MP4 with blender: Cycles samples per pixel (0 = 16)
     render_workers: int = 0  # MP4: processes rendering frame ranges at once on the worker (0 = its cores)

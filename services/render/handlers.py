@@ -86,7 +86,7 @@ def _renderer_for(req: RenderRequest | ExportRequest, n_frames: int = 0) -> Fram
             n_frames=n_frames,
             width=req.width,
             height=req.height,
-            cast=_cast(req) if isinstance(req, ExportRequest) else None,
+            cast=_cast(req),
         )
     except (ValueError, KeyError) as exc:
         raise InvalidInput(str(exc)) from exc
@@ -136,7 +136,7 @@ def _cycles_job(
 def _frames_of(req: RenderRequest):  # noqa: ANN202 - (n_frames, frames(start, end))
     """The animation's length and a function that renders a range of it, with the request's renderer."""
     if req.renderer == "blender":
-        job = _cycles_job(req, req.n_frames)
+        job = _cycles_job(req, req.n_frames, cast=_cast(req))
 
         def cycles(a: int, b: int):  # noqa: ANN202 - an iterator of frames
             try:
@@ -196,7 +196,7 @@ def handle_render(req: RenderRequest) -> RenderReply:
         )
 
 
-def _cast(req: ExportRequest) -> dict[str, CastCharacter]:
+def _cast(req: RenderRequest | ExportRequest) -> dict[str, CastCharacter]:
     """The request's own characters, loaded (a file that cannot be used is the caller's error)."""
     try:
         return load_cast(list(req.cast))

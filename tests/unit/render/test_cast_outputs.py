@@ -149,3 +149,22 @@ def test_the_usd_has_the_users_skeleton_and_skin(kind, walk, tmp_path):
             assert cache.GetSkinningQuery(prim).ComputeSkinnedPoints(xforms, points, t)
             skinned.append(np.array(points))
         assert np.abs(np.concatenate(skinned) - body.vertices([f])[0]).max() < 1e-3  # the MP4's mesh
+
+
+def test_a_render_request_chunk_wears_the_cast_too(walk):
+    """The frame-range protocol (one RenderRequest per range, any worker) carries the cast as exports do."""
+    from proto.render import RenderRequest
+    from services.render.handlers import handle_render
+
+    base = {"header": Header(), "scene": demo_scene(), "motions": [walk], "width": 96, "height": 72}
+    own = handle_render(RenderRequest(**base, start_frame=10, end_frame=12, cast=[_member("mixamo")]))
+    builtin = handle_render(RenderRequest(**base, start_frame=10, end_frame=12))
+    assert len(own.frames) == len(builtin.frames) == 2
+    assert own.frames[0] != builtin.frames[0]
+    with FrameRenderer(demo_scene(), [walk], width=96, height=72, cast=load_cast([_member("mixamo")])) as r:
+        import io
+
+        from PIL import Image
+
+        got = np.asarray(Image.open(io.BytesIO(own.frames[0])).convert("RGB"))
+        assert np.abs(got.astype(int) - r.render(10).astype(int)).max() <= 2  # PNG: the same pixels
