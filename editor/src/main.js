@@ -295,6 +295,13 @@ function updateCastNames() {
   $("cast-file").disabled = !names.length;
 }
 
+/** The 3D view shows the render service's scene.glb: fetch it again, now with (or without) the user's rig. */
+function reskin(docId) {
+  if (docId !== state.docId) return;
+  viewer.exportVersion = null;
+  scheduleSkinned();
+}
+
 async function refreshCast(docId = state.docId) {
   if (!docId) return;
   let cast = {};
@@ -318,6 +325,7 @@ async function refreshCast(docId = state.docId) {
         await deleteCast(docId, name).catch(() => null);
         $("cast-status").textContent = `${name}: built-in character`;
         await refreshCast(docId);
+        reskin(docId);
       });
       item.append(remove);
       return item;
@@ -336,6 +344,7 @@ $("cast-file").addEventListener("change", async (e) => {
   try {
     const answer = await putCast(docId, name, file);
     status.textContent = `${name} plays ${file.name} (${answer.mapped} joints mapped); every export wears it`;
+    reskin(docId);
   } catch (err) {
     status.textContent = `${name}: ${err.message || err}`;
   }

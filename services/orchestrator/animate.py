@@ -136,7 +136,7 @@ def build_parser() -> argparse.ArgumentParser:
         default=[],
         metavar="NAME=FILE",
         help="play the story's character NAME with your own rigged humanoid (.glb, .vrm, or .fbx with Blender's "
-        "bpy); its joints are found by name (Mixamo, VRM, Unity and Unreal humanoids); the GLB and FBX wear it. "
+        "bpy); its joints are found by name (Mixamo, VRM, Unity and Unreal humanoids); every output wears it. "
         "Repeatable",
     )
     p.add_argument(

@@ -1,5 +1,5 @@
 """The editor's cast row and ZIP button in headless Chromium: a GLB chosen for a story character is uploaded,
-listed and worn by the exports (the ZIP's BVH has the rig's joint names); a file that is no character is
+listed and worn by the 3D view and the exports (the ZIP's BVH has the rig's joint names); a file that is no character is
 refused with the reason; × brings the built-in character back. Skips as test_editor_browser does."""
 
 from __future__ import annotations
@@ -41,6 +41,11 @@ def test_a_cast_file_is_worn_by_the_zip_and_can_be_removed(
     page.set_input_files("#cast-file", str(rig))
     page.wait_for_function("() => document.querySelector('#cast-list li[data-name=Eve]')", timeout=60_000)
     assert "eve.glb" in page.text_content("#cast-status")
+    page.wait_for_function(  # the 3D view fetches scene.glb again, now with the user's rig
+        "() => { let found = false; wana.viewer.exportScene?.traverse((o) => { found ||= o.name.includes('mixamorig'); });"
+        " return found; }",
+        timeout=120_000,
+    )
     doc_id = page.evaluate("() => wana.state.docId")
     assert list(httpx.get(f"{gateway.base_url}/api/documents/{doc_id}/cast").json()) == ["Eve"]
     with page.expect_download(timeout=300_000) as download:
