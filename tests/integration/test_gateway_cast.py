@@ -1,5 +1,6 @@
 """The editor's cast list through the gateway: a GLB uploaded for a story character is worn in the document's
-exports (GLB, BVH, the zip bundle), refused with the reason when it cannot be used, and dropped on delete."""
+exports (GLB, BVH, the zip bundle), refused with the reason when it cannot be used, and dropped on delete; the MP4's final render
+(renderer=blender) has the preview's length."""
 
 from __future__ import annotations
 
@@ -38,6 +39,7 @@ def answers(tmp_path_factory: pytest.TempPathFactory) -> dict[str, httpx.Respons
         out["delete"] = http.delete(f"{base}/cast/Eve")
         out["bvh-after"] = http.get(f"{base}/export/bvh", params={"character": "Eve"})
         out["zip-bad"] = http.get(f"{base}/export/zip", params={"formats": "mp4,gif"})
+        out["cycles"] = http.get(f"{base}/export/mp4", params={**small, "renderer": "blender", "samples": 1})
         return out
 
 
@@ -78,3 +80,16 @@ def test_deleting_brings_the_built_in_character_back(answers) -> None:
     assert answers["delete"].json() == {"removed": True}
     _ok(answers["bvh-after"])
     assert "ROOT Hips" in answers["bvh-after"].text
+
+
+def test_the_editors_final_render_is_the_same_video_length(answers) -> None:
+    from services.render.video import probe
+
+    r = answers["cycles"]
+    if r.status_code == 422 and "needs Blender" in r.text:
+        pytest.skip(r.json()["detail"]["message"])
+    _ok(r)
+    with zipfile.ZipFile(io.BytesIO(answers["zip"].content)) as zf:
+        preview = probe(zf.read("animation.mp4"))
+    cycles = probe(r.content)
+    assert (cycles["frames"], cycles["width"], cycles["height"]) == (preview["frames"], 64, 48)
