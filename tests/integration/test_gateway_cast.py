@@ -1,6 +1,6 @@
 """The editor's cast list through the gateway: a GLB uploaded for a story character is worn in the document's
-exports (GLB, BVH, the zip bundle), refused with the reason when it cannot be used, and dropped on delete; the MP4's final render
-(renderer=blender) has the preview's length."""
+exports (GLB, BVH, the zip bundle), refused with the reason when it cannot be used, and dropped on delete;
+the MP4's final render (renderer=blender) has the preview's length."""
 
 from __future__ import annotations
 
