@@ -20,7 +20,18 @@ plan_seconds: building the staging of that video (rigs, tracks and the director'
 measures what each candidate camera shows), with the director and without it (``--no-director``
 renders with the commands' cameras alone, for comparing fps).
 
-JSON keys: fps, speedup_2_workers, plan_seconds, plan_seconds_no_director (plus context: frames, width, height, seconds_1_worker,
+cycles_seconds_per_frame: the final-quality renderer (``--renderer blender``: Blender's Cycles on the CPU in a
+subprocess, services.render.cycles_render) on the same demo video and size, ``--cycles-samples`` samples
+(default 16, quick 4) and OpenImageDenoise, one Blender process on all cores; seconds per rendered frame with
+Blender's start and the scene's import excluded (``cycles_setup_seconds`` has them). Skipped (null) when no
+Python with bpy is found, or with ``--no-cycles``. ``--cycles-frames`` (default 8, quick 3) frames.
+
+cycles_silhouette: does Cycles show the character where open3d does? The demo video's frames 0 and 20 at 96x72
+(2 samples, no denoiser) rendered with and without the bodies (their shadows kept) by both renderers; the
+silhouette is where the body changes the picture; reported: the largest centroid offset (pixels) and the
+smallest share of open3d's silhouette that Cycles' covers.
+
+JSON keys: fps, cycles_seconds_per_frame, cycles_silhouette_offset_px, cycles_silhouette_overlap, cycles_setup_seconds, cycles_samples, speedup_2_workers, plan_seconds, plan_seconds_no_director (plus context: frames, width, height, seconds_1_worker,
 seconds_2_workers, cpu_count, load_average).
 """
 
@@ -89,6 +100,60 @@ def time_processes(frames: int, width: int, height: int) -> tuple[float, float]:
             render_mp4(r, io.BytesIO(), processes=k)
             out.append(time.perf_counter() - t0)
     return out[0], out[1]
+
+
+def measure_cycles(frames: int, width: int, height: int, samples: int) -> dict | None:
+    """Cycles on the demo video's frames [1, 1 + frames): seconds per frame and the process's set-up; None
+    without bpy."""
+    from services.render.cycles_render import CyclesJob, cycles_frames
+
+    job = CyclesJob.build(demo_scene(), demo_motions(frames + 1), width=width, height=height, samples=samples)
+    stats: list[dict] = []
+    try:
+        for _ in tqdm(cycles_frames(job, 1, frames + 1, workers=1, stats=stats), total=frames, leave=False):
+            pass
+    except ModuleNotFoundError as exc:
+        print(f"cycles: skipped ({exc})", file=sys.stderr)
+        return None
+    return {
+        "seconds_per_frame": stats[0]["render_s"] / stats[0]["frames"],
+        "setup_seconds": stats[0]["setup_s"],
+        "denoise": stats[0]["denoise"],
+    }
+
+
+def cycles_silhouette() -> dict | None:
+    """Largest centroid offset (px) and smallest overlap of the body's silhouette, Cycles against open3d."""
+    import dataclasses
+
+    import numpy as np
+
+    from services.render.cycles_render import CyclesJob, cycles_frames
+    from services.render.renderer import FrameRenderer
+
+    w, h = 96, 72
+    motions = [walk_motion("Eve", (-2.0, 1.5), (1.0, -0.5), 40, sentence_id="s1")]
+    job = CyclesJob.build(demo_scene(), motions, width=w, height=h, samples=2)
+    job.denoise = False
+
+    def mask(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        return np.abs(a.astype(float) - b.astype(float)).sum(axis=2) > 40.0
+
+    offsets, overlaps = [], []
+    try:
+        with FrameRenderer(demo_scene(), motions, width=w, height=h) as r:
+            for f in (0, 20):
+                ours = mask(
+                    next(cycles_frames(job, f, f + 1)),
+                    next(cycles_frames(dataclasses.replace(job, hide_characters=True), f, f + 1)),
+                )
+                theirs = mask(r.render(f), r.render(f, hide_characters=True))
+                cy = [np.array(np.nonzero(m)[::-1]).mean(axis=1) for m in (ours, theirs)]
+                offsets.append(float(np.abs(cy[0] - cy[1]).max()))
+                overlaps.append(float((ours & theirs).sum() / max(theirs.sum(), 1)))
+    except ModuleNotFoundError:
+        return None
+    return {"offset_px": max(offsets), "overlap": min(overlaps)}
 
 
 def _start_workers(url: str, n: int, logs: Path) -> list[subprocess.Popen]:
@@ -204,9 +269,19 @@ def main(argv: list[str] | None = None) -> dict:
     ap.add_argument("--no-director", action="store_true", help="render with the commands' cameras alone")
     ap.add_argument("--fps-only", action="store_true", help="skip the 2-worker speed-up")
     ap.add_argument("--processes", action="store_true", help="also time 2 local render processes")
+    ap.add_argument("--no-cycles", action="store_true", help="skip the Blender Cycles render")
+    ap.add_argument("--cycles-frames", type=int, default=0, help="Cycles frames (default 8, quick 3)")
+    ap.add_argument("--cycles-samples", type=int, default=0, help="Cycles samples (default 16, quick 4)")
     args = ap.parse_args(argv)
     frames = args.frames or (10 if args.quick else 120)
     fps = measure_fps(frames, args.width, args.height, director=not args.no_director)
+    samples = args.cycles_samples or (4 if args.quick else 16)
+    cycles = silhouette = None
+    if not args.no_cycles:
+        cycles = measure_cycles(
+            args.cycles_frames or (3 if args.quick else 8), args.width, args.height, samples
+        )
+        silhouette = cycles_silhouette() if cycles else None
     plan = plan_seconds(frames, True)
     plan_off = plan_seconds(frames, False)
     if args.fps_only:
@@ -218,6 +293,12 @@ def main(argv: list[str] | None = None) -> dict:
         p1, p2 = time_processes(max(frames, 96), args.width, args.height)
     result = {
         "fps": round(fps, 2),
+        "cycles_seconds_per_frame": round(cycles["seconds_per_frame"], 3) if cycles else None,
+        "cycles_setup_seconds": round(cycles["setup_seconds"], 2) if cycles else None,
+        "cycles_samples": samples,
+        "cycles_denoise": cycles["denoise"] if cycles else None,
+        "cycles_silhouette_offset_px": round(silhouette["offset_px"], 2) if silhouette else None,
+        "cycles_silhouette_overlap": round(silhouette["overlap"], 3) if silhouette else None,
         "speedup_2_processes": round(p1 / p2, 2),
         "seconds_1_2_processes": [round(p1, 2), round(p2, 2)],
         "speedup_2_workers": round(t1 / t2, 2),
@@ -234,6 +315,12 @@ def main(argv: list[str] | None = None) -> dict:
     }
     print(f"{'metric':<22}{'value':>10}")
     print(f"{'fps (1 worker)':<22}{result['fps']:>10}")
+    spf = result["cycles_seconds_per_frame"]
+    print(f"{'cycles s/frame':<22}{'skipped' if spf is None else spf:>10}  ({samples} samples, 1 process)")
+    if silhouette:
+        print(
+            f"{'cycles silhouette':<22}{silhouette['offset_px']:>10.2f}  px off, {silhouette['overlap']:.0%} overlap"
+        )
     print(f"{'speedup_2_workers':<22}{result['speedup_2_workers']:>10}")
     print(f"{'speedup_2_processes':<22}{result['speedup_2_processes']:>10}")
     print(f"{'plan s, no director':<22}{result['plan_seconds']:>5} / {result['plan_seconds_no_director']}")

@@ -20,6 +20,8 @@ from proto.ssg import Command
 
 FrameEncoding = Literal["png", "jpeg", "raw", "mp4"]
 ExportFormat = Literal["mp4", "glb", "bvh", "usd", "fbx"]  # usd: usd-core; fbx: Blender (bpy)
+# open3d: the rasterised preview; blender: Blender's Cycles path tracer on the CPU (needs bpy), same shots
+Renderer = Literal["open3d", "blender"]
 
 
 class TimedCommand(msgspec.Struct, frozen=True, kw_only=True):
@@ -81,6 +83,9 @@ class RenderRequest(Request["RenderReply"], frozen=True, kw_only=True, tag="rend
     # on frames from them and the motions' segments (services/render/timeline.py), and `commands` and
     # `captions` must be empty.
     story: list[StorySentence] = []
+    renderer: Renderer = "open3d"
+    samples: int = 0  # blender: Cycles samples per pixel (0 = 16)
+    cast: list[CastMember] = []  # these characters wear the user's mesh (as ExportRequest.cast)
 
 
 class RenderReply(msgspec.Struct, frozen=True, kw_only=True, tag="render_reply"):
@@ -128,7 +133,10 @@ class ExportRequest(Request["ExportReply"], frozen=True, kw_only=True, tag="expo
     width: int = 640
     height: int = 480
     story: list[StorySentence] = []  # as RenderRequest.story
-    cast: list[CastMember] = []  # GLB and FBX: these characters wear the user's mesh, on its own joints
+    cast: list[CastMember] = []  # every format: these characters wear the user's mesh, on its own joints
+    renderer: Renderer = "open3d"  # MP4: which renderer draws the frames (blender: the cast wears its mesh)
+    samples: int = 0  # MP4 with blender: Cycles samples per pixel (0 = 16)
+    render_workers: int = 0  # MP4: processes rendering frame ranges at once on the worker (0 = its cores)
 
 
 class ExportReply(msgspec.Struct, frozen=True, kw_only=True, tag="export_reply"):

@@ -82,9 +82,10 @@ export async function fetchExport(docId, format) {
  * rendered of the total as they grow; resolves to a message for the status line once the file is downloaded,
  * cancelled (`signal`: the job is deleted, and rendering stops on the server) or failed.
  */
-export async function exportVideo(docId, onProgress, signal) {
+export async function exportVideo(docId, onProgress, signal, params = {}) {
   const base = apiUrl(`/api/documents/${encodeURIComponent(docId)}/export/mp4/jobs`);
-  const started = await fetch(base, { method: "POST", headers: authHeaders() });
+  const search = new URLSearchParams(params).toString();
+  const started = await fetch(search ? `${base}?${search}` : base, { method: "POST", headers: authHeaders() });
   if (!started.ok) return `MP4 export failed (${started.status})`;
   let status = await started.json();
   const url = `${base}/${status.job_id}`;
@@ -100,15 +101,16 @@ export async function exportVideo(docId, onProgress, signal) {
     }
     onProgress(status);
     if (status.state !== "done") return status.state === "cancelled" ? "MP4 cancelled" : status.message || "MP4 export failed";
-    return await downloadExport(docId, `mp4/jobs/${status.job_id}/file`, "", signal, "MP4");
+    return await downloadExport(docId, `mp4/jobs/${status.job_id}/file`, "", signal, {}, "MP4");
   } finally {
     signal?.removeEventListener("abort", cancel);
   }
 }
 
 /** Download an export; resolves to a message for the status line. */
-export async function downloadExport(docId, format, character = "", signal = undefined, label = format.toUpperCase()) {
-  const query = character ? `?character=${encodeURIComponent(character)}` : "";
+export async function downloadExport(docId, format, character = "", signal = undefined, params = {}, label = format.toUpperCase()) {
+  const search = new URLSearchParams({ ...(character ? { character } : {}), ...params }).toString();
+  const query = search ? `?${search}` : "";
   let response;
   try {
     response = await fetch(apiUrl(`/api/documents/${encodeURIComponent(docId)}/export/${format}${query}`), {
@@ -136,4 +138,28 @@ export async function downloadExport(docId, format, character = "", signal = und
   link.click();
   setTimeout(() => URL.revokeObjectURL(link.href), 10000);
   return `saved ${name}`;
+}
+
+/** The document's own characters (story name -> {bytes, mapped}). */
+export const listCast = (docId) => call("GET", `/api/documents/${encodeURIComponent(docId)}/cast`);
+export const deleteCast = (docId, name) =>
+  call("DELETE", `/api/documents/${encodeURIComponent(docId)}/cast/${encodeURIComponent(name)}`);
+
+/** Upload a .glb/.vrm to play the story character `name`; resolves to the server's answer or throws. */
+export async function putCast(docId, name, file) {
+  const response = await fetch(apiUrl(`/api/documents/${encodeURIComponent(docId)}/cast/${encodeURIComponent(name)}`), {
+    method: "PUT",
+    headers: { ...authHeaders(), "Content-Type": "application/octet-stream" },
+    body: file,
+  });
+  if (!response.ok) {
+    let message = `upload failed (${response.status})`;
+    try {
+      message = (await response.json()).detail?.message || message;
+    } catch {
+      /* not JSON */
+    }
+    throw new Error(message);
+  }
+  return response.json();
 }

@@ -4,9 +4,12 @@ import "./style.css";
 import {
   createDocument,
   deleteDocument,
+  deleteCast,
   downloadExport,
   exportVideo,
   fetchExport,
+  listCast,
+  putCast,
   getDocument,
   listDocuments,
   renameDocument,
@@ -206,6 +209,9 @@ async function open(docId) {
   if (viewer.exportScene) viewer.useExport(null); // the last document's skinned characters
   viewer.exportDoc = null;
   updateExports();
+  $("cast-list").replaceChildren();
+  $("cast-status").textContent = "";
+  refreshCast(docId);
   if (location.hash !== `#doc=${docId}`) history.replaceState(null, "", `#doc=${docId}`);
   state.live = new LiveDocument(docId, {
     view: () => pane.view,
@@ -278,7 +284,75 @@ function updateExports() {
     const noCharacters = button.dataset.format === "bvh" && !(state.animation?.characters ?? []).length;
     button.disabled = empty || noCharacters || !!state.exportAbort;
   }
+  updateCastNames();
 }
+
+/** The cast row: the story's characters to pick from, and the ones your files play. */
+function updateCastNames() {
+  const select = $("cast-name");
+  const names = (state.animation?.characters ?? []).map((c) => (typeof c === "string" ? c : c.name)).filter(Boolean);
+  const have = [...select.options].map((o) => o.value);
+  if (names.join("\n") === have.join("\n")) return;
+  const chosen = select.value;
+  select.replaceChildren(...names.map((n) => new Option(n, n, false, n === chosen)));
+  $("cast-file").disabled = !names.length;
+}
+
+/** The 3D view shows the render service's scene.glb: fetch it again, now with (or without) the user's rig. */
+function reskin(docId) {
+  if (docId !== state.docId) return;
+  viewer.exportVersion = null;
+  scheduleSkinned();
+}
+
+async function refreshCast(docId = state.docId) {
+  if (!docId) return;
+  let cast = {};
+  try {
+    cast = await listCast(docId);
+  } catch (err) {
+    $("cast-status").textContent = String(err.message || err);
+    return;
+  }
+  if (docId !== state.docId) return;
+  $("cast-list").replaceChildren(
+    ...Object.keys(cast).map((name) => {
+      const item = document.createElement("li");
+      item.dataset.name = name;
+      item.append(`${name} `);
+      const remove = document.createElement("button");
+      remove.type = "button";
+      remove.textContent = "×";
+      remove.setAttribute("aria-label", `play ${name} with the built-in character again`);
+      remove.addEventListener("click", async () => {
+        await deleteCast(docId, name).catch(() => null);
+        $("cast-status").textContent = `${name}: built-in character`;
+        await refreshCast(docId);
+        reskin(docId);
+      });
+      item.append(remove);
+      return item;
+    }),
+  );
+}
+
+$("cast-file").addEventListener("change", async (e) => {
+  const file = e.target.files?.[0];
+  const name = $("cast-name").value;
+  const docId = state.docId;
+  e.target.value = "";
+  if (!file || !name || !docId) return;
+  const status = $("cast-status");
+  status.textContent = `${name}: reading ${file.name}…`;
+  try {
+    const answer = await putCast(docId, name, file);
+    status.textContent = `${name} plays ${file.name} (${answer.mapped} joints mapped); every export wears it`;
+    reskin(docId);
+  } catch (err) {
+    status.textContent = `${name}: ${err.message || err}`;
+  }
+  await refreshCast(docId);
+});
 for (const button of document.querySelectorAll("#exports button[data-format]")) {
   button.addEventListener("click", async () => {
     const format = button.dataset.format;
@@ -323,9 +397,10 @@ for (const button of document.querySelectorAll("#exports button[data-format]")) 
     };
     let message;
     try {
+      const cycles = format === "mp4" && $("export-cycles").checked ? { renderer: "blender" } : {};
       message =
         format === "mp4"
-          ? await exportVideo(docId, onProgress, abort.signal)
+          ? await exportVideo(docId, onProgress, abort.signal, cycles)
           : await downloadExport(docId, format, "", abort.signal);
     } catch (err) {
       message = String(err.message || err);

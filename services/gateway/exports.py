@@ -24,7 +24,9 @@ FORMATS: dict[str, str] = {
     "bvh": "application/octet-stream",
     "usd": "application/octet-stream",  # animation.usdc; the render worker needs usd-core
     "fbx": "application/octet-stream",  # animation.fbx; the render worker needs Blender's bpy
+    "zip": "application/zip",  # animation.zip: the MP4, the GLB and every character's BVH (as --export zip)
 }
+BUNDLED = ("mp4", "glb", "bvh")  # what the zip holds unless asked for more (usd, fbx)
 
 
 class ExportUnavailable(RuntimeError):
@@ -53,7 +55,15 @@ def current_result(session: Session) -> PipelineResult:
 
 
 def export_document(
-    session: Session, fmt: str, *, character: str = "", width: int = 640, height: int = 480
+    session: Session,
+    fmt: str,
+    *,
+    character: str = "",
+    width: int = 640,
+    height: int = 480,
+    renderer: str = "open3d",
+    samples: int = 0,
+    bundle: tuple[str, ...] = BUNDLED,
 ) -> tuple[bytes, str, str]:
     """Render or export the document's current animation.
 
@@ -63,6 +73,10 @@ def export_document(
             when the render worker lacks it).
         character: for BVH, the character to export ("" = the first one, "*" = every one, in a zip).
         width, height: video size in pixels (MP4).
+        renderer, samples: the MP4's renderer ("open3d", or "blender": Cycles, samples per pixel).
+        bundle: for "zip", the formats it holds (every character's BVH for "bvh").
+
+    The session's cast (the user's own characters, ``Session.cast``) is in every request.
 
     Returns:
         (file bytes, media type, file name).
@@ -90,13 +104,19 @@ def export_document(
     if fmt == "bvh" and not result.motions:
         why = result.unavailable.get("motion", "the text makes no character move yet")
         raise NothingToExport(f"no character motion to export as BVH: {why}")
+    video = {"width": width, "height": height, "renderer": renderer, "samples": samples}
+    if fmt == "zip":
+        return _bundle(session, result, bundle, video)
     if fmt == "bvh" and character == "*":
         return _every_bvh(session, result)
+    if fmt == "mp4":
+        return _call(session, result, fmt, **video)
     return _call(session, result, fmt, character=character, width=width, height=height)
 
 
 def _call(session: Session, result: PipelineResult, fmt: str, **options: object) -> tuple[bytes, str, str]:
-    request = export_request(result, fmt, **options)  # type: ignore[arg-type]
+    cast = list(session.cast.values())
+    request = export_request(result, fmt, cast=cast, **options)  # type: ignore[arg-type]
     try:
         reply = session.pipeline.backend.call(request)
     except StageUnavailable as exc:
@@ -104,6 +124,24 @@ def _call(session: Session, result: PipelineResult, fmt: str, **options: object)
     except StageFailed as exc:
         raise ExportFailed(exc.code, str(exc)) from exc
     return bytes(reply.data), str(reply.media_type), str(reply.filename)
+
+
+def _bundle(
+    session: Session, result: PipelineResult, formats: tuple[str, ...], video: dict[str, object]
+) -> tuple[bytes, str, str]:
+    """The asked files in one zip (animation.zip), every character's BVH for "bvh"."""
+    out = io.BytesIO()
+    with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as zf:
+        for fmt in [f for f in FORMATS if f in formats and f != "zip"]:
+            if fmt == "bvh":
+                for name in sorted(result.motions):
+                    data, _, filename = _call(session, result, "bvh", character=name)
+                    zf.writestr(filename, data)
+                continue
+            options = video if fmt == "mp4" else {"width": video["width"], "height": video["height"]}
+            data, _, filename = _call(session, result, fmt, **options)
+            zf.writestr(filename, data)
+    return out.getvalue(), "application/zip", "animation.zip"
 
 
 def _every_bvh(session: Session, result: PipelineResult) -> tuple[bytes, str, str]:

@@ -24,7 +24,7 @@ from typing import Any
 import msgspec
 
 from proto.common import ErrorCode, Header
-from proto.render import RenderReply, RenderRequest
+from proto.render import Renderer, RenderReply, RenderRequest
 from services.gateway.exports import ExportFailed, ExportUnavailable, NothingToExport, current_result
 from services.orchestrator.backend import StageFailed, StageUnavailable
 from services.orchestrator.exports import story_of
@@ -42,6 +42,8 @@ class VideoJob:
     doc_id: str
     width: int
     height: int
+    renderer: Renderer = "open3d"  # open3d (the preview's) or blender (Cycles)
+    samples: int = 0  # blender: samples per pixel (0 = 16)
     id: str = field(default_factory=lambda: secrets.token_hex(8))
     state: str = "running"  # running | done | failed | cancelled
     stage: str = "computing"  # computing | staging | rendering | joining
@@ -144,6 +146,9 @@ def render_video(session: Session, job: VideoJob) -> bytes:
         height=job.height,
         encoding="mp4",
         story=story_of(result),
+        renderer=job.renderer,
+        samples=job.samples,
+        cast=list(session.cast.values()),
     )
     # an empty range first: the render service stages the animation (kept for the chunks) and says its length
     first = _call(session, _with_range(base, 0, 0))

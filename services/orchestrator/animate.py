@@ -25,7 +25,7 @@ import msgspec
 
 from proto.common import ErrorCode
 from proto.fidelity import Check
-from proto.render import CastMember, ExportFormat, ExportReply
+from proto.render import CastMember, ExportFormat, ExportReply, Renderer
 from services.orchestrator.backend import Backend, InProcessBackend, StageFailed, StageUnavailable
 from services.orchestrator.budget import BUDGET_CODE, Budget
 from services.orchestrator.exports import export
@@ -37,6 +37,8 @@ MAX_INPUT_BYTES = 1_000_000
 FORMATS: tuple[ExportFormat, ...] = ("mp4", "glb", "bvh", "usd", "fbx")
 DEFAULT_EXPORTS: tuple[ExportFormat, ...] = ("mp4", "glb", "bvh")
 BUNDLE = "animation.zip"
+PREVIEW_DEADLINE_S = 300.0  # one stage call through the embedded bus (services.orchestrator.embedded)
+BLENDER_DEADLINE_S = 6 * 3600.0  # the Cycles render of a whole video is one call
 # what each optional format needs on the machine that renders: (importable module, how to get it)
 EXTRAS: dict[str, tuple[str, str]] = {
     "usd": ("pxr", "Pixar's usd-core: `make setup`, or `pip install usd-core`"),
@@ -63,19 +65,20 @@ def parse_exports(value: str) -> list[str]:
     return formats + (["zip"] if "zip" in asked else [])
 
 
-def missing_extras(formats: Sequence[str]) -> list[str]:
-    """One message per asked format whose optional package this machine lacks (the embedded render runs
-    here; a remote render worker answers for itself)."""
+def missing_extras(formats: Sequence[str], renderer: str = "open3d") -> list[str]:
+    """One message per asked format (and the Blender renderer) whose optional package this machine lacks
+    (the embedded render runs here; a remote render worker answers for itself)."""
+    asked = [(f"--export {fmt}", fmt) for fmt in formats if fmt in EXTRAS]
+    if renderer == "blender" and "mp4" in formats:
+        asked.append(("--renderer blender", "fbx"))  # the same Blender
     out = []
-    for fmt in formats:
-        if fmt not in EXTRAS:
-            continue
+    for what, fmt in asked:
         module, how = EXTRAS[fmt]
         chosen = os.environ.get("WANA_BLENDER_PYTHON", "") if fmt == "fbx" else ""
         if chosen and not Path(chosen).is_file():
-            out.append(f"--export {fmt} needs {how} (WANA_BLENDER_PYTHON={chosen} is not a file)")
+            out.append(f"{what} needs {how} (WANA_BLENDER_PYTHON={chosen} is not a file)")
         elif not chosen and importlib.util.find_spec(module) is None:  # found without importing it
-            out.append(f"--export {fmt} needs {how}")
+            out.append(f"{what} needs {how}")
     return out
 
 
@@ -106,12 +109,34 @@ def build_parser() -> argparse.ArgumentParser:
         "fbx (animation.fbx, needs Blender's bpy), zip (animation.zip: every file written and report.json)",
     )
     p.add_argument(
+        "--renderer",
+        choices=("open3d", "blender"),
+        default="open3d",
+        help="who draws animation.mp4: open3d (the fast preview, default) or blender (Blender's Cycles path "
+        "tracer on the CPU, needs bpy: the same shots, frames and size, soft shadows and bounce light; your "
+        "--cast characters wear their own mesh)",
+    )
+    p.add_argument(
+        "--samples",
+        type=int,
+        default=0,
+        metavar="N",
+        help="--renderer blender: Cycles samples per pixel (default 16; denoised with OpenImageDenoise)",
+    )
+    p.add_argument(
+        "--render-workers",
+        type=int,
+        default=0,
+        metavar="N",
+        help="processes rendering frame ranges of the video at once (default: as the free cores allow)",
+    )
+    p.add_argument(
         "--cast",
         action="append",
         default=[],
         metavar="NAME=FILE",
         help="play the story's character NAME with your own rigged humanoid (.glb, .vrm, or .fbx with Blender's "
-        "bpy); its joints are found by name (Mixamo, VRM, Unity and Unreal humanoids); the GLB and FBX wear it. "
+        "bpy); its joints are found by name (Mixamo, VRM, Unity and Unreal humanoids); every output wears it. "
         "Repeatable",
     )
     p.add_argument(
@@ -321,6 +346,9 @@ def write_exports(
     height: int = 480,
     formats: Sequence[str] = DEFAULT_EXPORTS,
     cast: Sequence[CastMember] = (),
+    renderer: Renderer = "open3d",
+    samples: int = 0,
+    render_workers: int = 0,
 ) -> dict[str, Path]:
     """The asked files (ExportRequests through the backend, as the gateway sends them: animation.mp4,
     scene.glb, one BVH per character, animation.usdc, animation.fbx), report.json with a "render" section,
@@ -335,9 +363,23 @@ def write_exports(
         if fmt not in formats:
             continue
         if fmt == "bvh":
-            replies += [export(backend, result, "bvh", character=name) for name in sorted(result.motions)]
+            replies += [
+                export(backend, result, "bvh", character=name, cast=cast) for name in sorted(result.motions)
+            ]
         else:
-            replies.append(export(backend, result, fmt, width=width, height=height, cast=cast))
+            replies.append(
+                export(
+                    backend,
+                    result,
+                    fmt,
+                    width=width,
+                    height=height,
+                    cast=cast,
+                    renderer=renderer,
+                    samples=samples,
+                    render_workers=render_workers,
+                )
+            )
     for reply in replies:
         paths[reply.filename] = out / reply.filename
         paths[reply.filename].write_bytes(reply.data)
@@ -353,6 +395,7 @@ def write_exports(
         "width": width,
         "height": height,
         "duration_s": n_frames / fps,
+        "renderer": renderer if video else "",
         "commands": [
             {"frame": c.frame, "kind": c.command.kind, "value": c.command.value, "target": c.command.target}
             for c in (video.commands if video else [])
@@ -410,7 +453,10 @@ def _unknown_names(cast: list[CastMember], characters: list[str]) -> list[str]:
 def main(argv: list[str]) -> int:
     args = build_parser().parse_args(argv)
     budget = budget_of(args)
-    missing = missing_extras(args.export)
+    missing = missing_extras(args.export, args.renderer)
+    if args.samples < 0 or args.render_workers < 0:
+        print("wana animate: --samples and --render-workers must be >= 0", file=sys.stderr)
+        return 2
     if missing:
         for why in missing:
             print(f"wana animate: {why}", file=sys.stderr)
@@ -437,7 +483,9 @@ def main(argv: list[str]) -> int:
         else:
             from services.orchestrator.embedded import Embedded
 
-            backend = stack.enter_context(Embedded())
+            # a Cycles video takes far longer than the preview's (seconds per frame, not frames per second)
+            deadline = BLENDER_DEADLINE_S if args.renderer == "blender" else PREVIEW_DEADLINE_S
+            backend = stack.enter_context(Embedded(deadline_s=deadline))
         orchestrator = Orchestrator(Path(tmp) / "sessions.db", backend, seed=args.seed, budget=budget)
         result = orchestrator.create(text, doc_id="story").compute(progress=tick)
         orchestrator.close()
@@ -469,6 +517,9 @@ def main(argv: list[str]) -> int:
                     height=args.height,
                     formats=args.export,
                     cast=cast,
+                    renderer=args.renderer,
+                    samples=args.samples,
+                    render_workers=args.render_workers,
                 )
             except (StageFailed, StageUnavailable) as exc:
                 result.unavailable["render"] = str(exc)

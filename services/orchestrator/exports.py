@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from proto.common import Header
-from proto.render import CastMember, ExportFormat, ExportReply, ExportRequest, StorySentence
+from proto.render import CastMember, ExportFormat, ExportReply, ExportRequest, Renderer, StorySentence
 from proto.ssg import Command
 from services.orchestrator.backend import Backend
 from services.orchestrator.result import PipelineResult
@@ -35,8 +35,12 @@ def export_request(
     width: int = 640,
     height: int = 480,
     cast: Sequence[CastMember] = (),
+    renderer: Renderer = "open3d",
+    samples: int = 0,
+    render_workers: int = 0,
 ) -> ExportRequest:
-    """The render service's request for one file of a result that has a scene.
+    """The render service's request for one file of a result that has a scene (``renderer``, ``samples``
+    and ``render_workers``: how the MP4 is rendered, services.render.handlers).
 
     Raises:
         ValueError: the result has no scene.
@@ -52,7 +56,10 @@ def export_request(
         width=width,
         height=height,
         story=story_of(result),
-        cast=list(cast) if fmt in ("glb", "fbx") else [],  # the formats that carry the user's meshes
+        cast=list(cast),  # every format shows the user's characters (services.render.cast_skin)
+        renderer=renderer if fmt == "mp4" else "open3d",
+        samples=samples if fmt == "mp4" else 0,
+        render_workers=render_workers if fmt == "mp4" else 0,
     )
 
 
@@ -65,8 +72,21 @@ def export(
     width: int = 640,
     height: int = 480,
     cast: Sequence[CastMember] = (),
+    renderer: Renderer = "open3d",
+    samples: int = 0,
+    render_workers: int = 0,
 ) -> ExportReply:
     """One file of the result from the render service (StageFailed / StageUnavailable as any stage call)."""
     return backend.call(
-        export_request(result, fmt, character=character, width=width, height=height, cast=cast)
+        export_request(
+            result,
+            fmt,
+            character=character,
+            width=width,
+            height=height,
+            cast=cast,
+            renderer=renderer,
+            samples=samples,
+            render_workers=render_workers,
+        )
     )

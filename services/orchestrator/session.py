@@ -14,6 +14,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from proto.render import CastMember
 from services.orchestrator.backend import Backend
 from services.orchestrator.budget import Budget
 from services.orchestrator.document import Document, TextChange
@@ -40,6 +41,9 @@ class Session:
     lock: threading.RLock = field(default_factory=threading.RLock)  # guards the document (edits)
     compute_lock: threading.Lock = field(default_factory=threading.Lock)  # one pipeline run at a time
     last: PipelineResult | None = None
+    # the user's own characters for this document's exports (story name -> rig), as `wana animate --cast`;
+    # held while the session is open, not persisted
+    cast: dict[str, CastMember] = field(default_factory=dict)
 
     @property
     def doc_id(self) -> str:

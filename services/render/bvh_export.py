@@ -12,6 +12,7 @@ import warnings
 from pathlib import Path
 
 from proto.motion_data import Motion
+from services.render.cast_gltf import CastCharacter
 from services.render.skinning import Rig
 from wana.domain.bvh import canonical_clip, format_bvh
 
@@ -22,8 +23,13 @@ def safe_filename(name: str) -> str:
     return stem or "character"
 
 
-def motion_bvh(motion: Motion) -> str:
-    """The BVH text of one character's motion (its own bone lengths as OFFSETs)."""
+def motion_bvh(motion: Motion, cast: CastCharacter | None = None) -> str:
+    """The BVH text of one character's motion (its own bone lengths as OFFSETs); with ``cast``, the user's
+    rig's own joint names, hierarchy and bones, the motion retargeted onto it (services.render.cast_skin)."""
+    if cast is not None:
+        from services.render.cast_skin import cast_clip
+
+        return format_bvh(cast_clip(cast, motion))
     rig = Rig.from_motion(motion)
     with warnings.catch_warnings():  # Euler angles at gimbal lock are still exact rotations
         warnings.simplefilter("ignore", UserWarning)

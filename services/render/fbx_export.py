@@ -19,13 +19,20 @@ from pathlib import Path
 
 SCRIPT = Path(__file__).with_name("bpy_fbx.py")
 TIMEOUT_S = 300
-MISSING = (
-    "an FBX export needs Blender as a Python module (bpy==5.0.1): run `make setup` (it installs the "
-    "'blender' extra) or `pip install bpy==5.0.1`, or point WANA_BLENDER_PYTHON at a Python that has bpy"
-)
 
 
-def blender_python() -> str:
+def missing_message(what: str) -> str:
+    """What to install when ``what`` (an FBX export, a Cycles render) finds no Blender."""
+    return (
+        f"{what} needs Blender as a Python module (bpy==5.0.1): run `make setup` (it installs the "
+        "'blender' extra) or `pip install bpy==5.0.1`, or point WANA_BLENDER_PYTHON at a Python that has bpy"
+    )
+
+
+MISSING = missing_message("an FBX export")
+
+
+def blender_python(missing: str = MISSING) -> str:
     """The interpreter that runs Blender.
 
     Raises:
@@ -34,10 +41,10 @@ def blender_python() -> str:
     chosen = os.environ.get("WANA_BLENDER_PYTHON", "")
     if chosen:
         if not Path(chosen).is_file():
-            raise ModuleNotFoundError(f"WANA_BLENDER_PYTHON={chosen} is not a file; {MISSING}")
+            raise ModuleNotFoundError(f"WANA_BLENDER_PYTHON={chosen} is not a file; {missing}")
         return chosen
     if importlib.util.find_spec("bpy") is None:  # looks the module up without loading it
-        raise ModuleNotFoundError(MISSING)
+        raise ModuleNotFoundError(missing)
     return sys.executable
 
 

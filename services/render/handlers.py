@@ -21,6 +21,7 @@ from proto.render import Caption, ExportReply, ExportRequest, RenderReply, Rende
 from services.render.bvh_export import motion_bvh, safe_filename
 from services.render.camera_checks import staged_checks
 from services.render.cast_gltf import CastCharacter, load_cast
+from services.render.cycles_render import DEFAULT_SAMPLES, CyclesJob, cycles_frames, render_mp4_cycles
 from services.render.director import shot_messages
 from services.render.fbx_export import glb_to_fbx
 from services.render.gltf_export import scene_glb
@@ -64,6 +65,7 @@ def _renderer_for(req: RenderRequest | ExportRequest, n_frames: int = 0) -> Fram
             req.height,
             n_frames,
             getattr(req, "show_captions", True),
+            getattr(req, "cast", []),
         ]
     )
     key = hashlib.sha256(key_src).hexdigest()
@@ -84,6 +86,7 @@ def _renderer_for(req: RenderRequest | ExportRequest, n_frames: int = 0) -> Fram
             n_frames=n_frames,
             width=req.width,
             height=req.height,
+            cast=_cast(req),
         )
     except (ValueError, KeyError) as exc:
         raise InvalidInput(str(exc)) from exc
@@ -107,17 +110,56 @@ def _encode_image(frame: np.ndarray, encoding: str) -> bytes:
     return buf.getvalue()
 
 
+def _cycles_job(
+    req: RenderRequest | ExportRequest, n_frames: int = 0, cast: dict[str, CastCharacter] | None = None
+) -> CyclesJob:
+    """The request staged for Blender's Cycles (the same staging, so the same frames and shots)."""
+    commands, captions = placed(req)
+    if not getattr(req, "show_captions", True):
+        captions = []
+    try:
+        return CyclesJob.build(
+            req.scene,
+            list(req.motions),
+            commands,
+            captions,
+            n_frames=n_frames,
+            width=req.width,
+            height=req.height,
+            samples=req.samples or DEFAULT_SAMPLES,
+            cast=cast,
+        )
+    except (ValueError, KeyError) as exc:
+        raise InvalidInput(str(exc)) from exc
+
+
+def _frames_of(req: RenderRequest):  # noqa: ANN202 - (n_frames, frames(start, end))
+    """The animation's length and a function that renders a range of it, with the request's renderer."""
+    if req.renderer == "blender":
+        job = _cycles_job(req, req.n_frames, cast=_cast(req))
+
+        def cycles(a: int, b: int):  # noqa: ANN202 - an iterator of frames
+            try:
+                yield from cycles_frames(job, a, b, workers=1)  # one worker, one range: one Blender
+            except ModuleNotFoundError as exc:  # this worker has no bpy
+                raise InvalidInput(str(exc)) from exc
+
+        return job.n_frames, cycles
+    r = _renderer_for(req, req.n_frames)
+    return r.n_frames, r.frames
+
+
 def handle_render(req: RenderRequest) -> RenderReply:
-    """Render frames [start_frame, end_frame) of the request's animation."""
+    """Render frames [start_frame, end_frame) of the request's animation (open3d, or Blender's Cycles)."""
     _check_size(req.width, req.height)
     if req.n_frames < 0:
         raise InvalidInput("n_frames must be >= 0")
     with _lock:
-        r = _renderer_for(req, req.n_frames)
+        n_frames, render = _frames_of(req)
         start = int(req.start_frame)
-        end = r.n_frames if req.end_frame < 0 else int(req.end_frame)
-        if not (0 <= start <= end <= r.n_frames):
-            raise InvalidInput(f"frame range [{start}, {end}) is outside the animation's [0, {r.n_frames})")
+        end = n_frames if req.end_frame < 0 else int(req.end_frame)
+        if not (0 <= start <= end <= n_frames):
+            raise InvalidInput(f"frame range [{start}, {end}) is outside the animation's [0, {n_frames})")
         if req.encoding == "raw" and (end - start) * req.width * req.height * 3 > MAX_REPLY_BYTES:
             raise InvalidInput(
                 f"{end - start} raw frames of {req.width}x{req.height} exceed the "
@@ -128,11 +170,11 @@ def handle_render(req: RenderRequest) -> RenderReply:
         if req.encoding == "mp4":
             buf = io.BytesIO()
             if end > start:
-                encode_mp4(r.frames(start, end), buf, fps=FPS)
+                encode_mp4(render(start, end), buf, fps=FPS)
             video = buf.getvalue()
         else:
             size = 0
-            for img in r.frames(start, end):
+            for img in render(start, end):
                 frames.append(_encode_image(img, req.encoding))
                 size += len(frames[-1])
                 if size > MAX_REPLY_BYTES:
@@ -144,7 +186,7 @@ def handle_render(req: RenderRequest) -> RenderReply:
             header=reply_header(req),
             start_frame=start,
             end_frame=end,
-            n_frames=r.n_frames,
+            n_frames=n_frames,
             width=req.width,
             height=req.height,
             fps=FPS,
@@ -154,7 +196,7 @@ def handle_render(req: RenderRequest) -> RenderReply:
         )
 
 
-def _cast(req: ExportRequest) -> dict[str, CastCharacter]:
+def _cast(req: RenderRequest | ExportRequest) -> dict[str, CastCharacter]:
     """The request's own characters, loaded (a file that cannot be used is the caller's error)."""
     try:
         return load_cast(list(req.cast))
@@ -190,7 +232,8 @@ def handle_export(req: ExportRequest) -> ExportReply:
             camera = stage.camera_track(req.width, req.height)
             try:
                 if req.format == "usd":
-                    data, filename = scene_usd(req.scene, list(req.motions), camera, FPS), "animation.usdc"
+                    usd = scene_usd(req.scene, list(req.motions), camera, FPS, cast=_cast(req))
+                    data, filename = usd, "animation.usdc"
                 else:
                     glb = scene_glb(
                         req.scene, list(req.motions), camera=camera, armature_nodes=True, cast=_cast(req)
@@ -228,7 +271,7 @@ def handle_export(req: ExportRequest) -> ExportReply:
                 format="bvh",
                 filename=f"{safe_filename(m.character)}.bvh",
                 media_type="application/octet-stream",
-                data=motion_bvh(m).encode(),
+                data=motion_bvh(m, _cast(req).get(m.character)).encode(),  # the user's rig when cast
             )
     except (ValueError, KeyError) as exc:
         if isinstance(exc, InvalidInput):
@@ -237,11 +280,22 @@ def handle_export(req: ExportRequest) -> ExportReply:
     _check_size(req.width, req.height)
     commands, captions = placed(req)
     with _lock:
-        r = _renderer_for(req)
-        # The captions name the action sentences; commands carry their sentence ids.
-        checks = staged_checks(r.staging, captions, width=req.width, height=req.height)
         buf = io.BytesIO()
-        render_mp4(r, buf)  # frame ranges in parallel render processes where cores are free
+        staged: Staging | None
+        if req.renderer == "blender":  # the user's cast wears its mesh, as in the GLB the frames come from
+            job = _cycles_job(req, cast=_cast(req))
+            staged, n_frames = job.staging, job.n_frames  # CyclesJob.build keeps the staging
+            try:
+                render_mp4_cycles(job, buf, workers=req.render_workers)  # frame ranges, one Blender each
+            except ModuleNotFoundError as exc:
+                raise InvalidInput(str(exc)) from exc
+        else:
+            r = _renderer_for(req)
+            staged, n_frames = r.staging, r.n_frames
+            render_mp4(r, buf, processes=req.render_workers)  # frame ranges in parallel render processes
+        assert staged is not None
+        # The captions name the action sentences; commands carry their sentence ids.
+        checks = staged_checks(staged, captions, width=req.width, height=req.height)
     if buf.getbuffer().nbytes > MAX_REPLY_BYTES:
         raise InvalidInput(
             "the video is larger than one reply may be; render it in chunks with RenderRequest"
@@ -252,11 +306,11 @@ def handle_export(req: ExportRequest) -> ExportReply:
         filename="animation.mp4",
         media_type="video/mp4",
         data=buf.getvalue(),
-        n_frames=r.n_frames,
+        n_frames=n_frames,
         commands=commands,
         captions=captions,
         checks=checks,
-        shots=shot_messages(r.staging.shots),
+        shots=shot_messages(staged.shots),
     )
 
 

@@ -14,8 +14,9 @@ import io
 import multiprocessing
 import os
 import pickle
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Mapping
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -41,6 +42,10 @@ from services.render.staging import Staging
 from services.render.timeline import caption_at, chunk_ranges
 from services.render.weather import background_for_render, grade, look_at, rain_segments, snow_points
 
+if TYPE_CHECKING:
+    from services.render.cast_gltf import CastCharacter
+    from services.render.cast_skin import CastBody
+
 
 class FrameRenderer:
     """Holds the GL canvas, the static scene and the rigs; renders frames by index.
@@ -53,6 +58,9 @@ class FrameRenderer:
         n_frames: animation length; 0 = the longest motion (at least 1 s), held until the last
             command has been on screen 1.5 s (timeline.video_frames).
         width, height: image size in pixels.
+        cast: story name -> the user's own character (services.render.cast_gltf): drawn with its mesh skinned
+            on its own joints (services.render.cast_skin), the motion retargeted as in the GLB; the camera
+            and the checks follow the story's motion as without it.
     """
 
     def __init__(
@@ -65,11 +73,18 @@ class FrameRenderer:
         n_frames: int = 0,
         width: int = 640,
         height: int = 480,
+        cast: Mapping[str, CastCharacter] | None = None,
     ) -> None:
         self.scene = scene
         self.width, self.height = int(width), int(height)
         self.staging = Staging.build(scene, motions, commands, n_frames)
         self.rigs = self.staging.rigs
+        self.bodies: dict[str, CastBody] = {}
+        if cast:
+            from services.render.cast_skin import CastBody
+
+            by_name = {m.character: m for m in motions}
+            self.bodies = {n: CastBody.build(c, by_name[n]) for n, c in cast.items() if n in by_name}
         self.n_frames = self.staging.n_frames
         self.camera_keys = self.staging.camera_keys
         self.weather_keys = self.staging.weather_keys
@@ -100,6 +115,10 @@ class FrameRenderer:
             if len(st.faces):
                 c.set_mesh("static", st.vertices, st.faces, st.colours[:, :3] / 255.0)
             for name, rig in self.rigs.items():
+                body = self.bodies.get(name)
+                if body is not None:
+                    c.set_mesh(f"char:{name}", body.rest_vertices, body.faces, body.colours)
+                    continue
                 ch = rig.character
                 c.set_mesh(
                     f"char:{name}",
@@ -146,7 +165,8 @@ class FrameRenderer:
             c.set_mesh("shadow:objects", sv, shadow_faces(self._objects.faces), np.tile(colour, (len(sv), 1)))
             self._shadow_look = key
         for name, verts in char_verts.items():
-            faces = self.rigs[name].character.faces.astype(np.int64)
+            body = self.bodies.get(name)
+            faces = body.faces if body is not None else self.rigs[name].character.faces.astype(np.int64)
             sv = project_to_floor(verts, look.sun, room)
             new = f"shadow:{name}" not in c.names()
             c.set_mesh(
@@ -161,8 +181,15 @@ class FrameRenderer:
         difference of the two pictures is the characters' silhouette, which the preview test compares)."""
         if not 0 <= frame < self.n_frames:
             raise ValueError(f"frame {frame} is outside the animation's [0, {self.n_frames})")
-        posed = {name: rig.vertices([frame])[0] for name, rig in self.rigs.items()}
+        posed = {name: v[0] for name, v in self._posed(np.array([frame])).items()}
         return self._draw(frame, posed, pose, hide_characters)
+
+    def _posed(self, frames: np.ndarray) -> dict[str, np.ndarray]:
+        """Each character's skinned vertices at the frames: (N, V, 3), the user's mesh where cast."""
+        return {
+            name: (self.bodies[name] if name in self.bodies else rig).vertices(frames)
+            for name, rig in self.rigs.items()
+        }
 
     def _draw(
         self, f: int, verts: dict[str, np.ndarray], pose: CameraPose | None = None, hide: bool = False
@@ -236,7 +263,7 @@ class FrameRenderer:
         block = 16  # skin a block of frames at once (vectorised), then draw them one by one
         for b0 in range(start, end, block):
             idx = np.arange(b0, min(b0 + block, end))
-            posed = {name: rig.vertices(idx) for name, rig in self.rigs.items()}
+            posed = self._posed(idx)
             for i, f in enumerate(idx):
                 img = self._draw(int(f), {name: v[i] for name, v in posed.items()})
                 if progress is not None:

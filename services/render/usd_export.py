@@ -13,13 +13,15 @@ Film pipelines interchange USD; this writes what they expect (metres, Y up, 30 t
       /Camera                     UsdGeom.Camera: the video's camera keyed per frame (transform, focal length)
 
 The skeleton's rest pose has identity rotations (as in the GLB), so a bind transform is the joint's rest
-position and the skinned mesh needs no geomBindTransform beyond identity. pxr is imported here only, so
+position and the skinned mesh needs no geomBindTransform beyond identity. A user's own character (``--cast``)
+has its own joints (names in jointNames), bind transforms from its file and one /Body per skinned primitive. pxr is imported here only, so
 the render service runs without ``usd-core`` until a USD export is asked for.
 """
 
 from __future__ import annotations
 
 import tempfile
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
@@ -27,6 +29,7 @@ import numpy as np
 
 from proto.motion_data import Motion
 from proto.scene import Scene
+from services.render.cast_gltf import CastCharacter
 from services.render.gltf_camera import ZFAR, ZNEAR, camera_rotations
 from services.render.scene_geometry import (
     ColouredMesh,
@@ -38,6 +41,7 @@ from services.render.scene_geometry import (
 )
 from services.render.skinning import Rig
 from services.render.staging import CameraTrack
+from wana.arrays import from_wire
 from wana.assets.characters import EXPRESSIONS
 from wana.domain.skeleton import JOINT_NAMES, N_JOINTS, PARENTS
 
@@ -171,6 +175,100 @@ def _add_character(stage: Any, root: str, rig: Rig) -> None:
                 visibility.Set(UsdGeom.Tokens.inherited if rig.present[f] else UsdGeom.Tokens.invisible, f)
 
 
+def _trs(m: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(T, J, 4, 4) matrices without shear as translations (T, J, 3), rotations (T, J, 4) x, y, z, w and
+    scales (T, J, 3)."""
+    from scipy.spatial.transform import Rotation
+
+    scale = np.linalg.norm(m[..., :3, :3], axis=-2)
+    rot = m[..., :3, :3] / np.maximum(scale[..., None, :], 1e-12)
+    quats = Rotation.from_matrix(rot.reshape(-1, 3, 3)).as_quat().reshape(*m.shape[:-2], 4)
+    return m[..., :3, 3], quats, scale
+
+
+def _add_cast_character(stage: Any, root: str, name: str, cast: CastCharacter, motion: Motion) -> None:
+    """The user's own character (services.render.cast_gltf): its joints (names kept as jointNames, paths made
+    of valid identifiers, parents first as UsdSkel wants), the retargeted motion, one skinned mesh per
+    primitive bound as glTF binds it (skinning in world space: the rig's base matrix is in the root joints)."""
+    from pxr import Gf, Tf
+
+    from services.render.cast_skin import posed_local, vertex_colours
+    from wana.cast.glb_rig import topological
+
+    _, _, _, UsdGeom, UsdSkel, Vt = _pxr()
+    rig = cast.rig
+    order = topological(rig.parents)  # USD joint k is rig joint order[k]
+    index = {j: k for k, j in enumerate(order)}
+    paths: dict[int, str] = {}
+    siblings: dict[str, set[str]] = {}
+    for j in order:
+        p = int(rig.parents[j])
+        above = paths[p] if p >= 0 else ""
+        leaf = _unique(Tf.MakeValidIdentifier(rig.names[j]), siblings.setdefault(above, set()))
+        paths[j] = f"{above}/{leaf}" if above else leaf
+    joints = [paths[j] for j in order]
+    skel_root = UsdSkel.Root.Define(stage, root)
+    skel_root.GetPrim().SetDisplayName(name)
+    skel = UsdSkel.Skeleton.Define(stage, f"{root}/Skeleton")
+    skel.CreateJointsAttr(joints)
+    skel.CreateJointNamesAttr([rig.names[j] for j in order])
+    rest = rig.local_matrices()
+    roots = rig.parents < 0
+    rest[roots] = rig.base @ rest[roots]
+    bind = {j: np.linalg.inv(skin.inverse_bind[k]) for skin in rig.skins for k, j in enumerate(skin.joints)}
+    world_rest = rig.rest_world()
+
+    def mats(ms: list[np.ndarray]) -> Any:
+        return Vt.Matrix4dArray([Gf.Matrix4d(*(float(x) for x in m.T.reshape(-1))) for m in ms])
+
+    skel.CreateRestTransformsAttr(mats([rest[j] for j in order]))
+    skel.CreateBindTransformsAttr(mats([bind.get(j, world_rest[j]) for j in order]))
+    local = posed_local(cast, motion, off_stage_scale=False)
+    local[:, roots] = rig.base[None] @ local[:, roots]
+    translations, rotations, scales = _trs(local[:, order])
+    anim = UsdSkel.Animation.Define(stage, f"{root}/Anim")
+    anim.CreateJointsAttr(joints)
+    t_attr, r_attr, s_attr = (
+        anim.CreateTranslationsAttr(),
+        anim.CreateRotationsAttr(),
+        anim.CreateScalesAttr(),
+    )
+    for f in range(local.shape[0]):
+        t_attr.Set(Vt.Vec3fArray.FromNumpy(np.ascontiguousarray(translations[f], dtype=np.float32)), f)
+        r_attr.Set(_quats(rotations[f]), f)
+        s_attr.Set(Vt.Vec3hArray.FromNumpy(np.ascontiguousarray(scales[f], dtype=np.float16)), f)
+    UsdSkel.BindingAPI.Apply(skel.GetPrim()).CreateAnimationSourceRel().SetTargets([anim.GetPath()])
+    for k, prim in enumerate(rig.primitives):
+        skin = rig.skins[prim.skin]
+        mesh = _mesh(
+            stage,
+            f"{root}/Body" if k == 0 else f"{root}/Body_{k}",
+            ColouredMesh(
+                name=name,
+                vertices=prim.positions.astype(np.float64),
+                faces=prim.indices.reshape(-1, 3).astype(np.int64),
+                colours=np.round(vertex_colours(prim) * 255.0).astype(np.uint8),
+            ),
+        )
+        binding = UsdSkel.BindingAPI.Apply(mesh.GetPrim())
+        binding.CreateSkeletonRel().SetTargets([skel.GetPath()])
+        to_skel = np.array([index[int(j)] for j in skin.joints], dtype=np.int32)
+        weights = prim.weights.astype(np.float32)
+        weights = weights / np.maximum(weights.sum(axis=1, keepdims=True), 1e-9)
+        binding.CreateJointIndicesPrimvar(False, 4).Set(
+            Vt.IntArray.FromNumpy(np.where(weights > 0, to_skel[prim.joints.astype(np.int64)], 0).reshape(-1))
+        )
+        binding.CreateJointWeightsPrimvar(False, 4).Set(Vt.FloatArray.FromNumpy(weights.reshape(-1)))
+        binding.CreateGeomBindTransformAttr(_matrix(np.zeros(3)))
+    if motion.present is not None:
+        present = from_wire(motion.present).astype(bool)
+        if len(present) == local.shape[0] and not present.all():
+            visibility = skel_root.CreateVisibilityAttr()
+            for f in range(len(present)):
+                if f == 0 or present[f] != present[f - 1]:
+                    visibility.Set(UsdGeom.Tokens.inherited if present[f] else UsdGeom.Tokens.invisible, f)
+
+
 def _add_props(stage: Any, scene: Scene, motions: list[Motion], n_frames: int) -> None:
     Gf, _, _, UsdGeom, _, _ = _pxr()
     held = held_ids(motions)
@@ -224,9 +322,14 @@ def _add_camera(stage: Any, track: CameraTrack) -> None:
 
 
 def build_stage(
-    scene: Scene, motions: list[Motion], camera: CameraTrack | None = None, fps: float = 30.0
+    scene: Scene,
+    motions: list[Motion],
+    camera: CameraTrack | None = None,
+    fps: float = 30.0,
+    cast: Mapping[str, CastCharacter] | None = None,
 ) -> Any:
-    """The in-memory ``Usd.Stage`` of the animation (layout in the module docstring).
+    """The in-memory ``Usd.Stage`` of the animation (layout in the module docstring); ``cast`` characters
+    are the user's own skeleton and mesh (``_add_cast_character``).
 
     Raises:
         ModuleNotFoundError: usd-core is not installed (the message says how to install it).
@@ -250,8 +353,13 @@ def build_stage(
         if len(mesh.faces):
             _mesh(stage, f"/World/Room/{_unique(mesh.name, room_taken)}", mesh)
     _add_props(stage, scene, motions, max([r.n_frames for r in rigs], default=0))
+    by_name = {m.character: m for m in motions}
     for rig in rigs:
-        _add_character(stage, f"/World/{_unique(rig.name or rig.character.name, taken)}", rig)
+        path = f"/World/{_unique(rig.name or rig.character.name, taken)}"
+        if cast and rig.name in cast:
+            _add_cast_character(stage, path, rig.name, cast[rig.name], by_name[rig.name])
+        else:
+            _add_character(stage, path, rig)
     if camera is not None:
         _add_camera(stage, camera)
     return stage
@@ -263,9 +371,10 @@ def scene_usd(
     camera: CameraTrack | None = None,
     fps: float = 30.0,
     suffix: str = ".usdc",
+    cast: Mapping[str, CastCharacter] | None = None,
 ) -> bytes:
     """The bytes of the stage as a USD file: binary crate for ".usdc", text for ".usda"."""
-    stage = build_stage(scene, motions, camera, fps)
+    stage = build_stage(scene, motions, camera, fps, cast)
     with tempfile.TemporaryDirectory(prefix="wana-usd-") as tmp:
         path = Path(tmp) / f"animation{suffix}"
         stage.GetRootLayer().Export(str(path))

@@ -100,3 +100,16 @@ def test_an_unknown_export_is_a_usage_error(tmp_path):
     story.write_text(STORY)
     proc = _animate(story, tmp_path / "out", "--export", "mp4,obj")
     assert proc.returncode == 2 and "unknown export obj" in proc.stderr
+
+
+def test_the_blender_renderer_without_blender_is_refused_before_any_work(tmp_path):
+    story = tmp_path / "story.txt"
+    story.write_text(STORY)
+    env = {**os.environ, "WANA_BLENDER_PYTHON": str(tmp_path / "no-blender-here")}
+    proc = _animate(story, tmp_path / "out", "--renderer", "blender", env=env)
+    assert proc.returncode == 2
+    assert "--renderer blender needs Blender" in proc.stderr
+    assert not (tmp_path / "out").exists()
+    # without the MP4 nothing is rendered, so nothing needs Blender
+    ok = _animate(story, tmp_path / "glb", "--renderer", "blender", "--export", "glb", env=env)
+    assert ok.returncode == 0, ok.stderr[-2000:]

@@ -32,7 +32,11 @@ def _animate(story, out, *extra: str) -> subprocess.CompletedProcess:
             "--no-progress",
             "--in-process",
             "--export",
-            "glb",
+            "glb,bvh,mp4",
+            "--width",
+            "96",
+            "--height",
+            "72",
             *extra,
         ],
         capture_output=True,
@@ -89,3 +93,19 @@ def test_the_story_checks_are_those_of_the_built_in_cast(runs):
 
     assert checks(own) == checks(plain)
     assert any(s["checks"] for s in own["sentences"])
+
+
+def test_the_bvh_and_the_video_wear_the_users_rigs_too(runs):
+    from services.render.video import decode_frames, probe
+    from wana.domain.bvh import read_bvh
+
+    assert read_bvh(runs / "own" / "Eve.bvh").joint_names[0] == "mixamorig:Hips"
+    assert "LeftHandIndex2" in read_bvh(runs / "own" / "Tom.bvh").joint_names
+    assert read_bvh(runs / "plain" / "Eve.bvh").joint_names[0] == "Hips"
+    own, plain = runs / "own" / "animation.mp4", runs / "plain" / "animation.mp4"
+    assert probe(own)["frames"] == probe(plain)["frames"]
+    a, b = decode_frames(own), decode_frames(plain)
+    differ = [
+        i for i in range(0, len(a), 15) if abs(a[i].astype(int) - b[i].astype(int)).sum(axis=2).max() > 60
+    ]
+    assert len(differ) > len(range(0, len(a), 15)) // 2  # the bodies differ wherever a character is in view

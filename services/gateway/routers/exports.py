@@ -9,6 +9,7 @@ from fastapi import APIRouter, Query, Request, Response
 from starlette.concurrency import run_in_threadpool
 
 from proto.common import ErrorCode
+from proto.render import CastMember
 from services.gateway.deps import OrchestratorDep, error
 from services.gateway.exports import (
     FORMATS,
@@ -25,7 +26,8 @@ router = APIRouter(prefix="/api/documents", tags=["exports"])
 
 @router.get(
     "/{doc_id}/export/{fmt}",
-    summary="Download the animation as MP4, USD or FBX, the scene as animated GLB, or a character's motion as BVH",
+    summary="Download the animation as MP4, USD or FBX, the scene as animated GLB, a character's motion as BVH, "
+    "or several of them as a zip",
     responses={
         200: {"content": {m: {} for m in [*FORMATS.values(), "application/zip"]}},
         409: {"description": "nothing to export yet (no scene, or no motion for BVH)"},
@@ -36,21 +38,40 @@ router = APIRouter(prefix="/api/documents", tags=["exports"])
 )
 async def export(
     doc_id: str,
-    fmt: Literal["mp4", "glb", "bvh", "usd", "fbx"],
+    fmt: Literal["mp4", "glb", "bvh", "usd", "fbx", "zip"],
     orch: OrchestratorDep,
     character: str = Query(
         "", max_length=100, description="BVH: which character ('' = the first, '*' = every one, as a zip)"
     ),
     width: int = Query(640, ge=16, le=2048, description="MP4: width in pixels"),
     height: int = Query(480, ge=16, le=2048, description="MP4: height in pixels"),
+    renderer: Literal["open3d", "blender"] = Query(
+        "open3d", description="MP4: open3d (the preview) or blender (Cycles on the render worker's CPU)"
+    ),
+    samples: int = Query(0, ge=0, le=4096, description="MP4 with blender: samples per pixel (0 = 16)"),
+    formats: str = Query(
+        "mp4,glb,bvh", max_length=40, description="zip: the files it holds (mp4, glb, bvh, usd, fbx)"
+    ),
 ) -> Response:
     try:
         session = await run_in_threadpool(orch.open, doc_id)
     except DocumentNotFound:
         raise error(404, ErrorCode.INVALID_INPUT, f"no document {doc_id!r}") from None
     try:
+        bundle = tuple(f.strip() for f in formats.split(",") if f.strip())
+        unknown = [f for f in bundle if f not in FORMATS or f == "zip"]
+        if unknown:
+            raise error(422, ErrorCode.INVALID_INPUT, f"a zip cannot hold {', '.join(unknown)}")
         data, media_type, filename = await run_in_threadpool(
-            export_document, session, fmt, character=character, width=width, height=height
+            export_document,
+            session,
+            fmt,
+            character=character,
+            width=width,
+            height=height,
+            renderer=renderer,
+            samples=samples,
+            bundle=bundle,
         )
     except ExportUnavailable as exc:
         raise error(503, ErrorCode.UNAVAILABLE, str(exc)) from None
@@ -91,12 +112,16 @@ async def start_video_job(
     orch: OrchestratorDep,
     width: int = Query(640, ge=16, le=2048, description="width in pixels"),
     height: int = Query(480, ge=16, le=2048, description="height in pixels"),
+    renderer: Literal["open3d", "blender"] = Query(
+        "open3d", description="the MP4's renderer: open3d (the preview's) or blender (Cycles, final quality)"
+    ),
+    samples: int = Query(0, ge=0, le=4096, description="with blender: samples per pixel (0 = 16)"),
 ) -> dict[str, object]:
     try:
         session = await run_in_threadpool(orch.open, doc_id)
     except DocumentNotFound:
         raise error(404, ErrorCode.INVALID_INPUT, f"no document {doc_id!r}") from None
-    job = _jobs(request).add(VideoJob(doc_id=doc_id, width=width, height=height))
+    job = _jobs(request).add(VideoJob(doc_id=doc_id, width=width, height=height, renderer=renderer, samples=samples))
     task = asyncio.create_task(run_in_threadpool(run_job, session, job))
     _running.add(task)
     task.add_done_callback(_running.discard)
@@ -132,3 +157,53 @@ async def video_job_file(doc_id: str, job_id: str, request: Request) -> Response
         media_type="video/mp4",
         headers={"Content-Disposition": 'attachment; filename="animation.mp4"'},
     )
+
+
+MAX_CAST_BYTES = 25 * 1024 * 1024  # under the bus's frame cap with the rest of an export request
+
+
+@router.get("/{doc_id}/cast", summary="The document's own characters: story name -> file size and joints")
+async def list_cast(doc_id: str, orch: OrchestratorDep) -> dict[str, dict[str, int]]:
+    session = await _session(orch, doc_id)
+    return {
+        name: {"bytes": len(m.glb), "mapped": len(m.joint_map)} for name, m in sorted(session.cast.items())
+    }
+
+
+@router.put(
+    "/{doc_id}/cast/{name}",
+    summary="Play the story character NAME with your own rigged humanoid (the request body: a .glb or .vrm)",
+    responses={422: {"description": "not a GLB/VRM, or a rig whose joints cannot be mapped (named)"}},
+)
+async def put_cast(doc_id: str, name: str, request: Request, orch: OrchestratorDep) -> dict[str, int]:
+    from wana.cast import CastError, map_joints, read_rig
+
+    session = await _session(orch, doc_id)
+    data = await request.body()
+    if not name.strip() or len(name) > 100:
+        raise error(422, ErrorCode.INVALID_INPUT, "a cast name is 1..100 characters")
+    if len(data) > MAX_CAST_BYTES:
+        raise error(422, ErrorCode.INVALID_INPUT, f"a character file may have at most {MAX_CAST_BYTES} bytes")
+    try:
+        rig = await run_in_threadpool(read_rig, data, f"the character for {name}")
+        joints = map_joints(rig, None, f"the character for {name}")
+    except CastError as exc:
+        raise error(422, ErrorCode.INVALID_INPUT, str(exc)) from None
+    with session.lock:
+        session.cast[name] = CastMember(name=name, glb=data)
+    return {"bytes": len(data), "joints": rig.n_joints, "mapped": len(joints)}
+
+
+@router.delete("/{doc_id}/cast/{name}", summary="Play NAME with the built-in character again")
+async def delete_cast(doc_id: str, name: str, orch: OrchestratorDep) -> dict[str, bool]:
+    session = await _session(orch, doc_id)
+    with session.lock:
+        removed = session.cast.pop(name, None) is not None
+    return {"removed": removed}
+
+
+async def _session(orch: OrchestratorDep, doc_id: str):  # noqa: ANN202 - a Session
+    try:
+        return await run_in_threadpool(orch.open, doc_id)
+    except DocumentNotFound:
+        raise error(404, ErrorCode.INVALID_INPUT, f"no document {doc_id!r}") from None
