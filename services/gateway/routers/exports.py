@@ -121,7 +121,9 @@ async def start_video_job(
         session = await run_in_threadpool(orch.open, doc_id)
     except DocumentNotFound:
         raise error(404, ErrorCode.INVALID_INPUT, f"no document {doc_id!r}") from None
-    job = _jobs(request).add(VideoJob(doc_id=doc_id, width=width, height=height, renderer=renderer, samples=samples))
+    job = _jobs(request).add(
+        VideoJob(doc_id=doc_id, width=width, height=height, renderer=renderer, samples=samples)
+    )
     task = asyncio.create_task(run_in_threadpool(run_job, session, job))
     _running.add(task)
     task.add_done_callback(_running.discard)
