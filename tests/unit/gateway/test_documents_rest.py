@@ -18,7 +18,7 @@ def test_create_then_get_returns_the_text_version_sentences_and_export_links(gat
     got = gateway.http.get(f"/api/documents/{doc['doc_id']}").json()
     assert got["text"] == "A desk$. Eve walks." and got["version"] == 0 and got["title"] == "office"
     assert [(s["start"], s["end"]) for s in got["sentences"]] == [(0, 8), (9, 19)]
-    assert set(got["exports"]) == {"mp4", "glb", "bvh", "usd", "fbx"}
+    assert set(got["exports"]) == {"mp4", "glb", "bvh", "usd", "fbx", "zip"}
     assert got["live"] == f"/api/documents/{doc['doc_id']}/live"
 
 
