@@ -312,6 +312,9 @@ def contact(
         return None, {}
     frames = window_frames(act)
     if clip.object == "person":
+        hugged = _held_instead(act, world, bodies)
+        if hugged is not None:  # "picks up the teddy bear and hugs it": the arms round the thing held
+            return _in_arms(act, hugged, frames, props.get(who, ())), {}
         return _touch_person(act, body, bodies, frames), {}
     candidates, word = _candidates(act, world, set(bodies))
     if not candidates and clip.object in HELD and names_own_body(act):
@@ -374,6 +377,34 @@ def contact(
             reason=f"{who}'s {joint_words(list(got.distance))} on the {name} ({shares[worst]:.0%} of the frames within 5 cm)",
         ),
         touching,
+    )
+
+
+def _held_instead(act: Act, world: World, bodies: Mapping[str, Body]) -> PlacedObject | None:
+    """The thing a person-to-person action is done to instead of a person ("hugs the teddy bear"): a named
+    object of the room, not a character, that a hand can pick up; None otherwise."""
+    ref = act.node.target or act.node.destination
+    if not ref or ref in bodies or is_body_part(ref):
+        return None
+    return next((o for o in world.find(ref) if "pick_up" in world.contact_points(o)), None)
+
+
+def _in_arms(act: Act, placed: PlacedObject, frames: range, tracks: Sequence[PropTrack]) -> Check:
+    """Whether the thing is in the actor's hands (a PropTrack of it) on at least half the action's frames."""
+    who, name = act.character, display(placed.id)
+    fr = np.asarray(frames)
+    held = carried(tracks, placed.id, fr)
+    share = float(np.mean(held)) if len(fr) else 0.0
+    if share < CONTACT_SHARE:
+        return Check(
+            name="contact",
+            character=who,
+            ok=False,
+            reason=f"the {name} is not in {who}'s arms: held on {share:.0%} of the frames (needs half)",
+            frames=frame_list(fr[~held]),
+        )
+    return Check(
+        name="contact", character=who, ok=True, reason=f"{who} holds the {name} ({share:.0%} of the frames)"
     )
 
 

@@ -272,3 +272,30 @@ def test_a_plank_is_still_what_is_hammered_not_the_hammer(make):
     plank = PlacedObject(id="wood_plank", category="wood_plank", position=(0.0, 0.0, 0.0))
     contact = _contact(make, plank, "hammer", "hammer", "hammer", held=True)
     assert not contact.ok and "empty hand" in contact.reason
+
+
+def test_hugging_the_teddy_bear_held_in_the_hands_is_contact_and_one_left_on_the_bed_is_not(make):
+    """ "Lily picks up the teddy bear and hugs it": no person is meant (the check said "nobody to hug")."""
+    import msgspec
+
+    from proto.motion_data import PropTrack
+    from wana.arrays import to_wire
+
+    teddy = PlacedObject(id="teddy_bear", category="teddy_bear", position=(1.0, 0.5, 1.0))
+    frames = round(clip_needs("hug").duration_s * 30)
+    lily = make.motion("Lily", make.still(0.0, 0.95, 0.0, frames), [("hug", 0, frames, "s1", 0)])
+    graphs = {"s1": make.action_graph("s1", "Lily", "hug", "hug", target="teddy_bear")}
+
+    def contact(motion) -> Check:
+        checks = story_checks([("s1", "action")], graphs, make.scene(teddy), {"Lily": motion})["s1"]
+        return next(c for c in checks if c.name == "contact")
+
+    left = contact(lily)
+    assert not left.ok and left.reason.startswith("the teddy bear is not in Lily's arms")
+    track = PropTrack(
+        object_id="teddy_bear", joint="RightHand", start_frame=0, end_frame=frames,
+        position=to_wire(np.zeros((frames, 3), np.float32)),
+        rotation=to_wire(np.tile(np.array([0, 0, 0, 1], np.float32), (frames, 1))),
+    )  # fmt: skip
+    held = contact(msgspec.structs.replace(lily, props=[track]))
+    assert held.ok, held.reason
