@@ -447,9 +447,11 @@ def animate(
     tick: Callable[[str, int, int], None],
 ) -> Animated:
     """Drafts on the composed layout, the layout optimised around each interaction, then the final motion."""
-    scene, provided = provide(scene, graphs, sentences, ctx.seed)  # props named only in action sentences
     scene, added = furnish(ctx, scene, graphs, sentences)  # a chair where a sit has no free seat
     scene = with_door(scene)  # furnishing composes the room again, without the door the scene stage added
+    # props named only in action sentences, after furnishing (which composes the room again from the scene
+    # sentences and so dropped what was added before it: the bag "put on the teacher's desk")
+    scene, provided = provide(scene, graphs, sentences, ctx.seed)
     characters = aimed(characters_of(graphs, [s.id for s in sentences]), scene)
     added = [*provided, *added]
     looks, scene = scene, geometry_view(scene)  # the nodes below read shapes, not paint

@@ -178,3 +178,17 @@ def msgspec_replace(obj: PlacedObject, **kw: object) -> PlacedObject:
     import msgspec
 
     return msgspec.structs.replace(obj, **kw)
+
+
+def test_a_prop_added_for_an_action_stays_when_a_chair_is_added_too():
+    """solo-classroom-10: the chair added for "sits behind her desk" composed the room again and lost the bag
+    added for "puts her bag on the teacher's desk" (its I202 said it was there; the check found none)."""
+    result = _story(
+        "In the classroom there is a teacher's desk$.\nMs Lee enters the classroom.\n"
+        "She puts her bag on the teacher's desk.\nMs Lee sits behind her desk.\n"
+    )
+    codes = {d.code for ds in result.diagnostics.values() for d in ds}
+    assert {"I201", "I202"} <= codes  # a chair and the bag added
+    bags = [o for o in result.scene.objects if o.category == "handbag"]
+    assert len(bags) == 1 and bags[0].support == "teacher_desk"
+    assert any(o.category == "chair" for o in result.scene.objects)
