@@ -177,12 +177,29 @@ def _mount(category: str) -> str:
     return info.mount if info is not None else ""
 
 
-def _holdable(world: World, placed: PlacedObject) -> bool:
-    """A tool, or a small thing that rests on a surface (a cup, a book): not a plank or a stand microphone."""
+def _holdable(world: World, placed: PlacedObject, tool: bool = False) -> bool:
+    """A tool, or a small thing that rests on a surface (a cup, a book): not a plank or a stand microphone.
+
+    For an action that is no tool use, also anything the catalog lets a hand pick up (a "pick_up" point):
+    the dumbbell lifted from the floor, the guitar played in the arms (the motion planner takes exactly
+    those into the hand; the check read them as "nothing in the room to lift with").
+    """
     if "tool" in _hypernyms(placed.category):
         return True
     b = world_bounds(placed)
-    return _mount(placed.category) == "surface" and float(np.max(b[1] - b[0])) <= HOLDABLE_M
+    if _mount(placed.category) == "surface" and float(np.max(b[1] - b[0])) <= HOLDABLE_M:
+        return True
+    return not tool and "pick_up" in world.contact_points(placed)
+
+
+def _fixed_for(world: World, meant: set[str]) -> list[PlacedObject]:
+    """Objects that stay put and offer the held action's own point where the hand goes (the microphone on its
+    stand: one sings into it with the hand on it, it is not taken off the stand)."""
+    return [
+        o
+        for o in world.scene.objects
+        if meant & set(world.contact_points(o)) and "pick_up" not in world.contact_points(o)
+    ]
 
 
 # The actor's own body named as the object ("snaps his fingers", "washes her hands", "checks his watch"): no
@@ -218,6 +235,7 @@ def _candidates(act: Act, world: World, characters: set[str]) -> tuple[list[Plac
     clip = clip_needs(act.node.action)
     action = act.node.action
     held = clip is not None and clip.object in HELD
+    tool = clip is not None and clip.object == "tool"
     meant = {action, action.split("_")[0]}
     missing = ""  # a named object the room lacks ("drinks from the cup" with no cup)
     for ref in (act.node.instrument, act.node.target, act.node.destination):
@@ -225,7 +243,9 @@ def _candidates(act: Act, world: World, characters: set[str]) -> tuple[list[Plac
             found = world.find(ref)
             if not held:
                 return found, ref
-            tools = [o for o in found if meant & set(world.contact_points(o)) and _holdable(world, o)]
+            tools = [o for o in found if meant & set(world.contact_points(o)) and _holdable(world, o, tool)]
+            if not tools and not tool:  # the microphone on its stand: the hand on its own point
+                tools = [o for o in found if o in _fixed_for(world, meant)]
             if tools or (not found and ref == act.node.instrument):  # the tool it names ("with a hammer")
                 return tools, ref
             kind = base_id(ref)  # a held thing the room lacks (a cup), not a surface worked on (the floor)
@@ -235,8 +255,12 @@ def _candidates(act: Act, world: World, characters: set[str]) -> tuple[list[Plac
         return [], ""
     if held:
         made_for = [
-            o for o in world.scene.objects if meant & set(world.contact_points(o)) and _holdable(world, o)
+            o
+            for o in world.scene.objects
+            if meant & set(world.contact_points(o)) and _holdable(world, o, tool)
         ]
+        if not made_for and not tool:
+            made_for = _fixed_for(world, meant)
         return made_for, "" if made_for else missing
     meant = {action, *PREFERRED_POINTS.get(clip.object, ())} - {"touch", "pick_up"}
     return [o for o in world.scene.objects if meant & set(world.contact_points(o))], ""
@@ -288,6 +312,9 @@ def contact(
         return None, {}
     frames = window_frames(act)
     if clip.object == "person":
+        hugged = _held_instead(act, world, bodies)
+        if hugged is not None:  # "picks up the teddy bear and hugs it": the arms round the thing held
+            return _in_arms(act, hugged, frames, props.get(who, ())), {}
         return _touch_person(act, body, bodies, frames), {}
     candidates, word = _candidates(act, world, set(bodies))
     if not candidates and clip.object in HELD and names_own_body(act):
@@ -350,6 +377,34 @@ def contact(
             reason=f"{who}'s {joint_words(list(got.distance))} on the {name} ({shares[worst]:.0%} of the frames within 5 cm)",
         ),
         touching,
+    )
+
+
+def _held_instead(act: Act, world: World, bodies: Mapping[str, Body]) -> PlacedObject | None:
+    """The thing a person-to-person action is done to instead of a person ("hugs the teddy bear"): a named
+    object of the room, not a character, that a hand can pick up; None otherwise."""
+    ref = act.node.target or act.node.destination
+    if not ref or ref in bodies or is_body_part(ref):
+        return None
+    return next((o for o in world.find(ref) if "pick_up" in world.contact_points(o)), None)
+
+
+def _in_arms(act: Act, placed: PlacedObject, frames: range, tracks: Sequence[PropTrack]) -> Check:
+    """Whether the thing is in the actor's hands (a PropTrack of it) on at least half the action's frames."""
+    who, name = act.character, display(placed.id)
+    fr = np.asarray(frames)
+    held = carried(tracks, placed.id, fr)
+    share = float(np.mean(held)) if len(fr) else 0.0
+    if share < CONTACT_SHARE:
+        return Check(
+            name="contact",
+            character=who,
+            ok=False,
+            reason=f"the {name} is not in {who}'s arms: held on {share:.0%} of the frames (needs half)",
+            frames=frame_list(fr[~held]),
+        )
+    return Check(
+        name="contact", character=who, ok=True, reason=f"{who} holds the {name} ({share:.0%} of the frames)"
     )
 
 

@@ -30,7 +30,7 @@ from services.orchestrator.backend import StageFailed
 from services.orchestrator.document import Sentence
 from services.orchestrator.slotting import Slotting, matched
 from services.orchestrator.stages import StageContext, content_of
-from services.orchestrator.stages.props import made_for, provide
+from services.orchestrator.stages.props import aimed, made_for, provide
 from services.orchestrator.stages.scene import keep_relations
 from services.orchestrator.stages.seats import furnish
 from services.orchestrator.stages.social import fit_cast, frame_count, paired_actions
@@ -447,10 +447,12 @@ def animate(
     tick: Callable[[str, int, int], None],
 ) -> Animated:
     """Drafts on the composed layout, the layout optimised around each interaction, then the final motion."""
-    characters = characters_of(graphs, [s.id for s in sentences])
-    scene, provided = provide(scene, graphs, sentences, ctx.seed)  # props named only in action sentences
     scene, added = furnish(ctx, scene, graphs, sentences)  # a chair where a sit has no free seat
     scene = with_door(scene)  # furnishing composes the room again, without the door the scene stage added
+    # props named only in action sentences, after furnishing (which composes the room again from the scene
+    # sentences and so dropped what was added before it: the bag "put on the teacher's desk")
+    scene, provided = provide(scene, graphs, sentences, ctx.seed)
+    characters = aimed(characters_of(graphs, [s.id for s in sentences]), scene)
     added = [*provided, *added]
     looks, scene = scene, geometry_view(scene)  # the nodes below read shapes, not paint
     door = doorway(scene)

@@ -16,11 +16,12 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from types import ModuleType
 
+import msgspec
 import numpy as np
 
 from proto.common import Span
 from proto.scene import PlacedObject, Scene
-from proto.ssg import ActionNode, Diagnostic, ObjectNode, SentenceGraph
+from proto.ssg import ActionNode, CharacterNode, Diagnostic, ObjectNode, SentenceGraph
 from services.orchestrator.document import Sentence
 from wana.domain.actions import get_clip
 from wana.domain.object_geometry import find_object
@@ -170,6 +171,7 @@ def prop_needs(graphs: Sequence[SentenceGraph], sentence_ids: Sequence[str], sce
                     and not any(present(r) and fits(r, a.action, kind) for r in refs)
                     and default not in wanted
                     and not _made_for(scene, a.action)
+                    and find_object(scene, default) is None  # one there that stays put: the hand goes to it
                 ):
                     node = ObjectNode(id=default, category=default, word=default.replace("_", " "))
                     near = (*here, *reversed(last_at.get(c.name, [])))
@@ -327,6 +329,57 @@ def place(scene: Scene, need: Need, seed: int = 0) -> tuple[PlacedObject, str] |
     return None
 
 
+def free_id(scene: Scene, wanted: str) -> str:
+    """``wanted``, or "<wanted>/<k>" with the first k no object of the room has (ids are unique: the story
+    checks and the planner look objects up by them)."""
+    ids = {o.id for o in scene.objects}
+    if wanted not in ids:
+        return wanted
+    k = 2
+    while f"{wanted}/{k}" in ids:
+        k += 1
+    return f"{wanted}/{k}"
+
+
+def aimed(
+    characters: dict[str, tuple[CharacterNode, list[str]]], scene: Scene
+) -> dict[str, tuple[CharacterNode, list[str]]]:
+    """Held actions that name no object, aimed at what the same sentence walked to when that offers the
+    action's own point: "Anna walks to the microphone and sings" sings into the microphone on its stand
+    (the planner's reach to its "sing" point), not into an empty hand beside it."""
+    out = {}
+    for name, (node, sids) in characters.items():
+        actions = list(node.actions)
+        for k in range(1, len(actions)):
+            a, before = actions[k], actions[k - 1]
+            if a.target or a.instrument or a.destination or sids[k] != sids[k - 1]:
+                continue
+            if _clip_kind(a) not in HELD_KINDS or not _is_walk(before):
+                continue
+            there = find_object(scene, before.destination or before.target)
+            if there is not None and _offers(there, a.action):
+                actions[k] = msgspec.structs.replace(a, destination=there.id)
+        out[name] = (msgspec.structs.replace(node, actions=actions), sids)
+    return out
+
+
+def _is_walk(action: ActionNode) -> bool:
+    try:
+        clip = get_clip(action.action) if action.action else None
+    except KeyError:
+        return False
+    return clip is not None and "locomotion" in clip.tags
+
+
+def _offers(placed: PlacedObject, action: str) -> bool:
+    """Whether an object has a contact point for the action itself (its name or first word)."""
+    try:
+        points = set(_catalog().asset_for(placed).contact_points)
+    except Exception:  # noqa: BLE001 - unknown category
+        return False
+    return bool(({action, action.split("_")[0]} - {"touch", "pick_up"}) & points)
+
+
 def _placed(
     node: ObjectNode, attrs: dict[str, str], seed: int, spot: tuple[float, float, float], support: str
 ) -> PlacedObject:
@@ -359,6 +412,7 @@ def provide(
         if got is None:
             continue
         placed, at = got
+        placed = msgspec.structs.replace(placed, id=free_id(now, placed.id))
         objects.append(placed)
         where = (
             f"on the {at.split('#')[0].replace('_', ' ')}"
@@ -382,4 +436,4 @@ def provide(
     return Scene(room=scene.room, objects=objects, seed=scene.seed), notes
 
 
-__all__ = ["DEFAULT_PROP", "Need", "made_for", "place", "prop_needs", "provide"]
+__all__ = ["DEFAULT_PROP", "Need", "aimed", "free_id", "made_for", "place", "prop_needs", "provide"]

@@ -225,3 +225,77 @@ def test_snapping_ones_fingers_asks_for_no_tool_but_taking_a_photo_does(make):
             assert contact and not contact[0].ok and "empty hand" in contact[0].reason
         else:
             assert not contact, contact
+
+
+def _contact(make, obj: PlacedObject, action: str, verb: str, point: str, held: bool) -> Check:
+    """The contact check of ``action`` with the right hand on ``obj``'s ``point`` (or off by a metre)."""
+    from wana.assets.catalog import asset_for, to_world
+    from wana.fidelity.bodies import body_of
+
+    frames = round(clip_needs(action).duration_s * 30)
+    probe = body_of(make.motion("Ben", make.still(0.0, 0.95, 0.0, frames), []))
+    at = to_world(obj, np.asarray(asset_for(obj).contact_points[point].position, float))
+    hips = np.array([0.0, 0.95, 0.0]) + at - probe.joint("RightHand")[0]
+    if not held:
+        hips = hips + np.array([1.0, 0.0, 0.0])
+    ben = make.motion("Ben", make.still(*hips, frames), [(action, 0, frames, "s1", 0)])
+    graphs = {"s1": make.action_graph("s1", "Ben", verb, action)}
+    (contact,) = [
+        c
+        for c in story_checks([("s1", "action")], graphs, make.scene(obj), {"Ben": ben})["s1"]
+        if c.name == "contact"
+    ]
+    return contact
+
+
+def test_a_dumbbell_on_the_floor_and_a_guitar_on_its_stand_are_things_to_hold(make):
+    """The planner takes what has a "pick_up" point into the hand whatever its size or mount; the check
+    read the dumbbell on the floor as "nothing in the room to lift with"."""
+    dumbbell = PlacedObject(id="dumbbell", category="dumbbell", position=(0.0, 0.0, 0.0))
+    assert _contact(make, dumbbell, "lift_weights", "lift", "lift", held=True).ok
+    far = _contact(make, dumbbell, "lift_weights", "lift", "lift", held=False)
+    assert not far.ok and far.reason.startswith("the dumbbell is not in Ben's hand")
+    guitar = PlacedObject(id="guitar", category="electric_guitar", position=(0.0, 0.0, 0.0))
+    off = _contact(make, guitar, "play_guitar", "play", "play", held=False)
+    assert off.reason.startswith("the guitar is not in Ben's hand")  # a guitar to hold, not an empty hand
+
+
+def test_a_microphone_on_its_stand_is_sung_into_with_the_hand_on_it_not_an_empty_hand(make):
+    mic = PlacedObject(id="microphone", category="microphone", position=(0.0, 0.0, 0.0))
+    assert _contact(make, mic, "sing_with_microphone", "sing", "sing", held=True).ok
+    away = _contact(make, mic, "sing_with_microphone", "sing", "sing", held=False)
+    assert not away.ok and "empty hand" not in away.reason and "microphone" in away.reason
+
+
+def test_a_plank_is_still_what_is_hammered_not_the_hammer(make):
+    """A tool action keeps its rule: the plank's "hammer" and "pick_up" points do not make it a tool."""
+    plank = PlacedObject(id="wood_plank", category="wood_plank", position=(0.0, 0.0, 0.0))
+    contact = _contact(make, plank, "hammer", "hammer", "hammer", held=True)
+    assert not contact.ok and "empty hand" in contact.reason
+
+
+def test_hugging_the_teddy_bear_held_in_the_hands_is_contact_and_one_left_on_the_bed_is_not(make):
+    """ "Lily picks up the teddy bear and hugs it": no person is meant (the check said "nobody to hug")."""
+    import msgspec
+
+    from proto.motion_data import PropTrack
+    from wana.arrays import to_wire
+
+    teddy = PlacedObject(id="teddy_bear", category="teddy_bear", position=(1.0, 0.5, 1.0))
+    frames = round(clip_needs("hug").duration_s * 30)
+    lily = make.motion("Lily", make.still(0.0, 0.95, 0.0, frames), [("hug", 0, frames, "s1", 0)])
+    graphs = {"s1": make.action_graph("s1", "Lily", "hug", "hug", target="teddy_bear")}
+
+    def contact(motion) -> Check:
+        checks = story_checks([("s1", "action")], graphs, make.scene(teddy), {"Lily": motion})["s1"]
+        return next(c for c in checks if c.name == "contact")
+
+    left = contact(lily)
+    assert not left.ok and left.reason.startswith("the teddy bear is not in Lily's arms")
+    track = PropTrack(
+        object_id="teddy_bear", joint="RightHand", start_frame=0, end_frame=frames,
+        position=to_wire(np.zeros((frames, 3), np.float32)),
+        rotation=to_wire(np.tile(np.array([0, 0, 0, 1], np.float32), (frames, 1))),
+    )  # fmt: skip
+    held = contact(msgspec.structs.replace(lily, props=[track]))
+    assert held.ok, held.reason

@@ -135,3 +135,60 @@ def test_dishes_washed_at_a_sink_the_parse_dropped_go_in_the_sink_and_the_hands_
     plan = plan_actions(graphs[0].characters[0], furnished, (0.0, 0.0, 0.0))
     (act,) = [s for s in plan.segments if s.action == "wash_dishes"]
     assert act.target_id == "kitchen_sink" and act.targets  # the basin's own two-hand point
+
+
+def test_a_microphone_on_its_stand_is_not_added_again_and_the_song_goes_to_it():
+    """ "Anna walks to the microphone and sings": the stand microphone is the one sung into (no second one
+    with the same id), and the sing names it so the hand goes to its point."""
+    from services.orchestrator.stages.props import aimed
+
+    mic = PlacedObject(id="microphone", category="microphone", position=(1.0, 0.0, 1.0), yaw=0.0)
+    walk = ActionNode(verb="walk", action="walk", destination="microphone")
+    sing = ActionNode(verb="sing", action="sing_with_microphone")
+    graphs = [_graph("s1", "Anna", walk, sing)]
+    scene = Scene(room=ROOM, objects=[mic, TABLE])
+    assert prop_needs(graphs, ["s1"], scene) == []
+    characters = {"Anna": (CharacterNode(name="Anna", actions=[walk, sing]), ["s1", "s1"])}
+    node, _ = aimed(characters, scene)["Anna"]
+    assert node.actions[1].destination == "microphone" and node.actions[0] == walk
+    apart = {"Anna": (CharacterNode(name="Anna", actions=[walk, sing]), ["s1", "s2"])}
+    assert aimed(apart, scene)["Anna"][0].actions[1].destination == ""  # another sentence: not aimed
+    at_table = ActionNode(verb="walk", action="walk", destination="table")
+    to_table = {"Anna": (CharacterNode(name="Anna", actions=[at_table, sing]), ["s1", "s1"])}
+    assert aimed(to_table, scene)["Anna"][0].actions[1].destination == ""  # a table has no "sing" point
+
+
+def test_an_added_object_never_takes_an_id_the_room_has():
+    from services.orchestrator.stages.props import free_id
+
+    scene = Scene(room=ROOM, objects=[TABLE, msgspec_replace(TABLE, id="table/2")])
+    assert free_id(scene, "cup") == "cup" and free_id(scene, "table") == "table/3"
+
+
+def test_pouring_wine_uses_the_bottle_on_the_table_not_an_added_kettle():
+    bottle = PlacedObject(id="bottle", category="bottle", position=(1.5, 0.75, -1.0), support="table")
+    assert [o.id for o in made_for(Scene(room=ROOM, objects=[TABLE, bottle]), "pour")] == ["bottle"]
+    pour = ActionNode(verb="pour", action="pour", target="glass")
+    graphs = [_graph("s1", "John", pour, objects=(ObjectNode(id="glass", category="glass", word="glasses"),))]
+    needs = prop_needs(graphs, ["s1"], Scene(room=ROOM, objects=[TABLE, bottle]))
+    assert "kettle" not in [n.node.id for n in needs]
+
+
+def msgspec_replace(obj: PlacedObject, **kw: object) -> PlacedObject:
+    import msgspec
+
+    return msgspec.structs.replace(obj, **kw)
+
+
+def test_a_prop_added_for_an_action_stays_when_a_chair_is_added_too():
+    """solo-classroom-10: the chair added for "sits behind her desk" composed the room again and lost the bag
+    added for "puts her bag on the teacher's desk" (its I202 said it was there; the check found none)."""
+    result = _story(
+        "In the classroom there is a teacher's desk$.\nMs Lee enters the classroom.\n"
+        "She puts her bag on the teacher's desk.\nMs Lee sits behind her desk.\n"
+    )
+    codes = {d.code for ds in result.diagnostics.values() for d in ds}
+    assert {"I201", "I202"} <= codes  # a chair and the bag added
+    bags = [o for o in result.scene.objects if o.category == "handbag"]
+    assert len(bags) == 1 and bags[0].support == "teacher_desk"
+    assert any(o.category == "chair" for o in result.scene.objects)

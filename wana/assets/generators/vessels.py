@@ -51,6 +51,7 @@ def vessel(
     shape: str = "cup",
     handle: bool = False,
     act: str = "drink",
+    also: tuple[str, ...] = (),
     spout: bool = False,
     lid: bool = False,
     rim: bool = False,
@@ -81,6 +82,8 @@ def vessel(
         b.rod((-r * 0.8, h * 0.35, 0), (-r * 1.5, h * 0.75, 0), r * 0.12, p.body, sections=8)
     grip = (hx + 0.02, h * 0.5, 0.0) if handle else (r, h * 0.5, 0.0)
     b.contact(act, "RightHand", grip)
+    for more in also:  # a bottle is drunk from and poured from, held the same way
+        b.contact(more, "RightHand", grip)
     b.contact("pick_up", "RightHand", grip)
     if shape in ("plate", "bowl", "pan", "pot"):
         b.surface(h * 0.3, -r * 0.5, -r * 0.5, r * 0.5, r * 0.5)
@@ -142,7 +145,16 @@ def kettlebell(b: Builder, p: Params) -> None:
 register("cup", vessel, (0.08, 0.09, 0.08), body="white", shape="cup", handle=True)
 register("mug", vessel, (0.085, 0.1, 0.085), body="blue", shape="mug", handle=True)
 register("glass", vessel, (0.07, 0.12, 0.07), body="glass", shape="glass")
-register("bottle", vessel, (0.075, 0.28, 0.075), body="green", frame="steel", shape="bottle", rim=True)
+register(
+    "bottle",
+    vessel,
+    (0.075, 0.28, 0.075),
+    body="green",
+    frame="steel",
+    shape="bottle",
+    rim=True,
+    also=("pour",),
+)
 register("soda_can", vessel, (0.066, 0.122, 0.066), body="red", frame="steel", shape="can")
 register("vase", vessel, (0.18, 0.35, 0.18), body="teal", frame="gold", shape="vase", act="touch")
 register(
