@@ -53,6 +53,14 @@ SPEEDS = {
     "sidestep_right": 0.8,
 }
 SEAT_BACK = 0.22  # metres the hips travel backwards while sitting down (sit clip)
+# Getting up from a seat ends with the shins this far in front of the seat's front edge (not in it: the
+# catalog chair's front edge is 0.22 m from its sit point, an office chair's 0.29 m, a sofa's 0.40 m); the
+# stand-up moves forward the rest (synthesis). Sitting down still starts SEAT_BACK in front of the seat point:
+# a farther approach moved the optimiser's layouts at tables (quick subset 0.890 -> 0.873).
+LEG_CLEAR_M = 0.10
+SEAT_APPROACH_MAX = 0.6  # metres: the farthest stand-off from a seat point (a deep sofa)
+APPROACH_CLEAR_M = 0.2  # metres from the standing hips to other furniture's footprint (belly, toes)
+APPROACH_LOW_M = 0.1  # metres: furniture boxes lower than this (a rug) do not limit the stand-off
 REACH = 0.42  # metres from the contact points to where the character stands
 PERSON_DISTANCE = 0.8  # metres between two characters after one walks up to the other
 HANDOVER_VERB = "give"  # ActionNode.verb the orchestrator keeps on an action that hands an object over
@@ -130,6 +138,38 @@ def _fallback_geometry(placed: PlacedObject):
     front = np.array([np.sin(placed.yaw), np.cos(placed.yaw)])
     stand = np.array([placed.position[0], placed.position[2]]) + front * 0.6
     return stand, {}
+
+
+def seat_approach(scene: Scene, placed: PlacedObject, hips: tuple[float, float, float]) -> float:
+    """Metres in front of a seat point (along the seat's facing) where the hips stand once up from it: the
+    seat's front edge plus LEG_CLEAR_M, at least SEAT_BACK (the sit clip's own travel), and no closer than
+    APPROACH_CLEAR_M to other furniture (a chair tucked in at a table keeps SEAT_BACK: the body does not stand
+    inside the table's edge)."""
+    try:
+        from wana.assets.catalog import asset_for
+    except Exception:  # noqa: BLE001 - the catalog is optional for synthesis
+        return SEAT_BACK
+    try:
+        half_depth = float(asset_for(placed).dims[2]) / 2.0 * float(placed.scale[2])
+    except Exception:  # noqa: BLE001 - unknown category: the clip's own travel
+        return SEAT_BACK
+    fwd = np.array([np.sin(placed.yaw), np.cos(placed.yaw)])
+    seat = np.array([hips[0], hips[2]])
+    along = float(fwd @ (seat - np.array([placed.position[0], placed.position[2]])))
+    want = float(np.clip(half_depth - along + LEG_CLEAR_M, SEAT_BACK, SEAT_APPROACH_MAX))
+    if want <= SEAT_BACK:
+        return SEAT_BACK
+    from wana.domain.object_geometry import scene_footprints
+    from wana.domain.routes import point_rect_distance
+
+    fp = scene_footprints(scene, ignore=resting_on(scene, placed.id) | {placed.id})
+    fp = fp.select(fp.y_max > APPROACH_LOW_M)
+    if not len(fp):
+        return want
+    steps = np.arange(SEAT_BACK, want + 1e-9, 0.02)
+    clear = point_rect_distance(seat[None] + steps[:, None] * fwd[None], fp).min(axis=1) >= APPROACH_CLEAR_M
+    free = steps[np.cumprod(clear).astype(bool)]
+    return float(free[-1]) if len(free) else SEAT_BACK
 
 
 def seat_slots(placed: PlacedObject, kind: str) -> list[tuple[float, float, float]]:
@@ -485,10 +525,32 @@ def plan_actions(
     if held_obj is not None and (g := _grasp(held_obj)) is not None:
         hand.update(prop=held_obj.id, prop_joint=g[0], prop_grip=g[1], prop_yaw=float(held_obj.yaw))
 
+    sat_on: dict[str, tuple] = {}  # "seat": (object id, hips point) of the last sit-down
+
+    def rise_spot() -> np.ndarray | None:
+        """Seated on a known seat: where getting up ends, clear of its front edge (seat_approach)."""
+        if now_posture() != "sit" or "seat" not in sat_on:
+            return None
+        seat = next((o for o in scene.objects if o.id == sat_on["seat"][0]), None)
+        if seat is None:
+            return None
+        hips = sat_on["seat"][1]
+        fwd = np.array([np.sin(seat.yaw), np.cos(seat.yaw)])
+        return np.array([hips[0], hips[2]]) + fwd * seat_approach(scene, seat, hips)
+
     def add(**kw) -> None:
+        nonlocal pos
         if hand and not kw.get("prop"):  # held through every segment until it is put down
             kw.update(hand, prop_span="whole")
+        if kw.get("action") == "stand" and kw.get("kind") == "action" and not kw.get("targets"):
+            spot = rise_spot()
+            if spot is not None:  # getting up onto the spot in front of the seat, the legs out of it
+                kw["targets"] = (("Hips", (float(spot[0]), 0.0, float(spot[1]))),)
+                pos = spot
         segs.append(PlannedSegment(index=len(segs), **kw))
+        targets = dict(kw.get("targets", ()))
+        if kw.get("action") == "sit" and kw.get("kind") == "action" and "Hips" in targets:
+            sat_on["seat"] = (kw.get("target_id", ""), targets["Hips"])
 
     def route(a: tuple[float, float], b: tuple[float, float], ignore: frozenset[str]) -> np.ndarray:
         if route_fn is not None:
@@ -514,6 +576,9 @@ def plan_actions(
         nonlocal pos, yaw
         if np.linalg.norm(goal - pos) < 0.05 and face is None:
             return
+        spot = rise_spot()
+        if spot is not None and np.linalg.norm(goal - pos) > 1e-6:
+            pos = spot  # a walk from a seat gets up first (synthesis), onto the spot in front of it
         a, b = (float(pos[0]), float(pos[1])), (float(goal[0]), float(goal[1]))
         if np.linalg.norm(goal - pos) < 1e-6:  # turning in place
             wps = np.array([a, b])

@@ -51,6 +51,11 @@ STAND_MAX_LEAN = np.radians(30.0)  # radians of trunk lean a standing reach may 
 CROUCH_MAX = 0.45  # ... the knees bend: metres the hips may drop (feet planted) to reach a low target
 BEND_DOWN = ("pick_up", "put_down")  # clips that bend down to the floor with the feet planted
 HAND_JOINTS = ("LeftHand", "RightHand", "LeftHandMiddle1", "RightHandMiddle1")
+# Getting up from a seat ends clear of the seat's front edge (the plan gives that spot as the stand's Hips
+# target, services.motion.planning.seat_approach): the body rises and moves forward to it from RISE_FROM_S into
+# the clip on; a target farther than RISE_MAX_M (a resumed plan's stale spot) is not moved to.
+RISE_FROM_S = 0.3
+RISE_MAX_M = 0.6
 
 
 @dataclass(frozen=True)
@@ -294,7 +299,25 @@ def _action_piece(seg: PlannedSegment, state: SegmentState) -> tuple[MotionPiece
         )
     else:
         end = SegmentState(state.x, state.z, end_yaw, new_posture, state.phase, hips_dy)
+    rise = _rise_shift(clip, posture, targets, state)
+    if rise is not None:  # getting up onto the spot in front of the seat
+        frames = np.arange(t)
+        ramp = _smooth(np.clip((frames / FPS - RISE_FROM_S) / max(dur - RISE_FROM_S, 1.0 / FPS), 0, 1))
+        root = root + ramp[:, None] * rise
+        end = SegmentState(state.x + rise[0], state.z + rise[2], end_yaw, new_posture, state.phase, hips_dy)
     return MotionPiece(root, quat.normalize(rot), contacts, seg, contact_frames), end.rounded()
+
+
+def _rise_shift(
+    clip: ActionClip, posture: str, targets: dict[str, tuple[float, float, float]], state: SegmentState
+) -> np.ndarray | None:
+    """(3,) world metres a stand-up from a seat moves forward to its Hips target (xz), None when it stays."""
+    if clip.name != "stand" or posture == "stand" or clip.interaction or "Hips" not in targets:
+        return None
+    goal = np.asarray(targets["Hips"], dtype=np.float64)
+    shift = np.array([goal[0] - state.x, 0.0, goal[2] - state.z])
+    size = float(np.linalg.norm(shift))
+    return shift if 1e-3 < size <= RISE_MAX_M else None
 
 
 def _contact_weight(clip: ActionClip, t: int, dur: float) -> np.ndarray:
@@ -363,10 +386,13 @@ def _scoot_to_reach(
 
 def _locomotion_piece(seg: PlannedSegment, state: SegmentState) -> tuple[MotionPiece, SegmentState]:
     pieces: list[MotionPiece] = []
-    if state.posture != "stand":  # get up first
-        up, state = _action_piece(PlannedSegment(index=seg.index, kind="action", action="stand"), state)
-        pieces.append(up)
     wps = np.asarray(seg.waypoints, dtype=np.float64).reshape(-1, 2) if seg.waypoints else np.zeros((0, 2))
+    if state.posture != "stand":  # get up first, onto where the walk begins (in front of the seat)
+        rise = (("Hips", (float(wps[0, 0]), 0.0, float(wps[0, 1]))),) if len(wps) else ()
+        up, state = _action_piece(
+            PlannedSegment(index=seg.index, kind="action", action="stand", targets=rise), state
+        )
+        pieces.append(up)
     wps = (
         np.concatenate([[[state.x, state.z]], wps])
         if len(wps) == 0 or np.linalg.norm(wps[0] - [state.x, state.z]) > 1e-3

@@ -291,3 +291,12 @@ def surface_rects(fp: Footprint, position: np.ndarray, yaw: float) -> list[tuple
         w = boxes_at(box, position, yaw)[0]
         out.append((float(w[0, 1]), w[:, [0, 2]]))
     return out
+
+
+def sits_at(seat: Footprint, anchor: Footprint) -> bool:
+    """A seat and a table, desk or counter (not itself a seat): one sits at its front (its working side)."""
+    from wana.assets.relations import is_worktop
+
+    if not seat.sitters or anchor.sitters:
+        return False
+    return is_worktop(float(anchor.bounds[1, 1]), [float(x.height) for x in anchor.surfaces])

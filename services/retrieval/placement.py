@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from services.retrieval.geometry import Footprint, extents, footprint_boxes_at, yaw_matrix
+from services.retrieval.geometry import Footprint, extents, footprint_boxes_at, sits_at, yaw_matrix
 
 LEFT_SIGN = 1.0  # the anchor's left is its +X side (characters face +Z with their left on +X)
 WALL_GAP = 0.005  # metres between a wall and what hangs on it
@@ -225,12 +225,17 @@ def relation_candidates(
     near = relation == "near"
     gaps = [float(rng.uniform(0.1, 0.4) if near else rng.uniform(0.05, 0.2)), 0.05, 0.2, 0.4 if near else 0.3]
     lat_shares = [lateral0, 0.0, 0.5, -0.5, 1.0, -1.0]
+    # "A chair is behind the desk": also the side one sits at (the desk's front), facing it, for a desk whose
+    # back is against a wall (wana.assets.relations holds "behind" there too).
+    seat_at = relation == "behind" and sits_at(fp, anchor.fp)
     # Sides vary fastest: a subject blocked on one side tries the others before finer shifts.
     for gap, share in itertools.product(gaps, lat_shares):
         for rel_yaw in rel_yaws:
             for side in sides:
                 span = half_w if side in ("front", "back") else half_d
                 yield _side(anchor, fp, side, gap, share * span, rel_yaw, y, support)
+        if seat_at:
+            yield _side(anchor, fp, "front", gap, share * half_w, math.pi, y, support)
 
 
 def _on_surface(

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 
+from services.retrieval.geometry import sits_at
 from services.retrieval.placement import Placed
 
 NEAR_M, NEXT_TO_M, REACH_M, AROUND_M = 1.0, 0.4, 2.5, 0.8
@@ -71,8 +72,8 @@ def screen(relation: str, s: Placed, a: Placed) -> bool:
         return _gap(s, a) <= NEXT_TO_M and s.box[0, 1] < a.box[1, 1] and a.box[0, 1] < s.box[1, 1]
     if relation == "in_front_of":
         return _side(s, a, 2, 1.0)
-    if relation == "behind":
-        return _side(s, a, 2, -1.0)
+    if relation == "behind":  # a seat at a table or desk: also the side one sits at (wana.assets.relations)
+        return _side(s, a, 2, -1.0) or (sits_at(s.fp, a.fp) and _side(s, a, 2, 1.0) and _facing(s, a))
     if relation == "left_of":
         return _side(s, a, 0, 1.0)
     if relation == "right_of":

@@ -107,6 +107,31 @@ def _side(s: PlacedObject, a: PlacedObject, axis: int, sign: float) -> bool:
     return bool(-0.05 <= beyond <= SIDE_REACH_M and abs(local[other]) <= half[other] + 0.3)
 
 
+WORKTOP_M = (0.6, 1.1)  # metres: the top of a table, desk or counter one sits or stands at
+
+
+def is_worktop(top: float, surface_heights: list[float]) -> bool:
+    """A table, desk or counter: its top (metres) at working height, with a support surface there."""
+    lo, hi = WORKTOP_M
+    return lo <= top <= hi and any(lo <= h <= hi and h >= top - 0.1 for h in surface_heights)
+
+
+def _seat_at_worktop(s: PlacedObject, a: PlacedObject) -> bool:
+    """A seat (a 'sit' point) and a table or desk: "the chair is behind the desk" is the side one sits at."""
+    seat, anchor = asset_for(s), asset_for(a)
+    if not any(name.startswith("sit") for name in seat.contact_points):
+        return False
+    if any(name.startswith("sit") for name in anchor.contact_points):
+        return False
+    return is_worktop(float(anchor.dims[1]), [float(x.height) for x in anchor.support_surfaces])
+
+
+def _behind(s: PlacedObject, a: PlacedObject) -> bool:
+    """Past the anchor's back; for a seat at a table or desk also the side one sits at, facing it (in English
+    one sits *behind* a desk: a desk under a window has its back to the wall and its chair at its front)."""
+    return _side(s, a, 2, -1.0) or (_seat_at_worktop(s, a) and _side(s, a, 2, 1.0) and _facing(s, a))
+
+
 def _facing(s: PlacedObject, a: PlacedObject) -> bool:
     front = object_to_world(s)[:3, :3] @ np.array([0.0, 0.0, 1.0])
     front[1] = 0.0
@@ -132,7 +157,7 @@ PREDICATES = {
     "near": lambda s, a: footprint_gap(s, a) <= NEAR_M,
     "next_to": lambda s, a: footprint_gap(s, a) <= NEXT_TO_M and _vertical_overlap(s, a),
     "in_front_of": lambda s, a: _side(s, a, 2, 1.0),
-    "behind": lambda s, a: _side(s, a, 2, -1.0),
+    "behind": _behind,
     "left_of": lambda s, a: _side(s, a, 0, 1.0),
     "right_of": lambda s, a: _side(s, a, 0, -1.0),
     "under": _under,

@@ -36,7 +36,10 @@ def test_front_behind_left_right_use_the_anchors_own_frame():
     d = catalog.make_object("desk").dims
     front = _at("office_chair", 0.0, d[2] / 2 + 0.5, yaw=np.pi)
     assert relation_holds("in_front_of", front, DESK) and relation_holds("facing", front, DESK)
-    assert not relation_holds("behind", front, DESK)
+    assert not relation_holds("behind", _at("filing_cabinet", 0.0, d[2] / 2 + 0.5), DESK)
+    # one sits *behind* a desk: for a seat facing it at its working side "behind" holds too, not turned away
+    assert relation_holds("behind", front, DESK)
+    assert not relation_holds("behind", _at("office_chair", 0.0, d[2] / 2 + 0.5), DESK)
     assert relation_holds("behind", _at("office_chair", 0.0, -d[2] / 2 - 0.5), DESK)
     left = _at("filing_cabinet", d[0] / 2 + 0.4, 0.0)
     assert relation_holds("left_of", left, DESK) and not relation_holds("right_of", left, DESK)

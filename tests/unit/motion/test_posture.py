@@ -125,3 +125,46 @@ def test_seat_points_keep_the_thighs_on_the_seat():
         hips = obj.contact_points["sit"].position
         seat = max(s.height for s in obj.support_surfaces)  # the seat: these seats' only support surface
         assert 0.08 <= hips[1] - seat <= 0.12, (category, hips[1], seat)
+
+
+def _chair_only(*extra: PlacedObject) -> Scene:
+    chair = PlacedObject(id="chair", category="chair", position=(0.0, 0.0, 0.0), yaw=np.pi)
+    return Scene(room=Room(room_type="office", width=8, depth=8, height=3), objects=[chair, *extra])
+
+
+def test_the_sit_approach_stands_clear_of_the_seat_front_unless_a_table_is_there():
+    from services.motion.planning import LEG_CLEAR_M, SEAT_BACK, seat_approach, seat_slots
+    from wana.assets.catalog import world_bounds
+
+    free = _chair_only()
+    chair = free.objects[0]
+    hips = seat_slots(chair, "seat")[0]
+    front = float(-world_bounds(chair)[0, 2])  # the chair faces -Z: its front edge is its lowest z
+    back = seat_approach(free, chair, hips)
+    assert back > SEAT_BACK
+    assert abs((hips[2] - back) - (-front - LEG_CLEAR_M)) < 0.02  # the hips LEG_CLEAR_M in front of the edge
+    table = PlacedObject(id="table", category="dining_table", position=(0.0, 0.0, -0.75), yaw=0.0)
+    tucked = _chair_only(table)
+    assert seat_approach(tucked, tucked.objects[0], hips) == SEAT_BACK
+
+
+def test_getting_up_ends_with_the_legs_out_of_the_chair_and_walks_away_clear_of_it():
+    from wana.domain.actions import get_clip
+    from wana.fidelity.world import World
+
+    scene = _chair_only()
+    rise = round(get_clip("stand").duration_s * 30)  # frames of the get-up a walk from the seat begins with
+    for then in (["stand", "walk"], ["walk"]):  # "stands up and walks", and a walk that gets up first
+        acts = [ActionNode(verb="sit", action="sit", target="chair")]
+        acts += [ActionNode(verb=a, action=a) for a in then]
+        plan = plan_actions(CharacterNode(name="Eve", actions=acts), scene, (-3.0, -0.34, np.pi / 2))
+        stand = [s for s in plan.segments if s.action == "stand"]
+        assert all(dict(s.targets)["Hips"][2] < -0.3 for s in stand)  # onto the spot in front of the seat
+        motion, _, _ = synthesise(plan)
+        assert motion.fps == 30
+        inside = body_checks.penetration(body_of(motion), World(scene), {}).failing
+        away = [g for g in motion.segments if g.action == "walk"][-1]
+        up_end = away.start_frame + (0 if stand else rise)  # the first frame standing
+        hips = from_wire(motion.root_position)
+        assert hips[up_end - 1, 2] < -0.3  # standing up ends clear of the seat's front edge (z -0.24)
+        assert not inside[up_end : away.end_frame].any()  # and walks away without a leg in the chair

@@ -158,3 +158,16 @@ def test_a_named_room_gets_context_objects_and_an_unnamed_one_a_voted_kind():
     unnamed, _ = compose_scene(objects, [r("vise on bench")])
     assert all(p.from_text for p in unnamed.objects)
     assert unnamed.room.room_type in ("workshop", "garage")
+
+
+def test_a_chair_behind_a_desk_under_the_window_sits_at_the_desk_inside_the_room():
+    """A desk under a window has its back to the wall: "a chair is behind the desk" is the side one sits at
+    (solo-home_office-20 put the chair outside the wall, and its sitter's chest in the window)."""
+    objects = [o("desk", "desk"), o("window", "window"), o("chair", "office_chair")]
+    relations = [r("desk under window"), r("chair behind desk")]
+    scene, report = compose_scene(objects, relations, room_type="home_office", seed=0)
+    assert _inside(scene)
+    assert all(c.held for c in report.relations)
+    placed = {p.id: p for p in scene.objects}
+    assert relation_holds("in_front_of", placed["chair"], placed["desk"])  # at the desk's working side
+    assert relation_holds("facing", placed["chair"], placed["desk"])
