@@ -41,9 +41,11 @@ def _maxout_ln(ops: Any, layer: _Maxout, X: np.ndarray) -> np.ndarray:
     Y += layer.b
     best, _ = ops.maxout(Y.reshape((Y.shape[0], layer.nO, layer.nP)))
     mu = best.mean(axis=1, keepdims=True)
-    var = best.var(axis=1, keepdims=True) + 1e-08
-    out = (best - mu) * var ** (-1.0 / 2.0)
-    out = out * layer.G
+    centred = best - mu
+    var = np.multiply(centred, centred).mean(axis=1, keepdims=True)  # what ndarray.var computes
+    var += 1e-08
+    out = centred * var ** (-1.0 / 2.0)
+    out *= layer.G
     out += layer.beta
     return out  # type: ignore[no-any-return]
 
