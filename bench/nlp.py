@@ -8,12 +8,12 @@ timed call is ``parse_sentence`` on a sentence it has not seen (the per-text cac
 every call, so the spaCy pipeline really runs); one thread; the pipeline is loaded before timing.
 Also reported: the CPU time per call (``time.process_time``: what the sentence costs, whatever the
 machine's load; wall time on a shared machine waits for the other processes too), pipeline load
-time and a whole document (100 sentences) through parse_document.
+time, a whole document (100 sentences) through parse_document, and did-you-mean per misspelling.
 ``--alternate`` also times the reference path (thinc's own tok2vec forward and blis ``gemm``
 instead of :class:`services.nlp.fast_tok2vec.FastTok2Vec` and
 :class:`services.nlp.matmul_ops.MatmulOps`), alternating passes with the shipped path in the same
 run, so the two see the same machine load.
-JSON keys: p50_ms, p95_ms, cpu_p50_ms (and reference_* with --alternate). Target: p50_ms <= 5.
+JSON keys: p50_ms, p95_ms, cpu_p50_ms, suggest_p50_ms (and reference_* with --alternate). Target: p50_ms <= 5.
 """
 
 from __future__ import annotations
@@ -42,6 +42,34 @@ def sentences() -> list[str]:
             if line.startswith("T "):
                 text = line[2:].replace("\\n", "\n")
                 out += [text[s:e] for s, e, _ in split_sentences(text)]
+    return out
+
+
+def suggest_times(n: int = 120) -> list[float]:
+    """ms per did-you-mean over seeded misspellings (one letter dropped, doubled or swapped) of object
+    and action words; the suggestion cache is cleared before each call."""
+    import random
+
+    from services.nlp import suggest
+
+    rng = random.Random(5)
+    words = sorted(suggest._object_words()) + sorted(suggest._verb_words())
+    suggest.did_you_mean("chiar", "object")  # builds the vocabularies
+    suggest.did_you_mean("sist", "action")
+    out: list[float] = []
+    for word in rng.sample(words, n):
+        i = rng.randrange(len(word))
+        typo = rng.choice(
+            [
+                word[:i] + word[i + 1 :],
+                word[:i] + word[i] + word[i:],
+                word[:i] + word[i + 1 : i + 2] + word[i] + word[i + 2 :],
+            ]
+        )
+        suggest.suggestions.cache_clear()
+        t = time.perf_counter()
+        suggest.did_you_mean(typo, rng.choice(["object", "action"]))
+        out.append((time.perf_counter() - t) * 1000.0)
     return out
 
 
@@ -102,8 +130,13 @@ def main(argv: list[str] | None = None) -> int:
     for name, row in rows.items():
         print(f"{name + ' (per sentence)':<28} " + " ".join(f"{row[p]:10.2f}" for p in paths))
     print(f"{'document_ms':<28} {doc_ms:10.1f}  ({len(graphs)} sentences, split+parse+resolve)")
+    suggest_ms = suggest_times()
+    print(
+        f"{'suggest_p50_ms':<28} {statistics.median(suggest_ms):10.3f}  (did-you-mean, {len(suggest_ms)} misspellings)"
+    )
     if args.json:
         out = {k: rows[k]["shipped"] for k in ("p50_ms", "p95_ms", "cpu_p50_ms")}
+        out["suggest_p50_ms"] = statistics.median(suggest_ms)
         if args.alternate:
             out.update({f"reference_{k}": rows[k]["reference"] for k in ("p50_ms", "p95_ms", "cpu_p50_ms")})
         args.json.parent.mkdir(parents=True, exist_ok=True)

@@ -7,10 +7,9 @@ it as a tree of small layers; on a sentence of ten tokens the dispatch (chain, w
 ragged conversions, residual, concatenate) costs about as much as the matrix products.
 :class:`FastTok2Vec` reads the same weights and runs the same operations in the same order (thinc's
 ``maxout``, ``seq2col``, ``hash``, ``gather_add``; the layer norm as thinc writes it), with one
-change: the products go through numpy's OpenBLAS against a contiguous ``W.T`` made once, about 5x
-faster than thinc's blis ``gemm`` here. The vectors equal thinc's up to float32 rounding (6e-6 on
-values up to 14) and every annotation of the gold and bench sentences is the same
-(``tests/unit/nlp/test_fast_inference.py``). It is built only when the model has exactly that
+change: the products go through numpy's OpenBLAS against a contiguous ``W.T`` made once, several
+times faster than thinc's blis ``gemm`` here. The vectors equal thinc's up to float32 rounding and
+every annotation of the gold sentences is the same (``tests/unit/nlp/test_fast_inference.py``). It is built only when the model has exactly that
 structure; anything else keeps thinc's forward.
 """
 

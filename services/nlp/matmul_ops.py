@@ -1,9 +1,10 @@
 """thinc's NumpyOps with matrix products through numpy's OpenBLAS against pre-transposed weights.
 
 thinc's layers multiply by a weight matrix transposed on the fly (``gemm(X, W, trans2=True)``). On a
-sentence of ten tokens thinc's blis ``gemm`` takes 3-6x as long as numpy's OpenBLAS against a
-contiguous copy of ``W.T`` (``bench/nlp.py`` and ``tests/unit/nlp/test_matmul_ops.py``): 416 vs 129
-us for the parser's 128 x 2048 feature matrix. :class:`MatmulOps` keeps that copy per weight array.
+sentence of ten tokens thinc's blis ``gemm`` takes several times as long as numpy's OpenBLAS against a
+contiguous copy of ``W.T`` (the parser's 128 x 2048 feature matrix, the taggers' softmax);
+:class:`MatmulOps` keeps that copy per weight array (``bench/nlp.py --alternate`` times the pipeline
+with and without it). Products agree up to float32 rounding (``tests/unit/nlp/test_fast_inference.py``).
 Only read-only arrays are cached (:func:`freeze_params` makes a loaded pipeline's weights read-only,
 so an in-place update, as training does, fails loudly instead of meeting a stale copy).
 """
