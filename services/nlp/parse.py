@@ -226,15 +226,21 @@ def _titled_doc(nlp: Language, text: str) -> Doc:
     """The tokenized sentence with no sentence break inside a titled name: the parser would otherwise end
     a sentence at the abbreviation's period ("Prof. | Kim waves")."""
     doc = nlp.make_doc(text)
-    for tok in doc[1:]:  # the splitter already cut the text: no break but after . ! ? ("hands | Tom the cup")
-        if not (doc[tok.i - 1].text[-1:] in ".!?;" or doc[tok.i - 1].text in ('"', "'", ")")):
-            tok.is_sent_start = False
-    for tok in doc[:-1]:
-        if tok.text[:1].isupper() and tok.lower_.rstrip(".") in TITLES and doc[tok.i + 1].text[:1].isupper():
-            doc[tok.i + 1].is_sent_start = False
+    toks = list(doc)
+    words = [t.text for t in toks]
+    for i in range(
+        1, len(toks)
+    ):  # the splitter already cut the text: no break but after . ! ? ("hands | Tom the cup")
+        prev = words[i - 1]
+        if not (prev[-1:] in ".!?;" or prev in ('"', "'", ")")):
+            toks[i].is_sent_start = False
+    for i in range(len(toks) - 1):
+        word = words[i]
+        if word[:1].isupper() and word.lower().rstrip(".") in TITLES and words[i + 1][:1].isupper():
+            toks[i + 1].is_sent_start = False
     for start, end in quote_spans(text):  # nor inside (or at) quoted speech
-        for tok in doc:
-            if start <= tok.idx < end and tok.i > 0:
+        for tok in toks[1:]:
+            if start <= tok.idx < end:
                 tok.is_sent_start = False
     return doc
 
