@@ -1,7 +1,7 @@
 """Which sentence checks flip between two runs of eval/story.py (A -> B): ok -> failed and failed -> ok.
 
 Usage:
-    .venv/bin/python eval/story_diff.py A.json B.json [--json PATH]
+    .venv/bin/python eval/story_diff.py A.json B.json [--more A2.json B2.json ...] [--json PATH]
 
 Both files are ``eval/story.py --json`` outputs. A check is keyed by story, sentence id, check name, character
 and its rank among that sentence's results with the same name and character (a sentence checks each object
@@ -10,6 +10,11 @@ with another. Prints one row per flipped check (story | sentence | check | chara
 the counts; a story that crashed in one run shows as its error. JSON keys: flips (rows with story, sentence,
 text, check, character, a, b, reason_a, reason_b), broke, fixed, appeared, vanished, sentences_broke,
 sentences_fixed, fidelity_a, fidelity_b.
+
+``--more`` adds pairs run with other seeds (``eval/story.py --seed N`` on both sides): one layout drawn by the
+optimiser's annealing decides many checks, so a single seed's difference can be the draw. Then the table also
+gives each pair's sentence fidelity, their means, and the checks that fail at least two seeds more often on
+one side (``seeds`` in the JSON: pairs, fidelity_a, fidelity_b, mean_a, mean_b, leaning).
 """
 
 from __future__ import annotations
@@ -99,6 +104,41 @@ def diff(a: dict[str, Any], b: dict[str, Any]) -> dict[str, Any]:
     }
 
 
+def over_seeds(pairs: list[tuple[dict[str, Any], dict[str, Any]]]) -> dict[str, Any]:
+    """Sentence fidelity of each (a, b) pair, the means, and the checks failing >= 2 seeds more on one side."""
+    fails: dict[str, collections.Counter[tuple[str, str, str, str]]] = {
+        "a": collections.Counter(),
+        "b": collections.Counter(),
+    }
+    for a, b in pairs:
+        for side, run in (("a", a), ("b", b)):
+            checks, _ = check_states(run)
+            fails[side].update({k[:4] for k, r in checks.items() if not r["ok"]})
+    fa = [float(a.get("sentence_fidelity") or 0.0) for a, _ in pairs]
+    fb = [float(b.get("sentence_fidelity") or 0.0) for _, b in pairs]
+    keys = set(fails["a"]) | set(fails["b"])
+    leaning = [
+        {
+            "story": k[0],
+            "sentence": k[1],
+            "check": k[2],
+            "character": k[3],
+            "failed_a": fails["a"][k],
+            "failed_b": fails["b"][k],
+        }
+        for k in sorted(keys, key=lambda k: (fails["a"][k] - fails["b"][k], k))
+        if abs(fails["a"][k] - fails["b"][k]) >= 2
+    ]
+    return {
+        "pairs": len(pairs),
+        "fidelity_a": fa,
+        "fidelity_b": fb,
+        "mean_a": sum(fa) / len(fa),
+        "mean_b": sum(fb) / len(fb),
+        "leaning": leaning,
+    }
+
+
 def print_table(result: dict[str, Any], width: int = 90) -> None:
     """One row per flipped check, then the counts."""
     for f in result["flips"]:
@@ -113,15 +153,32 @@ def print_table(result: dict[str, Any], width: int = 90) -> None:
         f"not -> ok {len(result['sentences_fixed'])}; sentence fidelity {result['fidelity_a']} -> "
         f"{result['fidelity_b']}"
     )
+    seeds = result.get("seeds")
+    if seeds:
+        print(
+            f"over {seeds['pairs']} pairs: fidelity A {[round(f, 3) for f in seeds['fidelity_a']]} mean "
+            f"{seeds['mean_a']:.3f}, B {[round(f, 3) for f in seeds['fidelity_b']]} mean {seeds['mean_b']:.3f}"
+        )
+        for row in seeds["leaning"]:
+            who = f" ({row['character']})" if row["character"] else ""
+            print(f"  failed A {row['failed_a']} / B {row['failed_b']} of {seeds['pairs']}: {row['story']} | "
+                  f"{row['sentence']} | {row['check']}{who}")  # fmt: skip
 
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("a", type=Path, help="the first eval/story.py --json output")
     ap.add_argument("b", type=Path, help="the second one")
+    ap.add_argument("--more", type=Path, nargs=2, action="append", default=[], metavar=("A", "B"),
+                    help="another pair of runs (another seed); repeatable")  # fmt: skip
     ap.add_argument("--json", type=Path, default=None, help="write the flips here")
     args = ap.parse_args(argv)
-    result = diff(json.loads(args.a.read_text()), json.loads(args.b.read_text()))
+    pairs = [
+        (json.loads(a.read_text()), json.loads(b.read_text())) for a, b in [(args.a, args.b), *args.more]
+    ]
+    result = diff(*pairs[0])
+    if len(pairs) > 1:
+        result["seeds"] = over_seeds(pairs)
     print_table(result)
     if args.json:
         args.json.write_text(json.dumps(result, indent=1))

@@ -69,3 +69,29 @@ def test_crash_and_cli_table(story_diff, tmp_path, capsys):
     out = capsys.readouterr().out
     assert "solo-x-01 | * " in out and "ValueError: boom" in out and "performed (Tom) | ok -> -" in out
     assert json.loads((tmp_path / "d.json").read_text())["vanished"] == 1
+
+
+def test_over_seeds_means_and_the_checks_leaning_one_way(story_diff, tmp_path, capsys):
+    shin, clear = ("penetration", False, "Tom", "shin in chair"), ("penetration", True, "Tom", "clear")
+    arm, apart = ("overlap", False, "Tom", "arm in Ann"), ("overlap", True, "Tom", "clear")
+    pairs = [  # the shin fails 3 seeds of B and 1 of A (listed); the arm 1 of B and 0 of A (not listed)
+        (run([clear, apart]), run([shin, arm], "failed", 0.0)),
+        (run([clear, apart]), run([shin, apart], "failed", 0.0)),
+        (run([shin, apart], "failed", 0.0), run([shin, apart], "failed", 0.0)),
+    ]
+    seeds = story_diff.over_seeds(pairs)
+    assert (
+        seeds["fidelity_a"] == [1.0, 1.0, 0.0]
+        and seeds["mean_b"] == 0.0
+        and abs(seeds["mean_a"] - 2 / 3) < 1e-12
+    )
+    assert [(r["check"], r["failed_a"], r["failed_b"]) for r in seeds["leaning"]] == [("penetration", 1, 3)]
+    files = []
+    for i, (a, b) in enumerate(pairs):
+        for side, data in (("a", a), ("b", b)):
+            (tmp_path / f"{side}{i}.json").write_text(json.dumps(data))
+        files.append((str(tmp_path / f"a{i}.json"), str(tmp_path / f"b{i}.json")))
+    more = [x for a, b in files[1:] for x in ("--more", a, b)]
+    assert story_diff.main([*files[0], *more, "--json", str(tmp_path / "d.json")]) == 0
+    assert "failed A 1 / B 3 of 3: solo-x-01 | s1 | penetration (Tom)" in capsys.readouterr().out
+    assert json.loads((tmp_path / "d.json").read_text())["seeds"]["pairs"] == 3
