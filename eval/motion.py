@@ -15,7 +15,7 @@ in the world since the frame before), measured on the composed motion of whole s
 orchestrator (examples/office.txt; the full run adds the Fountain examples) and on the scenarios with
 the idle layer; clips: per library clip, jerk (mean joint jerk, m/s^3), energy (mean joint angular
 speed, deg/s) and frozen_share of the clip alone; clips_highest_jerk / clips_lowest_energy list 20
-each for review.
+each for review; clips_held_straight_arm: clips with an arm straight, raised and still for 0.5 s or more.
 Targets: foot_slide_cm <= 1.0 (cm per frame while a foot is in contact), contact_cm <= 3.0,
 spine_bend_p95_deg <= 30, prop_grip_error_cm <= 1, frozen_share <= 0.05.
 """
@@ -144,10 +144,12 @@ def frozen_share(global_rot: np.ndarray, present: np.ndarray | None = None) -> f
 
 def clip_review(limit: int = 20) -> dict:
     """Per library clip: jerk, motion energy and frozen share of the clip alone (neutral root, 30 fps)."""
+    from tools.authoring.clip_sheets import held_straight_arms
     from wana.domain.actions import get_clip
     from wana.domain.skeleton import REST_OFFSETS, forward_kinematics
 
     rows = {}
+    held: dict[str, list] = {}
     for name in sorted(load_library()):
         clip = get_clip(name)
         rot, offs, _ = clip.sample(30, max(clip.duration_s, 3.0) if clip.looping else clip.duration_s)
@@ -160,6 +162,8 @@ def clip_review(limit: int = 20) -> dict:
             "frozen_share": round(frozen_share(grot), 3),
             "seconds": round(len(rot) / 30, 2),
         }
+        if flags := held_straight_arms(pos):
+            held[name] = flags
     by_jerk = sorted(rows, key=lambda n: -rows[n]["jerk"])[:limit]
     by_energy = sorted(rows, key=lambda n: rows[n]["energy_deg_s"])[:limit]
     return {
@@ -167,6 +171,9 @@ def clip_review(limit: int = 20) -> dict:
         "clips_highest_jerk": [[n, rows[n]["jerk"]] for n in by_jerk],
         "clips_lowest_energy": [[n, rows[n]["energy_deg_s"]] for n in by_energy],
         "clip_frozen_share": round(float(np.mean([r["frozen_share"] for r in rows.values()])), 4),
+        # (side, start s, seconds) where an arm is straight, raised and still for 0.5 s or more (issue 23:
+        # none in the library; the same test as the review sheets of tools/authoring/clip_sheets.py)
+        "clips_held_straight_arm": held,
     }
 
 
@@ -316,9 +323,9 @@ def cmu_heldout(quick: bool) -> list[dict]:
         heading0 = float(np.arctan2(*(track[10] - track[0])))
         loco = locomote(wps, speed, heading0)
         pos, _ = global_transforms(loco.rotations, loco.root_position)
-        from services.motion.ik import lock_feet
+        from services.motion.locomotion import lock_walk
 
-        locked = lock_feet(loco.rotations, loco.root_position, loco.contacts)
+        locked = lock_walk(loco.rotations, loco.root_position, loco.contacts)
         pos_locked, _ = global_transforms(locked, loco.root_position)
         out.append(
             {

@@ -45,6 +45,13 @@ MODEL_DIR = model_path("locomotion")
 ACCEL = 1.6  # m/s^2
 TURN_RATE = 4.0  # rad/s while walking
 TURN_IN_PLACE_RATE = 2.5  # rad/s
+# The network's poses jitter from frame to frame (the fast graph's 24 phase bins switch its weights in steps;
+# a planted ankle jumps 1-2 cm a frame before locking): a binomial low-pass (sigma 1 frame, 1/e at 4.8 Hz,
+# above a walk's and a run's cycle harmonics that carry the swing) takes the jitter out of rotations and height.
+SMOOTH_KERNEL = np.array([1.0, 4.0, 6.0, 4.0, 1.0]) / 16.0
+# Frames the foot lock eases in and out outside a contact the network flags (services.motion.ik.lock_feet):
+# one; holding the pin three frames into the swing kept the lifting foot back and let it go with a jerk.
+LOCK_BLEND = 1
 
 
 @dataclass(frozen=True)
@@ -244,6 +251,30 @@ def standing_pose_features() -> np.ndarray:
     )
 
 
+def smooth_rotations(rotations: np.ndarray, kernel: np.ndarray = SMOOTH_KERNEL) -> np.ndarray:
+    """(T, J, 4) unit quaternions low-passed over time per joint (sign-aligned, edge-padded, renormalised)."""
+    if len(rotations) < 2:
+        return rotations
+    q = rotations.copy()
+    flip = np.sum(q[1:] * q[:-1], axis=-1) < 0  # (T-1, J)
+    q *= np.cumprod(np.concatenate([np.ones((1, q.shape[1])), np.where(flip, -1.0, 1.0)]), axis=0)[..., None]
+    return quat.normalize(_lowpass(q, kernel))
+
+
+def _lowpass(x: np.ndarray, kernel: np.ndarray) -> np.ndarray:
+    """x (T, ...) convolved over time with an odd kernel, edges padded with the end values."""
+    h = len(kernel) // 2
+    padded = np.concatenate([np.repeat(x[:1], h, axis=0), x, np.repeat(x[-1:], h, axis=0)])
+    return sum(w * padded[i : i + len(x)] for i, w in enumerate(kernel))
+
+
+def lock_walk(rotations: np.ndarray, root: np.ndarray, contacts: np.ndarray) -> np.ndarray:
+    """A walk's planted feet pinned as synthesis shows them (and eval/gait.py, eval/motion.py measure them)."""
+    from services.motion.ik import lock_feet
+
+    return lock_feet(rotations, root, contacts, blend=LOCK_BLEND)
+
+
 def locomote(
     waypoints: np.ndarray,
     speed: float = 1.4,
@@ -287,10 +318,11 @@ def locomote(
     )
     y = rt.run(control, standing_pose_features(), phase0)
     t = len(pos)
-    rot = quat.normalize(y[:, SLICE_ROT].reshape(t, N_JOINTS, 4).astype(np.float64))
+    rot = smooth_rotations(quat.normalize(y[:, SLICE_ROT].reshape(t, N_JOINTS, 4).astype(np.float64)))
     rot[:, 0] = quat.mul(quat.yaw(heading), rot[:, 0])
     local_pos = y[:, SLICE_POSE][:, : N_JOINTS * 3].reshape(t, N_JOINTS, 3)
-    root = np.stack([pos[:, 0], local_pos[:, 0, 1], pos[:, 1]], -1).astype(np.float64)
+    height = _lowpass(local_pos[:, 0, 1].astype(np.float64), SMOOTH_KERNEL)
+    root = np.stack([pos[:, 0], height, pos[:, 1]], -1)
     contacts = (y[:, SLICE_CONTACT] > 0.5).astype(np.uint8)
     # Standing still: both feet down whatever the network says.
     contacts[spd < 0.05] = 1

@@ -23,7 +23,7 @@ from services.motion.blend import fade_from, layer, upper_body_mask
 from services.motion.gait_style import NEUTRAL as NEUTRAL_GAIT
 from services.motion.gait_style import gait_style
 from services.motion.ik import joint_globals, lean_needed, lean_spine, lock_feet, trunk_tilt, two_bone_ik
-from services.motion.locomotion import locomote
+from services.motion.locomotion import lock_walk, locomote
 from services.motion.style import apply_style, resample_fps, style_of
 from wana.arrays import to_wire
 from wana.domain import quat
@@ -403,7 +403,7 @@ def _locomotion_piece(seg: PlannedSegment, state: SegmentState) -> tuple[MotionP
     if gait_style(seg.manner) == NEUTRAL_GAIT:  # a manner the gait has no walk for: the mood's style
         rot = apply_style(rot, _standing_pose(state.yaw), style_of(*seg.mood))
     rot = fade_from(_standing_pose(state.yaw), rot, FADE)
-    rot = lock_feet(rot, loco.root_position, loco.contacts)
+    rot = lock_walk(rot, loco.root_position, loco.contacts)
     piece = MotionPiece(loco.root_position, rot, loco.contacts, seg)
     # The character comes to rest at the goal, so the next walk starts from a standing pose at phase 0: the end
     # state depends on where the walk ends, not on how it got there (edits to the manner stop early).

@@ -1,6 +1,6 @@
 """Train the locomotion PFNN and export it to ONNX (normalisation inside the graph).
 
-Usage (CPU, one thread: about 2 minutes on an idle core; 296 s for the shipped model on a busy 2-core machine):
+Usage (CPU, one thread: 90 s wall for the shipped model on a busy 2-core machine, 75 s of it training):
     OMP_NUM_THREADS=1 nice -n 10 .venv/bin/python -m services.motion.train_locomotion
 
 Corpus: (a) procedural locomotion from services.motion.gait (walk, run, start, stop, turn,
