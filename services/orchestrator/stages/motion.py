@@ -30,7 +30,7 @@ from services.orchestrator.backend import StageFailed
 from services.orchestrator.document import Sentence
 from services.orchestrator.slotting import Slotting, matched
 from services.orchestrator.stages import StageContext, content_of
-from services.orchestrator.stages.props import aimed, carried, made_for, provide
+from services.orchestrator.stages.props import aimed, brought_notes, carried, made_for, provide
 from services.orchestrator.stages.scene import keep_relations
 from services.orchestrator.stages.seats import furnish
 from services.orchestrator.stages.social import fit_cast, frame_count, paired_actions
@@ -462,7 +462,7 @@ def animate(
     characters = aimed(characters_of(graphs, [s.id for s in sentences]), scene)
     # an added bag the character puts down came in with them: in the hand from the first frame
     characters, brought = carried(characters, scene, {o.id for o in scene.objects} - there)
-    added = [*provided, *added]
+    added = [*provided, *brought_notes(characters, brought, scene, sentences), *added]
     looks, scene = scene, geometry_view(scene)  # the nodes below read shapes, not paint
     door = doorway(scene)
     wait_ids = {sid for sid, c in commands if c.kind == "wait"}

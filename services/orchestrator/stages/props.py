@@ -495,6 +495,31 @@ def carried(
     return out, holding
 
 
+def brought_notes(
+    characters: dict[str, tuple[CharacterNode, list[str]]],
+    holding: dict[str, str],
+    scene: Scene,
+    sentences: Sequence[Sentence],
+) -> list[tuple[str, Diagnostic]]:
+    """One I202 per object a character brings (carried), on the sentence that puts it down."""
+    spans = {s.id: Span(s.start, s.end) for s in sentences}
+    out = []
+    for name, held in holding.items():
+        node, sids = characters[name]
+        placed = find_object(scene, held)
+        k = next((k for k, a in enumerate(node.actions) if a.action in PUTS), None)
+        if placed is None or k is None:
+            continue
+        what = placed.category.replace("_", " ")
+        on = node.actions[k].destination.split("#")[0].replace("_", " ")
+        message = f"{name} brings the {what}: in the hand from {name}'s first frame" + (
+            f", then put on the {on}" if on else ""
+        )
+        span = spans.get(sids[k], Span(0, 0))
+        out.append((sids[k], Diagnostic(code="I202", message=message, span=span, severity="info")))
+    return out
+
+
 def _holdable(placed: PlacedObject) -> bool:
     try:
         return "pick_up" in _catalog().asset_for(placed).contact_points

@@ -299,6 +299,11 @@ def test_ms_lee_comes_in_with_her_bag_and_puts_it_from_her_hand_on_the_desk():
         "She puts her bag on the teacher's desk.\nMs Lee waves.\n"
     )
     (bag,) = [o for o in result.scene.objects if o.category == "handbag"]
+    notes = [d.message for ds in result.diagnostics.values() for d in ds if d.code == "I202"]
+    assert (
+        "Ms Lee brings the handbag: in the hand from Ms Lee's first frame, then put on the teacher desk"
+        in notes
+    )
     motion = result.motions["Ms Lee"]
     tracks = sorted((t for t in motion.props if t.object_id == bag.id), key=lambda t: t.start_frame)
     assert tracks and tracks[0].start_frame == 0  # in her hand from her first frame
