@@ -30,7 +30,7 @@ from services.orchestrator.backend import StageFailed
 from services.orchestrator.document import Sentence
 from services.orchestrator.slotting import Slotting, matched
 from services.orchestrator.stages import StageContext, content_of
-from services.orchestrator.stages.props import aimed, made_for, provide
+from services.orchestrator.stages.props import aimed, brought_notes, carried, made_for, provide
 from services.orchestrator.stages.scene import keep_relations
 from services.orchestrator.stages.seats import furnish
 from services.orchestrator.stages.social import fit_cast, frame_count, paired_actions
@@ -190,6 +190,7 @@ def segments(
     hidden: set[str] | None = None,
     notes: list[tuple[str, str]] | None = None,
     handovers: list[PairedAction] | None = None,
+    holding: dict[str, str] | None = None,
 ) -> dict[str, list[Motion]]:
     """Every character's motion, one query node `<kind>:<name>:<k>` per action, in document order.
 
@@ -202,8 +203,13 @@ def segments(
     comes in through it, and an exit walks out through it.
     ``notes`` collects (sentence id, what the motion service said) ("no free seat ...: Zoe stands instead").
     ``handovers`` collects the actions that hand an object to another character (their next actions hold it).
+    ``holding``: name -> the object in the character's hand from its first frame (props.carried: a bag it brings).
     """
-    states = {name: SegmentEndState(x=st[0], z=st[1], yaw=st[2]) for name, st in starts.items()}
+    held = holding or {}
+    states = {
+        name: SegmentEndState(x=st[0], z=st[1], yaw=st[2], holding=held.get(name, ""))
+        for name, st in starts.items()
+    }
     outside = set(hidden or ())
     slotting = Slotting(scene)  # who holds which seat and stand slot, as the story runs
     exit_lanes: dict[str, list[tuple[float, float]]] = {}  # sentence id -> the door's lanes still free
@@ -451,9 +457,12 @@ def animate(
     scene = with_door(scene)  # furnishing composes the room again, without the door the scene stage added
     # props named only in action sentences, after furnishing (which composes the room again from the scene
     # sentences and so dropped what was added before it: the bag "put on the teacher's desk")
+    there = {o.id for o in scene.objects}
     scene, provided = provide(scene, graphs, sentences, ctx.seed)
     characters = aimed(characters_of(graphs, [s.id for s in sentences]), scene)
-    added = [*provided, *added]
+    # an added bag the character puts down came in with them: in the hand from the first frame
+    characters, brought = carried(characters, scene, {o.id for o in scene.objects} - there)
+    added = [*provided, *brought_notes(characters, brought, scene, sentences), *added]
     looks, scene = scene, geometry_view(scene)  # the nodes below read shapes, not paint
     door = doorway(scene)
     wait_ids = {sid for sid, c in commands if c.kind == "wait"}
@@ -485,6 +494,7 @@ def animate(
         distances=near,
         door=door,
         hidden=hidden,
+        holding=brought,
     )
     for name, k, action in interactions:
         tick("optimise", done, total)
@@ -521,6 +531,7 @@ def animate(
         hidden=hidden,
         notes=notes,
         handovers=handovers,
+        holding=brought,
     )
     spans = {s.id: Span(s.start, s.end) for s in sentences}
     for sid, why in dict.fromkeys(notes):

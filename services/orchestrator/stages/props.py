@@ -55,6 +55,9 @@ TABLE_HEIGHT = (0.35, 1.25)  # metres: surfaces a standing or seated person puts
 GAP = 0.03  # metres between an added object and what already stands there
 EDGE = 0.06  # metres an added object keeps from its surface's edge
 FLOOR_RING = (0.35, 0.6, 0.9)  # metres beside the anchor's footprint where a floor object may stand
+POURED_FROM = ("bottle",)  # drinkware one pours from, not one's own glass
+SEAT_REACH = 0.6  # metres from a table top's edge to a seat's sitting point: a seat at that table
+PLACE_REACH = 0.6  # metres from a sitting point to a cup that is that place's own (the planner reaches 0.9)
 
 
 @dataclass(frozen=True)
@@ -65,6 +68,8 @@ class Need:
     sentence_id: str
     near: tuple[str, ...]  # object ids to put it on / beside, best first
     action: str = ""  # the action that works on it there ("wash_dishes": the dishes go where one washes)
+    why: str = ""  # what the diagnostic says it is for, when not "the story uses the <word>"
+    owner: str = ""  # the character it is added for, when one of several ("They drink": one glass each)
 
 
 def _catalog() -> ModuleType:
@@ -178,6 +183,52 @@ def prop_needs(graphs: Sequence[SentenceGraph], sentence_ids: Sequence[str], sce
                     out.append(Need(node, sid, tuple(dict.fromkeys(near))))
                     wanted |= {default}
                 last_at.setdefault(c.name, []).extend(here)
+        out.extend(_one_each(g, sid, scene, out, last_at))
+    return out
+
+
+def _kin(category: str) -> set[str]:
+    """The category and its catalog siblings ("cup": mug, glass, bottle: drinkware)."""
+    from wana.assets import vocabulary
+
+    info = vocabulary.CATEGORIES.get(category)
+    if info is None or not info.parent:
+        return {category}
+    return {category} | {n for n, i in vocabulary.CATEGORIES.items() if i.parent == info.parent}
+
+
+def _one_each(
+    g: SentenceGraph, sid: str, scene: Scene, wanted: Sequence[Need], last_at: dict[str, list[str]]
+) -> list[Need]:
+    """One more object for each character beyond the first few of a sentence whose characters all do one
+    held action with no object of their own ("They drink" with three at the table and one glass): each
+    holds one, of the kind the room already has ("glasses" on the table: a glass) else the action's own."""
+    doers: dict[str, list[str]] = {}
+    verbs: dict[str, str] = {}
+    for c in g.characters:
+        for a in c.actions:
+            refs = [r for r in (a.target, a.instrument, a.destination) if r]
+            named = [find_object(scene, r) for r in refs]
+            if a.action in DEFAULT_PROP and _clip_kind(a) == "handheld" and not any(named):
+                doers.setdefault(a.action, []).append(c.name)
+                verbs.setdefault(a.action, a.verb or a.action.replace("_", " "))
+    out = []
+    for action, names in doers.items():
+        if len(names) < 2 or not _known(DEFAULT_PROP[action]):
+            continue
+        kin = _kin(DEFAULT_PROP[action])
+        # what the room has for it: cups and glasses, not the bottle poured from (a drink is poured out of it)
+        have = [o for o in _usable(scene, action) if o.category in kin and o.category not in POURED_FROM]
+        have_ids = {o.id for o in have}
+        added = sum(1 for n in wanted if n.sentence_id == sid and n.node.category in kin)
+        category = have[0].category if have else DEFAULT_PROP[action]
+        count = len(have) + added
+        for name in names[count:]:
+            node = ObjectNode(id=category, category=category, word=category.replace("_", " "))
+            near = tuple(dict.fromkeys(r for r in reversed(last_at.get(name, [])) if r not in have_ids))
+            held = f"{count} {category.replace('_', ' ')}" + ("" if count == 1 else "s")
+            why = f"{len(names)} characters {verbs[action]} and the room has {held}"
+            out.append(Need(node, sid, near, action, why, name))
     return out
 
 
@@ -228,8 +279,52 @@ def _overlaps(
     )
 
 
-def _on_surface(scene: Scene, anchor: PlacedObject, fp: np.ndarray, height: float) -> tuple | None:
-    """(x, y, z) centre of the base of a free spot on the anchor's surfaces nearest their middle, or None."""
+def _seats_at(scene: Scene, anchor: PlacedObject, reach: float = SEAT_REACH) -> list[tuple[str, np.ndarray]]:
+    """(id, xz) of the seats whose sitting point is within ``reach`` of the anchor's table top, by id."""
+    tops = _surfaces(anchor)
+    out = []
+    for o in scene.objects:
+        if o.id == anchor.id:
+            continue
+        try:
+            points = _catalog().asset_for(o).contact_points
+            sit = [np.asarray(cp.position, float) for n, cp in points.items() if n.startswith("sit")]
+            if not sit:
+                continue
+            xz = _catalog().to_world(o, np.stack(sit))[:, [0, 2]]
+        except Exception:  # noqa: BLE001 - unknown category
+            continue
+        for p in xz:
+            if any(np.linalg.norm(np.clip(p, lo, hi) - p) <= reach for _, lo, hi in tops):
+                out.append((o.id, p))
+    return sorted(out, key=lambda t: (t[0], float(t[1][0]), float(t[1][1])))
+
+
+def _before_seat(
+    scene: Scene, anchor: PlacedObject, need: Need, fp: np.ndarray, height: float
+) -> tuple | None:
+    """(x, y, z) of a free spot on the anchor in front of a seat with nothing of the need's kind in reach
+    yet ("They drink" at the table: a glass at each place), or None."""
+    kin = _kin(need.node.category)
+    mine = [
+        np.array([o.position[0], o.position[2]])
+        for o in scene.objects
+        if o.category in kin and o.category not in POURED_FROM
+    ]
+    for _, seat in _seats_at(scene, anchor):
+        if any(np.linalg.norm(m - seat) <= PLACE_REACH for m in mine):
+            continue
+        spot = _on_surface(scene, anchor, fp, height, toward=seat)
+        if spot is not None and np.hypot(spot[0] - seat[0], spot[2] - seat[1]) <= PLACE_REACH:
+            return spot
+    return None
+
+
+def _on_surface(
+    scene: Scene, anchor: PlacedObject, fp: np.ndarray, height: float, toward: np.ndarray | None = None
+) -> tuple | None:
+    """(x, y, z) centre of the base of a free spot on the anchor's surfaces nearest their middle (nearest
+    ``toward``, xz, when given), or None."""
     others = _boxes_xz(scene)
     for h, lo, hi in sorted(_surfaces(anchor), key=lambda s: -float(np.prod(s[2] - s[1]))):
         size = fp[1] - fp[0]
@@ -240,7 +335,8 @@ def _on_surface(scene: Scene, anchor: PlacedObject, fp: np.ndarray, height: floa
         xs = np.linspace(lo[0] + EDGE - fp[0][0], hi[0] - EDGE - fp[1][0], 9)
         zs = np.linspace(lo[1] + EDGE - fp[0][1], hi[1] - EDGE - fp[1][1], 9)
         # Nearest the room's middle first: the front of a counter against a wall, within a person's reach.
-        spots = sorted(((x, z) for x in xs for z in zs), key=lambda p: np.hypot(p[0], p[1]))
+        aim = np.zeros(2) if toward is None else toward
+        spots = sorted(((x, z) for x in xs for z in zs), key=lambda p: np.hypot(p[0] - aim[0], p[1] - aim[1]))
         for x, z in spots:
             a, b = np.array([x, z]) + fp[0], np.array([x, z]) + fp[1]
             if not _overlaps(a, b, h + 0.005, h + height, others):
@@ -316,6 +412,11 @@ def place(scene: Scene, need: Need, seed: int = 0) -> tuple[PlacedObject, str] |
     found = [o for o in [*anchors, *_tables(scene)] if o is not None]
     candidates = list({o.id: o for o in found}.values())  # by id, the first kept
     if _mount(node.category) == "surface":
+        if need.why:  # one each: in front of a place at the table that has none
+            for anchor in candidates:
+                spot = _before_seat(scene, anchor, need, fp, height)
+                if spot is not None:
+                    return _placed(node, attrs, seed, spot, anchor.id), anchor.id
         for anchor in candidates:
             spot = _on_surface(scene, anchor, fp, height) or _at_work_point(anchor, need)
             if spot is not None:
@@ -361,6 +462,69 @@ def aimed(
                 actions[k] = msgspec.structs.replace(a, destination=there.id)
         out[name] = (msgspec.structs.replace(node, actions=actions), sids)
     return out
+
+
+PUTS = ("put_down",)  # actions that set down what the hand holds
+
+
+def carried(
+    characters: dict[str, tuple[CharacterNode, list[str]]], scene: Scene, added: set[str]
+) -> tuple[dict[str, tuple[CharacterNode, list[str]]], dict[str, str]]:
+    """The characters who bring an added object with them, and each one's actions put it where the sentence
+    says: "She puts her bag on the teacher's desk" in a room with no bag (provide added one on the desk)
+    has Ms Lee hold the bag from her first frame (she came in with it), so the put moves it from her hand to
+    the desk. An object is brought by the character whose first action on it puts it down; that put gets
+    the surface it was added on as its destination when the parse named none. Returns (characters, name
+    -> id of the object in the hand from the start)."""
+    out, holding = {}, {}
+    taken: set[str] = set()
+    for name, (node, sids) in characters.items():
+        actions = list(node.actions)
+        for k, a in enumerate(actions):
+            ref = a.target or a.instrument
+            placed = find_object(scene, ref) if ref else None
+            if placed is None or placed.id not in added or placed.id in taken:
+                continue
+            taken.add(placed.id)  # the first action on it decides (a "read" first: picked up where it lies)
+            if a.action not in PUTS or name in holding or not _holdable(placed):
+                continue
+            holding[name] = placed.id
+            if not a.destination and placed.support:
+                actions[k] = msgspec.structs.replace(a, destination=placed.support)
+        out[name] = (msgspec.structs.replace(node, actions=actions), sids)
+    return out, holding
+
+
+def brought_notes(
+    characters: dict[str, tuple[CharacterNode, list[str]]],
+    holding: dict[str, str],
+    scene: Scene,
+    sentences: Sequence[Sentence],
+) -> list[tuple[str, Diagnostic]]:
+    """One I202 per object a character brings (carried), on the sentence that puts it down."""
+    spans = {s.id: Span(s.start, s.end) for s in sentences}
+    out = []
+    for name, held in holding.items():
+        node, sids = characters[name]
+        placed = find_object(scene, held)
+        k = next((k for k, a in enumerate(node.actions) if a.action in PUTS), None)
+        if placed is None or k is None:
+            continue
+        what = placed.category.replace("_", " ")
+        on = node.actions[k].destination.split("#")[0].replace("_", " ")
+        message = f"{name} brings the {what}: in the hand from {name}'s first frame" + (
+            f", then put on the {on}" if on else ""
+        )
+        span = spans.get(sids[k], Span(0, 0))
+        out.append((sids[k], Diagnostic(code="I202", message=message, span=span, severity="info")))
+    return out
+
+
+def _holdable(placed: PlacedObject) -> bool:
+    try:
+        return "pick_up" in _catalog().asset_for(placed).contact_points
+    except Exception:  # noqa: BLE001 - unknown category
+        return False
 
 
 def _is_walk(action: ActionNode) -> bool:
@@ -421,7 +585,9 @@ def provide(
             if at
             else "in the room"
         )
-        message = f"added a {placed.category.replace('_', ' ')} {where}: the story uses the {what} but no scene sentence puts it in the room"
+        why = need.why or f"the story uses the {what} but no scene sentence puts it in the room"
+        owner = f" for {need.owner}" if need.owner else ""
+        message = f"added a {placed.category.replace('_', ' ')} {where}{owner}: {why}"
         notes.append(
             (
                 need.sentence_id,
@@ -436,4 +602,15 @@ def provide(
     return Scene(room=scene.room, objects=objects, seed=scene.seed), notes
 
 
-__all__ = ["DEFAULT_PROP", "Need", "aimed", "free_id", "made_for", "place", "prop_needs", "provide"]
+__all__ = [
+    "DEFAULT_PROP",
+    "PUTS",
+    "Need",
+    "aimed",
+    "carried",
+    "free_id",
+    "made_for",
+    "place",
+    "prop_needs",
+    "provide",
+]

@@ -14,7 +14,7 @@ from proto.ssg import ActionNode, CharacterNode, ObjectNode, SentenceGraph
 from services.orchestrator.backend import InProcessBackend
 from services.orchestrator.document import Sentence
 from services.orchestrator.session import Orchestrator
-from services.orchestrator.stages.props import made_for, prop_needs, provide
+from services.orchestrator.stages.props import carried, made_for, prop_needs, provide
 from wana.arrays import from_wire
 from wana.assets.catalog import world_bounds, world_support_surfaces
 
@@ -192,3 +192,129 @@ def test_a_prop_added_for_an_action_stays_when_a_chair_is_added_too():
     bags = [o for o in result.scene.objects if o.category == "handbag"]
     assert len(bags) == 1 and bags[0].support == "teacher_desk"
     assert any(o.category == "chair" for o in result.scene.objects)
+
+
+def _dining(glasses: int) -> Scene:
+    """A dining table with two chairs on each long side facing it and ``glasses`` glasses in its middle."""
+    table = PlacedObject(id="dining_table", category="dining_table", position=(0.0, 0.0, 0.0), yaw=0.0)
+    (height, _), *_ = world_support_surfaces(table)
+    places = [
+        ((-0.4, 0.0, -0.75), 0.0),
+        ((0.4, 0.0, -0.75), 0.0),
+        ((-0.4, 0.0, 0.75), np.pi),
+        ((0.4, 0.0, 0.75), np.pi),
+    ]
+    chairs = [
+        PlacedObject(id=f"chair/{i}", category="chair", position=p, yaw=y) for i, (p, y) in enumerate(places)
+    ]
+    cups = [
+        PlacedObject(
+            id=f"glass/{i}", category="glass", position=(0.25 * i, height, 0.0), support="dining_table"
+        )
+        for i in range(glasses)
+    ]
+    return Scene(
+        room=Room(room_type="dining_room", width=6, depth=6, height=3), objects=[table, *chairs, *cups]
+    )
+
+
+def _they(sid: str, names: tuple[str, ...], action: ActionNode) -> SentenceGraph:
+    people = [CharacterNode(name=n, actions=[action]) for n in names]
+    return SentenceGraph(sentence_id=sid, text="", kind="action", characters=people)
+
+
+def test_several_drinkers_and_one_glass_get_a_glass_each_in_front_of_a_place_at_the_table():
+    """group-dining_room-04: "They drink." with Eve, John and Nora at the table and one glass on it."""
+    names = ("Eve", "John", "Nora")
+    graphs = [
+        _they("s1", names, ActionNode(verb="sit", action="sit", target="dining_table")),
+        _they("s2", names, ActionNode(verb="drink", action="drink")),
+    ]
+    scene = _dining(1)
+    furnished, notes = provide(scene, graphs, _sentences("s1", "s2"))
+    added = furnished.objects[len(scene.objects) :]
+    assert [o.category for o in added] == ["glass", "glass"]  # the room's kind, one for each beyond the first
+    assert len({o.id for o in furnished.objects}) == len(furnished.objects)
+    assert all(o.support == "dining_table" for o in added)
+    seats = [np.array([-0.4, -0.75]), np.array([0.4, -0.75]), np.array([-0.4, 0.75]), np.array([0.4, 0.75])]
+    nearest = [
+        min(range(4), key=lambda i: np.hypot(o.position[0] - seats[i][0], o.position[2] - seats[i][1]))
+        for o in added
+    ]
+    assert len(set(nearest)) == 2  # two different places
+    for o, i in zip(added, nearest, strict=True):
+        assert (
+            np.hypot(o.position[0] - seats[i][0], o.position[2] - seats[i][1]) < 0.6
+        )  # in reach of the seat
+    messages = [d.message for sid, d in notes if sid == "s2" and d.code == "I202"]
+    assert len(messages) == 2 and "for John" in messages[0] and "for Nora" in messages[1]
+    assert all("3 characters drink and the room has 1 glass" in m for m in messages)
+
+
+def test_drinkers_with_a_glass_each_or_one_drinker_get_nothing_more():
+    names = ("Eve", "John", "Nora")
+    drink = ActionNode(verb="drink", action="drink")
+    full = _dining(3)
+    assert provide(full, [_they("s1", names, drink)], _sentences("s1")) == (full, [])
+    one = _dining(1)
+    assert provide(one, [_they("s1", ("Eve",), drink)], _sentences("s1")) == (one, [])
+
+
+def test_a_bag_added_for_a_put_is_in_the_hand_from_the_start_and_put_on_the_desk_the_sentence_names():
+    desk = PlacedObject(id="teacher_desk", category="teacher_desk", position=(0.0, 0.0, 1.5), yaw=np.pi)
+    scene = Scene(room=Room(room_type="classroom", width=7, depth=7, height=3), objects=[desk])
+    bag = ObjectNode(id="handbag", category="handbag", word="bag")
+    put = ActionNode(verb="put", action="put_down", target="handbag")
+    graphs = [
+        _graph("s1", "Ms Lee", ActionNode(verb="enter", action="walk")),
+        _graph(
+            "s2",
+            "Ms Lee",
+            put,
+            objects=(bag, ObjectNode(id="teacher_desk", category="teacher_desk", word="desk")),
+        ),
+    ]
+    furnished, _ = provide(scene, graphs, _sentences("s1", "s2"))
+    (added,) = [o for o in furnished.objects if o.category == "handbag"]
+    assert added.support == "teacher_desk"
+    characters = {
+        "Ms Lee": (
+            CharacterNode(name="Ms Lee", actions=[graphs[0].characters[0].actions[0], put]),
+            ["s1", "s2"],
+        )
+    }
+    aimed_at, holding = carried(characters, furnished, {added.id})
+    assert holding == {"Ms Lee": added.id}
+    assert aimed_at["Ms Lee"][0].actions[1].destination == "teacher_desk"  # the parse dropped "on the desk"
+    assert carried(characters, furnished, set()) == (characters, {})  # a bag the room had: picked up there
+    read = ActionNode(verb="read", action="read", target="handbag")  # first used otherwise: not brought
+    first_read = {"Ms Lee": (CharacterNode(name="Ms Lee", actions=[read, put]), ["s1", "s2"])}
+    assert carried(first_read, furnished, {added.id})[1] == {}
+
+
+def test_ms_lee_comes_in_with_her_bag_and_puts_it_from_her_hand_on_the_desk():
+    """solo-classroom-10: the bag added on the desk was "put" there from an empty hand (0.05 m off it)."""
+    result = _story(
+        "In the classroom there is a teacher's desk$.\nMs Lee enters the classroom.\n"
+        "She puts her bag on the teacher's desk.\nMs Lee waves.\n"
+    )
+    (bag,) = [o for o in result.scene.objects if o.category == "handbag"]
+    notes = [d.message for ds in result.diagnostics.values() for d in ds if d.code == "I202"]
+    assert (
+        "Ms Lee brings the handbag: in the hand from Ms Lee's first frame, then put on the teacher desk"
+        in notes
+    )
+    motion = result.motions["Ms Lee"]
+    tracks = sorted((t for t in motion.props if t.object_id == bag.id), key=lambda t: t.start_frame)
+    assert tracks and tracks[0].start_frame == 0  # in her hand from her first frame
+    put = next(s for s in motion.segments if s.action == "put_down")
+    held_until = max(t.end_frame for t in tracks if t.start_frame < put.end_frame)
+    assert held_until >= put.end_frame - 1  # carried up to the release
+    last = from_wire(tracks[-1].position)[-1]
+    (height, corners), *_ = sorted(world_support_surfaces(bag_desk(result.scene)), key=lambda s: -s[0])
+    lo, hi = corners.min(axis=0), corners.max(axis=0)
+    assert lo[0] - 0.05 <= last[0] <= hi[0] + 0.05 and lo[1] - 0.05 <= last[2] <= hi[1] + 0.05  # on the desk
+
+
+def bag_desk(scene: Scene) -> PlacedObject:
+    return next(o for o in scene.objects if o.id == "teacher_desk")
