@@ -109,13 +109,6 @@ def seq(*steps: tuple) -> list[tuple]:
     return keys
 
 
-def _degrees(x: float) -> float:
-    """An Euler angle as written: 0.1 degree, and -180 written as 180 (the same turn), so that the file does not
-    depend on which side of the cut a machine's floating point lands."""
-    r = round(float(x), 1)
-    return 180.0 if r == -180.0 else r + 0.0  # + 0.0: no -0.0
-
-
 def _key_json(key: tuple) -> dict:
     t, pose, *rest = key
     ease = rest[0] if rest else "in_out"
@@ -129,7 +122,7 @@ def _key_json(key: tuple) -> dict:
         e = quat.to_euler(EULER_ORDER, np.asarray(q))
         if np.max(np.abs(e)) < 0.05:
             continue
-        out_pose[name] = [_degrees(x) for x in e]
+        out_pose[name] = [round(float(x), 1) for x in e]
     d: dict = {"t": round(float(t), 4), "ease": ease if t > 0 else "linear", "pose": out_pose}
     if any(abs(x) > 1e-6 for x in root):
         d["root"] = [round(float(x), 4) for x in root]
