@@ -20,8 +20,12 @@ office (bench/render.py's measure), encoding not counted; ``encode_overlap`` ren
 same frames with the encoder on its own thread. ``render_speedup_2_workers`` comes from bench/render.py
 (not run here).
 
+``parse_ms``: the parse stage alone (split, parse, resolve) cold over a document of that many sentences,
+all different (the 6 scene sentences, then actions no two alike), so the NLP service's cache by
+sentence text answers none of them.
+
 JSON keys: action_edit_p50_ms, late_action_edit_p50_ms, scene_edit_p50_ms, scene_used_edit_p50_ms,
-full_ms (each a map size -> ms), nodes (size -> kind -> nodes run), startup_s, animate (per story),
+full_ms, parse_ms (each a map size -> ms), nodes (size -> kind -> nodes run), startup_s, animate (per story),
 animate_realtime_factor, render_fps_640, render_fps_1280, cpu_count, load_average.
 """
 
@@ -115,6 +119,54 @@ def edit_latency(size: int, reps: int) -> dict[str, Any]:
             out["ms"][kind] = statistics.median(times)
             out["nodes"][kind] = int(statistics.median(nodes))
         orch.close()
+    return out
+
+
+NAMES = ["Eve", "Tom", "Ann", "Bob", "Kim", "Max", "Zoe", "Ian", "Lea", "Sam"]
+VERBS = [
+    "walks to the {o}.",
+    "looks at the {o}.",
+    "points at the {o}.",
+    "runs to the {o}.",
+    "stands near the {o}.",
+]
+ADVERBS = ["", "slowly ", "quickly ", "then ", "calmly ", "again "]  # 3000 different sentences in all
+OBJECTS = ["chair", "sofa", "window", "lamp", "desk", "laptop", "plant", "bookshelf", "side table", "door"]
+
+
+def unique_actions(n: int, first: int = 0) -> list[str]:
+    """``n`` action sentences no two alike (name x verb x object), from combination ``first`` on: the NLP
+    service's own cache by sentence text never answers them."""
+    out = []
+    for k in range(first, first + n):
+        name, rest = NAMES[k % len(NAMES)], k // len(NAMES)
+        verb, obj = VERBS[rest % len(VERBS)], OBJECTS[(rest // len(VERBS)) % len(OBJECTS)]
+        how = ADVERBS[(rest // (len(VERBS) * len(OBJECTS))) % len(ADVERBS)]
+        out.append(f"{name} {how}{verb.format(o=obj)}")
+    return out
+
+
+def parse_latency(sizes: list[int]) -> dict[str, float]:
+    """Size -> ms of a cold parse stage (split, parse, resolve; a fresh session's engine) of a document of
+    ``size`` sentences, all different (what a first open of a hand-written story costs in the parser)."""
+    from services.orchestrator.backend import InProcessBackend
+    from services.orchestrator.document import Document
+    from services.orchestrator.pipeline import Pipeline
+    from services.orchestrator.queries import QueryEngine
+
+    backend = InProcessBackend()
+    warm = Document.from_text("warm", WARM_UP)
+    Pipeline(backend, doc_id="warm").run(warm, QueryEngine(), stages=("parse",))  # spaCy loaded
+    out: dict[str, float] = {}
+    first = 0
+    for size in sizes:
+        doc = Document.from_text(
+            "p", " ".join(SCENE) + "\n" + "\n".join(unique_actions(size - len(SCENE), first))
+        )
+        first += size
+        t0 = time.perf_counter()
+        Pipeline(backend, doc_id="p").run(doc, QueryEngine(), stages=("parse",))
+        out[str(size)] = round(1000 * (time.perf_counter() - t0), 1)
     return out
 
 
@@ -257,6 +309,12 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
             f"{nodes['action']}/{nodes['late_action']}/{nodes['scene_unused']}/{nodes['scene_used']}/{nodes['full']}",
             flush=True,
         )
+    res["parse_ms"] = parse_latency(sizes)
+    print(
+        "cold parse stage, all sentences different: "
+        + ", ".join(f"{k}: {v:.0f} ms" for k, v in res["parse_ms"].items()),
+        flush=True,
+    )
     if not args.no_animate:
         stories = [(2, 1)] if args.quick else [(2, 1), (8, 2), (8, 1), (8, 4)]
         res["animate"] = []

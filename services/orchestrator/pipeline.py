@@ -133,20 +133,12 @@ class Pipeline:
     ) -> list[SentenceGraph]:
         """Every sentence's graph in order: parsed while the parse time lasts, else an empty graph whose
         W501 says why it was cut (recorded in ``cut``)."""
-        graphs: dict[str, SentenceGraph] = {}
         todo = [s for s in sentences if s.id not in cut]
-
-        def quiet(stage: str, done: int, total: int) -> None:
-            """parse_all's own ticks, for one sentence at a time: this loop ticks for all of them."""
-
-        for i, s in enumerate(todo):
-            if not meter.parse_time_left():
-                for late in todo[i:]:
-                    cut[late.id] = meter.out_of_parse_time()
-                break
-            tick("parse", i, len(todo))
-            graphs[s.id] = parse_all(ctx, [s], quiet)[0]
-        tick("parse", len(todo), len(todo))
+        tick("parse", 0, len(todo))
+        parsed = parse_all(ctx, todo, tick, meter.parse_time_left)  # batched; stops when the time is up
+        graphs = {s.id: g for s, g in zip(todo, parsed, strict=False)}
+        for late in todo[len(parsed) :]:
+            cut[late.id] = meter.out_of_parse_time()
         for s in sentences:
             if s.id in cut:
                 why = over_budget(cut[s.id], Span(0, len(s.key_text)))

@@ -77,6 +77,12 @@ class QueryEngine:
             return [e for e in self.log[self._start :] if e.revision == self.revision]
         return [e for e in self.log if e.revision == revision]
 
+    def fresh(self, key: str, inputs: Any) -> bool:
+        """Whether `query(key, inputs, ...)` would reuse its memo (a stage batches the nodes that would not)."""
+        with self._lock:
+            memo = self.memos.get(key)
+        return memo is not None and memo.input_hash == content_hash(inputs)
+
     def query(self, key: str, inputs: Any, compute: Callable[[], T]) -> T:
         """Return the memoised value of `key` for these inputs, computing it only when they changed."""
         input_hash = content_hash(inputs)

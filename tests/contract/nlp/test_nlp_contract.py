@@ -47,6 +47,26 @@ def test_batch_then_resolve_names_the_pronoun(nlp):
 
 
 @pytest.mark.contract
+def test_a_batch_answers_each_sentence_as_its_own_parse_request_would(nlp):
+    """What the orchestrator's parse stage relies on when it batches a first compute and memoises per sentence."""
+    texts = [
+        "In the office there is a desk$.",
+        "Eve walks to the desk.",
+        "camera left",
+        "Eve walks to the desk.",
+    ]
+    sentences = [SentenceInput(sentence_id=f"s{i}", text=t, offset=0) for i, t in enumerate(texts)]
+    _, batch = call(nlp, ParseBatchRequest(header=Header(doc_id="d", revision=2), sentences=sentences))
+    assert batch.header.revision == 2 and batch.model_version
+    singles = [
+        call(nlp, ParseRequest(header=Header(), sentence_id=s.sentence_id, text=s.text, offset=0))[1].graph
+        for s in sentences
+    ]
+    assert list(batch.graphs) == singles
+    assert [g.kind for g in batch.graphs] == ["scene", "action", "command", "action"]
+
+
+@pytest.mark.contract
 def test_parse_document_returns_one_graph_per_sentence(nlp):
     text = "There is a desk near a window$.\ncamera left\nEve walks to the desk."
     _, reply = call(nlp, ParseDocumentRequest(header=Header(), text=text))
