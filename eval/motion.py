@@ -200,6 +200,7 @@ def staged_frozen(quick: bool) -> dict:
     from services.orchestrator.backend import InProcessBackend
     from services.orchestrator.session import Orchestrator
     from wana.domain.skeleton import forward_kinematics
+    from wana.screenplay import looks_like_fountain, to_story
 
     examples = Path(__file__).resolve().parents[1] / "examples"
     out: dict = {}
@@ -207,6 +208,8 @@ def staged_frozen(quick: bool) -> dict:
     frozen, total = 0.0, 0
     for story in STAGED_STORIES[:1] if quick else STAGED_STORIES:
         text = (examples / story).read_text()
+        if looks_like_fountain(text, story):  # as `wana animate` reads it: cues and dialogue -> sentences
+            text = to_story(text)
         with tempfile.TemporaryDirectory(prefix="wana-eval-motion-") as tmp:
             orch = Orchestrator(Path(tmp) / "sessions.db", InProcessBackend(), seed=0)
             try:
