@@ -245,3 +245,33 @@ def test_the_layer_of_a_stretch_moves_with_it_when_the_time_line_shifts():
     laid = len(idle._WINDOWS)
     idle.enliven_motion(_held_then_acting(52))
     assert len(idle._WINDOWS) == laid  # both holds were laid before, at other frames
+
+
+def test_whoever_speaks_draws_the_eyes_of_a_listener():
+    rot, root = _standing(120)
+    listener = Motion(
+        character="Eve",
+        root_position=to_wire(root.astype(np.float32)),
+        rotations=to_wire(rot.astype(np.float32)),
+        segments=[Segment(index=0, action="hold", start_frame=0, end_frame=120)],
+    )
+    speaker_root = root + [-2.5, 0.0, 1.0]
+    speaker = Motion(
+        character="Tom",
+        root_position=to_wire(speaker_root.astype(np.float32)),
+        rotations=to_wire(rot.astype(np.float32)),
+        segments=[
+            Segment(index=0, action="hold", start_frame=0, end_frame=40),
+            Segment(index=1, action="talk", start_frame=40, end_frame=120, action_index=0),
+        ],
+    )
+    points = idle.attention("Eve", {"Eve": listener, "Tom": speaker})
+    assert np.isnan(points[:40]).all()
+    assert np.allclose(points[40:, [0, 2]], speaker_root[40:, [0, 2]])  # at the speaker's head
+    out = idle.enliven_motion(listener, points)
+    pos, g = forward_kinematics(from_wire(out.rotations).astype(np.float64), root)
+    head = JOINT_INDEX["Head"]
+    facing = quat.rotate(g[:, head], np.array([0.0, 0.0, 1.0]))[:, [0, 2]]
+    to_speaker = (speaker_root - pos[:, head])[:, [0, 2]]
+    cos = np.sum(facing * to_speaker, 1) / np.linalg.norm(facing, axis=1) / np.linalg.norm(to_speaker, axis=1)
+    assert np.degrees(np.arccos(cos[80:100])).max() < np.degrees(np.arccos(cos[20])) - 20.0  # turned to him
