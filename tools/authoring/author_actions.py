@@ -122,9 +122,7 @@ def _key_json(key: tuple) -> dict:
         e = quat.to_euler(EULER_ORDER, np.asarray(q))
         if np.max(np.abs(e)) < 0.05:
             continue
-        # -180 and 180 degrees about one axis are one rotation: write 180, so which side of the seam the
-        # float arithmetic lands on (it differs between BLAS builds) does not change the committed file
-        out_pose[name] = [180.0 if r == -180.0 else r for r in (round(float(x), 1) for x in e)]
+        out_pose[name] = [round(float(x), 1) for x in e]
     d: dict = {"t": round(float(t), 4), "ease": ease if t > 0 else "linear", "pose": out_pose}
     if any(abs(x) > 1e-6 for x in root):
         d["root"] = [round(float(x), 4) for x in root]
