@@ -14,10 +14,11 @@ Liveliness (issue 23): frozen_share (share of on-stage frames in which no joint 
 in the world since the frame before), measured on the composed motion of whole stories run through the
 orchestrator (examples/office.txt; the full run adds the Fountain examples) and on the scenarios with
 the idle layer; clips: per library clip, jerk (mean joint jerk, m/s^3), energy (mean joint angular
-speed, deg/s) and frozen_share of the clip alone; clips_highest_jerk / clips_lowest_energy list 20
+speed, deg/s) and frozen_share of the clip alone; longest_frozen_s: the longest run of frozen on-stage
+frames of any character of those stories, seconds (per character in longest_frozen_s_by_character); clips_highest_jerk / clips_lowest_energy list 20
 each for review; clips_held_straight_arm: clips with an arm straight, raised and still for 0.5 s or more.
 Targets: foot_slide_cm <= 1.0 (cm per frame while a foot is in contact), contact_cm <= 3.0,
-spine_bend_p95_deg <= 30, prop_grip_error_cm <= 1, frozen_share <= 0.05.
+spine_bend_p95_deg <= 30, prop_grip_error_cm <= 1, frozen_share <= 0.05, longest_frozen_s <= 0.5.
 """
 
 from __future__ import annotations
@@ -142,6 +143,18 @@ def frozen_share(global_rot: np.ndarray, present: np.ndarray | None = None) -> f
     return float(frozen[on].mean()) if on.any() else 0.0
 
 
+def longest_frozen_s(global_rot: np.ndarray, present: np.ndarray | None = None, fps: int = 30) -> float:
+    """Seconds of the longest run of frozen on-stage frames (issue 23: never a frozen pose > 0.5 s)."""
+    if len(global_rot) < 2:
+        return 0.0
+    frozen = joint_turn_deg(global_rot).max(axis=1) <= FROZEN_DEG
+    if present is not None:
+        frozen &= (present[1:] > 0) & (present[:-1] > 0)
+    edges = np.diff(np.r_[0, frozen.astype(np.int8), 0])
+    runs = np.flatnonzero(edges == -1) - np.flatnonzero(edges == 1)
+    return float(runs.max()) / fps if len(runs) else 0.0
+
+
 def clip_review(limit: int = 20) -> dict:
     """Per library clip: jerk, motion energy and frozen share of the clip alone (neutral root, 30 fps)."""
     from tools.authoring.clip_sheets import held_straight_arms
@@ -187,12 +200,16 @@ def staged_frozen(quick: bool) -> dict:
     from services.orchestrator.backend import InProcessBackend
     from services.orchestrator.session import Orchestrator
     from wana.domain.skeleton import forward_kinematics
+    from wana.screenplay import looks_like_fountain, to_story
 
     examples = Path(__file__).resolve().parents[1] / "examples"
     out: dict = {}
+    longest: dict = {}
     frozen, total = 0.0, 0
     for story in STAGED_STORIES[:1] if quick else STAGED_STORIES:
         text = (examples / story).read_text()
+        if looks_like_fountain(text, story):  # as `wana animate` reads it: cues and dialogue -> sentences
+            text = to_story(text)
         with tempfile.TemporaryDirectory(prefix="wana-eval-motion-") as tmp:
             orch = Orchestrator(Path(tmp) / "sessions.db", InProcessBackend(), seed=0)
             try:
@@ -206,9 +223,15 @@ def staged_frozen(quick: bool) -> dict:
             share = frozen_share(grot, present)
             n = int(((present[1:] > 0) & (present[:-1] > 0)).sum())
             out[f"{story}:{name}"] = round(share, 4)
+            longest[f"{story}:{name}"] = round(longest_frozen_s(grot, present), 3)
             frozen += share * n
             total += n
-    return {"frozen_share": round(frozen / max(total, 1), 4), "frozen_share_by_character": out}
+    return {
+        "frozen_share": round(frozen / max(total, 1), 4),
+        "frozen_share_by_character": out,
+        "longest_frozen_s": max(longest.values(), default=0.0),
+        "longest_frozen_s_by_character": longest,
+    }
 
 
 def run_scenario(character: CharacterNode, scene: Scene, start) -> dict:

@@ -159,10 +159,16 @@ def seat_approach(scene: Scene, placed: PlacedObject, hips: tuple[float, float, 
     want = float(np.clip(half_depth - along + LEG_CLEAR_M, SEAT_BACK, SEAT_APPROACH_MAX))
     if want <= SEAT_BACK:
         return SEAT_BACK
-    from wana.domain.object_geometry import scene_footprints
+    from wana.domain.object_geometry import object_shape, scene_footprints
     from wana.domain.routes import point_rect_distance
 
-    fp = scene_footprints(scene, ignore=resting_on(scene, placed.id) | {placed.id})
+    skip = set(resting_on(scene, placed.id)) | {placed.id}
+    for o in scene.objects:  # a category the catalog lacks has no known footprint to step around
+        try:
+            object_shape(o)
+        except (KeyError, ValueError):
+            skip.add(o.id)
+    fp = scene_footprints(scene, ignore=skip)
     fp = fp.select(fp.y_max > APPROACH_LOW_M)
     if not len(fp):
         return want

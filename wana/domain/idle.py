@@ -9,9 +9,10 @@ micro drift of the arms, and a gaze that turns the head (and, for far turns, the
 whatever deserves attention: who acts or walks nearby, the object the next action uses.
 
 The layer is zero at the edges of every idle stretch and eases in over ``RAMP_S``, so it never
-touches an action's frames and never pops. Frames where a prop is held are left alone (the prop
-follows the hand). Lives in the domain library because it works on the assembled time line the
-orchestrator builds, after the motion service has made every piece. Over 400 lines because it keeps the
+touches an action's frames and never pops. While a prop is in hand the shoulders and arms keep their
+pose and the rest of the layer moves both hands as one, carrying the prop's track along (``in_hand``); a
+prop the character put down does not stop the layer. Lives in the domain library because it works on
+the assembled time line the orchestrator builds, after the motion service has made every piece. Over 400 lines because it keeps the
 layer, the stretches it covers, attention and blinks together: they share one timing and seeding rule.
 """
 
@@ -186,6 +187,7 @@ def enliven(
     seed: int,
     gaze: np.ndarray | None = None,
     head_weight: np.ndarray | None = None,
+    arms: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """The idle layer over a composed motion.
 
@@ -197,6 +199,8 @@ def enliven(
         gaze: (T, 3) world points to look at, NaN where nothing calls for attention (eyes ahead).
         head_weight: (T,) in [0, 1], the gaze alone (head and neck) where the body is busy (typing);
             default: ``weight``.
+        arms: (T,) in [0, 1], how much of the layer the shoulders and arms get (0 while a prop is in hand:
+            the rest moves both hands as one, so a prop held in one or both hands stays in them); default 1.
 
     Returns:
         rotations (T, J, 4) and hips (T, 3) with the layer applied; frames with weight 0 are unchanged.
@@ -207,17 +211,24 @@ def enliven(
     w = np.clip(np.asarray(weight, dtype=np.float64), 0.0, 1.0)
     hw = w if head_weight is None else np.maximum(w, np.clip(head_weight, 0.0, 1.0))
     g = None if gaze is None else np.asarray(gaze, dtype=np.float64)
+    aw = w if arms is None else w * np.clip(np.asarray(arms, dtype=np.float64), 0.0, 1.0)
     # Each stretch the layer covers has its own clock, starting at 0: an edit that moves a stretch in time,
     # or lengthens it, leaves its frames as they were, so the editor is sent only what the edit changed.
     for a, b in _runs(hw > 0):
         rot[a:b], root[a:b] = _enliven_run(
-            rot0[a:b], root0[a:b], w[a:b], hw[a:b], seed, None if g is None else g[a:b]
+            rot0[a:b], root0[a:b], w[a:b], hw[a:b], seed, None if g is None else g[a:b], aw[a:b]
         )
     return rot, root
 
 
 def _enliven_run(
-    rot0: np.ndarray, root0: np.ndarray, w: np.ndarray, hw: np.ndarray, seed: int, gaze: np.ndarray | None
+    rot0: np.ndarray,
+    root0: np.ndarray,
+    w: np.ndarray,
+    hw: np.ndarray,
+    seed: int,
+    gaze: np.ndarray | None,
+    aw: np.ndarray,
 ) -> tuple[np.ndarray, np.ndarray]:
     """``enliven`` over one stretch of frames, its clock starting at 0 (the weight shifts draw from their own
     generator: how many there are depends on the stretch's length, and the other draws must not)."""
@@ -238,8 +249,8 @@ def _enliven_run(
     for j in ("Spine", "Spine1", "Spine2"):
         _post(rot, j, (1, 0, 0), -BREATH_DEG * breath * breath_amp)  # extend (chest up) on the in-breath
     _post(rot, "Neck", (1, 0, 0), 2.0 * BREATH_DEG * breath * breath_amp)  # keep the eyes level
-    _post(rot, "LeftShoulder", (0, 0, 1), SHOULDER_DEG * breath * w)
-    _post(rot, "RightShoulder", (0, 0, 1), -SHOULDER_DEG * breath * w)
+    _post(rot, "LeftShoulder", (0, 0, 1), SHOULDER_DEG * breath * aw)
+    _post(rot, "RightShoulder", (0, 0, 1), -SHOULDER_DEG * breath * aw)
 
     # Seated and standing: the torso drifts a little; the arms hang and sway with it.
     sway = _smooth_noise(rng, t, (6.3, 9.1))
@@ -248,8 +259,10 @@ def _enliven_run(
         _post(rot, j, (0, 0, 1), 1.2 * sway * w * (1 - lying))
         _post(rot, j, (0, 1, 0), 1.5 * twist * w * (1 - lying))
     for side, s in (("Left", 1.0), ("Right", -1.0)):
-        _post(rot, f"{side}Arm", (0, 0, 1), s * 1.5 * _smooth_noise(rng, t, (3.1, 4.9)) * w * (1 - lying))
-        _post(rot, f"{side}ForeArm", (0, 1, 0), s * 3.0 * _smooth_noise(rng, t, (2.3, 3.7)) * w * (1 - lying))
+        _post(rot, f"{side}Arm", (0, 0, 1), s * 1.5 * _smooth_noise(rng, t, (3.1, 4.9)) * aw * (1 - lying))
+        _post(
+            rot, f"{side}ForeArm", (0, 1, 0), s * 3.0 * _smooth_noise(rng, t, (2.3, 3.7)) * aw * (1 - lying)
+        )
 
     # Standing: the weight goes from foot to foot; the pelvis rises on the loaded side, the chest counters.
     shift = weight_shift(np.random.default_rng(seed + 1), t) * w * standing
@@ -462,8 +475,9 @@ def enliven_motion(motion: Motion, gaze: np.ndarray | None = None, seed: int | N
     root = from_wire(motion.root_position)  # as sent (float32): hashed per window as it is, widened there
     rot = from_wire(motion.rotations)
     frames = len(root)
-    held = [(p.start_frame, p.end_frame) for p in motion.props]
-    weight = idle_weight(frames, idle_spans(motion.segments, frames, rot), held)
+    held = in_hand(motion, rot, root)
+    weight = idle_weight(frames, idle_spans(motion.segments, frames, rot))
+    arms = _arms_free(frames, held)
     head = idle_weight(
         frames, [(s.start_frame, s.end_frame) for s in motion.segments if _head_free(s.action)]
     )
@@ -473,8 +487,83 @@ def enliven_motion(motion: Motion, gaze: np.ndarray | None = None, seed: int | N
     out_rot, out_root = rot.astype(np.float32), root.astype(np.float32)
     for a, b in _windows(np.maximum(weight, head) > 0):
         look = None if gaze is None else np.asarray(gaze, dtype=np.float64)[a:b]
-        out_rot[a:b], out_root[a:b] = _window(rot[a:b], root[a:b], weight[a:b], seed, look, head[a:b])
-    return msgspec.structs.replace(motion, root_position=to_wire(out_root), rotations=to_wire(out_rot))
+        out_rot[a:b], out_root[a:b] = _window(
+            rot[a:b], root[a:b], weight[a:b], seed, look, head[a:b], arms[a:b]
+        )
+    props = _props_in_hand(motion, rot, root, out_rot, out_root) if held else motion.props
+    return msgspec.structs.replace(
+        motion, root_position=to_wire(out_root), rotations=to_wire(out_rot), props=props
+    )
+
+
+def _arms_free(frames: int, held: Sequence[tuple[int, int]]) -> np.ndarray:
+    """(T,) 0 where a prop is in hand, eased back to 1 over RAMP_S either side."""
+    ramp = max(1, int(round(RAMP_S * FPS)))
+    k = np.arange(frames)
+    out = np.ones(frames)
+    for a, b in held:
+        gap = np.maximum(np.maximum(a - k, k - (b - 1)), 0) / ramp  # 0 inside, 1 a ramp away
+        u = np.clip(gap, 0.0, 1.0)
+        out = np.minimum(out, u * u * (3 - 2 * u))
+    return out
+
+
+def _props_in_hand(
+    motion: Motion, rot: np.ndarray, root: np.ndarray, new_rot: np.ndarray, new_root: np.ndarray
+) -> list:
+    """Prop tracks carried along where the layer moved their joint while the prop is in hand."""
+    pos0, g0 = forward_kinematics(np.asarray(rot, np.float64), np.asarray(root, np.float64))
+    pos1, g1 = forward_kinematics(np.asarray(new_rot, np.float64), np.asarray(new_root, np.float64))
+    out = []
+    for p in motion.props:
+        joint = JOINT_INDEX.get(p.joint)
+        a, b = max(0, p.start_frame), min(len(rot), p.end_frame)
+        at = from_wire(p.position).astype(np.float64)
+        if joint is None or b <= a or len(at) < b - p.start_frame:
+            out.append(p)
+            continue
+        q = from_wire(p.rotation).astype(np.float64)
+        k = slice(a - p.start_frame, b - p.start_frame)
+        grip = at[k] + quat.rotate(q[k], np.asarray(p.grip, float))
+        near = np.linalg.norm(grip - pos0[a:b, joint], axis=1) < IN_HAND_M
+        turn = quat.mul(g1[a:b, joint], quat.inv(g0[a:b, joint]))
+        moved_at = pos1[a:b, joint] + quat.rotate(turn, at[k] - pos0[a:b, joint])
+        at[k] = np.where(near[:, None], moved_at, at[k])
+        q[k] = np.where(near[:, None], quat.normalize(quat.mul(turn, q[k])), q[k])
+        out.append(
+            msgspec.structs.replace(
+                p, position=to_wire(at.astype(np.float32)), rotation=to_wire(q.astype(np.float32))
+            )
+        )
+    return out
+
+
+IN_HAND_M = 0.05  # metres from the holding joint to a prop's grip point within which the prop is in hand
+
+
+def in_hand(motion: Motion, rot: np.ndarray, root: np.ndarray) -> list[tuple[int, int]]:
+    """[start, end) frames in which a prop track's grip point is on its joint: the prop is in the hand.
+
+    A track also covers a prop the character set down (services/orchestrator: it stays where it was put,
+    a still track until someone takes it): those frames are not held, and the layer may move the hand.
+    """
+    frames = len(rot)
+    mask = np.zeros(frames, bool)
+    if not motion.props:
+        return []
+    pos, _ = forward_kinematics(np.asarray(rot, np.float64), np.asarray(root, np.float64))
+    for p in motion.props:
+        a, b = max(0, p.start_frame), min(frames, p.end_frame)
+        if b <= a:
+            continue
+        joint = JOINT_INDEX.get(p.joint)
+        if joint is None:
+            mask[a:b] = True
+            continue
+        at = from_wire(p.position).astype(np.float64)[: b - a]
+        grip = at + quat.rotate(from_wire(p.rotation).astype(np.float64)[: b - a], np.asarray(p.grip, float))
+        mask[a : a + len(at)] |= np.linalg.norm(grip - pos[a : a + len(at), joint], axis=1) < IN_HAND_M
+    return _runs(mask)
 
 
 WINDOW_GAP = 2  # frames: touched runs closer than this are laid as one window
@@ -502,11 +591,12 @@ def _window(
     seed: int,
     gaze: np.ndarray | None,
     head: np.ndarray,
+    arms: np.ndarray,
 ) -> tuple[np.ndarray, np.ndarray]:
     """``enliven`` over one window in its own time (t = 0 at its first frame), seeded by the character's
     seed and the window's length (windows of one character differ; the same window is laid the same
     wherever the story puts it), from the cache when these exact frames were laid before."""
-    parts = [rot, root, weight, head] + ([] if gaze is None else [gaze])
+    parts = [rot, root, weight, head, arms] + ([] if gaze is None else [gaze])
     digest = hashlib.blake2b(f"{seed}:{len(rot)}:{gaze is None}".encode(), digest_size=16)
     for part in parts:
         digest.update(np.ascontiguousarray(part).tobytes())
@@ -515,7 +605,7 @@ def _window(
     if hit is not None:
         return hit
     own_seed = (seed + 7919 * len(rot)) & 0x7FFFFFFF
-    r, p = enliven(rot.astype(np.float64), root.astype(np.float64), weight, own_seed, gaze, head)
+    r, p = enliven(rot.astype(np.float64), root.astype(np.float64), weight, own_seed, gaze, head, arms)
     laid = (r.astype(np.float32), p.astype(np.float32))
     if _WINDOW_BYTES[0] > WINDOW_CACHE_BYTES:
         _WINDOWS.clear()

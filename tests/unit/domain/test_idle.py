@@ -99,7 +99,7 @@ def test_idle_stretches_are_holds_and_long_still_runs_of_clips_without_a_hand_co
     assert spans == [(1, 60)]
 
 
-def test_props_keep_their_hand_and_a_motion_with_no_idle_stretch_is_returned_as_is():
+def test_a_busy_motion_is_returned_as_is():
     rot, root = _standing(90)
     busy = Motion(
         character="Eve",
@@ -108,7 +108,14 @@ def test_props_keep_their_hand_and_a_motion_with_no_idle_stretch_is_returned_as_
         segments=[Segment(index=0, action="drink", start_frame=0, end_frame=90)],
     )
     assert idle.enliven_motion(busy) is busy
-    held = Motion(
+
+
+def _holding(track_pos: np.ndarray | None = None) -> Motion:
+    """A 90-frame hold with a cup whose grip is on the right hand (or at track_pos: put down there)."""
+    rot, root = _standing(90)
+    hand, _ = forward_kinematics(rot, root)
+    at = hand[:, JOINT_INDEX["RightHand"]] if track_pos is None else track_pos
+    return Motion(
         character="Eve",
         root_position=to_wire(root.astype(np.float32)),
         rotations=to_wire(rot.astype(np.float32)),
@@ -119,13 +126,33 @@ def test_props_keep_their_hand_and_a_motion_with_no_idle_stretch_is_returned_as_
                 joint="RightHand",
                 start_frame=0,
                 end_frame=90,
-                position=to_wire(np.zeros((90, 3), np.float32)),
+                position=to_wire(at.astype(np.float32)),
                 rotation=to_wire(np.tile([0, 0, 0, 1], (90, 1)).astype(np.float32)),
             )
         ],
     )
+
+
+def test_a_character_holding_a_prop_still_breathes_and_the_prop_stays_in_its_hand():
+    held = _holding()
     out = idle.enliven_motion(held)
-    assert np.array_equal(from_wire(out.rotations), from_wire(held.rotations))
+    rot, root = from_wire(out.rotations).astype(np.float64), from_wire(out.root_position).astype(np.float64)
+    assert _frozen_share(rot[15:-15], root[15:-15]) <= 0.05  # never a frozen mannequin
+    pos, _ = forward_kinematics(rot, root)
+    cup = from_wire(out.props[0].position)
+    assert np.abs(cup - pos[:, JOINT_INDEX["RightHand"]]).max() < 1e-4  # the cup moved with the hand
+    for j in ("RightArm", "RightForeArm", "LeftArm", "RightShoulder"):  # the arms keep their hold
+        assert np.array_equal(
+            from_wire(out.rotations)[:, JOINT_INDEX[j]], from_wire(held.rotations)[:, JOINT_INDEX[j]]
+        )
+
+
+def test_a_prop_put_down_away_from_the_hand_does_not_stop_the_arms_or_follow_them():
+    put = _holding(np.tile([3.0, 0.8, 0.0], (90, 1)))
+    out = idle.enliven_motion(put)
+    assert np.array_equal(from_wire(out.props[0].position), from_wire(put.props[0].position))
+    arm = JOINT_INDEX["RightArm"]
+    assert not np.array_equal(from_wire(out.rotations)[:, arm], from_wire(put.rotations)[:, arm])
 
 
 def test_whoever_acts_draws_the_eyes_and_the_next_target_wins_just_before_the_action():
@@ -218,3 +245,33 @@ def test_the_layer_of_a_stretch_moves_with_it_when_the_time_line_shifts():
     laid = len(idle._WINDOWS)
     idle.enliven_motion(_held_then_acting(52))
     assert len(idle._WINDOWS) == laid  # both holds were laid before, at other frames
+
+
+def test_whoever_speaks_draws_the_eyes_of_a_listener():
+    rot, root = _standing(120)
+    listener = Motion(
+        character="Eve",
+        root_position=to_wire(root.astype(np.float32)),
+        rotations=to_wire(rot.astype(np.float32)),
+        segments=[Segment(index=0, action="hold", start_frame=0, end_frame=120)],
+    )
+    speaker_root = root + [-2.5, 0.0, 1.0]
+    speaker = Motion(
+        character="Tom",
+        root_position=to_wire(speaker_root.astype(np.float32)),
+        rotations=to_wire(rot.astype(np.float32)),
+        segments=[
+            Segment(index=0, action="hold", start_frame=0, end_frame=40),
+            Segment(index=1, action="talk", start_frame=40, end_frame=120, action_index=0),
+        ],
+    )
+    points = idle.attention("Eve", {"Eve": listener, "Tom": speaker})
+    assert np.isnan(points[:40]).all()
+    assert np.allclose(points[40:, [0, 2]], speaker_root[40:, [0, 2]])  # at the speaker's head
+    out = idle.enliven_motion(listener, points)
+    pos, g = forward_kinematics(from_wire(out.rotations).astype(np.float64), root)
+    head = JOINT_INDEX["Head"]
+    facing = quat.rotate(g[:, head], np.array([0.0, 0.0, 1.0]))[:, [0, 2]]
+    to_speaker = (speaker_root - pos[:, head])[:, [0, 2]]
+    cos = np.sum(facing * to_speaker, 1) / np.linalg.norm(facing, axis=1) / np.linalg.norm(to_speaker, axis=1)
+    assert np.degrees(np.arccos(cos[80:100])).max() < np.degrees(np.arccos(cos[20])) - 20.0  # turned to him

@@ -55,3 +55,14 @@ def test_the_clip_review_lists_twenty_clips_by_jerk_and_by_energy(motion_eval):
     rows = review["clips"]
     assert set(rows["wave"]) == {"jerk", "energy_deg_s", "frozen_share", "seconds"}
     assert rows["idle"]["energy_deg_s"] < rows["wave"]["energy_deg_s"]
+
+
+def test_the_longest_frozen_run_is_measured_in_seconds_on_stage_only(motion_eval):
+    g = _spinning(61, 0.2)
+    g[31:] = g[30]  # turns for 30 frames, then holds for 30 (one second)
+    assert motion_eval.longest_frozen_s(g) == pytest.approx(1.0)
+    g[45:50] = _spinning(61, 0.2)[45:50]  # a short move in the hold splits it: 14 frames, then 11
+    assert motion_eval.longest_frozen_s(g) == pytest.approx(14 / 30)
+    present = np.r_[np.ones(40), np.zeros(21)].astype(np.uint8)  # off stage from frame 40
+    assert motion_eval.longest_frozen_s(g, present) == pytest.approx(9 / 30)
+    assert motion_eval.longest_frozen_s(_spinning(61, 0.2)) == 0.0
