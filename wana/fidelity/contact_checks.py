@@ -489,7 +489,20 @@ def _touch_person(act: Act, body: Body, bodies: Mapping[str, Body], frames: rang
         surface = np.linalg.norm(them.points[fr] - p[:, None], axis=2) - them.radii[None]  # (W, P)
         gaps.append(np.maximum(surface.min(axis=1), 0.0))
     gap = np.max(gaps, axis=0)
-    share = float(np.mean(gap <= CONTACT_M))
+    touching = gap <= CONTACT_M
+    share = float(np.mean(touching))
+    if share >= CONTACT_SHARE and act.node.action in ROUND_ACTIONS:
+        behind = np.all([round_back(body.joint(j)[fr], them, fr) for j in clip.contacts], axis=0)
+        round_share = float(np.mean(touching & behind))
+        if round_share < CONTACT_SHARE:
+            return Check(
+                name="contact",
+                character=who,
+                ok=False,
+                reason=f"{who}'s arms never go round {other}: both hands are behind {other}'s back on "
+                f"{round_share:.0%} of the frames (needs half)",
+                frames=frame_list(np.asarray(frames)[~(touching & behind)]),
+            )
     if share < CONTACT_SHARE:
         return Check(
             name="contact",
@@ -501,6 +514,22 @@ def _touch_person(act: Act, body: Body, bodies: Mapping[str, Body], frames: rang
     return Check(
         name="contact", character=who, ok=True, reason=f"{who} touches {other} ({share:.0%} of the frames)"
     )
+
+
+ROUND_ACTIONS = ("hug",)  # person-to-person actions whose arms go round the other's back
+BACK_PLANE_M = 0.05  # a hand at most this far in front of the other's back plane is behind their back
+
+
+def round_back(hand: np.ndarray, them: Body, frames: np.ndarray) -> np.ndarray:
+    """(W,) whether a hand (W, 3) is behind the other's back plane: the plane through their chest (Spine2)
+    square to the way their shoulders face, with the hand no further in front of it than BACK_PLANE_M (a
+    hug's arms go round the other; hands on their chest or arms are not a hug)."""
+    chest = them.joint("Spine2")[frames]
+    across = them.joint("LeftShoulder")[frames] - them.joint("RightShoulder")[frames]
+    up = them.joint("Neck")[frames] - them.joint("Hips")[frames]
+    forward = np.cross(across, up)
+    forward /= np.maximum(np.linalg.norm(forward, axis=1, keepdims=True), 1e-9)
+    return np.einsum("ij,ij->i", hand - chest, forward) <= BACK_PLANE_M
 
 
 def _is_room_word(word: str) -> bool:
