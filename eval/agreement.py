@@ -246,6 +246,7 @@ def compare(
     labels: Iterable[dict[str, Any]],
     found: dict[tuple[Any, ...], dict[str, Any]],
     fingerprints: dict[tuple[str, int], str],
+    count_stale: bool = False,
 ) -> dict[str, Any]:
     """Agreement of each label with the current check verdict of its unit.
 
@@ -253,6 +254,8 @@ def compare(
         labels: the person's labels.
         found: unit key -> unit, over the stories computed this run.
         fingerprints: (story, seed) -> its animation's fingerprint (the stories computed this run).
+        count_stale: count a stale label too (still listed under ``stale``): an indicative number only, the
+            person judged an older animation of the unit.
     """
     per: dict[str, collections.Counter[str]] = collections.defaultdict(collections.Counter)
     stale, skipped, disagreements = [], [], []
@@ -264,7 +267,8 @@ def compare(
             continue
         if lab.get("animation") and lab["animation"] != fingerprints[story]:
             stale.append(key)
-            continue
+            if not count_stale:
+                continue
         u = found.get(key)
         check = u["check_verdict"] if u is not None else "ok"  # no such check: it claims nothing
         c = per[lab["check"]]
@@ -317,6 +321,7 @@ def compare_groups(
     found: dict[tuple[Any, ...], dict[str, Any]],
     fingerprints: dict[tuple[str, int], str],
     splits: dict[str, str],
+    count_stale: bool = False,
 ) -> dict[str, dict[str, Any]]:
     """Group (dev, test, others, fresh) -> its agreement and counted labels: a target must hold on the labels
     the checks were not fixed on (held-out test, fresh), not only on the dev labels they were."""
@@ -325,7 +330,7 @@ def compare_groups(
         groups[label_group(lab, splits)].append(lab)
     out = {}
     for name, labs in sorted(groups.items()):
-        c = compare(labs, found, fingerprints)
+        c = compare(labs, found, fingerprints, count_stale)
         out[name] = {"agreement": c["check_agreement"], "counted": c["counted"], "labels": len(labs)}
     return out
 
@@ -437,9 +442,9 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         rows[(stem, seed)] = row
         for u in units(row, fp, seed):
             found[unit_key(u)] = u
-    summary = compare(labels, found, fingerprints)
+    summary = compare(labels, found, fingerprints, args.count_stale)
     splits = {p.stem: p.parent.name for p in every.values()}
-    summary["by_group"] = compare_groups(labels, found, fingerprints, splits)
+    summary["by_group"] = compare_groups(labels, found, fingerprints, splits, args.count_stale)
     for group, key in (
         ("test", "agreement_held_out"),
         ("fresh", "agreement_fresh"),
@@ -500,6 +505,11 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--sample-seed", type=int, default=0, help="the sample's seed (default 0)")
     ap.add_argument("--quick", action="store_true", help=f"the {QUICK_STORIES} most labelled stories only")
     ap.add_argument("--labelled", action="store_true", help="every labelled story, and no --split")
+    ap.add_argument(
+        "--count-stale",
+        action="store_true",
+        help="count labels of an animation that changed since (indicative only: judged on an older animation)",
+    )
     ap.add_argument("--labels", type=Path, default=LABELS, help="default eval/data/agreement_labels.json")
     ap.add_argument("--out", type=Path, default=OUT, help="cache, sheets and samples (out/eval/agreement)")
     ap.add_argument("--json", type=Path, default=None, help="write the agreement summary here")

@@ -23,11 +23,13 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from msgspec.structs import replace
 
 from proto.fidelity import Check
 from proto.motion_data import Motion
 from proto.render import TimedCommand
 from proto.scene import Scene
+from services.render.camera import project
 from services.render.director import Shot
 from services.render.sightlines import Furniture
 from services.render.staging import CameraTrack, Staging
@@ -51,6 +53,7 @@ from services.render.visibility import (
     shown_share,
     unhide_own_seat,
 )
+from wana.domain.skeleton import JOINT_INDEX
 
 __all__ = [
     "LEGS",
@@ -64,6 +67,11 @@ __all__ = [
 
 FRAME_SHARE = 0.9  # of the action's frames that must show the character
 MIN_COMMAND_FRAMES = COMMAND_HOLD_FRAMES  # 1.5 s: what the render timeline holds the last command for
+# "camera close" is judged by the picture: someone's head top to chest spans at least this share of the
+# frame's height: more than a full figure can (a whole body with headroom spans at most a fifth; the render's
+# own close shot of a standing person, knees up, about 27 %; a head and shoulders half).
+CLOSE_SPAN = 0.22
+HEAD_TOP_M = 0.18  # metres above the Head joint (the skull's base) to the top of the head
 
 
 @dataclass(frozen=True)
@@ -125,9 +133,53 @@ def staged_checks(
     """The camera checks of a staged video (the renderer's own ``staging``); ``track`` when already planned."""
     track = track if track is not None else stage.camera_track(width, height)
     out = in_view_checks(stage, track, sentences, width=width, height=height, tally=tally)
+    joints = {name: rig.joint_positions for name, rig in stage.rigs.items()}
     for sid, checks in command_checks(stage.commands, stage.n_frames, stage.shots).items():
-        out.setdefault(sid, []).extend(checks)
+        out.setdefault(sid, []).extend(close_in_picture(c, joints, track) for c in checks)
     return out
+
+
+def close_span(joints: Mapping[str, np.ndarray], track: CameraTrack, frames: Sequence[int]) -> np.ndarray:
+    """(F,) on each frame the largest share of the picture's height any character's head top to chest
+    spans, as the rendered camera projects them (0 for one behind the camera or off the picture's sides)."""
+    out = np.zeros(len(frames))
+    head_i, chest_i = JOINT_INDEX["Head"], JOINT_INDEX["Spine2"]
+    for k, f in enumerate(frames):
+        pose = track.pose(int(f))
+        for pos in joints.values():
+            if not len(pos):
+                continue
+            g = min(int(f), len(pos) - 1)  # the held end of the video repeats the final pose
+            top = pos[g, head_i] + (0.0, HEAD_TOP_M, 0.0)
+            uv, z = project(np.stack([top, pos[g, chest_i]]), pose, track.width, track.height)
+            if np.any(z <= 0.05) or not (0.0 <= float(uv[:, 0].mean()) <= track.width):
+                continue
+            out[k] = max(out[k], abs(float(uv[1, 1] - uv[0, 1])) / track.height)
+    return out
+
+
+def close_in_picture(check: Check, joints: Mapping[str, np.ndarray], track: CameraTrack) -> Check:
+    """A passing "camera close" check, judged again by the picture: on at least MIN_COMMAND_FRAMES of the
+    frames it is in force someone's head to chest fills CLOSE_SPAN of the frame's height (labelled
+    duo-kitchen-03 s8: the close shot was in force for 1.5 s while Anna stayed full-figure, the camera
+    moving back and up)."""
+    if not check.ok or not check.reason.startswith("camera close ") or not check.frames:
+        return check
+    frames = [f for f in check.frames if f < len(track)]
+    span = close_span(joints, track, frames)
+    close = int((span >= CLOSE_SPAN).sum())
+    if close >= MIN_COMMAND_FRAMES:
+        return replace(
+            check, reason=f"{check.reason}; a head and chest fill {float(np.max(span)):.0%} of the frame"
+        )
+    return replace(
+        check,
+        ok=False,
+        reason=f"camera close is in force but the picture never comes close: a head to chest spans at most "
+        f"{float(np.max(span, initial=0.0)):.0%} of the frame's height (close on {close / FPS:.1f} s, needs "
+        f"{CLOSE_SPAN:.0%} for {MIN_COMMAND_FRAMES / FPS:.1f} s)",
+        frames=[int(f) for f, v in zip(frames, span, strict=True) if v < CLOSE_SPAN],
+    )
 
 
 def action_frames(motions: Iterable[Motion], n_frames: int) -> dict[str, dict[str, np.ndarray]]:

@@ -14,11 +14,13 @@ from dataclasses import dataclass
 from functools import partial
 
 import numpy as np
+from scipy.spatial.transform import Rotation
 
 from proto.fidelity import Check
 from proto.motion_data import PropTrack
 from proto.scene import PlacedObject
-from wana.assets.catalog import world_bounds
+from wana.arrays import from_wire
+from wana.assets.catalog import asset_for, to_world, world_bounds
 from wana.assets.relations import footprint_gap
 from wana.assets.vocabulary import CATEGORIES, hypernyms, lookup_room
 from wana.fidelity.acts import Act, is_locomotion, window_frames
@@ -31,7 +33,9 @@ from wana.fidelity.world import World, base_id, display
 
 CONTACT_M = 0.05  # the contact joint within this of the object's contact point ...
 CONTACT_SHARE = 0.5  # ... on at least this share of the window's frames
-MOUTH_M = 0.15  # a drink's cup within this of the head's centre
+MOUTH_M = 0.12  # a drink's cup (its rim, where it is drawn) within this of the mouth
+MOUTH_UP_M = 0.03  # the mouth: this far up the head from the Head joint (the skull's base) ...
+MOUTH_FORWARD_M = 0.09  # ... and this far forward, the way the shoulders face
 ARRIVE_M = 1.0  # a walk to an object ends within this of its footprint
 ARRIVE_PERSON_M = 1.5  # a walk to a character ends within this of them
 # Catalog contact-point names that mean each interaction kind, best first (the motion planner's choice).
@@ -359,14 +363,15 @@ def contact(
             )
         return base(ok=False, reason=reason, frames=frame_list(far)), touching
     if act.node.action == "drink":
-        head = body.points[np.clip(fr, 0, body.frames - 1), -1]
-        hand = body.joint(worst)[np.clip(fr, 0, body.frames - 1)]
-        at_mouth = np.linalg.norm(head - hand, axis=1) <= MOUTH_M + CONTACT_M
+        idx = np.clip(fr, 0, body.frames - 1)
+        rim = cup_rim(got.placed, props.get(who, ()), fr)
+        at_mouth = np.linalg.norm(rim - mouth(body)[idx], axis=1) <= MOUTH_M
         if np.mean(at_mouth) < CONTACT_SHARE:
+            gap = float(np.min(np.linalg.norm(rim - mouth(body)[idx], axis=1)))
             return (
                 base(
                     ok=False,
-                    reason=f"the {name} never reaches {who}'s mouth",
+                    reason=f"the {name} never reaches {who}'s mouth (at best {gap:.2f} m from it)",
                     frames=frame_list(fr[~at_mouth]),
                 ),
                 touching,
@@ -378,6 +383,36 @@ def contact(
         ),
         touching,
     )
+
+
+def mouth(body: Body) -> np.ndarray:
+    """(T, 3) the mouth: up the head from the Head joint and forward the way the shoulders face.
+
+    The head's up is from the Head joint to the head's centre sphere (the last body point, placed in the
+    head's own frame); forward is across the shoulder line (left minus right) and that up.
+    """
+    head = body.joint("Head")
+    up = body.points[:, -1] - head
+    up /= np.maximum(np.linalg.norm(up, axis=1, keepdims=True), 1e-9)
+    forward = np.cross(body.joint("LeftShoulder") - body.joint("RightShoulder"), up)
+    forward /= np.maximum(np.linalg.norm(forward, axis=1, keepdims=True), 1e-9)
+    return head + MOUTH_UP_M * up + MOUTH_FORWARD_M * forward
+
+
+def cup_rim(placed: PlacedObject, tracks: Sequence[PropTrack], frames: np.ndarray) -> np.ndarray:
+    """(W, 3) the top centre of a drinking vessel on each frame, where it is drawn: moved with the hand on
+    the frames a PropTrack of it holds it (its pose there), else where the scene placed it."""
+    top = np.array([0.0, float(asset_for(placed).dims[1]), 0.0])
+    out = np.tile(to_world(placed, top), (len(frames), 1))
+    local = top * np.asarray(placed.scale, float)
+    for t in tracks:
+        if t.object_id != placed.id:
+            continue
+        pos, rot = from_wire(t.position), from_wire(t.rotation)
+        inside = (frames >= t.start_frame) & (frames < t.end_frame)
+        k = np.clip(frames[inside] - t.start_frame, 0, len(pos) - 1)
+        out[inside] = pos[k] + Rotation.from_quat(rot[k]).apply(local)
+    return out
 
 
 def _held_instead(act: Act, world: World, bodies: Mapping[str, Body]) -> PlacedObject | None:
@@ -454,7 +489,20 @@ def _touch_person(act: Act, body: Body, bodies: Mapping[str, Body], frames: rang
         surface = np.linalg.norm(them.points[fr] - p[:, None], axis=2) - them.radii[None]  # (W, P)
         gaps.append(np.maximum(surface.min(axis=1), 0.0))
     gap = np.max(gaps, axis=0)
-    share = float(np.mean(gap <= CONTACT_M))
+    touching = gap <= CONTACT_M
+    share = float(np.mean(touching))
+    if share >= CONTACT_SHARE and act.node.action in ROUND_ACTIONS:
+        behind = np.all([round_back(body.joint(j)[fr], them, fr) for j in clip.contacts], axis=0)
+        round_share = float(np.mean(touching & behind))
+        if round_share < CONTACT_SHARE:
+            return Check(
+                name="contact",
+                character=who,
+                ok=False,
+                reason=f"{who}'s arms never go round {other}: both hands are behind {other}'s back on "
+                f"{round_share:.0%} of the frames (needs half)",
+                frames=frame_list(np.asarray(frames)[~(touching & behind)]),
+            )
     if share < CONTACT_SHARE:
         return Check(
             name="contact",
@@ -466,6 +514,22 @@ def _touch_person(act: Act, body: Body, bodies: Mapping[str, Body], frames: rang
     return Check(
         name="contact", character=who, ok=True, reason=f"{who} touches {other} ({share:.0%} of the frames)"
     )
+
+
+ROUND_ACTIONS = ("hug",)  # person-to-person actions whose arms go round the other's back
+BACK_PLANE_M = 0.05  # a hand at most this far in front of the other's back plane is behind their back
+
+
+def round_back(hand: np.ndarray, them: Body, frames: np.ndarray) -> np.ndarray:
+    """(W,) whether a hand (W, 3) is behind the other's back plane: the plane through their chest (Spine2)
+    square to the way their shoulders face, with the hand no further in front of it than BACK_PLANE_M (a
+    hug's arms go round the other; hands on their chest or arms are not a hug)."""
+    chest = them.joint("Spine2")[frames]
+    across = them.joint("LeftShoulder")[frames] - them.joint("RightShoulder")[frames]
+    up = them.joint("Neck")[frames] - them.joint("Hips")[frames]
+    forward = np.cross(across, up)
+    forward /= np.maximum(np.linalg.norm(forward, axis=1, keepdims=True), 1e-9)
+    return np.einsum("ij,ij->i", hand - chest, forward) <= BACK_PLANE_M
 
 
 def _is_room_word(word: str) -> bool:

@@ -3,6 +3,7 @@ by looking at the frames, with the neighbouring case that must keep its verdict.
 
 from __future__ import annotations
 
+import msgspec
 import numpy as np
 import pytest
 
@@ -433,3 +434,44 @@ def test_a_fingertip_grazing_another_body_4_cm_is_no_overlap_but_a_trunk_4_cm_in
     assert fa.failing.all() and abs(fa.amount[0] - 0.08) < 1e-3
     trunk = _spheres("Mary", "Spine2", 0.28 - 0.04, 0.14)  # two trunks 4 cm into each other
     assert overlap(trunk, anna)[0].failing.all()
+
+
+# -- drink: the cup as drawn against the mouth, not the wrist against the head ------------------------------
+
+
+def _drinker(make, rim_offset: tuple[float, float, float]):
+    """Eve T-posed (hands far from her head) holding a mug whose drawn rim is ``rim_offset`` from her mouth
+    (the Head joint + 3 cm up and 9 cm forward) on every frame."""
+    frames = 60
+    mug = PlacedObject(id="mug", category="mug", position=(1.5, 0.75, 0.0))
+    bare = make.motion("Eve", make.still(0.0, 0.95, 0.0, frames), [("drink", 0, frames, "s1", 0)])
+    head = body_of(bare).joint("Head")
+    rim = head + np.array([0.0, 0.03, 0.09]) + np.asarray(rim_offset)
+    top = float(catalog.asset_for(mug).dims[1])
+    track = PropTrack(
+        object_id="mug",
+        joint="RightHand",
+        start_frame=0,
+        end_frame=frames,
+        position=to_wire((rim - [0.0, top, 0.0]).astype(np.float32)),
+        rotation=to_wire(np.tile([0.0, 0.0, 0.0, 1.0], (frames, 1)).astype(np.float32)),
+    )
+    eve = msgspec.structs.replace(bare, props=[track])
+    graphs = {
+        "s1": graph_of(
+            "s1", "Eve drinks from the mug.", "Eve", ActionNode(verb="drink", action="drink", target="mug")
+        )
+    }
+    (check,) = by_name(
+        story_checks([("s1", "action")], graphs, make.scene(mug), {"Eve": eve})["s1"], "contact"
+    )
+    return check
+
+
+def test_a_drink_is_the_drawn_cup_at_the_mouth_not_the_wrist_by_the_head(make):
+    """solo-kitchen-22 s10 (fresh label): the mug raised to the face read as 'never reaches the mouth' because
+    the wrist, below and in front of the cup, was judged against the head's centre."""
+    at_lips = _drinker(make, (0.0, 0.0, 0.02))
+    assert at_lips.ok, at_lips.reason  # the old check: the T-posed wrist is 0.7 m from the head: fail
+    by_the_ear = _drinker(make, (0.0, 0.08, -0.2))  # beside the head, behind the face: not drinking
+    assert not by_the_ear.ok and "never reaches Eve's mouth" in by_the_ear.reason

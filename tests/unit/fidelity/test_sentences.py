@@ -11,6 +11,7 @@ from proto.scene import PlacedObject
 from proto.ssg import Diagnostic, ObjectNode, RelationNode, SentenceGraph
 from wana.assets.catalog import world_bounds
 from wana.fidelity import story_checks, verdicts
+from wana.fidelity.bodies import body_of
 from wana.fidelity.clips import clip_needs
 
 
@@ -299,3 +300,37 @@ def test_hugging_the_teddy_bear_held_in_the_hands_is_contact_and_one_left_on_the
     )  # fmt: skip
     held = contact(msgspec.structs.replace(lily, props=[track]))
     assert held.ok, held.reason
+
+
+def test_a_hug_whose_hands_rest_on_the_others_chest_is_not_a_hug(make):
+    """Issue 13's known miss (c): a hug passed whenever both hands touched the other anywhere; the arms must
+    go round: both hands behind the other's back plane."""
+    import msgspec
+
+    from wana.arrays import from_wire, to_wire
+    from wana.domain.skeleton import JOINT_INDEX
+
+    frames = round(clip_needs("hug").duration_s * 30)
+    half = np.radians(100.0) / 2  # each arm turned 100 degrees from the T-pose: forward, a little inward
+    eve = make.motion("Eve", make.still(0.0, 0.95, 0.0, frames), [("hug", 0, frames, "s1", 0)])
+    rot = from_wire(eve.rotations).copy()
+    rot[:, JOINT_INDEX["LeftArm"]] = (0.0, -np.sin(half), 0.0, np.cos(half))  # hands 0.6 m out in front
+    rot[:, JOINT_INDEX["RightArm"]] = (0.0, np.sin(half), 0.0, np.cos(half))
+    eve = msgspec.structs.replace(eve, rotations=to_wire(rot.astype(np.float32)))
+    hands_y, hands_z = (float(v) for v in body_of(eve).joint("LeftHand")[0, 1:])
+    graphs = {"s1": make.action_graph("s1", "Eve", "hug", "hug", target="Tom")}
+
+    def hug_with_tom_at(z: float) -> Check:  # Tom faces Eve (turned round), his chest centre at z
+        tom = make.motion("Tom", make.still(0.0, 0.95, z, frames), [])
+        lift = hands_y - float(body_of(tom).joint("Spine2")[0, 1])  # his chest at her hands' height
+        tom = make.motion("Tom", make.still(0.0, 0.95 + lift, z, frames), [])
+        turned = from_wire(tom.rotations).copy()
+        turned[:, 0] = (0.0, 1.0, 0.0, 0.0)
+        tom = msgspec.structs.replace(tom, rotations=to_wire(turned.astype(np.float32)))
+        checks = story_checks([("s1", "action")], graphs, make.scene(), {"Eve": eve, "Tom": tom})["s1"]
+        return next(c for c in checks if c.name == "contact")
+
+    on_chest = hug_with_tom_at(hands_z + 0.12)  # her hands on his chest's front: touching, not round him
+    assert not on_chest.ok and "never go round Tom" in on_chest.reason, on_chest.reason
+    round_him = hug_with_tom_at(hands_z - 0.12)  # her hands on his back
+    assert round_him.ok, round_him.reason

@@ -24,6 +24,7 @@ from services.render.sightlines import Furniture, box_triangles, segments_hit_tr
 from services.render.staging import CameraTrack, Staging, camera_track
 from services.render.timeline import COMMAND_HOLD_FRAMES, n_frames_of, place_commands, video_frames
 from services.render.visibility import BODY_POINTS, body_view
+from wana.domain.skeleton import JOINT_INDEX
 
 N = 60
 ROOM = Room(room_type="bedroom", width=6.0, depth=5.0, height=2.8)
@@ -286,3 +287,25 @@ def test_the_tally_counts_each_in_view_checks_frames_in_the_picture_and_hidden()
         staged_checks(stage, [("s1", "Eve waves.")], width=320, height=240, track=track, tally=tally)
         assert [(t.sentence_id, t.character) for t in tally] == [("s1", "Eve")]
         assert (tally[0].frames, tally[0].in_frame, tally[0].occluded) == want
+
+
+def test_camera_close_is_judged_by_the_picture_not_by_the_plan():
+    """duo-kitchen-03 s8 (fresh label): "camera close" passed on the plan's 1.5 s while Anna stayed
+    full-figure on every frame; the same command through a camera a metre from Tom's face passes."""
+    tom = standing("Tom", 2.0, -1.0, sentence_id="s1")
+    sentences = [("s0", "camera close"), ("s1", "Tom waves.")]
+    commands = [("s0", Command(kind="camera", value="close", target="Tom"))]
+    stage = Staging.build(demo_scene(), [tom], place_commands(commands, sentences, [tom]))
+    head = stage.rigs["Tom"].joint_positions[0, JOINT_INDEX["Head"]]
+    chest = (2.0, float(head[1]) - 0.15, -1.0)  # the camera aims between his head and chest
+
+    def close_check(eye):  # noqa: ANN001, ANN202
+        track = fixed_camera(eye, chest, n=stage.n_frames)
+        checks = staged_checks(stage, sentences, width=320, height=240, track=track)["s0"]
+        return next(c for c in checks if c.name == "command_visible")
+
+    far = close_check((2.0, 1.5, 4.0))  # 5 m off: the whole room, Tom full-figure
+    assert not far.ok and "never comes close" in far.reason, far.reason
+    near = close_check((2.0, float(head[1]), 0.0))  # 1 m in front of him
+    near_back = close_check((2.0, float(head[1]), -2.0))  # or behind: a head and shoulders either way
+    assert near.ok and near_back.ok, (near.reason, near_back.reason)
