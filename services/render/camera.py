@@ -198,9 +198,9 @@ def _mode_pose(
             eye=chest - facing * 2.6 + np.array([0, 0.8, 0]), target=chest + facing * 0.8, up=up, fov_deg=55.0
         )
     if mode == "close":
-        # The director's close-up (head to knees, services.render.shots): a face-only picture would show
-        # too little of the character for anyone watching to read what it does (the in_view check).
-        eye, target, fov = single_pose("close_up", hips, face, 1)
+        # What the writer asked for: closer than the director's own close-up (head to knees), head and chest
+        # large, the trunk and hands still in the picture so that what the character does reads (in_view).
+        eye, target, fov = single_pose("close", hips, face, 1)
         return CameraPose(eye=eye, target=target, up=up, fov_deg=fov)
     if mode == "top":
         return CameraPose(

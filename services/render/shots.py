@@ -29,6 +29,9 @@ FRAMING = {
     "medium": (2.7, 0.35, 0.3, 50.0, 35.0),
     "tracking": (3.0, 0.55, 0.3, 52.0, 60.0),
     "close_up": (2.1, 0.3, 0.25, 46.0, 20.0),
+    # the writer's "camera close": head and chest fill the picture's upper part (head to chest a quarter of
+    # the frame's height and more, the command_visible check), the trunk and the hands at work below them
+    "close": (1.55, 0.25, 0.45, 46.0, 20.0),
 }
 TWO_SHOT_FOV = 52.0
 OTS_BEHIND = 1.3  # metres behind the foreground character's chest, along the line between the two

@@ -309,3 +309,18 @@ def test_camera_close_is_judged_by_the_picture_not_by_the_plan():
     near = close_check((2.0, float(head[1]), 0.0))  # 1 m in front of him
     near_back = close_check((2.0, float(head[1]), -2.0))  # or behind: a head and shoulders either way
     assert near.ok and near_back.ok, (near.reason, near_back.reason)
+
+
+def test_the_writers_camera_close_is_close_in_the_picture_the_director_draws():
+    """solo-office-01 s7: "camera close" on a typist drew the director's head-to-knees close-up (head to chest
+    at most 25 % of the frame, under 22 % on all but 0.5 s); the command's own framing comes closer."""
+    tom = standing("Tom", 2.0, -1.0, sentence_id="s1")
+    sentences = [("s0", "camera close"), ("s1", "Tom waves.")]
+    commands = [("s0", Command(kind="camera", value="close", target="Tom"))]
+    stage = Staging.build(demo_scene(), [tom], place_commands(commands, sentences, [tom]))
+    checks = staged_checks(stage, sentences, width=320, height=240)
+    close = next(c for c in checks["s0"] if c.name == "command_visible")
+    assert close.ok and "fill" in close.reason, close.reason
+    span = float(close.reason.rsplit("fill ", 1)[1].split("%")[0]) / 100.0
+    assert span >= 0.3, close.reason
+    assert all(c.ok for c in checks["s1"] if c.name == "in_view"), checks["s1"]
