@@ -4,7 +4,7 @@
 `proto.render.RenderRequest` per chunk of `CHUNK_FRAMES` frames (`encoding="mp4"`: a complete H.264 chunk
 that starts on a key frame, as the render service's own parallel renderer makes them), counts the frames
 the chunks brought back against the animation's length (the first reply says it), and joins the chunks
-into one MP4 by copying their packets (`join_mp4`, no re-encoding). Between chunks it looks at the job's
+into one MP4 by copying their packets (`wana.mp4.join_chunks`, no re-encoding). Between chunks it looks at the job's
 cancel flag, so a cancelled export stops rendering on the server, not only in the browser.
 
 The jobs live in this gateway's memory (`VideoJobs`): the latest `KEEP` are kept, finished ones for
@@ -18,7 +18,6 @@ import secrets
 import threading
 import time
 from dataclasses import dataclass, field
-from fractions import Fraction
 from typing import Any
 
 import msgspec
@@ -29,6 +28,7 @@ from services.gateway.exports import ExportFailed, ExportUnavailable, NothingToE
 from services.orchestrator.backend import StageFailed, StageUnavailable
 from services.orchestrator.exports import story_of
 from services.orchestrator.session import Session
+from wana.mp4 import join_chunks
 
 CHUNK_FRAMES = 48  # 1.6 s at 30 fps: a progress step, and the renderer is kept between chunks
 KEEP = 16  # jobs kept per gateway
@@ -166,7 +166,7 @@ def render_video(session: Session, job: VideoJob) -> bytes:
         raise JobCancelled()
     job.stage = "joining"
     out = io.BytesIO()
-    join_mp4(chunks, out, fps=fps)
+    join_chunks(chunks, out, fps=fps)
     return out.getvalue()
 
 
@@ -181,41 +181,3 @@ def _call(session: Session, request: RenderRequest) -> RenderReply:
         raise ExportUnavailable(f"the MP4 export is not available: {exc}") from exc
     except StageFailed as exc:
         raise ExportFailed(exc.code, str(exc)) from exc
-
-
-def join_mp4(chunks: list[bytes], out: io.BytesIO, fps: int = 30) -> int:
-    """Concatenate MP4 chunks that each start on a key frame (same encoder settings) into one MP4 by
-    copying their packets, each chunk's time stamps moved past the frames before it. Returns the frames."""
-    import av
-
-    dst = av.open(out, mode="w", format="mp4")
-    ostream = None
-    frames_done = 0
-    try:
-        for chunk in chunks:
-            with av.open(io.BytesIO(chunk), mode="r") as src:
-                istream = src.streams.video[0]
-                if ostream is None:
-                    ostream = dst.add_stream_from_template(istream)
-                    ostream.time_base = istream.time_base
-                tb = istream.time_base
-                if tb is None:
-                    raise ValueError("an MP4 chunk's video stream has no time base")
-                offset = int(round(Fraction(frames_done, fps) / tb))
-                count = 0
-                for packet in src.demux(istream):
-                    if packet.dts is None and packet.pts is None:
-                        continue  # the demuxer's end-of-stream marker
-                    if packet.pts is not None:
-                        packet.pts += offset
-                    if packet.dts is not None:
-                        packet.dts += offset
-                    packet.stream = ostream
-                    dst.mux(packet)
-                    count += 1
-                frames_done += count
-        if ostream is None:
-            raise ValueError("no chunks to join")
-    finally:
-        dst.close()
-    return frames_done

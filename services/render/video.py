@@ -18,6 +18,7 @@ import av
 import numpy as np
 
 from wana.domain.units import FPS
+from wana.mp4 import join_chunks  # noqa: F401  (the render service joins its chunks with it)
 
 CRF = 20  # x264 constant rate factor: visually lossless-ish for flat-shaded renders
 ENCODER_OPTIONS = {"crf": str(CRF), "preset": "veryfast", "tune": "zerolatency", "bf": "0"}
@@ -115,51 +116,6 @@ def encode_mp4(frames: Iterable[np.ndarray], out: str | Path | io.BytesIO, fps: 
     if n == 0:
         raise ValueError("no frames to encode")
     return n
-
-
-def join_chunks(chunks: Iterable[bytes | str | Path], out: str | Path | io.BytesIO, fps: int = FPS) -> int:
-    """Concatenate MP4 chunks from ``encode_mp4`` into one MP4 without re-encoding.
-
-    Args:
-        chunks: MP4 files (paths or bytes) in frame order.
-        out: output path or BytesIO.
-
-    Returns:
-        Total number of frames.
-    """
-    target = str(out) if isinstance(out, (str, Path)) else out
-    dst = av.open(target, mode="w", format="mp4")
-    ostream = None
-    frames_done = 0
-    try:
-        for chunk in chunks:
-            src_file = io.BytesIO(chunk) if isinstance(chunk, (bytes, bytearray)) else str(chunk)
-            with av.open(src_file, mode="r") as src:
-                istream = src.streams.video[0]
-                if ostream is None:
-                    ostream = dst.add_stream_from_template(istream)
-                    ostream.time_base = istream.time_base
-                tb = istream.time_base
-                if tb is None:
-                    raise ValueError("an MP4 chunk's video stream has no time base")
-                offset = int(round(Fraction(frames_done, fps) / tb))
-                count = 0
-                for packet in src.demux(istream):
-                    if packet.dts is None and packet.pts is None:
-                        continue  # the demuxer's end-of-stream marker
-                    if packet.pts is not None:
-                        packet.pts += offset
-                    if packet.dts is not None:
-                        packet.dts += offset
-                    packet.stream = ostream
-                    dst.mux(packet)
-                    count += 1
-                frames_done += count
-        if ostream is None:
-            raise ValueError("no chunks to join")
-    finally:
-        dst.close()
-    return frames_done
 
 
 def decode_frames(video: bytes | str | Path) -> list[np.ndarray]:
