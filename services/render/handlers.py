@@ -52,6 +52,12 @@ def placed(req: RenderRequest | ExportRequest) -> tuple[list[TimedCommand], list
     return place_commands(commands, sentences, motions), make_captions(sentences, motions)
 
 
+def _drawn(req: RenderRequest | ExportRequest) -> tuple[list[TimedCommand], list[Caption]]:
+    """The commands and the captions drawn into the frames (none where the request turns captions off)."""
+    commands, captions = placed(req)
+    return commands, captions if getattr(req, "show_captions", True) else []
+
+
 def _renderer_for(req: RenderRequest | ExportRequest, n_frames: int = 0) -> FrameRenderer:
     """The cached renderer when the job is the same, else a new one (the old one is closed)."""
     key_src = msgspec.msgpack.encode(
@@ -74,9 +80,7 @@ def _renderer_for(req: RenderRequest | ExportRequest, n_frames: int = 0) -> Fram
     if _cache["renderer"] is not None:
         _cache["renderer"].close()
         _cache["renderer"] = _cache["key"] = None
-    commands, captions = placed(req)
-    if not getattr(req, "show_captions", True):
-        captions = []
+    commands, captions = _drawn(req)
     try:
         r = FrameRenderer(
             req.scene,
@@ -114,9 +118,7 @@ def _cycles_job(
     req: RenderRequest | ExportRequest, n_frames: int = 0, cast: dict[str, CastCharacter] | None = None
 ) -> CyclesJob:
     """The request staged for Blender's Cycles (the same staging, so the same frames and shots)."""
-    commands, captions = placed(req)
-    if not getattr(req, "show_captions", True):
-        captions = []
+    commands, captions = _drawn(req)
     try:
         return CyclesJob.build(
             req.scene,
