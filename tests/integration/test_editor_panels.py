@@ -17,11 +17,16 @@ import pytest
 
 from services.gateway.server import GatewayThread
 from services.gateway.settings import Settings
+from services.gateway.videojobs import CHUNK_FRAMES
 from tests.integration.test_editor_browser import DIST, browser, wait_synced  # noqa: F401
 
 pytestmark = [pytest.mark.browser, pytest.mark.slow, pytest.mark.integration]
 
 STORY = "In the office there is a desk near a window$. Eve walks to the desk. Tom walks to the window."
+LONG_STORY = (
+    STORY
+    + " Eve walks to the window. Tom walks to the desk. Eve walks to the desk. Tom walks to the window." * 3
+)
 KEYSTROKE_P95_MS = 50.0  # issue 20's target, while the animation plays
 
 
@@ -159,7 +164,12 @@ def test_the_mp4_button_shows_the_frames_rendered_as_a_percentage_and_cancel_sto
     assert any(f"of {synced['frames']} frames" in s for s in percents), (percents, synced["frames"])
     assert page.evaluate("() => document.getElementById('export-progress').hidden") is True
 
-    # cancel: the job stops on the gateway (its state is cancelled, with frames left unrendered)
+    # cancel: the job stops on the gateway (its state is cancelled, with frames left unrendered). A longer story
+    # than the one above, so that several chunks are still to render when the click lands even on a fast machine.
+    page.close()
+    page = open_doc(browser, gateway, LONG_STORY, errors)
+    longer = wait_synced(page, timeout_ms=180_000)
+    assert longer["frames"] >= 4 * CHUNK_FRAMES, longer["frames"]
     page.evaluate(
         "() => { window.jobs = []; const f = window.fetch; window.fetch = (u, o) => {"
         " if (String(u).endsWith('/mp4/jobs')) return f(u, o).then(r => { r.clone().json().then(j => jobs.push(j.job_id)); return r; });"
