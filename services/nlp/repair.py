@@ -422,12 +422,33 @@ def _repair_adverb_name(sent: SpacySpan) -> bool:
     return changed
 
 
+def _repair_name_as_verb(sent: SpacySpan) -> bool:
+    """ "Marcus hands/NOUN Dana/VERB the tablet": a capitalised word that is no verb and no thing, after
+    a verb the tagger read as a noun, is a name (the one it is handed to); retagged, the verbless repair reads "hands" as the verb."""
+    changed = False
+    for tok in sent:
+        if tok.i == sent.start or tok.pos_ != "VERB" or not tok.text[:1].isupper():
+            continue
+        known = tok.lower_ in lexicon.FEMALE_NAMES or tok.lower_ in lexicon.MALE_NAMES
+        if not known and (action_reading(tok.lower_) or exact_category([tok.lower_]) is not None):
+            continue  # a capitalised verb or thing ("Wave", "Sofa") is no name
+        before = sent.doc[tok.i - 1]
+        if before.pos_ != "NOUN" or not action_reading(before.lower_):
+            continue
+        tok.pos_, tok.tag_ = "PROPN", "NNP"
+        for child in list(tok.children):
+            child.head = child  # what the name seemed to govern: the verb's, re-hung by the repair
+        changed = True
+    return changed
+
+
 def repair_character_sentence(sent: SpacySpan) -> bool:
     """Repair the tree of one character sentence in place; True when something changed."""
     return (
         _repair_progressive(sent)
         | _repair_adverb_subject(sent)
         | _repair_adverb_name(sent)
+        | _repair_name_as_verb(sent)
         | _repair_verbless(sent)
         | _repair_conjoined_verb(sent)
         | _repair_verb_as_subject(sent)

@@ -52,6 +52,8 @@ def codes(text):
         ("Marcus slumps on the couch.", [("Marcus", "sit", "sofa", "")]),
         ("The dog curls up on the rug.", [("dog", "lie_down", "rug", "")]),
         ("Ben slams his fist on the table.", [("Ben", "punch", "table", "")]),
+        # a name the tagger read as a verb after a verb it read as a noun
+        ("Marcus hands Dana the tablet.", [("Marcus", "present", "Dana", "")]),
     ],
 )
 def test_fresh_sentences_act_as_written(text, expected):
