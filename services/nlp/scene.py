@@ -181,6 +181,8 @@ def _subjects_of(attach: Token) -> list[Token]:
     if dep in ("nmod", "acl", "amod") and head.pos_ in ("NOUN", "PROPN", "X", "NUM") and head.i != attach.i:
         if head.lemma_.lower() in lexicon.NON_OBJECT_NOUNS and object_mention(head) is None:
             return _subjects_of(head)  # "on the floor near the bed": what is on the floor is near the bed
+        if _is_content(head):
+            return _with_conj(head.head)  # "a cup of tea on the desk": the cup is on the desk
         q = quantity_target(head)
         return _with_conj(q[0] if q else head)
     if (
@@ -251,6 +253,14 @@ def _mention(tok: Token, builder: GraphBuilder, report_unknown: bool) -> str | N
             )
         return None
     return builder.object_id(m)
+
+
+def _is_content(tok: Token) -> bool:
+    """The "of" complement a container holds ("flowers" in "a vase of flowers")."""
+    if tok.dep_ != "nmod" or not any(c.dep_ == "case" and c.lower_ == "of" for c in tok.children):
+        return False
+    holder = object_mention(tok.head)
+    return holder is not None and holder.attributes.get("content") == tok.lemma_.lower()
 
 
 def _room(tok: Token) -> str | None:

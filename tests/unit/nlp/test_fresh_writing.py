@@ -88,3 +88,16 @@ def test_a_relative_clause_relation_spans_both_things():
     text = "There is a bed under which a box lies$."
     (rel,) = [r for g in parse_document(text) for r in g.relations]
     assert text[rel.span.start : rel.span.end] == "bed under which a box"
+
+
+def objects(text):
+    return sorted((o.category, o.count) for g in parse_document(text) for o in g.objects)
+
+
+def test_a_container_of_something_is_where_the_sentence_puts_it():
+    assert relations("There is a cup of tea on the desk$.") == [("cup", "on", "desk")]
+
+
+def test_a_meal_after_a_time_preposition_is_a_time_not_a_plate():
+    assert objects("After lunch, Coach Taylor waves at the players.") == []
+    assert objects("Ada eats lunch at the table.") == [("plate", 1), ("table", 1)]
