@@ -101,3 +101,19 @@ def test_a_container_of_something_is_where_the_sentence_puts_it():
 def test_a_meal_after_a_time_preposition_is_a_time_not_a_plate():
     assert objects("After lunch, Coach Taylor waves at the players.") == []
     assert objects("Ada eats lunch at the table.") == [("plate", 1), ("table", 1)]
+
+
+def messages(text):
+    return [(d.code, d.message) for g in parse_document(text) for d in g.diagnostics]
+
+
+def test_a_line_that_yields_nothing_says_so_with_the_command_it_looks_like():
+    ((code, message),) = messages("camrea left")
+    assert code == "W115" and "'camrea left'" in message and "did you mean 'camera left'" in message
+
+
+def test_a_misspelt_inflected_verb_gets_its_base_form_suggested():
+    assert (
+        "W102",
+        "unknown action word: 'wlaks' is not an action in the motion library; did you mean 'walk'?",
+    ) in (messages("Tom wlaks to the door."))
