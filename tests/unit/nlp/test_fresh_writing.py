@@ -117,3 +117,9 @@ def test_a_misspelt_inflected_verb_gets_its_base_form_suggested():
         "W102",
         "unknown action word: 'wlaks' is not an action in the motion library; did you mean 'walk'?",
     ) in (messages("Tom wlaks to the door."))
+
+
+def test_nightfall_is_a_time_that_sets_the_night_not_an_unknown_object():
+    graphs = parse_document("By nightfall, Tom sleeps on the bed.")
+    assert [(c.kind, c.value) for g in graphs for c in g.commands] == [("weather", "night")]
+    assert "W101" not in [d.code for g in graphs for d in g.diagnostics]
