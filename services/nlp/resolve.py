@@ -289,6 +289,9 @@ def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> li
                 names = state.pronoun(pron) if pron else []
                 if not names and pron in ("he", "she") and state.passing_names:
                     names = [state.passing_names[-1]]  # "Jen's phone buzzes. She ...": Jen
+                if len(names) == 1 and pron in ("he", "she") and not state.gender.get(names[0].lower()):
+                    # "Marcus ... He sits": Marcus is a he from now on, so a later "she" is Dana
+                    state.gender[names[0].lower()] = pron
                 if not names:
                     diagnostics.append(
                         diagnostic(

@@ -123,3 +123,8 @@ def test_nightfall_is_a_time_that_sets_the_night_not_an_unknown_object():
     graphs = parse_document("By nightfall, Tom sleeps on the bed.")
     assert [(c.kind, c.value) for g in graphs for c in g.commands] == [("weather", "night")]
     assert "W101" not in [d.code for g in graphs for d in g.diagnostics]
+
+
+def test_a_name_a_pronoun_resolved_to_keeps_that_gender():
+    text = "Marcus walks in. He sits. Dana enters. Marcus hands Dana the tablet. She turns on the television."
+    assert acts(text)[-1] == ("Dana", "press_switch", "television", "")
