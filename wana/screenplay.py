@@ -103,6 +103,11 @@ def _no_title_dots(text: str) -> str:
     return _TITLE_DOT.sub(r"\1", text)
 
 
+# Lines that open or close the film ("FADE IN:", "FADE OUT.", "THE END"): screenplain reads them as
+# action when they do not end in "TO:"; nothing to animate, and no sentence without a verb.
+_BOOKENDS = re.compile(r"(?:FADE (?:IN|OUT)|FADE TO BLACK|BLACKOUT|THE END|END)\s*[.:!]?")
+
+
 def to_story(text: str) -> str:
     """The wana story a Fountain screenplay tells, one sentence or command per line.
 
@@ -152,6 +157,8 @@ def to_story(text: str) -> str:
         elif isinstance(p, Action):
             body = " ".join(str(line).strip() for line in p.lines)
             body = re.sub(r"\s*\([^)]*\)", "", body).strip()
+            if _BOOKENDS.fullmatch(body):
+                continue
             if caps_re is not None:
                 body = caps_re.sub(lambda m: caps[m.group(1)], body)
             if body:

@@ -276,7 +276,13 @@ def _action(verb: Token, builder: GraphBuilder) -> tuple[ActionNode, str]:
     if any(c.lower_ in lexicon.REFLEXIVE_PRONOUNS and c.dep_ in ("obj", "iobj") for c in verb.children):
         action = verbs.VERB_ACTIONS.get(f"{lemma} oneself", action)  # "lowers himself into the chair"
     social_verb = lemma
-    if lemma in lexicon.LIGHT_VERBS and primary is not None and primary.word and not primary.body_part:
+    if (
+        lemma in lexicon.LIGHT_VERBS
+        and primary is not None
+        and primary.word
+        and not primary.body_part
+        and primary.tok.lemma_.lower() not in lexicon.WORN_NOUNS  # "takes off his boot": no kick
+    ):
         # "gives Mary a hug", "has a quarrel with Tom", "takes a bow": the event noun is the action,
         # the character (if any) its target
         from_event = event_action(primary.tok)
@@ -292,7 +298,10 @@ def _action(verb: Token, builder: GraphBuilder) -> tuple[ActionNode, str]:
     span_end = end_tok.idx + len(end_tok.text)
     if not action:
         shown = verb.text + (f" {particle}" if particle else "")
-        reason = verbs.not_animatable_reason(lemma)
+        reason = verbs.not_animatable_reason(f"{lemma} {particle}" if particle else lemma)
+        reason = reason or verbs.not_animatable_reason(lemma)
+        if not reason and any(a.tok.lower_ in lexicon.WORN_NOUNS for a in objects + obliques):
+            reason = verbs.not_animatable_reason("put on")  # "puts on/ADP her coat"
         if reason:
             builder.diagnose(
                 "W113", f"'{shown}' is {reason}, not a movement", verb.idx, verb.idx + len(verb.text)

@@ -24,6 +24,7 @@ DIAGNOSTICS: dict[str, tuple[Severity, str]] = {
     "E112": ("error", "the sentence could not be parsed"),
     "W113": ("warning", "verb with nothing to animate"),
     "I114": ("info", "placed by a part of the room, which the layout does not honour yet"),
+    "W115": ("warning", "nothing in the sentence to animate"),
 }
 
 MAX_SENTENCE_CHARS = 1000  # longer sentences are cut here before parsing (W108)

@@ -31,7 +31,13 @@ PERSON_NOUNS = frozenset(
     "granddaughter niece nephew fiance fiancee bride groom host hostess chief commander sheriff "
     "teammates player players spectator spectators performer drummer bassist vocalist "
     "reporter journalist photographer mechanic plumber electrician gardener housekeeper nanny "
-    "caretaker porter bellboy concierge owner landlord landlady tenant".split()
+    "caretaker porter bellboy concierge owner landlord landlady tenant "
+    # the cast of quest text and fantasy
+    "rogue archer mage sorcerer sorceress warrior paladin ranger hunter blacksmith healer bandit "
+    "adventurer goblin troll ogre dragon fairy ghost robot monster pilot ".split()
+    # the cast of children's stories: an animal that acts is a character (shown as a figure)
+    + "bear bunny rabbit pig piglet wolf fox frog toad owl duck duckling goose hen cat kitten "
+    "dog puppy lion tiger monkey elephant squirrel hedgehog tortoise turtle".split()
 )
 NON_OBJECT_NOUNS = (
     frozenset(
@@ -64,6 +70,10 @@ NON_OBJECT_NOUNS = (
         "shoe shoes boot boots sock socks slipper slippers coat jacket hat cap scarf dress suit tie uniform "
         "sleeve sleeves apron spectacles".split()
     )
+)
+WORN_NOUNS = frozenset(
+    "shoe boot sock slipper coat jacket hat cap scarf dress suit tie uniform apron spectacles glasses "
+    "gloves glove sweater jumper cardigan helmet mask ring necklace robe cloak".split()
 )
 # What things do in a scene sentence ("a lamp glows"), which the tagger may read as plural nouns.
 SCENE_VERBS = frozenset(
@@ -154,6 +164,7 @@ RELATION_PREPS = {
     "beside": "next_to",
     "besides": "next_to",
     "alongside": "next_to",
+    "along": "next_to",
     "against": "next_to",
     "behind": "behind",
     "under": "under",
@@ -242,7 +253,8 @@ TITLES = frozenset(
     "mr mrs ms miss mx dr doctor prof professor uncle aunt auntie grandma granny grandpa grandad nana "
     "sir madam madame lady lord captain capt officer detective det inspector sergeant sgt coach nurse "
     "mister master king queen prince princess father brother sister mother saint st judge mayor "
-    "agent general colonel major lieutenant lt chef little old young big".split()
+    "agent general colonel major lieutenant lt chef little old young big officer constable "
+    "private corporal reverend rev pastor sheriff deputy governor senator president".split()
 )
 # A word's category when a verb says which thing it is: the bag a boxer punches is the punching bag.
 VERB_SENSES: dict[tuple[str, str], str] = {
@@ -633,6 +645,10 @@ def action_for(
     """
     names, synonyms = _library()
     verb = verb.lower().replace("-", " ")  # "high-five" -> the library's "high five"
+    if particle and f"{verb} {particle}" in verbs.NOT_ANIMATABLE:
+        return ""  # "takes off his boot": dressing, which no clip shows
+    if verb in ("put", "slip", "pull") and prep == "on" and any(o.lower() in WORN_NOUNS for o in obj_words):
+        return ""  # "puts on/ADP her coat"
     objs = [o.lower().replace(" ", "_") for o in obj_words if o]
     if person_object:
         objs.append("person")

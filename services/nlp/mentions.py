@@ -257,7 +257,9 @@ def object_mention(head: Token) -> ObjectMention | None:
         return None  # "on which a clock stands", tagged a plural noun with its subject glued on
     if head.text[:1].isupper() and (head.lower_ in lexicon.FEMALE_NAMES or head.lower_ in lexicon.MALE_NAMES):
         return None  # "Mike" is a person here, not a microphone
-    if head.lower_ in lexicon.PERSON_NOUNS or head.lemma_.lower() in lexicon.PERSON_NOUNS:
+    if (
+        head.lower_ in lexicon.PERSON_NOUNS or head.lemma_.lower() in lexicon.PERSON_NOUNS
+    ) and not named_thing(head):
         return None
     if (
         head.pos_ not in ("NOUN", "PROPN", "X", "ADJ", "VERB", "NUM")
@@ -383,6 +385,12 @@ def is_unknown_object_word(head: Token) -> bool:
         return False
     if head.tag_ == "NNS" and head.lower_.endswith("s") and head.lower_[:-1] in lexicon.SCENE_VERBS:
         return False  # "a lamp glows", "the fridge hums": the verb of a scene sentence, not a thing
+    if (
+        head.dep_ == "ROOT"
+        and lemma in lexicon.RELATION_VERBS
+        and any(c.dep_ == "obj" for c in head.children)
+    ):
+        return False  # "The desks face/NOUN the door": the relation verb of a plural subject
     return object_mention(head) is None
 
 
@@ -431,6 +439,14 @@ def _titled_name(tok: Token) -> CharacterMention | None:
     return CharacterMention(head=tok, name=name, mention=name)
 
 
+def named_thing(tok: Token) -> bool:
+    """A person or animal noun that is a catalog thing with the word before it ("teddy bear")."""
+    return any(
+        c.dep_ in ("compound", "amod") and lexicon.category_of(f"{c.lower_} {tok.lower_}") is not None
+        for c in tok.lefts
+    )
+
+
 def character_mention(tok: Token) -> CharacterMention | None:
     """A character named by a token: a proper name, a person noun or a personal pronoun."""
     lower = tok.lower_
@@ -441,7 +457,7 @@ def character_mention(tok: Token) -> CharacterMention | None:
         if pron is None:
             return None
         return CharacterMention(head=tok, name="", mention=tok.text, pronoun=pron)
-    if tok.lemma_.lower() in lexicon.PERSON_NOUNS or lower in lexicon.PERSON_NOUNS:
+    if (tok.lemma_.lower() in lexicon.PERSON_NOUNS or lower in lexicon.PERSON_NOUNS) and not named_thing(tok):
         start = min([tok.i] + [c.i for c in tok.lefts if c.dep_ in ("det", "amod", "compound")])
         return CharacterMention(head=tok, name=tok.lemma_.lower(), mention=tok.doc[start : tok.i + 1].text)
     known_name = tok.text[:1].isupper() and (lower in lexicon.FEMALE_NAMES or lower in lexicon.MALE_NAMES)
@@ -453,7 +469,8 @@ def character_mention(tok: Token) -> CharacterMention | None:
         if not known_name and (exact_category([lower]) is not None or lexicon.room_of(lower)):
             return None
         parts = [c for c in tok.lefts if c.dep_ in ("compound", "flat") and c.pos_ == "PROPN"] + [tok]
-        parts += [c for c in tok.rights if c.dep_ == "flat" and c.pos_ == "PROPN"]
+        # what the character says ('to Marcus "We need to talk"') is never part of the name
+        parts += [c for c in tok.rights if c.dep_ == "flat" and c.pos_ == "PROPN" and not is_speech(c)]
         name = " ".join(p.text for p in sorted(parts, key=lambda t: t.i))
         return CharacterMention(head=tok, name=name, mention=name)
     return None

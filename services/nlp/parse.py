@@ -311,6 +311,16 @@ def _extract(doc: Doc, text: str, kind: str, diagnostics: list[Diagnostic]) -> S
     if is_scene and not builder.objects and not builder.room_type:
         if not any(d.code == "W101" for d in builder.diagnostics):
             builder.diagnose("W101", f"no object named in '{stripped[:60]}'", lead, lead + len(stripped))
+    silent = not (builder.objects or builder.characters or builder.social or builder.commands)
+    if silent and not builder.room_type and not builder.diagnostics and stripped:
+        # "camrea left": no character, thing or command; say so, never drop the line unremarked
+        hint = did_you_mean(stripped[:60], "command")
+        builder.diagnose(
+            "W115",
+            f"'{stripped[:60]}' names no character, thing or command{hint}",
+            lead,
+            lead + len(stripped),
+        )
     return builder.build("", "scene" if is_scene else "action")
 
 

@@ -45,8 +45,10 @@ def _is_person(tok: Token) -> bool:
 
 def _unknown_name(tok: Token) -> bool:
     """A capitalised first word that names nothing the system knows, right before a word with a verb
-    reading: a name the tagger never saw ("Puck/ADJ leaps", "Lear/NOUN stumbles")."""
-    if tok.i != tok.sent.start or not tok.text[:1].isupper() or not tok.is_alpha:
+    reading: a name the tagger never saw ("Puck/ADJ leaps", "Lear/NOUN stumbles"), also after a title
+    ("Officer Diaz/ADJ knocks")."""
+    titled = tok.i == tok.sent.start + 1 and tok.doc[tok.i - 1].lower_.rstrip(".") in lexicon.TITLES
+    if (tok.i != tok.sent.start and not titled) or not tok.text[:1].isupper() or not tok.is_alpha:
         return False
     if tok.pos_ not in ("NOUN", "PROPN", "ADJ", "X") or tok.i + 1 >= tok.sent.end:
         return False
@@ -377,10 +379,76 @@ def _repair_verb_conjunct_noun(sent: SpacySpan) -> bool:
     return changed
 
 
+def _repair_adverb_subject(sent: SpacySpan) -> bool:
+    """ "Marcus/compound sarcastically/nsubj says": a manner adverb the parser made the subject, the
+    name hung under it -> the name is the subject and the adverb the verb's manner."""
+    changed = False
+    for adverb in sent:
+        if adverb.dep_ != "nsubj" or not adverb.lower_.endswith("ly") or adverb.pos_ not in ("ADV", "ADJ"):
+            continue
+        people = [c for c in adverb.lefts if c.dep_ in ("compound", "amod", "nmod") and _is_person(c)]
+        if not people:
+            continue
+        verb = adverb.head
+        person = people[-1]
+        person.head, person.dep_ = verb, "nsubj"
+        adverb.dep_, adverb.pos_ = "advmod", "ADV"
+        changed = True
+    return changed
+
+
+def _repair_adverb_name(sent: SpacySpan) -> bool:
+    """ "The next morning, Willy/ADV sits", "looks at Willy/ADV": a capitalised word inside the sentence
+    that the tagger read as an adverb by its "-ly" (Willy, Molly, Billy) is a name; before a verb with no
+    subject it is that verb's subject."""
+    changed = False
+    for tok in sent:
+        if tok.i == sent.start or tok.pos_ not in ("ADV", "ADJ") or not tok.is_alpha:
+            continue
+        if not (tok.text[:1].isupper() and tok.text[1:].islower() and tok.lower_.endswith("ly")):
+            continue
+        if sent.doc[tok.i - 1].text in ('"', "'", ":", "(") or tok.lower_ in lexicon.MANNER_STOP:
+            continue
+        tok.pos_, tok.tag_ = "PROPN", "NNP"
+        verb = tok.head
+        if (
+            tok.dep_ == "advmod"
+            and verb.pos_ == "VERB"
+            and tok.i < verb.i
+            and not any(c.dep_.startswith("nsubj") for c in verb.children)
+        ):
+            tok.dep_ = "nsubj"
+        changed = True
+    return changed
+
+
+def _repair_name_as_verb(sent: SpacySpan) -> bool:
+    """ "Marcus hands/NOUN Dana/VERB the tablet": a capitalised word that is no verb and no thing, after
+    a verb the tagger read as a noun, is a name (the one it is handed to); retagged, the verbless repair reads "hands" as the verb."""
+    changed = False
+    for tok in sent:
+        if tok.i == sent.start or tok.pos_ != "VERB" or not tok.text[:1].isupper():
+            continue
+        known = tok.lower_ in lexicon.FEMALE_NAMES or tok.lower_ in lexicon.MALE_NAMES
+        if not known and (action_reading(tok.lower_) or exact_category([tok.lower_]) is not None):
+            continue  # a capitalised verb or thing ("Wave", "Sofa") is no name
+        before = sent.doc[tok.i - 1]
+        if before.pos_ != "NOUN" or not action_reading(before.lower_):
+            continue
+        tok.pos_, tok.tag_ = "PROPN", "NNP"
+        for child in list(tok.children):
+            child.head = child  # what the name seemed to govern: the verb's, re-hung by the repair
+        changed = True
+    return changed
+
+
 def repair_character_sentence(sent: SpacySpan) -> bool:
     """Repair the tree of one character sentence in place; True when something changed."""
     return (
         _repair_progressive(sent)
+        | _repair_adverb_subject(sent)
+        | _repair_adverb_name(sent)
+        | _repair_name_as_verb(sent)
         | _repair_verbless(sent)
         | _repair_conjoined_verb(sent)
         | _repair_verb_as_subject(sent)

@@ -52,6 +52,7 @@ class _State:
         self.seat_of: dict[str, str] = {}  # character -> the object it last sat or lay on
         self.multiword: dict[str, str] = {}  # last word of an object named in several words -> its id
         self.resolved_words: set[str] = set()  # words of this sentence that turned out to name an object
+        self.passing_names: list[str] = []  # names said of no acting character ("Jen's phone", "named Rosa")
 
     def mention(self, name: str, recent: bool = True) -> str:
         """Register a mention; ``recent=False`` (an object of a verb) keeps the subject the most recent."""
@@ -90,6 +91,22 @@ class _State:
             if c != exclude and self.gender.get(c.lower(), "") in ("", pron):
                 return [c]
         return []
+
+
+_PASSING_NAME = re.compile(r"\b(?:named|called) ([A-Z][a-z]+)\b|\b([A-Z][a-z]+)'s\b")
+
+
+def _names_in_passing(text: str) -> list[str]:
+    """Names a sentence gives without making them act: "a girl named Rosa lived ...", "Jen's phone
+    buzzes"; a later "she" with no other character to refer to is that one."""
+    out = []
+    for m in _PASSING_NAME.finditer(text):
+        name = m.group(1) or m.group(2)
+        lower = name.lower()
+        if lower in lexicon.PRONOUNS or lower in lexicon.TITLES or lexicon.category_of(lower) is not None:
+            continue
+        out.append(name)
+    return out
 
 
 def _pronoun_of(mention: str) -> str:
@@ -258,6 +275,7 @@ def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> li
                 multiword.setdefault(words[-1], o.id)
             state.object_categories.setdefault(o.id, o.category)
         diagnostics: list[Diagnostic] = list(graph.diagnostics)
+        state.passing_names.extend(_names_in_passing(graph.text))
         sentence_names: list[str] = []
         merged: dict[str, list[ActionNode]] = {}
         mentions: dict[str, str] = {}
@@ -269,6 +287,11 @@ def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> li
             elif char.mention:
                 pron = _pronoun_of(char.mention)
                 names = state.pronoun(pron) if pron else []
+                if not names and pron in ("he", "she") and state.passing_names:
+                    names = [state.passing_names[-1]]  # "Jen's phone buzzes. She ...": Jen
+                if len(names) == 1 and pron in ("he", "she") and not state.gender.get(names[0].lower()):
+                    # "Marcus ... He sits": Marcus is a he from now on, so a later "she" is Dana
+                    state.gender[names[0].lower()] = pron
                 if not names:
                     diagnostics.append(
                         diagnostic(

@@ -170,12 +170,19 @@ def _subjects_of(attach: Token) -> list[Token]:
     """Nouns a spatial phrase attached at ``attach`` is said of."""
     head = attach.head
     dep = attach.dep_  # spaCy labels the root "ROOT"
+    if attach.lower_ in RELATIVE_PRONOUNS and head.dep_ == "acl:relcl" and head.i != attach.i:
+        # "a window near which/obj a plant grows": what the relative clause says is near the window
+        subj = [c for c in head.children if c.dep_ in SUBJECT_DEPS and c.i != attach.i]
+        if subj:
+            return _expand_subject(subj[0])
     if _misread_verb(head) and head.i != attach.i:
         compounds = [c for c in head.children if c.dep_ in ("compound", "amod") and c.i < head.i]
         return _expand_subject(compounds[-1])
     if dep in ("nmod", "acl", "amod") and head.pos_ in ("NOUN", "PROPN", "X", "NUM") and head.i != attach.i:
         if head.lemma_.lower() in lexicon.NON_OBJECT_NOUNS and object_mention(head) is None:
             return _subjects_of(head)  # "on the floor near the bed": what is on the floor is near the bed
+        if _is_content(head):
+            return _with_conj(head.head)  # "a cup of tea on the desk": the cup is on the desk
         q = quantity_target(head)
         return _with_conj(q[0] if q else head)
     if (
@@ -246,6 +253,14 @@ def _mention(tok: Token, builder: GraphBuilder, report_unknown: bool) -> str | N
             )
         return None
     return builder.object_id(m)
+
+
+def _is_content(tok: Token) -> bool:
+    """The "of" complement a container holds ("flowers" in "a vase of flowers")."""
+    if tok.dep_ != "nmod" or not any(c.dep_ == "case" and c.lower_ == "of" for c in tok.children):
+        return False
+    holder = object_mention(tok.head)
+    return holder is not None and holder.attributes.get("content") == tok.lemma_.lower()
 
 
 def _room(tok: Token) -> str | None:
@@ -362,15 +377,17 @@ def extract_scene(sent: SpacySpan, builder: GraphBuilder) -> None:
                 continue
             for s in subjects:
                 sid = _mention(s, builder, report_unknown=False)
-                if sid is not None:
-                    end = anchor.idx + len(anchor.text)
-                    builder.add_relation(sid, relation, anchor_id, min(start, s.idx), end)
+                if sid is not None:  # the span covers both ends ("under which a box": box and bed)
+                    end = max(anchor.idx + len(anchor.text), s.idx + len(s.text))
+                    builder.add_relation(sid, relation, anchor_id, min(start, s.idx, anchor.idx), end)
     _with_relations(sent, builder)
     _room_parts(sent, builder)
     # Verbs that are relations: "The sofa faces the TV", "a chair facing the window".
     for tok in sent:
         rel = lexicon.RELATION_VERBS.get(tok.lemma_.lower())
-        if rel is None or tok.pos_ not in ("VERB", "AUX"):
+        # "The desks in the office face/NOUN/ROOT the door": the verb the tagger read as a noun
+        misread_root = tok.dep_ == "ROOT" and any(c.dep_ in SUBJECT_DEPS for c in tok.children)
+        if rel is None or (tok.pos_ not in ("VERB", "AUX") and not misread_root):
             continue
         objs = [c for c in tok.children if c.dep_ == "obj"]
         if not objs:
@@ -471,9 +488,17 @@ def _with_relations(sent: SpacySpan, builder: GraphBuilder) -> None:
     """ "a desk with a lamp" -> lamp on desk; "three desks with chairs" -> chair next_to desk: a thing
     that stands on surfaces is on its holder, anything else stands beside it."""
     for tok in sent:
-        if not any(c.dep_ == "case" and c.lower_ == "with" for c in tok.children):
+        full_of = (  # "a shelf full of books": the books are on the shelf, as with "with"
+            tok.dep_ in ("obl", "nmod")
+            and tok.head.lemma_.lower() == "full"
+            and tok.head.dep_ == "amod"
+            and any(c.dep_ == "case" and c.lower_ == "of" for c in tok.children)
+        )
+        if not full_of and not any(c.dep_ == "case" and c.lower_ == "with" for c in tok.children):
             continue
-        if tok.dep_ == "nmod" and tok.head.pos_ in ("NOUN", "PROPN"):
+        if full_of:
+            holders = [tok.head.head]
+        elif tok.dep_ == "nmod" and tok.head.pos_ in ("NOUN", "PROPN"):
             holders = [tok.head]
         elif tok.dep_ == "obl" and any(c.dep_ == "expl" for c in tok.head.children):
             holders = [c for c in tok.head.children if c.dep_ in SUBJECT_DEPS]

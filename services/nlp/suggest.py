@@ -145,6 +145,8 @@ def suggestions(word: str, kind: str, limit: int = 3) -> tuple[str, ...]:
                     found.append(shown)
         if found:
             break  # the first vocabulary that has a near word is the likely intent
+    if not found and kind == "action" and lower.endswith("s") and len(lower) > 4:
+        return suggestions(lower[:-1], kind, limit)  # "wlaks": "wlak" is one swap from "walk"
     return tuple(found[:limit])
 
 

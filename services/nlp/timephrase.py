@@ -27,6 +27,10 @@ TIME_NOUNS: dict[str, str] = {
     "night": "night",
     "nighttime": "night",
     "midnight": "night",
+    "nightfall": "night",
+    "sundown": "night",
+    "bedtime": "night",
+    "sunup": "sunny",
     "tonight": "night",
     "while": "",
     "moment": "",
@@ -52,6 +56,9 @@ TIME_NOUNS: dict[str, str] = {
 # Words that make a preceding noun a time ("the next morning", "that evening", "one day").
 _TIME_MODIFIERS = frozenset("next same following previous that this one every each early late last".split())
 _TIME_PREPS = frozenset("after before during until till by at in on for since within".split())
+# Meals are times only after these ("after lunch", "before dinner"); "eats lunch" is food on a plate.
+MEALS = frozenset("breakfast brunch lunch lunchtime dinner dinnertime supper tea teatime".split())
+_MEAL_PREPS = frozenset("after before during until till since".split())
 
 
 def time_light(tok: Token) -> str | None:
@@ -62,6 +69,8 @@ def time_light(tok: Token) -> str | None:
     """
     lower = tok.lower_
     lemma = tok.lemma_.lower()
+    if lower in MEALS and {c.lower_ for c in tok.children if c.dep_ == "case"} & _MEAL_PREPS:
+        return ""  # "After lunch, Coach Taylor blows the whistle": a time, no plate
     if lower not in TIME_NOUNS and lemma not in TIME_NOUNS:
         return None
     light = TIME_NOUNS.get(lower, TIME_NOUNS.get(lemma, ""))

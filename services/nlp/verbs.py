@@ -49,12 +49,12 @@ climb: clamber, scramble, ascend, climb up, climb down, climb over, climb in, mo
 fall_down: fall, collapse, tumble, faint, topple, drop down, fall over, keel over, pass out, slump
 turn_around: turn, turn back, turn round, spin round, whirl, wheel round, about-face, look back
 spin: twirl, pivot, rotate, whirl around, pirouette around
-sit: flop, flop onto, slump onto, lower oneself, seat, sink into, plonk, plop, sink down, sit down, be seated, take a seat, settle, settle down, perch, plop down, flop down, squat down on,
+sit: flop, flop onto, slump onto, slump on, slump into, slump down, slump back, sit back down, lower oneself, seat, sink into, plonk, plop, sink down, sit down, be seated, take a seat, settle, settle down, perch, plop down, flop down, squat down on,
     relax, rest, lounge, sit back, sit up, slouch, recline
 sit_on_floor: sit cross-legged
 stand: awake, awaken, jolt awake, start awake, snap awake, jerk awake, jolt up, stand up, get up, rise, arise, straighten up, jump to one's feet, spring up, stand still,
     wake up, get to one's feet
-lie_down: lie, lay down, lie back, stretch out, sprawl, recline on, go to bed, sleep, nap, snooze,
+lie_down: curl up, snuggle up, cuddle up, lie, lay down, lie back, stretch out, sprawl, recline on, go to bed, sleep, nap, snooze,
     doze, doze off, drift off, fall asleep, slumber, rest on
 kneel: kneel down, get down, genuflect, drop to one's knees
 squat: dive, dodge, crouch, stoop down, hunker down, duck, bend down, huddle
@@ -80,11 +80,11 @@ dribble: bounce the ball, play basketball
 shoot_basket: shoot, dunk, score, shoot hoops
 block: defend, guard, parry, fend off, shield, protect
 pick_up: fumble, fumble for, reach for, pick, take, grab, seize, snatch, collect, gather, fetch, retrieve, lift, raise, hold up,
-    pick out, take out, get out, take down, take off, take away, get, obtain, scoop, scoop up,
+    pick out, take out, get out, take down, take away, get, obtain, scoop, scoop up,
     grasp, clutch, lift up, unpack, pluck, grip, find, pocket
 pull: pull out
 put_down: stuff, shove in, lower, put, place, set, lay, drop, deposit, leave, set down, lay down, put away, put back, put in,
-    put on, pack, stow, store, hang up, plant, position, arrange, stack, pile, load, unload
+    pack, stow, store, hang up, plant, position, arrange, stack, pile, load, unload
 carry: hold, bring, take along, haul, lug, deliver, transport, carry in, carry out, bring in, keep
 pull: drag, tug, yank, heave, draw, pull back, pull up, tow, pull over
 push: shove, press against, nudge, push open, push back, roll, slide, shift, move aside
@@ -236,6 +236,7 @@ owning or being: own, have, possess, belong, contain, include, consist, exist, s
     remain silent, matter, cost, weigh, equal, lack, resemble
 time passing: happen, occur, begin, start, end, finish, last, elapse, pass by, continue on, qualify
 a sound: hum, purr, tick, ring out, echo, creak, rattle, curse
+dressing: put on, take off, dress, undress, wear, button up, zip up, pull on, slip on
 """
 )
 
@@ -280,6 +281,9 @@ BODY_PART_ACTIONS: dict[tuple[str, str], str] = {
     ("wipe", "face"): "wipe_sweat",
     ("wipe", "forehead"): "wipe_sweat",
     ("shake", "fist"): "threaten",
+    ("slam", "fist"): "punch",
+    ("bang", "fist"): "punch",
+    ("pound", "fist"): "punch",
     ("pump", "fist"): "fist_pump",
     ("brush", "teeth"): "brush_teeth",
     ("brush", "hair"): "comb_hair",
@@ -318,6 +322,8 @@ def verb_action(verb: str, particle: str = "") -> str | None:
         hit = VERB_ACTIONS.get(f"{verb} {particle}")
         if hit:
             return hit
+        if f"{verb} {particle}" in NOT_ANIMATABLE:
+            return ""  # "puts on her coat": dressing, not putting a thing down
     hit = VERB_ACTIONS.get(verb)
     if hit:
         return hit

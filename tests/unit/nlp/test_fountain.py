@@ -65,6 +65,11 @@ def test_a_beat_is_a_wait_and_a_transition_is_a_camera_cut():
     assert lines[at + 1 : at + 4] == ["wait 1 second", 'Tom says to Ada "Sorry"', "camera left"]
 
 
+def test_fade_in_and_fade_out_open_and_close_the_film_and_are_no_sentences():
+    story = to_story("FADE IN:\n\nINT. OFFICE - DAY\n\nEve sits.\n\nFADE OUT.\n\nTHE END\n")
+    assert story.splitlines() == ["In the office$.", "sunny", "Eve sits."]
+
+
 def test_fountain_is_detected_by_extension_or_by_content():
     assert looks_like_fountain("anything", "play.fountain")
     assert looks_like_fountain(SCRIPT)
@@ -90,7 +95,13 @@ def test_the_converted_screenplay_parses_without_a_diagnostic():
 
 
 @pytest.mark.parametrize(
-    "name", ["kitchen_night.fountain", "office_morning.fountain", "classroom_day.fountain"]
+    "name",
+    [
+        "kitchen_night.fountain",
+        "office_morning.fountain",
+        "classroom_day.fountain",
+        "living_room_evening.fountain",
+    ],
 )
 def test_every_example_screenplay_parses_cleanly(name):
     graphs = parse_document(to_story((EXAMPLES / name).read_text()))
