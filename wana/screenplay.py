@@ -12,7 +12,9 @@ each element becomes what wana already understands:
   action, and the line itself is the sentence's caption in the render; a parenthetical adverb
   ``(angrily)`` is the manner ("Ada angrily says ..."), ``(to Tom)`` the one spoken to, ``(beat)`` a
   one-second wait;
-- a transition (``CUT TO:``, ``DISSOLVE TO:``) -> a camera command, the next of front/left/right.
+- a transition (``CUT TO:``, ``DISSOLVE TO:``) -> ``camera close``: a cut to a close-up of whoever acts
+  next, for that action, after which the director frames the scene again (a view command such as
+  ``camera left`` would hold for the rest of the film).
 
 It lives in the domain library because both the NLP service (``wana parse``) and the orchestrator
 (``wana animate``) read Fountain, and services do not import each other.
@@ -39,7 +41,7 @@ _LIGHT = {
     "DAWN": "sunny",
     "NOON": "sunny",
 }
-_CUTS = ("camera left", "camera right", "camera front")
+_CUT = "camera close"
 _TITLE_DOT = re.compile(r"\b(Mr|Mrs|Ms|Dr|Prof|St|Jr|Sr|Capt|Sgt|Lt|Det)\.", re.IGNORECASE)
 # A sentence ends at . ! ? (with closing quotes) unless the period ends a title ("Dr. Jones").
 _SENTENCE = re.compile(r"(?:\b(?:Mr|Mrs|Ms|Dr|Prof|St|Jr|Sr|Capt|Sgt|Lt|Det)\.|[^.!?])+[.!?]*[\"')]*")
@@ -132,7 +134,6 @@ def to_story(text: str) -> str:
         else None
     )
     lines: list[str] = []
-    cut = 0
 
     def dialog(d: Dialog) -> None:
         name = _cue_name(str(d.character))
@@ -169,6 +170,5 @@ def to_story(text: str) -> str:
             dialog(p.left)
             dialog(p.right)
         elif isinstance(p, Transition):
-            lines.append(_CUTS[cut % len(_CUTS)])
-            cut += 1
+            lines.append(_CUT)
     return "\n".join(lines) + ("\n" if lines else "")

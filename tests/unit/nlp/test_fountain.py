@@ -62,7 +62,7 @@ def test_dialogue_is_one_said_line_per_sentence_with_manner_and_listener():
 def test_a_beat_is_a_wait_and_a_transition_is_a_camera_cut():
     lines = to_story(SCRIPT).splitlines()
     at = lines.index('Tom says to Ada "Dr Jones drank it"')
-    assert lines[at + 1 : at + 4] == ["wait 1 second", 'Tom says to Ada "Sorry"', "camera left"]
+    assert lines[at + 1 : at + 4] == ["wait 1 second", 'Tom says to Ada "Sorry"', "camera close"]
 
 
 def test_fade_in_and_fade_out_open_and_close_the_film_and_are_no_sentences():
