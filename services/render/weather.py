@@ -118,13 +118,15 @@ def _mix(a: Look, b: Look, s: float) -> Look:
 
 
 def look_at(frame: int, keys: list[WeatherKey]) -> Look:
-    """The look of a frame: sunny until the first key, then eased from one weather to the next."""
+    """The look of a frame: sunny until the first key, then eased from one weather to the next (a key at
+    frame 0 is how the film opens: no fade from daylight)."""
     active = [k for k in keys if k.frame <= frame]
     if not active:
         return LOOKS["sunny"]
     cur = LOOKS[active[-1].weather]
     since = frame - active[-1].frame
-    if since >= TRANSITION_FRAMES:
+    opening = len(active) == 1 and active[0].frame <= 0  # how the film opens: no fade in
+    if since >= TRANSITION_FRAMES or opening:
         return cur
     prev = LOOKS[active[-2].weather] if len(active) > 1 else LOOKS["sunny"]
     x = since / TRANSITION_FRAMES

@@ -72,6 +72,12 @@ def test_weather_eases_from_sunny_to_night():
     assert np.allclose(look_at(200, keys).gain, LOOKS["night"].gain)
 
 
+def test_a_story_that_opens_at_night_is_night_from_its_first_frame():
+    keys = [WeatherKey(frame=0, weather="night"), WeatherKey(frame=90, weather="foggy")]
+    assert np.allclose(look_at(0, keys).gain, LOOKS["night"].gain)  # no flash of daylight before the fade
+    assert not np.allclose(look_at(100, keys).gain, LOOKS["foggy"].gain)  # later changes still ease in
+
+
 def test_commands_take_effect_when_the_next_sentence_with_motion_starts():
     eve = walk_motion("Eve", (0, 0), (1, 0), 60, sentence_id="s1")
     tom_raw = walk_motion("Tom", (0, 1), (1, 1), 90, sentence_id="s3")
