@@ -42,12 +42,24 @@ class Session:
     compute_lock: threading.Lock = field(default_factory=threading.Lock)  # one pipeline run at a time
     last: PipelineResult | None = None
     # the user's own characters for this document's exports (story name -> rig), as `wana animate --cast`;
-    # held while the session is open, not persisted
+    # kept in the session database with the document (set_cast / drop_cast write through)
     cast: dict[str, CastMember] = field(default_factory=dict)
 
     @property
     def doc_id(self) -> str:
         return self.doc.doc_id
+
+    def set_cast(self, name: str, glb: bytes) -> None:
+        """Play story character ``name`` with the user's rig (a GLB or VRM file), kept with the document."""
+        with self.lock:
+            self.store.put_cast(self.doc_id, name, glb)
+            self.cast[name] = CastMember(name=name, glb=glb)
+
+    def drop_cast(self, name: str) -> bool:
+        """Play ``name`` with the built-in character again; False when it had no rig of its own."""
+        with self.lock:
+            kept = self.store.delete_cast(self.doc_id, name)
+            return self.cast.pop(name, None) is not None or kept
 
     def edit(self, base_version: int, changes: list[TextChange]) -> EditAck:
         """Apply and persist an edit; raises StaleEdit / BadEdit without changing anything."""
@@ -108,6 +120,7 @@ class Orchestrator:
                 session = Session(
                     doc, self.store, Pipeline(self.backend, doc_id=doc_id, seed=self.seed, budget=self.budget)
                 )
+                session.cast = {n: CastMember(name=n, glb=g) for n, g in self.store.cast(doc_id).items()}
                 self._sessions[doc_id] = session
             return session
 

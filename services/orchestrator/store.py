@@ -1,4 +1,4 @@
-"""Sessions persisted in SQLite (WAL): a document's text and every acknowledged edit.
+"""Sessions persisted in SQLite (WAL): a document's text, every acknowledged edit and its cast.
 
 An edit is acknowledged only after its transaction commits, so it survives a crash of any process.
 On open, the document is rebuilt from the latest snapshot plus the edits after it.
@@ -31,6 +31,13 @@ CREATE TABLE IF NOT EXISTS edits (
     changes TEXT NOT NULL,             -- JSON list of {start, end, text} in base-version offsets
     created REAL NOT NULL,
     PRIMARY KEY (doc_id, version)
+);
+CREATE TABLE IF NOT EXISTS cast_members (
+    doc_id TEXT NOT NULL REFERENCES documents(doc_id) ON DELETE CASCADE,
+    name TEXT NOT NULL,                -- the story character the file plays
+    glb BLOB NOT NULL,                 -- the user's rig as uploaded (GLB or VRM)
+    created REAL NOT NULL,
+    PRIMARY KEY (doc_id, name)
 );
 """
 
@@ -126,6 +133,27 @@ class SessionStore:
             cur = self._conn.execute("UPDATE documents SET title=? WHERE doc_id=?", (title, doc_id))
             if cur.rowcount == 0:
                 raise DocumentNotFound(doc_id)
+
+    def put_cast(self, doc_id: str, name: str, glb: bytes) -> None:
+        """Keep the user's character file for a story character (replacing one kept before)."""
+        with self._lock:
+            self._conn.execute(
+                "INSERT OR REPLACE INTO cast_members VALUES (?, ?, ?, ?)", (doc_id, name, glb, time.time())
+            )
+
+    def delete_cast(self, doc_id: str, name: str) -> bool:
+        """Forget a story character's file; False when none was kept."""
+        with self._lock:
+            cur = self._conn.execute("DELETE FROM cast_members WHERE doc_id=? AND name=?", (doc_id, name))
+            return cur.rowcount > 0
+
+    def cast(self, doc_id: str) -> dict[str, bytes]:
+        """The document's kept character files: story name -> file bytes."""
+        with self._lock:
+            rows = self._conn.execute(
+                "SELECT name, glb FROM cast_members WHERE doc_id=? ORDER BY name", (doc_id,)
+            ).fetchall()
+        return {str(name): bytes(glb) for name, glb in rows}
 
     def delete(self, doc_id: str) -> None:
         with self._lock:

@@ -1,5 +1,6 @@
 """The editor's cast list through the gateway: a GLB uploaded for a story character is worn in the document's
-exports (GLB, BVH, the zip bundle), refused with the reason when it cannot be used, and dropped on delete;
+exports (GLB, BVH, the zip bundle), refused with the reason when it cannot be used, kept with the document
+across a restart of the gateway, and dropped on delete;
 the MP4's final render (renderer=blender) has the preview's length."""
 
 from __future__ import annotations
@@ -40,7 +41,13 @@ def answers(tmp_path_factory: pytest.TempPathFactory) -> dict[str, httpx.Respons
         out["bvh-after"] = http.get(f"{base}/export/bvh", params={"character": "Eve"})
         out["zip-bad"] = http.get(f"{base}/export/zip", params={"formats": "mp4,gif"})
         out["cycles"] = http.get(f"{base}/export/mp4", params={**small, "renderer": "blender", "samples": 1})
-        return out
+        out["put-again"] = http.put(f"{base}/cast/Eve", content=rig_glb(rig_joints(MIXAMO), centimetres=True))
+    with (  # a restarted gateway on the same session file still has the document's cast
+        GatewayThread(Settings(db=db, backend="inprocess")) as gw,
+        httpx.Client(base_url=gw.base_url, timeout=600) as http,
+    ):
+        out["list-restarted"] = http.get(f"{base}/cast")
+    return out
 
 
 def _ok(r: httpx.Response) -> None:
@@ -74,6 +81,11 @@ def test_the_zip_holds_the_video_the_scene_and_every_bvh(answers) -> None:
         assert sorted(zf.namelist()) == ["Eve.bvh", "animation.mp4", "scene.glb"]
         assert "mixamorig:Hips" in zf.read("Eve.bvh").decode()
     assert answers["zip-bad"].status_code == 422
+
+
+def test_the_cast_is_kept_with_the_document_across_a_restart(answers) -> None:
+    assert answers["put-again"].status_code == 200
+    assert list(answers["list-restarted"].json()) == ["Eve"]
 
 
 def test_deleting_brings_the_built_in_character_back(answers) -> None:

@@ -9,7 +9,6 @@ from fastapi import APIRouter, Query, Request, Response
 from starlette.concurrency import run_in_threadpool
 
 from proto.common import ErrorCode
-from proto.render import CastMember
 from services.gateway.deps import OrchestratorDep, error
 from services.gateway.exports import (
     FORMATS,
@@ -191,16 +190,14 @@ async def put_cast(doc_id: str, name: str, request: Request, orch: OrchestratorD
         joints = map_joints(rig, None, f"the character for {name}")
     except CastError as exc:
         raise error(422, ErrorCode.INVALID_INPUT, str(exc)) from None
-    with session.lock:
-        session.cast[name] = CastMember(name=name, glb=data)
+    await run_in_threadpool(session.set_cast, name, data)
     return {"bytes": len(data), "joints": rig.n_joints, "mapped": len(joints)}
 
 
 @router.delete("/{doc_id}/cast/{name}", summary="Play NAME with the built-in character again")
 async def delete_cast(doc_id: str, name: str, orch: OrchestratorDep) -> dict[str, bool]:
     session = await _session(orch, doc_id)
-    with session.lock:
-        removed = session.cast.pop(name, None) is not None
+    removed = await run_in_threadpool(session.drop_cast, name)
     return {"removed": removed}
 
 

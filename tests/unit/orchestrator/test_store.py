@@ -54,3 +54,20 @@ def test_an_acknowledged_edit_survives_kill_9(tmp_path):
         proc.wait()
     doc = SessionStore(db).load("d")
     assert doc.text == "Eve types." and doc.version == 1
+
+
+def test_a_documents_cast_is_kept_with_it_and_goes_when_it_is_deleted(tmp_path):
+    from services.orchestrator.session import Orchestrator
+
+    db = tmp_path / "s.db"
+    first = Orchestrator(db, backend=None)  # type: ignore[arg-type]  (no compute here)
+    session = first.create("Eve walks to the desk.", doc_id="d")
+    session.set_cast("Eve", b"glTF-eve")
+    session.set_cast("Tom", b"glTF-tom")
+    assert session.drop_cast("Tom") and not session.drop_cast("Tom")
+    first.close()
+    again = Orchestrator(db, backend=None).open("d")  # type: ignore[arg-type]  (a restarted gateway)
+    assert {n: m.glb for n, m in again.cast.items()} == {"Eve": b"glTF-eve"}
+    store = SessionStore(db)
+    store.delete("d")
+    assert store.cast("d") == {}
