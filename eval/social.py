@@ -396,6 +396,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--seed", type=int, default=0, help="sampler seed (default 0)")
     parser.add_argument("--stories", type=Path, help="a folder of .txt stories for the cast metrics")
     parser.add_argument("--no-cast", action="store_true", help="skip the cast metrics (the whole pipeline)")
+    parser.add_argument(
+        "--per-story", action="store_true", help="also print the cast metrics of each story on its own"
+    )
     args = parser.parse_args(argv)
     reps = 1 if args.quick else 5
     rows, drops, times = [], [], []
@@ -445,6 +448,14 @@ def main(argv: list[str] | None = None) -> int:
             f"shared_slots {cast['shared_slots']}  hand_contact_cm {cast['hand_contact_cm']:.1f} "
             f"({cast['paired_actions']} paired actions)"
         )
+        if args.per_story:
+            print(f"{'story':<24} {'overlap_frames':>14} {'shared_slots':>12} {'hand_contact_cm':>15}")
+            for key, text in stories.items():
+                one = cast_metrics({key: text}, args.seed)
+                print(
+                    f"{key:<24} {one['overlap_frames']:>14} {one['shared_slots']:>12} "
+                    f"{one['hand_contact_cm']:>15.1f}"
+                )
     if args.json:
         args.json.parent.mkdir(parents=True, exist_ok=True)
         args.json.write_text(json.dumps(summary, indent=2) + "\n")
