@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import heapq
 import math
+import threading
 from collections.abc import Iterable
 from dataclasses import dataclass
 
@@ -210,35 +211,81 @@ def occupancy_grid(
     fp = footprints.select((footprints.y_min < max_height) & ~walk_over) if len(footprints) else footprints
     if len(fp) == 0:
         return OccupancyGrid(blocked=blocked, origin=origin, cell=cell)
-    # Voxelised objects stack many boxes on one footprint: keep each distinct rectangle once.
-    rects = np.round(np.column_stack([fp.centre, fp.half, fp.yaw]), 6)
-    _, first = np.unique(rects, axis=0, return_index=True)
-    fp = fp.select(np.isin(np.arange(len(fp)), first))
     c, s = np.abs(np.cos(fp.yaw)), np.abs(np.sin(fp.yaw))
     ext = (
         np.stack([c * fp.half[:, 0] + s * fp.half[:, 1], s * fp.half[:, 0] + c * fp.half[:, 1]], axis=1)
         + radius
     )
     lo, hi = fp.centre - ext, fp.centre + ext  # (N, 2) grown bounding boxes
-    owners = np.array(fp.owner, dtype=object)
-    for owner in dict.fromkeys(fp.owner):
-        # One window per object, tested against all its rectangles at once.
-        mine = owners == owner
-        c0 = max(0, int(math.floor((lo[mine, 0].min() - origin[0]) / cell)))
-        c1 = min(w, int(math.ceil((hi[mine, 0].max() - origin[0]) / cell)) + 1)
-        r0 = max(0, int(math.floor((lo[mine, 1].min() - origin[1]) / cell)))
-        r1 = min(h, int(math.ceil((hi[mine, 1].max() - origin[1]) / cell)) + 1)
-        if c0 >= c1 or r0 >= r1:
-            continue
+    rects = np.column_stack([fp.centre, fp.half, fp.yaw])  # (N, 5)
+    by_owner: dict[str, list[int]] = {}
+    for i, owner in enumerate(fp.owner):
+        by_owner.setdefault(owner, []).append(i)
+    for mine in by_owner.values():
+        window = _owner_cells(rects[mine], lo[mine], hi[mine], xs, zs, origin, cell, radius)
+        if window is not None:
+            r0, c0, cells = window
+            blocked[r0 : r0 + cells.shape[0], c0 : c0 + cells.shape[1]] |= cells
+    return OccupancyGrid(blocked=blocked, origin=origin, cell=cell)
+
+
+_OWNER_CELLS: dict[tuple[object, ...], tuple[int, int, np.ndarray] | None] = {}
+_OWNER_CELLS_MAX = 4096  # cached windows (a few kB each); cleared when full
+_OWNER_CELLS_LOCK = threading.Lock()
+
+
+def _owner_cells(
+    rects: np.ndarray,
+    lo: np.ndarray,
+    hi: np.ndarray,
+    xs: np.ndarray,
+    zs: np.ndarray,
+    origin: np.ndarray,
+    cell: float,
+    radius: float,
+) -> tuple[int, int, np.ndarray] | None:
+    """The cells one object's rectangles ((N, 5) centre x, z, half x, z, yaw) block: (first row, first column, (rows, cols) bool window), or None
+    when its window misses the grid. Memoised on the rectangles and the grid's geometry: a room's furniture
+    is the same from one route to the next (the orchestrator plans every walk of every edit over it), so only
+    the other characters' bodies are rasterised afresh."""
+    key = (
+        len(xs),
+        len(zs),
+        origin.tobytes(),
+        cell,
+        radius,
+        rects.tobytes(),
+    )
+    with _OWNER_CELLS_LOCK:
+        if key in _OWNER_CELLS:
+            return _OWNER_CELLS[key]
+    w, h = len(xs), len(zs)
+    # One window per object, tested against all its rectangles at once.
+    c0 = max(0, int(math.floor((lo[:, 0].min() - origin[0]) / cell)))
+    c1 = min(w, int(math.ceil((hi[:, 0].max() - origin[0]) / cell)) + 1)
+    r0 = max(0, int(math.floor((lo[:, 1].min() - origin[1]) / cell)))
+    r1 = min(h, int(math.ceil((hi[:, 1].max() - origin[1]) / cell)) + 1)
+    window: tuple[int, int, np.ndarray] | None = None
+    if c0 < c1 and r0 < r1:
         gx, gz = np.meshgrid(xs[c0:c1], zs[r0:r1])
         pts = np.stack([gx.ravel(), gz.ravel()], axis=1)
-        sub = fp.select(mine)
+        # Voxelised objects stack many boxes on one footprint: test each distinct rectangle once.
+        _, first = np.unique(np.round(rects, 6), axis=0, return_index=True)
+        rects = rects[np.sort(first)]
         near = np.ones(len(pts), dtype=bool)
-        for chunk in range(0, len(sub), 256):
-            part = sub.select((np.arange(len(sub)) >= chunk) & (np.arange(len(sub)) < chunk + 256))
-            near &= ~(point_rect_distance(pts, part) <= radius).any(axis=1)
-        blocked[r0:r1, c0:c1] |= ~near.reshape(gx.shape)
-    return OccupancyGrid(blocked=blocked, origin=origin, cell=cell)
+        for chunk in range(0, len(rects), 256):
+            part = rects[chunk : chunk + 256]
+            n = len(part)
+            sub = Footprints(part[:, 0:2], part[:, 2:4], part[:, 4], np.zeros(n), np.zeros(n), ("",) * n)
+            near &= ~(point_rect_distance(pts, sub) <= radius).any(axis=1)
+        cells = ~near.reshape(gx.shape)
+        cells.flags.writeable = False
+        window = (r0, c0, cells)
+    with _OWNER_CELLS_LOCK:
+        if len(_OWNER_CELLS) >= _OWNER_CELLS_MAX:
+            _OWNER_CELLS.clear()
+        _OWNER_CELLS[key] = window
+    return window
 
 
 def _nearest_free(grid: OccupancyGrid, rc: np.ndarray) -> np.ndarray:

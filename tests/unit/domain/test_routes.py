@@ -125,3 +125,23 @@ def test_a_rug_on_the_floor_is_walked_over():
     step = _box(-2.0, 2.0, -0.5, 0.5, y0=0.0, y1=0.1)  # a low platform still blocks
     grid = occupancy_grid(ROOM, Footprints.from_aabbs(np.array([step])), radius=0.25, cell=0.05)
     assert grid.blocked[40, 10:-10].all()
+
+
+def test_a_grid_is_the_union_of_its_objects_and_follows_a_moved_object():
+    # Each object's cells are memoised (the furniture is the same from one route to the next): a grid of
+    # furniture and a body is the furniture's grid with the body's cells added, and moving an object moves
+    # its cells rather than reusing the old ones.
+    table = Footprints.from_aabbs(np.array([_box(-0.5, 0.5, -0.3, 0.3)]), owner=["table"])
+    body = Footprints.from_aabbs(np.array([_box(1.0, 1.4, 1.0, 1.4, y1=1.8)]), owner=["body:0"])
+    furniture = occupancy_grid(ROOM, table)
+    alone = occupancy_grid(ROOM, body)
+    both = occupancy_grid(ROOM, table.concat(body))
+    assert np.array_equal(both.blocked, furniture.blocked | alone.blocked)
+    assert both.blocked.sum() > furniture.blocked.sum()
+    moved = Footprints.from_aabbs(np.array([_box(0.5, 1.5, -0.3, 0.3)]), owner=["table"])
+    shifted = occupancy_grid(ROOM, moved)
+    assert not shifted.is_free_xz(np.array([[1.4, 0.0]]))[0]
+    assert (
+        shifted.is_free_xz(np.array([[-0.6, 0.0]]))[0]
+        and not furniture.is_free_xz(np.array([[-0.6, 0.0]]))[0]
+    )
