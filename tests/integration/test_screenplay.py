@@ -47,7 +47,7 @@ def test_the_screenplay_animates_its_characters_in_the_kitchen_at_night(report):
     assert report["characters"] == ["Ada", "Tom"]
     assert report["scene"]["room"]["room_type"] == "kitchen"
     placed = {(c["kind"], c["value"]) for c in report["render"]["commands"]}
-    assert {("weather", "night"), ("camera", "left")} <= placed  # the heading's light; CUT TO: a cut
+    assert {("weather", "night"), ("camera", "close")} <= placed  # the heading's light; CUT TO: a cut
 
 
 def test_every_line_of_dialogue_is_a_talking_action_captioned_by_its_words(report):
