@@ -36,8 +36,8 @@ into furniture in that sentence.
 JSON keys: check_agreement (share of counted labels that agree), per_check (name -> labels, agree,
 agreement, false_alarms (check fails, eye says ok), misses (check passes, eye says fail)), counted, stale,
 skipped, disagreements (each unit with both verdicts and the check's reason), by_group (dev, test, others,
-fresh, fresh2 -> agreement, counted, labels), agreement_dev / agreement_held_out / agreement_fresh /
-agreement_fresh2, fidelity (for
+fresh, fresh2, fresh3 -> agreement, counted, labels), agreement_dev / agreement_held_out / agreement_fresh /
+agreement_fresh2 / agreement_fresh3, fidelity (for
 --split: the split's sentence_fidelity and failures per check with these checks), samples (when --sample).
 """
 
@@ -449,6 +449,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         ("test", "agreement_held_out"),
         ("fresh", "agreement_fresh"),
         ("fresh2", "agreement_fresh2"),
+        ("fresh3", "agreement_fresh3"),
         ("dev", "agreement_dev"),
     ):
         if group in summary["by_group"]:
