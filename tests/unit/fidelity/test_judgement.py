@@ -461,11 +461,11 @@ def test_a_fingertip_grazing_another_body_4_cm_is_no_overlap_but_a_trunk_4_cm_in
 # -- drink: the cup as drawn against the mouth, not the wrist against the head ------------------------------
 
 
-def _drinker(make, rim_offset: tuple[float, float, float]):
-    """Eve T-posed (hands far from her head) holding a mug whose drawn rim is ``rim_offset`` from her mouth
-    (the Head joint + 3 cm up and 9 cm forward) on every frame."""
+def _drinker(make, rim_offset: tuple[float, float, float], vessel: str = "mug", held_at: float = 1.0):
+    """Eve T-posed (hands far from her head) holding a ``vessel`` whose drawn point ``held_at`` of the way up
+    (1: its rim) is ``rim_offset`` from her mouth (the Head joint + 3 cm up and 9 cm forward) on every frame."""
     frames = 60
-    mug = PlacedObject(id="mug", category="mug", position=(1.5, 0.75, 0.0))
+    mug = PlacedObject(id="mug", category=vessel, position=(1.5, 0.75, 0.0))
     bare = make.motion("Eve", make.still(0.0, 0.95, 0.0, frames), [("drink", 0, frames, "s1", 0)])
     head = body_of(bare).joint("Head")
     rim = head + np.array([0.0, 0.03, 0.09]) + np.asarray(rim_offset)
@@ -475,7 +475,7 @@ def _drinker(make, rim_offset: tuple[float, float, float]):
         joint="RightHand",
         start_frame=0,
         end_frame=frames,
-        position=to_wire((rim - [0.0, top, 0.0]).astype(np.float32)),
+        position=to_wire((rim - [0.0, top * held_at, 0.0]).astype(np.float32)),
         rotation=to_wire(np.tile([0.0, 0.0, 0.0, 1.0], (frames, 1)).astype(np.float32)),
     )
     eve = msgspec.structs.replace(bare, props=[track])
@@ -497,3 +497,12 @@ def test_a_drink_is_the_drawn_cup_at_the_mouth_not_the_wrist_by_the_head(make):
     assert at_lips.ok, at_lips.reason  # the old check: the T-posed wrist is 0.7 m from the head: fail
     by_the_ear = _drinker(make, (0.0, 0.08, -0.2))  # beside the head, behind the face: not drinking
     assert not by_the_ear.ok and "never reaches Eve's mouth" in by_the_ear.reason
+
+
+def test_a_bottle_held_by_its_middle_against_the_mouth_is_a_drink(make):
+    """group-dining_room-04 s7 (fresh3): John's bottle, held by its middle, crosses his face on the sheet,
+    its top 14 cm above his lips: the eye sees a drink, the rim-only check said 'never reaches the mouth'."""
+    across_the_face = _drinker(make, (0.0, 0.0, 0.03), vessel="bottle", held_at=0.5)
+    assert across_the_face.ok, across_the_face.reason
+    in_front = _drinker(make, (0.0, 0.0, 0.25), vessel="bottle", held_at=0.5)  # a hand's length before it
+    assert not in_front.ok and "never reaches Eve's mouth" in in_front.reason
