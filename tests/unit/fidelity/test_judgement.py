@@ -436,10 +436,10 @@ def test_a_scoped_close_up_is_in_force_on_its_own_shots_not_until_the_next_comma
 # -- overlap: a fingertip grazing a sleeve is not a body inside a body -----------------------------------------
 
 
-def _spheres(name: str, joint: str, x: float, radius: float) -> Body:
-    """A body of one sphere at (x, 1, 0) on the joint ``joint``, for 3 frames."""
-    joints = np.zeros((3, len(JOINT_NAMES), 3))
-    points = np.tile(np.array([[[x, 1.0, 0.0]]]), (3, 1, 1))
+def _spheres(name: str, joint: str, x: float, radius: float, frames: int = 6) -> Body:
+    """A body of one sphere at (x, 1, 0) on the joint ``joint``, for ``frames`` frames."""
+    joints = np.zeros((frames, len(JOINT_NAMES), 3))
+    points = np.tile(np.array([[[x, 1.0, 0.0]]]), (frames, 1, 1))
     return Body(name, joints, points, np.array([radius]), np.array([JOINT_INDEX[joint]]))
 
 
@@ -456,6 +456,28 @@ def test_a_fingertip_grazing_another_body_4_cm_is_no_overlap_but_a_trunk_4_cm_in
     assert fa.failing.all() and abs(fa.amount[0] - 0.08) < 1e-3
     trunk = _spheres("Mary", "Spine2", 0.28 - 0.04, 0.14)  # two trunks 4 cm into each other
     assert overlap(trunk, anna)[0].failing.all()
+
+
+def test_a_body_through_another_for_fewer_frames_than_the_eye_sees_is_no_overlap():
+    """group-kids_room-11 s4 and s11 (fresh3): a child's hand 6 cm into dad's body for 1 frame, Lily's 5 cm
+    for 2 while they dance, unseen on the sheets; the same depth held for MIN_RUN frames is seen."""
+    from wana.fidelity.body_checks import MIN_RUN, overlap
+
+    dad = _spheres("dad", "Spine2", 0.0, 0.14, frames=10)
+    hand = _spheres("Sam", "LeftHand", 0.14 + 0.04 - 0.10, 0.04, frames=10)  # 10 cm in: beyond the graze
+    for through in (1, 2, MIN_RUN - 1, MIN_RUN):
+        fast = Body(
+            hand.name, hand.joints, np.where(np.arange(10)[:, None, None] < through, hand.points, 5.0),
+            hand.radii, hand.point_joint,
+        )  # fmt: skip
+        fa, _ = overlap(fast, dad)
+        assert bool(fa.failing.any()) is (through >= MIN_RUN), through
+    # frames 0 and 2-4 (duo-lobby-09 s10: 362 and 364-366): a one-frame break does not hide the run
+    broken = Body(
+        hand.name, hand.joints, np.where(np.isin(np.arange(10), [0, 2, 3, 4])[:, None, None], hand.points, 5.0),
+        hand.radii, hand.point_joint,
+    )  # fmt: skip
+    assert overlap(broken, dad)[0].failing.sum() == 4
 
 
 # -- drink: the cup as drawn against the mouth, not the wrist against the head ------------------------------
