@@ -2,7 +2,8 @@
 
 Usage:
     .venv/bin/python eval/agreement.py [--split dev|test|others|all] [--sample N | --blind N] [--sample-seed 0]
-                                       [--seed 0] [--quick | --labelled] [--json PATH] [--labels PATH] [--out DIR]
+                                       [--seed 0] [--quick | --labelled] [--group NAME] [--json PATH]
+                                       [--labels PATH] [--out DIR]
 
 Each story of the split is computed once (the whole pipeline in-process, as eval/story.py does) and kept in a
 cache keyed by the story, the seed and the source of every stage the checks do not own, so that a change to a
@@ -36,8 +37,8 @@ into furniture in that sentence.
 JSON keys: check_agreement (share of counted labels that agree), per_check (name -> labels, agree,
 agreement, false_alarms (check fails, eye says ok), misses (check passes, eye says fail)), counted, stale,
 skipped, disagreements (each unit with both verdicts and the check's reason), by_group (dev, test, others,
-fresh, fresh2 -> agreement, counted, labels), agreement_dev / agreement_held_out / agreement_fresh /
-agreement_fresh2, fidelity (for
+fresh, fresh2, fresh3 -> agreement, counted, labels), agreement_dev / agreement_held_out / agreement_fresh /
+agreement_fresh2 / agreement_fresh3, fidelity (for
 --split: the split's sentence_fidelity and failures per check with these checks), samples (when --sample).
 """
 
@@ -414,6 +415,9 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     t0 = time.perf_counter()
     labels = load_labels(args.labels)
     every = {p.stem: p for p in story_paths_all()}
+    if args.group:  # one blind set or split of the labels (their stories only are computed with --labelled)
+        splits_of = {p.stem: p.parent.name for p in every.values()}
+        labels = [lab for lab in labels if label_group(lab, splits_of) == args.group]
     wanted: list[tuple[str, int]] = []
     if args.quick:
         wanted = quick_stories(labels)
@@ -449,6 +453,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         ("test", "agreement_held_out"),
         ("fresh", "agreement_fresh"),
         ("fresh2", "agreement_fresh2"),
+        ("fresh3", "agreement_fresh3"),
         ("dev", "agreement_dev"),
     ):
         if group in summary["by_group"]:
@@ -510,6 +515,7 @@ def build_parser() -> argparse.ArgumentParser:
         action="store_true",
         help="count labels of an animation that changed since (indicative only: judged on an older animation)",
     )
+    ap.add_argument("--group", default="", help="only the labels of this group (fresh3, test, dev ...)")
     ap.add_argument("--labels", type=Path, default=LABELS, help="default eval/data/agreement_labels.json")
     ap.add_argument("--out", type=Path, default=OUT, help="cache, sheets and samples (out/eval/agreement)")
     ap.add_argument("--json", type=Path, default=None, help="write the agreement summary here")

@@ -29,7 +29,7 @@ from proto.fidelity import Check
 from proto.motion_data import Motion
 from proto.render import TimedCommand
 from proto.scene import Scene
-from services.render.camera import project
+from services.render.camera import intrinsics, project
 from services.render.director import Shot
 from services.render.sightlines import Furniture
 from services.render.staging import CameraTrack, Staging
@@ -141,11 +141,15 @@ def staged_checks(
 
 def close_span(joints: Mapping[str, np.ndarray], track: CameraTrack, frames: Sequence[int]) -> np.ndarray:
     """(F,) on each frame the largest share of the picture's height any character's head top to chest
-    spans, as the rendered camera projects them (0 for one behind the camera or off the picture's sides)."""
+    takes at its depth in the rendered camera: its length as the lens scales it there, whichever way the
+    camera looks at it (a close shot from above foreshortens the head-to-chest line to nothing on screen
+    while the two fill the picture: gump-living_room-3 s9). 0 for one behind the camera or off the
+    picture's sides."""
     out = np.zeros(len(frames))
     head_i, chest_i = JOINT_INDEX["Head"], JOINT_INDEX["Spine2"]
     for k, f in enumerate(frames):
         pose = track.pose(int(f))
+        fy = intrinsics(pose.fov_deg, track.width, track.height)[1]
         for pos in joints.values():
             if not len(pos):
                 continue
@@ -154,7 +158,8 @@ def close_span(joints: Mapping[str, np.ndarray], track: CameraTrack, frames: Seq
             uv, z = project(np.stack([top, pos[g, chest_i]]), pose, track.width, track.height)
             if np.any(z <= 0.05) or not (0.0 <= float(uv[:, 0].mean()) <= track.width):
                 continue
-            out[k] = max(out[k], abs(float(uv[1, 1] - uv[0, 1])) / track.height)
+            length = float(np.linalg.norm(top - pos[g, chest_i]))
+            out[k] = max(out[k], fy * length / float(z.mean()) / track.height)
     return out
 
 

@@ -22,6 +22,9 @@ SEAT_BELOW_M = 0.06  # hips at most this far below a supporting surface ...
 SEAT_ABOVE_M = 0.30  # ... and at most this far above it
 SUPPORT_MARGIN_M = 0.08  # hips may overhang a surface's edge by this much
 UNSUPPORTED_FRAMES = 3  # frames on air allowed (the moment of sitting down)
+STANDING_HIPS_M = 0.7  # hips at least this far above the lowest foot: the body stands on its feet ...
+FOOT_DOWN_M = 0.12  # ... when that foot is within this of the floor or a surface's top
+FEET = ("LeftFoot", "LeftToeBase", "RightFoot", "RightToeBase")
 LEAN_M = 0.08  # a leaning hand within this of a wall or a piece of furniture
 DOOR_M = 1.0  # an entrance starts within this of a door
 ENTRANCE_VERBS = ("walk in", "enter", "come in", "run in", "step in", "burst in", "walk into", "come into")
@@ -89,8 +92,10 @@ def supported(act: Act, body: Body, world: World, until: int) -> Check | None:
     held = _on_surface(body.joint("Hips")[frames], world)
     if action != "sit":
         held &= _on_surface(body.joint("Spine1")[frames], world, above=0.45)
-    air = frames[~held]
     posture = "sits" if action == "sit" else "lies"
+    standing = ~held & _standing(body, frames, world)
+    held |= standing  # upright on its feet: nothing on air (whether it sat is the contact check's)
+    air = frames[~held]
     if len(air) > UNSUPPORTED_FRAMES:
         hips = body.joint("Hips")[air]
         return Check(
@@ -101,9 +106,26 @@ def supported(act: Act, body: Body, world: World, until: int) -> Check | None:
             reason=f"{who} {posture} on air: " + _nearest_seat_words(hips, world),
             frames=frame_list(air),
         )
+    if standing.sum() > UNSUPPORTED_FRAMES:
+        return Check(
+            name="supported", character=who, ok=True,
+            reason=f"{who} stands on their feet ({span_words(frames[standing])}), not on air",
+        )  # fmt: skip
     return Check(
         name="supported", character=who, ok=True, reason=f"{who} {posture} on a surface that holds them"
     )
+
+
+def _standing(body: Body, frames: np.ndarray, world: World) -> np.ndarray:
+    """(W,) whether the body stands upright on each frame: its lowest foot down on the floor or on a
+    surface's top (a mattress stood on) and its hips a standing height above that foot."""
+    feet = np.stack([body.joint(j)[frames] for j in FEET], axis=1)  # (W, 4, 3)
+    low = feet[np.arange(len(frames)), np.argmin(feet[:, :, 1], axis=1)]  # (W, 3) the lowest foot point
+    down = np.abs(low[:, 1]) <= FOOT_DOWN_M
+    for _, height, lo, hi in world.surfaces:
+        over = np.all((low[:, [0, 2]] >= lo) & (low[:, [0, 2]] <= hi), axis=1)
+        down |= over & (np.abs(low[:, 1] - height) <= FOOT_DOWN_M)
+    return down & (body.joint("Hips")[frames][:, 1] - low[:, 1] >= STANDING_HIPS_M)
 
 
 def _on_surface(points: np.ndarray, world: World, above: float = SEAT_ABOVE_M) -> np.ndarray:

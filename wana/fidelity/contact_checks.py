@@ -33,7 +33,7 @@ from wana.fidelity.world import World, base_id, display
 
 CONTACT_M = 0.05  # the contact joint within this of the object's contact point ...
 CONTACT_SHARE = 0.5  # ... on at least this share of the window's frames
-MOUTH_M = 0.12  # a drink's cup (its rim, where it is drawn) within this of the mouth
+MOUTH_M = 0.12  # a drink's vessel (its axis, bottom to rim, where it is drawn) within this of the mouth
 MOUTH_UP_M = 0.03  # the mouth: this far up the head from the Head joint (the skull's base) ...
 MOUTH_FORWARD_M = 0.09  # ... and this far forward, the way the shoulders face
 ARRIVE_M = 1.0  # a walk to an object ends within this of its footprint
@@ -364,10 +364,10 @@ def contact(
         return base(ok=False, reason=reason, frames=frame_list(far)), touching
     if act.node.action == "drink":
         idx = np.clip(fr, 0, body.frames - 1)
-        rim = cup_rim(got.placed, props.get(who, ()), fr)
-        at_mouth = np.linalg.norm(rim - mouth(body)[idx], axis=1) <= MOUTH_M
+        gaps = mouth_gap(*vessel_axis(got.placed, props.get(who, ()), fr), mouth(body)[idx])
+        at_mouth = gaps <= MOUTH_M
         if np.mean(at_mouth) < CONTACT_SHARE:
-            gap = float(np.min(np.linalg.norm(rim - mouth(body)[idx], axis=1)))
+            gap = float(np.min(gaps))
             return (
                 base(
                     ok=False,
@@ -399,20 +399,34 @@ def mouth(body: Body) -> np.ndarray:
     return head + MOUTH_UP_M * up + MOUTH_FORWARD_M * forward
 
 
-def cup_rim(placed: PlacedObject, tracks: Sequence[PropTrack], frames: np.ndarray) -> np.ndarray:
-    """(W, 3) the top centre of a drinking vessel on each frame, where it is drawn: moved with the hand on
-    the frames a PropTrack of it holds it (its pose there), else where the scene placed it."""
-    top = np.array([0.0, float(asset_for(placed).dims[1]), 0.0])
-    out = np.tile(to_world(placed, top), (len(frames), 1))
-    local = top * np.asarray(placed.scale, float)
-    for t in tracks:
-        if t.object_id != placed.id:
-            continue
-        pos, rot = from_wire(t.position), from_wire(t.rotation)
-        inside = (frames >= t.start_frame) & (frames < t.end_frame)
-        k = np.clip(frames[inside] - t.start_frame, 0, len(pos) - 1)
-        out[inside] = pos[k] + Rotation.from_quat(rot[k]).apply(local)
-    return out
+def vessel_axis(
+    placed: PlacedObject, tracks: Sequence[PropTrack], frames: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """(W, 3) twice: the bottom and the top centre of a drinking vessel on each frame, where it is drawn:
+    moved with the hand on the frames a PropTrack of it holds it (its pose there), else where the scene
+    placed it."""
+    scale = np.asarray(placed.scale, float)
+    ends = []
+    for local in (np.zeros(3), np.array([0.0, float(asset_for(placed).dims[1]), 0.0])):
+        out = np.tile(to_world(placed, local), (len(frames), 1))
+        for t in tracks:
+            if t.object_id != placed.id:
+                continue
+            pos, rot = from_wire(t.position), from_wire(t.rotation)
+            inside = (frames >= t.start_frame) & (frames < t.end_frame)
+            k = np.clip(frames[inside] - t.start_frame, 0, len(pos) - 1)
+            out[inside] = pos[k] + Rotation.from_quat(rot[k]).apply(local * scale)
+        ends.append(out)
+    return ends[0], ends[1]
+
+
+def mouth_gap(bottom: np.ndarray, top: np.ndarray, mouth_at: np.ndarray) -> np.ndarray:
+    """(W,) the mouth's distance to the vessel's axis: a cup's rim at the lips, or a bottle held by its
+    middle with its body against the mouth (group-dining_room-04 s7: John's bottle crosses his face)."""
+    axis = top - bottom
+    t = np.einsum("ij,ij->i", mouth_at - bottom, axis) / np.maximum(np.einsum("ij,ij->i", axis, axis), 1e-12)
+    nearest = bottom + np.clip(t, 0.0, 1.0)[:, None] * axis
+    return np.linalg.norm(mouth_at - nearest, axis=1)
 
 
 def _held_instead(act: Act, world: World, bodies: Mapping[str, Body]) -> PlacedObject | None:

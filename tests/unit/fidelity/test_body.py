@@ -25,6 +25,22 @@ def test_sitting_with_the_hips_half_a_metre_above_nothing_is_not_supported(make)
     assert verdicts({"s1": checks})["s1"].verdict == "failed"
 
 
+def test_standing_up_on_its_feet_through_a_sit_is_not_sitting_on_air(make):
+    # Forrest told to sit on the sofa, Lily to lie on her bed, stood on their feet instead (gump-living_room-3
+    # s10, solo-kids_room-17 s11): the eye sees no one on air; the missing seat is the contact check's to say.
+    hips = make.still(0.0, 0.95, 0.0, 60)  # T-posed: the feet on the floor, the hips a standing height up
+    eve = make.motion("Eve", hips, [("sit", 0, 60, "s1", 0)])
+    graph = {"s1": make.action_graph("s1", "Eve", "sit", "sit", target="chair")}
+    far = make.scene(PlacedObject(id="chair", category="chair", position=(1.5, 0.0, 0.0)))
+    checks = story_checks([("s1", "action")], graph, far, {"Eve": eve})["s1"]
+    (supported,) = by_name(checks, "supported")
+    assert supported.ok and "stands on" in supported.reason, supported.reason
+    assert not by_name(checks, "contact")[0].ok  # it did not sit on the chair
+    floating = make.motion("Eve", make.still(0.0, 1.3, 0.0, 60), [("sit", 0, 60, "s1", 0)])
+    checks = story_checks([("s1", "action")], graph, far, {"Eve": floating})["s1"]
+    assert not by_name(checks, "supported")[0].ok  # feet 0.35 m up in the air: on air
+
+
 def test_sitting_on_the_seat_is_supported_and_at_its_contact_point(make):
     hips = make.still(0.0, 0.54, 0.0, 60)  # the chair's seat is 0.45 m high, its sit point 10 cm above
     eve = make.motion("Eve", hips, [("sit", 0, 60, "s1", 0)])

@@ -311,6 +311,26 @@ def test_camera_close_is_judged_by_the_picture_not_by_the_plan():
     assert near.ok and near_back.ok, (near.reason, near_back.reason)
 
 
+def test_a_close_shot_from_straight_above_is_close():
+    """gump-living_room-3 s9 (fresh3): a close shot looking down on the two on the sofa filled the picture,
+    but the head-to-chest line, seen end on from above, spanned 12 % of the frame's height: 'never close'."""
+    tom = standing("Tom", 2.0, -1.0, sentence_id="s1")
+    sentences = [("s0", "camera close"), ("s1", "Tom waves.")]
+    commands = [("s0", Command(kind="camera", value="close", target="Tom"))]
+    stage = Staging.build(demo_scene(), [tom], place_commands(commands, sentences, [tom]))
+    head = stage.rigs["Tom"].joint_positions[0, JOINT_INDEX["Head"]]
+
+    def from_above(height: float):  # noqa: ANN202
+        track = fixed_camera((2.0, float(head[1]) + height, -0.98), (2.0, 0.0, -1.0), n=stage.n_frames)
+        checks = staged_checks(stage, sentences, width=320, height=240, track=track)["s0"]
+        return next(c for c in checks if c.name == "command_visible")
+
+    near = from_above(1.0)  # a metre over his head
+    assert near.ok, near.reason
+    high = from_above(4.5)  # under the ceiling of a tall hall: the whole room from above
+    assert not high.ok and "never comes close" in high.reason, high.reason
+
+
 def test_the_writers_camera_close_is_close_in_the_picture_the_director_draws():
     """solo-office-01 s7: "camera close" on a typist drew the director's head-to-knees close-up (head to chest
     at most 25 % of the frame, under 22 % on all but 0.5 s); the command's own framing comes closer."""
