@@ -369,9 +369,8 @@ def is_unknown_object_word(head: Token) -> bool:
     if head.dep_ in ("nmod", "obl") and is_content(head):
         return False
     prev = head.doc[head.i - 1] if head.i > 0 else None
-    if prev is not None and (prev.head.i == head.i or head.head.i == prev.i):
-        if exact_category([prev.text, head.text]) is not None:
-            return False  # "kit" of "drum kit" misparsed as a verb: the word before names the thing
+    if prev is not None and exact_category([prev.text, head.text]) is not None:
+        return False  # "kit" of "drum kit", however the parser hung the two words: the pair names the thing
     lemma = head.lemma_.lower()
     if (
         lemma in lexicon.PERSON_NOUNS

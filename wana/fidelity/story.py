@@ -183,26 +183,10 @@ def _dropped(
         code = d.code.split()[0]
         if code == "W101" and kind != "scene":
             continue  # an action's object word ("wipes the sweat", "tells a story"): contact judges its target
-        if code == "W101" and _part_of_a_named_object(d.message, d.span.start, graph):
-            continue  # "a drum kit": the parse named the drum_kit and left 'kit' over; the room has it
         if code in DROPPED:
             name, essential = DROPPED[code]
             checks.append(Check(name=name, ok=False, essential=essential, reason=f"not shown: {d.message}"))
     return checks
-
-
-UNKNOWN_WORD = re.compile(r"unknown object word: '([^']+)'")
-
-
-def _part_of_a_named_object(message: str, start: int, graph: SentenceGraph) -> bool:
-    """Whether an "unknown" object word is the rest of an object the sentence did name: the word right after
-    a node's own word and part of its category ("kit" after "drum" in a drum_kit). Its object_exists check
-    judges that object; the word names nothing dropped."""
-    found = UNKNOWN_WORD.search(message)
-    if found is None:
-        return False
-    word = found.group(1).lower()
-    return any(word in node.category.split("_") and 0 <= start - node.span.end <= 1 for node in graph.objects)
 
 
 def _action_checks(

@@ -128,3 +128,12 @@ def test_nightfall_is_a_time_that_sets_the_night_not_an_unknown_object():
 def test_a_name_a_pronoun_resolved_to_keeps_that_gender():
     text = "Marcus walks in. He sits. Dana enters. Marcus hands Dana the tablet. She turns on the television."
     assert acts(text)[-1] == ("Dana", "press_switch", "television", "")
+
+
+def test_the_second_word_of_a_catalog_compound_is_no_unknown_object():
+    # "a drum kit" names the drum_kit whichever way the parser hangs its two words (it warned about 'kit',
+    # and the story check then failed the scene sentence: group-music_studio-07 s1)
+    graphs = parse_document("There is a drum kit and a piano$.")
+    assert sorted(o.category for g in graphs for o in g.objects) == ["drum_kit", "piano"]
+    assert "W101" not in codes("There is a drum kit and a piano$.")
+    assert "W101" in codes("There is a zorblat and a piano$.")  # a word that names nothing still does
