@@ -417,7 +417,10 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     every = {p.stem: p for p in story_paths_all()}
     if args.group:  # one blind set or split of the labels (their stories only are computed with --labelled)
         splits_of = {p.stem: p.parent.name for p in every.values()}
+        known = sorted({label_group(lab, splits_of) for lab in labels})
         labels = [lab for lab in labels if label_group(lab, splits_of) == args.group]
+        if not labels:
+            raise SystemExit(f"no labels in group {args.group!r}; the groups are: {', '.join(known)}")
     wanted: list[tuple[str, int]] = []
     if args.quick:
         wanted = quick_stories(labels)
