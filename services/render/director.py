@@ -321,6 +321,9 @@ PREFERENCE = 0.004  # score given up per step down the candidate list (ties go t
 REPLAN_STEP = 5  # frames between the frames a failing shot is checked on for where it loses someone
 REPLAN_GAIN = 0.05  # how much more a new framing of a shot's rest must show to cut there
 OUTSIDE = 0.02  # score per metre the eye stands outside the room (readable views are from inside)
+LINE_KEPT_COS = np.cos(np.radians(45.0))  # a pair's line turned further than this is a new line (180° rule)
+FACES = 0.06  # score for seeing the acting characters' faces, not the backs of their heads (ties of what is shown)
+FACES_ENOUGH = 0.3  # how frontal the preferred framing must be to stop looking at the other side
 
 
 class Scorer(Protocol):
@@ -418,8 +421,18 @@ def _framed(
     else the side whose eye stays in the room; a pair keeps the side of its first shot (180° rule), and
     a cut to the same subject never lands on a near-identical view (no jump cut). A director's shot whose
     best framing still leaves a sentence's character unseen becomes a wide shot when one shows more."""
-    pair_side: dict[tuple[str, str], int] = {}
+    pair_side: dict[tuple[str, str], tuple[int, np.ndarray]] = {}  # the side kept, the line it was kept on
     track_map = dict(tracks)
+
+    def kept_side(pair: tuple[str, str] | None, frame: int) -> int | None:
+        """The side of the line a pair's shot keeps: its last shot's, while the line between them still runs
+        the same way (a talk on a sofa after one walked in from the door is a new line, seen afresh)."""
+        if pair is None or pair not in pair_side:
+            return None
+        side, before = pair_side[pair]
+        now = _line(pair, track_map, frame)
+        return side if float(before @ now) >= LINE_KEPT_COS else None
+
     out: list[Shot] = []
     last: tuple[Shot, Any] | None = None  # the shot before and its camera on its last frame
     todo = list(reversed(shots))
@@ -430,17 +443,17 @@ def _framed(
             last = None
             continue
         pair = (min(s.subject, s.partner), max(s.subject, s.partner)) if s.partner else None
-        found = _search(s, pair_side.get(pair) if pair else None, track_map, room, scorer, units, last)
+        found = _search(s, kept_side(pair, s.start), track_map, room, scorer, units, last)
         if scorer is not None and not found.passes and s.source == "director" and s.kind != "wide":
             wide = replace(s, kind="wide", subject="", partner="")
             other = _search(wide, None, track_map, room, scorer, units, last)
             if other.score > found.score + WIDE_GAIN:
                 s, found, pair = wide, other, None
         if pair is not None and s.source == "director":  # a command's framing keeps no side of the line
-            pair_side.setdefault(pair, found.side)
+            pair_side[pair] = (found.side, _line(pair, track_map, max(s.start, s.end - 1)))
         framed = replace(s, side=found.side, adjust=found.adjust if scorer is not None else None)
         if scorer is not None and not found.passes:  # a measured command's view too, on its side
-            split = _replan(framed, track_map, room, scorer, units, pair_side.get(pair) if pair else None)
+            split = _replan(framed, track_map, room, scorer, units, kept_side(pair, s.start))
             if split is not None:
                 framed = replace(framed, end=split)
                 found = replace(found, end_pose=_pose(_key(framed), track_map, room, split - 1))
@@ -448,6 +461,13 @@ def _framed(
         out.append(framed)
         last = (framed, found.end_pose) if found.end_pose is not None else None
     return out
+
+
+def _line(pair: tuple[str, str], tracks: Mapping[str, CharacterTrack], frame: int) -> np.ndarray:
+    """The unit direction (XZ) from a pair's first to its second character at a frame."""
+    d = (tracks[pair[1]].at(frame)[0] - tracks[pair[0]].at(frame)[0])[[0, 2]]
+    n = float(np.linalg.norm(d))
+    return d / n if n > 1e-6 else np.array([1.0, 0.0])
 
 
 def _key(s: Shot) -> CameraKey:
@@ -545,27 +565,71 @@ def _search(
             break
         if last is not None and s.start == last[0].end and _jump(last, s, poses[0], tracks):
             continue
-        outside = float(np.mean([_outside(room, p.eye) for p in poses]))
         passes = True
+        frontal = 1.0
         if scorer is None:
-            score = -outside
+            score = -float(np.mean([_outside(room, p.eye) for p in poses]))
         else:
-            seen = scorer.shown_each(poses, frames, who)
-            by_unit, passes = _unit_score(seen, frames, who, s, inside)
-            acting = [who.index(w) for w in (s.acting or (s.subject,)) if w in who]
-            fallback = float(seen[:, acting].mean()) if acting else 1.0
-            score = (fallback if by_unit is None else by_unit) - OUTSIDE * outside
+            score, passes, frontal = _measured(poses, frames, who, s, inside, tracks, room, scorer)
         score -= PREFERENCE * rank
         if score > best.score + 1e-12:
             end_pose = _pose(key, tracks, room, max(s.start, s.end - 1))
             best = _Found(side, adj, score, end_pose, passes)
         if scorer is None and rank >= 1:
             break  # without measuring, only the side is chosen
-        if scorer is not None and best.score >= 1.0 - PREFERENCE * rank - 1e-9 and rank == 0:
-            break  # the preferred framing shows everyone: nothing to improve
+        if (
+            scorer is not None
+            and rank == 0
+            and frontal >= FACES_ENOUGH
+            and best.score >= 1.0 + FACES * frontal - PREFERENCE * rank - 1e-9
+        ):
+            break  # the preferred framing shows everyone, from the front: nothing to improve
     if scorer is not None and not best.passes and only is None:
         best = _rescue(s, fixed_side, tracks, room, scorer, units, frames, who, inside, best, len(main))
     return best
+
+
+def _measured(
+    poses: Sequence[Any],
+    frames: list[int],
+    who: list[str],
+    s: Shot,
+    inside: Sequence[_Unit],
+    tracks: Mapping[str, CharacterTrack],
+    room: Room,
+    scorer: Scorer,
+) -> tuple[float, bool, float]:
+    """A candidate's score (what it shows of the shot's sentences, less the eye outside the room, plus
+    FACES for faces seen), whether it passes every sentence's check, and how frontal it is."""
+    seen = scorer.shown_each(poses, frames, who)
+    by_unit, passes = _unit_score(seen, frames, who, s, inside)
+    acting_names = [w for w in (s.acting or (s.subject,)) if w in who]
+    fallback = float(seen[:, [who.index(w) for w in acting_names]].mean()) if acting_names else 1.0
+    outside = float(np.mean([_outside(room, p.eye) for p in poses]))
+    frontal = _frontal(poses, frames, acting_names, tracks)
+    return (fallback if by_unit is None else by_unit) - OUTSIDE * outside + FACES * frontal, passes, frontal
+
+
+def _frontal(
+    poses: Sequence[Any], frames: Sequence[int], who: Sequence[str], tracks: Mapping[str, CharacterTrack]
+) -> float:
+    """How much the acting characters face the camera over the sampled frames: 1 looking straight into
+    it, 0 in profile or from behind (a talk seen from behind a sofa shows two backs of heads)."""
+    if not who:
+        return 1.0
+    total, n = 0.0, 0
+    for pose, f in zip(poses, frames, strict=True):
+        for w in (w for w in who if w in tracks):
+            _, facing, head = tracks[w].at(f)
+            to_eye = (pose.eye - head)[[0, 2]]
+            dist = float(np.linalg.norm(to_eye))
+            face = facing[[0, 2]]
+            norm = float(np.linalg.norm(face))
+            if dist < 1e-6 or norm < 1e-6:
+                continue
+            total += max(0.0, float(face @ to_eye) / (dist * norm))
+            n += 1
+    return total / n if n else 1.0
 
 
 def _rescue(
@@ -590,12 +654,7 @@ def _rescue(
         poses = [_pose(key, tracks, room, f) for f in frames]
         if any(p is None for p in poses):
             break
-        seen = scorer.shown_each(poses, frames, who)
-        by_unit, passes = _unit_score(seen, frames, who, s, inside)
-        acting = [who.index(w) for w in (s.acting or (s.subject,)) if w in who]
-        fallback = float(seen[:, acting].mean()) if acting else 1.0
-        outside = float(np.mean([_outside(room, p.eye) for p in poses]))
-        score = (fallback if by_unit is None else by_unit) - OUTSIDE * outside
+        score, passes, _ = _measured(poses, frames, who, s, inside, tracks, room, scorer)
         score -= PREFERENCE * (first_rank + i)
         if score > best.score + 1e-12:
             end_pose = _pose(key, tracks, room, max(s.start, s.end - 1))

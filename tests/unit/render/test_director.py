@@ -268,3 +268,30 @@ def test_an_unnamed_close_up_frames_the_character_who_acts_beside_its_subject() 
     )
     [held] = [s for s in Staging.build(SCENE, [tom, eve], [named]).shots if s.source == "command"]
     assert (held.subject, held.partner) == ("Tom", "")
+
+
+class _AllSeen(Scorer):
+    """A scorer that sees everyone from everywhere: only the faces can choose the side."""
+
+    def shown(self, poses, frames, who) -> float:  # noqa: ANN001
+        return 1.0
+
+    def shown_each(self, poses, frames, who) -> np.ndarray:  # noqa: ANN001
+        return np.ones((len(poses), len(who)), bool)
+
+
+def test_two_people_side_by_side_are_filmed_from_the_front_not_from_behind() -> None:
+    """Seen on a sheet: a talk on a sofa framed from behind its back, two backs of heads. Where every
+    side shows them equally, the camera stands on the side their faces are."""
+    eve = actor("Eve", -0.4, 0.0, 180, [("talk", 0, 90, "s1"), ("talk", 150, 180, "s3")])
+    tom = actor("Tom", 0.4, 0.0, 180, [("talk", 90, 150, "s2")])  # both face +z, as on a sofa
+    stage = Staging.build(SCENE, [eve, tom])
+    assert stage.tracks["Eve"].facing[0][2] > 0.9
+    shots = plan_shots(stage.motions, stage.tracks, [], stage.n_frames, ROOM, _AllSeen())
+    keys = shot_keys(shots)
+    for s in shots:
+        if s.kind == "wide":
+            continue
+        mid = (s.start + s.end) // 2
+        eye = camera_at(mid, keys, stage.tracks, ROOM).eye
+        assert eye[2] > 0.3, (s, eye)  # in front of them
