@@ -608,8 +608,9 @@ class Chaos:
             per_editor = max(1, math.ceil(seconds / 60))  # at about 1.6 edits a second, <= 100 each
             docs = [
                 [
-                    (await _through_resets(lambda: http.post("/api/documents", json={"text": seed_text})))
-                    .json()["doc_id"]
+                    (
+                        await _through_resets(lambda: http.post("/api/documents", json={"text": seed_text}))
+                    ).json()["doc_id"]
                     for _ in range(per_editor)
                 ]
                 for _ in range(n_editors)
@@ -632,7 +633,7 @@ class Chaos:
         texts: dict[str, str] = {}
         async with httpx.AsyncClient(base_url=base, headers=headers, timeout=20) as http:
             for d in (d for mine in docs for d in mine):
-                texts[d] = (await _through_resets(lambda: http.get(f"/api/documents/{d}"))).json()["text"]
+                texts[d] = (await _through_resets(lambda d=d: http.get(f"/api/documents/{d}"))).json()["text"]
         # Every document's newest version must get its animation; after the gateway's restart each is a
         # cold compute, two at a time (WANA_COMPUTE_THREADS), so the wait grows with their number.
         wait_s = 120.0 + 30.0 * len(texts)
