@@ -193,6 +193,26 @@ def _verb_by_position(tok: Token) -> bool:
     return tok.dep_ == "conj" and tok.head.pos_ == "VERB" and lexicon.is_known_verb(verb_lemma(tok))
 
 
+# Clips that touch another person: a body part they name is that person's ("kisses her cheek").
+PERSON_CONTACT = frozenset({"hold_hands", "shake_hands", "kiss_cheek", "comfort", "high_five"})
+
+
+def _body_part_owner(args: list[Argument], builder: GraphBuilder) -> str:
+    """The character whose body part an argument names ("his hand" -> him, "Mary's cheek" -> Mary), else ""."""
+    for arg in args:
+        if not arg.body_part:
+            continue
+        for c in arg.tok.children:
+            if c.dep_ != "nmod:poss" and c.tag_ != "PRP$":
+                continue
+            if c.lower_ in ("his", "her", "their"):
+                return {"his": "him", "her": "her", "their": "them"}[c.lower_]  # resolve() names them
+            cm = character_of(c, builder)
+            if cm is not None and cm.name:
+                return cm.name
+    return ""
+
+
 # Verbs whose object is what gets made: the action happens at the instrument, not at the product.
 MAKING_VERBS = frozenset({"make", "brew", "cook", "bake", "prepare", "fix"})
 
@@ -262,6 +282,9 @@ def _action(verb: Token, builder: GraphBuilder) -> tuple[ActionNode, str]:
         )
     else:
         action = lexicon.action_for(lemma, particle, obj_words, prep, direction, person)
+    if action in PERSON_CONTACT and (not target or target in lexicon.BODY_PARTS):
+        owner = _body_part_owner(objects + obliques, builder)
+        target = owner or target  # "takes his hand": holding Marcus's hand, not a thing called hand
     if lemma in MAKING_VERBS and instrument:
         target = instrument  # "makes coffee with the coffee maker": the hands are at the machine
     if lemma in verbs.WITH_THING and primary is not None and primary.object_id and not person:

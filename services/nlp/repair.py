@@ -442,10 +442,78 @@ def _repair_name_as_verb(sent: SpacySpan) -> bool:
     return changed
 
 
+_RELATIVE_PRONOUNS = frozenset({"who", "that", "whom"})
+
+
+def _repair_subject_relative_clause(sent: SpacySpan) -> bool:
+    """ "The man who wears a hat walks/ccomp to the door", "The teacher who is standing by the board
+    points/NOUN at the map": the parser ends the relative clause too late and makes the person the root,
+    so the sentence has no action. The first word after the relative clause's verb whose verb reading is
+    an action and that the clause cannot take (a bare present after its last noun) becomes the root with
+    the person as subject; the relative clause stays on the person, what follows is the new verb's."""
+    person = sent.root
+    if not _is_person(person) or person.pos_ not in ("NOUN", "PROPN"):
+        return False
+    clause = next(
+        (
+            c
+            for c in person.children
+            if c.dep_ == "acl:relcl" and any(g.lower_ in _RELATIVE_PRONOUNS for g in c.children if g.i < c.i)
+        ),
+        None,
+    )
+    if clause is None:
+        return False
+    verb = None
+    for tok in sent.doc[clause.i + 2 : sent.end]:
+        prev = sent.doc[tok.i - 1]
+        if prev.pos_ not in ("NOUN", "PROPN", "ADV") or tok.pos_ in _NOT_VERBS:
+            continue
+        if (
+            tok.tag_ in ("VBZ", "NNS", "VBD")
+            and tok.lower_.endswith(("s", "ed"))
+            and action_reading(tok.lower_)
+        ):
+            verb = tok
+            break
+    if verb is None:
+        return False
+    inside = range(clause.i + 1, verb.i)
+    after = range(verb.i + 1, sent.end)
+    lemma = action_reading(verb.lower_)
+    verb.pos_, verb.tag_, verb.lemma_ = "VERB", "VBZ", lemma
+    verb.head, verb.dep_ = verb, "ROOT"
+    person.head, person.dep_ = verb, "nsubj"
+    for i in inside:  # "by the board": the relative clause's, not under the new verb
+        tok = sent.doc[i]
+        if tok.head.i == verb.i or tok.head.i in after or tok.head.i == tok.i:
+            tok.head = clause
+            tok.dep_ = "obl" if any(c.dep_ == "case" for c in tok.children) else "obj"
+    has_object = False
+    for i in after:
+        tok = sent.doc[i]
+        if tok.head.i in after and tok.head.i != tok.i:
+            continue  # inside an argument: keep
+        tok.head = verb
+        if tok.is_punct:
+            tok.dep_ = "punct"
+        elif any(c.dep_ == "case" for c in tok.children):
+            tok.dep_ = "obl"
+        elif tok.pos_ in ("NOUN", "PROPN", "PRON", "NUM") and not has_object:
+            tok.dep_, has_object = "obj", True
+        elif tok.pos_ == "ADV":
+            tok.dep_ = "advmod"
+    for tok in list(person.children):  # the final stop the person held
+        if tok.is_punct and tok.i > verb.i:
+            tok.head, tok.dep_ = verb, "punct"
+    return True
+
+
 def repair_character_sentence(sent: SpacySpan) -> bool:
     """Repair the tree of one character sentence in place; True when something changed."""
     return (
-        _repair_progressive(sent)
+        _repair_subject_relative_clause(sent)
+        | _repair_progressive(sent)
         | _repair_adverb_subject(sent)
         | _repair_adverb_name(sent)
         | _repair_name_as_verb(sent)

@@ -278,3 +278,40 @@ def test_a_verb_the_tagger_read_as_a_noun_is_still_the_action(text, expected):
     assert [
         (c.name, a.action, a.target or a.destination) for c in graph.characters for a in c.actions
     ] == expected
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        ("The man who wears a hat walks to the door.", ("man", "walk", "door")),
+        ("The teacher who is standing by the board points at the map.", ("teacher", "point", "poster")),
+        ("The woman that holds the baby sits on the sofa.", ("woman", "sit", "sofa")),
+        ("The girl who sits near the window raises her hand.", ("girl", "point_up", "hand")),
+    ],
+)
+def test_a_relative_clause_on_the_subject_keeps_the_main_verb(text, expected):
+    """The parser ends "who wears a hat" too late and makes "The man" the root: the sentence lost its
+    action ("nothing to animate"). The main verb is still the action, the person its subject."""
+    graphs = parse_document(text)
+    assert acts(graphs) == [expected]
+    assert "W115" not in codes(graphs)
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        (
+            "Marcus sits on the bench. Dana walks to him. She takes his hand.",
+            ("Dana", "hold_hands", "Marcus"),
+        ),
+        ("Ada walks to Ben. She kisses his cheek.", ("Ada", "kiss_cheek", "Ben")),
+        ("Tom shakes Mary's hand.", ("Tom", "shake_hands", "Mary")),
+    ],
+)
+def test_a_body_part_of_another_person_makes_that_person_the_target(text, expected):
+    """ "She takes his hand" held a thing called "hand": the clip touching a person needs the person."""
+    assert acts(parse_document(text))[-1] == expected
+
+
+def test_ones_own_body_part_stays_the_target_of_a_solo_action():
+    assert acts(parse_document("Eve washes her hands.")) == [("Eve", "wash_hands", "hand")]
