@@ -76,6 +76,7 @@ STEP_IN = 0.5  # metres (horizontal): a point the hand must reach farther than t
 PICK_REACH = 0.9  # metres (horizontal) from where the character stands to a prop it can pick up
 SEATED_AS = {"sit": "sit", "lie_down": "lie", "sleep": "lie", "sit_on_floor": "sit_floor", "stand": "stand"}
 STAY_S = 1.0  # seconds a "sits" while seated or a "stands" while standing holds the posture
+SLEEP_S = 4.0  # seconds "falls asleep" holds the lying pose of one already in bed
 NEAR_NAMED = 1.6  # metres from a named non-seat ("sits at the desk") to the seat used with it
 NEAR_ANY = 4.0  # metres from the character to the seat a bare "sits down" uses
 TAKEN = 0.4  # metres from another character to a seat slot that counts as theirs
@@ -85,6 +86,7 @@ TAKEN = 0.4  # metres from another character to a seat slot that counts as their
 FETCH_WHEN_SEATED = False
 SEAT_FOUND = 0.6  # metres from a seated character's position to the seat slot it sits on
 SAME_SEAT = 0.35  # metres between the hips and a seat point for a character to count as sitting on it
+SAME_BED = 1.1  # metres between a lying body's root and the bed's lie point for it to count as lying there
 HELD_KINDS = ("handheld", "tool")  # interactions played with an object in the hand
 GRASP_TABLE = (
     "press_switch"  # the clip that reaches out with the right hand (upper body) for a prop on a table
@@ -984,12 +986,15 @@ def plan_actions(
                 face = float(obj.yaw)
                 seat = np.array([targets["Hips"][0], targets["Hips"][2]])
                 approach = seat + np.array([np.sin(face), np.cos(face)]) * SEAT_BACK
+                near = SAME_BED if now_posture() == "lie" else SAME_SEAT
                 on_it = now_posture() in ("sit", "lie") and (
-                    now_seat() == obj.id or (not now_seat() and np.linalg.norm(seat - pos) < SAME_SEAT)
+                    now_seat() == obj.id or (not now_seat() and np.linalg.norm(seat - pos) < near)
                 )
-                if on_it and name in ("sit", "lie_down", "sit_on_floor") and SEATED_AS[name] == now_posture():
-                    # Already sitting (lying) there: keep the posture, no replayed sit-down.
-                    dur = float(node.duration_s) if node.duration_s > 0 and name != "sit" else STAY_S
+                if on_it and name in SEATED_AS and name != "stand" and SEATED_AS[name] == now_posture():
+                    # Already sitting (lying) there: keep the posture, no replayed sit-down ("lies down on
+                    # the bed. He falls asleep": asleep where he lies, not up on the bed and down again).
+                    hold_s = SLEEP_S if name == "sleep" else STAY_S
+                    dur = float(node.duration_s) if node.duration_s > 0 and name != "sit" else hold_s
                     add(kind="wait", action=name, duration_s=dur, target_id=obj.id, action_index=ai)
                     continue
                 if not on_it:  # already sitting / lying there ("lies down on the bed and sleeps"): stay

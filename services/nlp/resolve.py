@@ -454,6 +454,8 @@ def _astuple(span: Span) -> tuple[int, int]:
 
 SEAT_ACTIONS = frozenset({"sit", "lie_down", "sleep"})
 SHARED_SEATS = frozenset({"sofa", "loveseat"})  # seats for two or more the text may share
+BEDS = frozenset({"bed", "bunk_bed", "crib", "sofa_bed"})  # what one sleeps in
+DOZING = frozenset({"fall asleep", "doze off", "doze", "drift off", "nap", "nod off", "snooze"})
 
 
 def _resolve_action(
@@ -464,6 +466,12 @@ def _resolve_action(
         # "Ms Lee listens": to whoever acted last before her (the one talking to her)
         speaker = next((c for c in reversed(state.characters) if c != actor), "")
         action = msgspec.structs.replace(action, target=speaker) if speaker else action
+    if action.action == "climb" and state.object_categories.get(action.target, "") in BEDS:
+        state.seat_of[actor] = action.target  # "climbs into the bed": in it from now on
+    if action.action == "look_down" and action.verb in DOZING and not action.target:
+        bed = state.seat_of.get(actor, "")
+        if state.object_categories.get(bed, "") in BEDS:  # "He falls asleep" in the bed he got into
+            action = msgspec.structs.replace(action, action="sleep", target=bed)
     if action.action in SEAT_ACTIONS:
         if action.target in state.object_categories:
             state.seat_of[actor] = action.target

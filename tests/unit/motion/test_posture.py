@@ -168,3 +168,15 @@ def test_getting_up_ends_with_the_legs_out_of_the_chair_and_walks_away_clear_of_
         hips = from_wire(motion.root_position)
         assert hips[up_end - 1, 2] < -0.3  # standing up ends clear of the seat's front edge (z -0.24)
         assert not inside[up_end : away.end_frame].any()  # and walks away without a leg in the chair
+
+
+def test_falling_asleep_in_the_bed_one_lies_in_keeps_lying_when_planned_on_its_own():
+    """Seen on a sheet: "Tom lies down on the bed. He falls asleep." stood Tom up on the bed and laid him
+    down again: the second sentence is planned apart, from the end state, whose root lies 0.6 m from the
+    bed's lie point (not within a seat's 0.35 m), so he did not count as lying there."""
+    lying = _plan(("lie_down", "bed"))
+    _, _, states = synthesise(lying)
+    end = states[-1]
+    assert end.posture == "lie"
+    asleep = _plan(("sleep", "bed"), posture="lie", start=(end.x, end.z, end.yaw))
+    assert [(s.kind, s.action) for s in asleep.segments] == [("wait", "sleep")]

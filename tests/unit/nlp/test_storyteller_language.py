@@ -315,3 +315,11 @@ def test_a_body_part_of_another_person_makes_that_person_the_target(text, expect
 
 def test_ones_own_body_part_stays_the_target_of_a_solo_action():
     assert acts(parse_document("Eve washes her hands.")) == [("Eve", "wash_hands", "hand")]
+
+
+def test_falling_asleep_in_the_bed_one_got_into_is_sleeping_there():
+    """ "He falls asleep" was a nod of the head where he stood; in the bed he climbed into it is sleep."""
+    graphs = parse_document("There is a bed$. The bear climbs into the bed. He falls asleep.")
+    assert acts(graphs)[-1] == ("bear", "sleep", "bed")
+    graphs = parse_document("Tom sits on the sofa. He falls asleep.")  # dozing where he sits
+    assert acts(graphs)[-1] == ("Tom", "look_down", "")
