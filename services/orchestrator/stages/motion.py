@@ -383,9 +383,14 @@ def recipient(action: ActionNode, name: str, states: dict[str, SegmentEndState])
 
 def _with_props(scene: Scene, view: Scene, action: ActionNode) -> Scene:
     """The view with the props a held action can use when it names none that is in the view ("drinks
-    water": the cups on the table, with what they rest on), so that it walks up to one and takes it."""
+    water": the cups on the table, with what they rest on), so that it walks up to one and takes it; when
+    it names one, the others of its kind ("drinks from her mug" with two mugs on the table: the planner
+    takes the one nearest her, services.motion.planning.prop_grip, so it must see both)."""
     tools = made_for(scene, action.action)
-    if not tools or any(o.id in {t.id for t in tools} for o in view.objects):
+    in_view = {o.category for o in view.objects if o.id in {t.id for t in tools}}
+    if in_view:
+        tools = [t for t in tools if t.category in in_view]
+    if not tools:
         return view
     by_id = {o.id: o for o in scene.objects}
     wanted = {o.id for o in view.objects}
