@@ -362,12 +362,15 @@ def _footprint_gap(placed: PlacedObject, pos: np.ndarray) -> float:
 def offering(scene: Scene, action: str, pos: np.ndarray, limit: float) -> PlacedObject | None:
     """The object nearest pos (within limit, by footprint) that offers the action's own contact point, for an
     action at an object whose sentence names none ("Zoe washes her hands": the sink; "She takes notes" at
-    the table she sits at): without one the clip plays in the air beside it."""
+    the table she sits at): without one the clip plays in the air beside it. Not one the character stands
+    inside to use (a shower: its stand point within its footprint): the sentence would have named it."""
     meant = {action, action.split("_")[0]} - {"touch", "pick_up"}
     near = []
     for o in scene.objects:
         geo = _object_geometry(o)
-        if geo is not None and meant & set(geo[1]) and "pick_up" not in geo[1]:
+        if geo is None or _footprint_gap(o, geo[0]) <= 0.0:
+            continue
+        if meant & set(geo[1]) and "pick_up" not in geo[1]:
             gap = _footprint_gap(o, pos)
             if gap <= limit:
                 near.append((gap, o.id, o))

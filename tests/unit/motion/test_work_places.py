@@ -46,6 +46,16 @@ def test_an_action_naming_nothing_is_not_done_at_something_far_away():
     assert wash.targets == () and not wash.target_id.startswith("bathroom")
 
 
+def test_washing_ones_hands_with_only_a_shower_is_not_done_standing_in_the_shower():
+    """solo-bathroom-23 (dev): "He turns on the shower and washes his hands" walked into the shower cubicle
+    (chest 13 cm inside it); one stands inside a shower to use it, so a sentence naming none is not there."""
+    shower = PlacedObject(id="shower", category="shower", position=(-1.5, 0.0, 0.0), yaw=np.pi / 2)
+    zoe = CharacterNode(name="Zoe", actions=[ActionNode(verb="wash", action="wash_hands", target="hand")])
+    plan = plan_actions(zoe, Scene(room=ROOM, objects=[shower]), (1.0, 1.0, 0.0))
+    (wash,) = _actions(plan, "wash_hands")
+    assert wash.target_id != "shower" and all(s.kind != "locomotion" for s in plan.segments)
+
+
 def _meeting() -> tuple[Scene, PlacedObject, PlacedObject]:
     table = PlacedObject(
         id="conference_table", category="conference_table", position=(0.0, 0.0, 0.0), yaw=0.0
