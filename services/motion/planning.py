@@ -345,6 +345,71 @@ def work_place(scene: Scene, obj: PlacedObject, action: str) -> PlacedObject:
     return min(fit, key=lambda t: t[0])[1] if fit else obj
 
 
+OFFER_NEAR_M = 2.5  # metres from a standing character to the object an action naming none is done at
+WORK_FRONT_M = 0.4  # metres in front of a seated character's hips where the hands work on a table top
+WORK_EDGE_M = 0.08  # metres the hands keep from a table top's edge
+
+
+def _footprint_gap(placed: PlacedObject, pos: np.ndarray) -> float:
+    """Metres (horizontal) from pos to the object's footprint (0 inside it); its position without a catalog."""
+    try:
+        from wana.assets.catalog import world_bounds
+
+        b = np.asarray(world_bounds(placed), float)[:, [0, 2]]
+    except Exception:  # noqa: BLE001 - unknown category: its position stands for it
+        b = np.array([[placed.position[0], placed.position[2]]] * 2)
+    return float(np.linalg.norm(np.clip(pos, b[0], b[1]) - pos))
+
+
+def offering(scene: Scene, action: str, pos: np.ndarray, limit: float) -> PlacedObject | None:
+    """The object nearest pos (within limit, by footprint) that offers the action's own contact point, for an
+    action at an object whose sentence names none ("Zoe washes her hands": the sink; "She takes notes" at
+    the table she sits at): without one the clip plays in the air beside it. Not one the character stands
+    inside to use (a shower: its stand point within its footprint): the sentence would have named it."""
+    meant = {action, action.split("_")[0]} - {"touch", "pick_up"}
+    near = []
+    for o in scene.objects:
+        geo = _object_geometry(o)
+        if geo is None or _footprint_gap(o, geo[0]) <= 0.0:
+            continue
+        if meant & set(geo[1]) and "pick_up" not in geo[1]:
+            gap = _footprint_gap(o, pos)
+            if gap <= limit:
+                near.append((gap, o.id, o))
+    return min(near, key=lambda t: t[:2])[2] if near else None
+
+
+def slid_to_place(
+    placed: PlacedObject, targets: dict[str, tuple[float, float, float]], pos: np.ndarray, yaw: float
+) -> dict[str, tuple[float, float, float]]:
+    """A seated character's hand targets on a table top moved to the place in front of it: a long table's
+    one catalog "write" point can be metres from the chair (the hand stayed 0.23 m short, in the air). The
+    targets keep their height and spacing; the object's top nearest WORK_FRONT_M ahead of the hips."""
+    try:
+        from wana.assets.catalog import world_support_surfaces
+
+        tops = world_support_surfaces(placed)
+    except Exception:  # noqa: BLE001 - unknown category: the catalog points as they are
+        return targets
+    if not tops or not targets:
+        return targets
+    # seated, the plan's position is SEAT_BACK in front of the hips (where getting up ends)
+    ahead = pos + np.array([np.sin(yaw), np.cos(yaw)]) * (WORK_FRONT_M - SEAT_BACK)
+    centre = np.mean([[p[0], p[2]] for p in targets.values()], axis=0)
+    best = None
+    for _, corners in tops:
+        lo, hi = corners.min(axis=0) + WORK_EDGE_M, corners.max(axis=0) - WORK_EDGE_M
+        if np.any(hi < lo):
+            continue
+        spot = np.clip(ahead, lo, hi)
+        if best is None or np.linalg.norm(spot - ahead) < np.linalg.norm(best - ahead):
+            best = spot
+    if best is None or np.linalg.norm(best - ahead) >= np.linalg.norm(centre - ahead):
+        return targets
+    dx, dz = best - centre
+    return {j: (p[0] + float(dx), p[1], p[2] + float(dz)) for j, p in targets.items()}
+
+
 def _grasp(placed: PlacedObject) -> tuple[str, tuple[float, float, float], tuple[float, float, float]] | None:
     """(joint, object-frame point, world point) where a hand takes a small object: its "pick_up" point."""
     try:
@@ -843,6 +908,15 @@ def plan_actions(
             (o for r in (node.target, node.instrument, node.destination) if (o := find_object(scene, r))),
             None,
         )
+        at_object = clip.interaction is not None and clip.interaction.object not in (
+            *HELD_KINDS,
+            "person",
+            "seat",
+            "bed",
+        )
+        if obj is None and at_object and not clip.drives_lower_body:
+            # "washes her hands", "takes notes": at the nearest object made for it (seated: in reach only)
+            obj = offering(scene, name, pos, PICK_REACH if now_posture() != "stand" else OFFER_NEAR_M)
         seat_pick: tuple[PlacedObject, tuple[float, float, float]] | None = None
         if clip.interaction and clip.interaction.object in ("seat", "bed"):
             near_xz = np.asarray(others[sitting_by], float) if sitting_by and obj is None else pos
@@ -1023,6 +1097,8 @@ def plan_actions(
                 face = float(np.arctan2(d[0], d[1])) if np.linalg.norm(d) > 1e-6 else yaw
                 already_there = np.linalg.norm(stand - pos) < 0.35
                 seated = now_posture() != "stand"
+                if seated and clip.interaction.object == "surface" and targets:
+                    targets = slid_to_place(obj, targets, pos, yaw)
                 if not already_there and not seated:
                     walk_to(stand, 1.2, face, "walk", ai, obj.id)
                 elif not seated and abs(np.arctan2(np.sin(face - yaw), np.cos(face - yaw))) > 0.3:

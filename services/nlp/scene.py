@@ -226,7 +226,13 @@ def _subjects_of(attach: Token) -> list[Token]:
 
 def _expand_subject(tok: Token) -> list[Token]:
     q = quantity_target(tok)
-    return _with_conj(q[0] if q else tok)
+    out = _with_conj(q[0] if q else tok)
+    # "A soda can and a bowl are on the coffee table": the parser hangs "bowl" on the predicate as a second
+    # subject (not a conjunct of "can"); a later subject of the same head joined by "and" is one more thing
+    for c in tok.head.children if tok.head.i != tok.i else ():
+        if c.i > tok.i and c.dep_ == tok.dep_ and any(g.dep_ == "cc" for g in c.children) and c not in out:
+            out += _with_conj(c)
+    return out
 
 
 def _mention(tok: Token, builder: GraphBuilder, report_unknown: bool) -> str | None:

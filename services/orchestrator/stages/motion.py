@@ -32,7 +32,7 @@ from services.orchestrator.slotting import Slotting, matched
 from services.orchestrator.stages import StageContext, content_of
 from services.orchestrator.stages.props import aimed, brought_notes, carried, made_for, provide
 from services.orchestrator.stages.scene import keep_relations
-from services.orchestrator.stages.seats import furnish
+from services.orchestrator.stages.seats import furnish, seat_at_instruments
 from services.orchestrator.stages.social import fit_cast, frame_count, paired_actions
 from services.orchestrator.stages.states import with_states
 from services.orchestrator.staging import (
@@ -383,9 +383,14 @@ def recipient(action: ActionNode, name: str, states: dict[str, SegmentEndState])
 
 def _with_props(scene: Scene, view: Scene, action: ActionNode) -> Scene:
     """The view with the props a held action can use when it names none that is in the view ("drinks
-    water": the cups on the table, with what they rest on), so that it walks up to one and takes it."""
+    water": the cups on the table, with what they rest on), so that it walks up to one and takes it; when
+    it names one, the others of its kind ("drinks from her mug" with two mugs on the table: the planner
+    takes the one nearest her, services.motion.planning.prop_grip, so it must see both)."""
     tools = made_for(scene, action.action)
-    if not tools or any(o.id in {t.id for t in tools} for o in view.objects):
+    in_view = {o.category for o in view.objects if o.id in {t.id for t in tools}}
+    if in_view:
+        tools = [t for t in tools if t.category in in_view]
+    if not tools:
         return view
     by_id = {o.id: o for o in scene.objects}
     wanted = {o.id for o in view.objects}
@@ -462,7 +467,8 @@ def animate(
     characters = aimed(characters_of(graphs, [s.id for s in sentences]), scene)
     # an added bag the character puts down came in with them: in the hand from the first frame
     characters, brought = carried(characters, scene, {o.id for o in scene.objects} - there)
-    added = [*provided, *brought_notes(characters, brought, scene, sentences), *added]
+    scene, stools = seat_at_instruments(scene, characters, sentences)  # the stool to the drum kit's place
+    added = [*provided, *brought_notes(characters, brought, scene, sentences), *stools, *added]
     looks, scene = scene, geometry_view(scene)  # the nodes below read shapes, not paint
     door = doorway(scene)
     wait_ids = {sid for sid, c in commands if c.kind == "wait"}

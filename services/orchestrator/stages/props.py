@@ -223,13 +223,54 @@ def _one_each(
         added = sum(1 for n in wanted if n.sentence_id == sid and n.node.category in kin)
         category = have[0].category if have else DEFAULT_PROP[action]
         count = len(have) + added
-        for name in names[count:]:
+        held = f"{count} {category.replace('_', ' ')}" + ("" if count == 1 else "s")
+        short = names[count:]
+        # One each in the room is not one each in reach: glasses in the middle of the table stand 1.1 m
+        # from a chair (a seated drinker reaches 0.9 m). As many as there are drinkers go to the places of
+        # the table they sit at that have none in reach, until as many places as drinkers have one.
+        bare, places = _bare_places(scene, names, last_at, kin)
+        for i in range(max(len(short), min(len(bare), len(names) - (places - len(bare))))):
             node = ObjectNode(id=category, category=category, word=category.replace("_", " "))
-            near = tuple(dict.fromkeys(r for r in reversed(last_at.get(name, [])) if r not in have_ids))
-            held = f"{count} {category.replace('_', ' ')}" + ("" if count == 1 else "s")
-            why = f"{len(names)} characters {verbs[action]} and the room has {held}"
-            out.append(Need(node, sid, near, action, why, name))
+            if i < len(short):
+                near = tuple(
+                    dict.fromkeys(r for r in reversed(last_at.get(short[i], [])) if r not in have_ids)
+                )
+                why = f"{len(names)} characters {verbs[action]} and the room has {held}"
+                out.append(Need(node, sid, near, action, why, short[i]))
+                continue
+            table = bare[i][0]
+            why = (
+                f"{len(names)} characters {verbs[action]} at the {table.split('#')[0].replace('_', ' ')} and "
+                f"a place there has no {category.replace('_', ' ')} in reach"
+            )
+            out.append(Need(node, sid, (table,), action, why))
     return out
+
+
+def _bare_places(
+    scene: Scene, names: Sequence[str], last_at: dict[str, list[str]], kin: set[str]
+) -> tuple[list[tuple[str, np.ndarray]], int]:
+    """(table id, sitting point xz) of each place at the table the characters last went to ("sit at the
+    table") with nothing of the kin in a seated person's reach (PLACE_REACH), one per seat; and how many
+    places that table has."""
+    tables = []
+    for n in names:  # each one's latest object with a table top ("sits at the table", then "pours")
+        tops = [o for r in reversed(last_at.get(n, [])) if (o := find_object(scene, r)) and _surfaces(o)]
+        tables += tops[:1]
+    mine = [
+        np.array([o.position[0], o.position[2]])
+        for o in scene.objects
+        if o.category in kin and o.category not in POURED_FROM
+    ]
+    out, seen = [], set()
+    for table in {t.id: t for t in tables}.values():
+        for seat, xz in _seats_at(scene, table):
+            if seat in seen:
+                continue
+            seen.add(seat)
+            if not any(np.linalg.norm(m - xz) <= PLACE_REACH for m in mine):
+                out.append((table.id, xz))
+    return out, len(seen)
 
 
 def _surfaces(placed: PlacedObject) -> list[tuple[float, np.ndarray, np.ndarray]]:

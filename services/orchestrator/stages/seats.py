@@ -13,12 +13,13 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
+import msgspec
 import numpy as np
 
 from proto.common import Span
 from proto.retrieval import ComposeRequest
 from proto.scene import PlacedObject, Scene
-from proto.ssg import Diagnostic, ObjectNode, RelationNode, SentenceGraph
+from proto.ssg import CharacterNode, Diagnostic, ObjectNode, RelationNode, SentenceGraph
 from services.orchestrator.document import Sentence
 from services.orchestrator.stages import StageContext, content_of
 from services.orchestrator.views import scene_part
@@ -137,4 +138,81 @@ def furnish(
     return furnished, notes
 
 
-__all__ = ["extra_nodes", "furnish", "missing_seats", "seat_needs"]
+def _sit_point(placed: PlacedObject) -> np.ndarray | None:
+    """World (x, y, z) of an object's first "sit*" point at the hips, or None."""
+    try:
+        from wana.assets.catalog import asset_for, to_world
+
+        points = asset_for(placed).contact_points
+    except Exception:  # noqa: BLE001 - unknown category: no seat
+        return None
+    name = next((n for n, cp in sorted(points.items()) if n.startswith("sit") and cp.joint == "Hips"), None)
+    return None if name is None else to_world(placed, np.asarray(points[name].position, float))
+
+
+def _clear_of(scene: Scene, placed: PlacedObject, skip: set[str]) -> bool:
+    """Whether the object's footprint keeps clear of every other floor object's (but ``skip``)."""
+    from wana.assets.catalog import world_bounds
+
+    b = np.asarray(world_bounds(placed), float)[:, [0, 2]]
+    for o in scene.objects:
+        if o.id in skip or o.support:
+            continue
+        try:
+            c = np.asarray(world_bounds(o), float)[:, [0, 2]]
+        except Exception:  # noqa: BLE001 - unknown category: nothing to keep clear of
+            continue
+        if np.all(b[0] < c[1]) and np.all(b[1] > c[0]):
+            return False
+    return True
+
+
+def seat_at_instruments(
+    scene: Scene, characters: dict[str, tuple[CharacterNode, list[str]]], sentences: Sequence[Sentence]
+) -> tuple[Scene, list[tuple[str, Diagnostic]]]:
+    """A seat sat on just before an action at an object with its own place to sit (a drum kit's "sit"
+    point: where the player's throne goes), moved to that place: "Leo sits on the stool and plays the
+    drums" with the stool "next to the drum kit" sat 1.5 m from the drums, the hands in the air. The seat
+    faces the object; it stays where it was when the place is taken by other furniture."""
+    by_id = {o.id: o for o in scene.objects}
+    spans = {x.id: Span(x.start, x.end) for x in sentences}
+    moved: dict[str, PlacedObject] = {}
+    notes = []
+    for name, (node, sids) in characters.items():
+        for k in range(len(node.actions) - 1):
+            sit, then = node.actions[k], node.actions[k + 1]
+            seat = by_id.get(sit.target or sit.destination) if sit.action == "sit" else None
+            at = next(
+                (by_id[r] for r in (then.target, then.instrument, then.destination) if r in by_id), None
+            )
+            if seat is None or at is None or at.id == seat.id or seat.id in moved or seat.support:
+                continue
+            place, own = _sit_point(at), _sit_point(seat)
+            if place is None or own is None or then.action == "sit":
+                continue
+            yaw = float(at.yaw) + np.pi  # facing the object, as a player there does
+            there = msgspec.structs.replace(seat, yaw=yaw)
+            offset = _sit_point(there) - np.array([there.position[0], 0.0, there.position[2]])  # type: ignore[operator]
+            there = msgspec.structs.replace(
+                there,
+                position=(float(place[0] - offset[0]), float(seat.position[1]), float(place[2] - offset[2])),
+            )
+            if not _clear_of(Scene(room=scene.room, objects=list(by_id.values())), there, {seat.id, at.id}):
+                continue
+            moved[seat.id] = by_id[seat.id] = there
+            what, to = (x.split("#")[0].split("/")[0].replace("_", " ") for x in (seat.id, at.id))
+            message = f"moved the {what} to the {to}'s place to sit: {name} sits on it to {then.verb or then.action}"
+            notes.append(
+                (
+                    sids[k],
+                    Diagnostic(
+                        code="I203", message=message, span=spans.get(sids[k], Span(0, 0)), severity="info"
+                    ),
+                )
+            )
+    if not moved:
+        return scene, []
+    return msgspec.structs.replace(scene, objects=[moved.get(o.id, o) for o in scene.objects]), notes
+
+
+__all__ = ["extra_nodes", "furnish", "missing_seats", "seat_at_instruments", "seat_needs"]

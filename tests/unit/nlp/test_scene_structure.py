@@ -62,3 +62,11 @@ def test_a_room_named_as_an_anchor_is_the_room_not_an_unknown_object():
     graphs = parse_document("A lamp is at the back of the room$. In the kitchen there is a fridge$.")
     assert [d.code for g in graphs for d in g.diagnostics if d.severity != "info"] == []
     assert any(g.room_type == "kitchen" for g in graphs)
+
+
+def test_two_things_the_parser_makes_two_subjects_are_both_on_the_table():
+    """ "A soda can and a bowl": the parser hangs "bowl" on the predicate as a second subject, not a
+    conjunct of "can"; both are on the coffee table (the bowl was placed on the floor, 1.8 m from Ben)."""
+    found = rels(parse_document("A soda can and a bowl are on the coffee table$."))
+    assert ("soda_can", "on", "coffee_table") in found
+    assert ("bowl", "on", "coffee_table") in found

@@ -233,7 +233,9 @@ def test_several_drinkers_and_one_glass_get_a_glass_each_in_front_of_a_place_at_
     scene = _dining(1)
     furnished, notes = provide(scene, graphs, _sentences("s1", "s2"))
     added = furnished.objects[len(scene.objects) :]
-    assert [o.category for o in added] == ["glass", "glass"]  # the room's kind, one for each beyond the first
+    # the room's kind, one for each beyond the first, and one more: the first stands in the middle, out of
+    # reach of every place, so three places get one
+    assert [o.category for o in added] == ["glass", "glass", "glass"]
     assert len({o.id for o in furnished.objects}) == len(furnished.objects)
     assert all(o.support == "dining_table" for o in added)
     seats = [np.array([-0.4, -0.75]), np.array([0.4, -0.75]), np.array([-0.4, 0.75]), np.array([0.4, 0.75])]
@@ -241,14 +243,38 @@ def test_several_drinkers_and_one_glass_get_a_glass_each_in_front_of_a_place_at_
         min(range(4), key=lambda i: np.hypot(o.position[0] - seats[i][0], o.position[2] - seats[i][1]))
         for o in added
     ]
-    assert len(set(nearest)) == 2  # two different places
+    assert len(set(nearest)) == 3  # three different places
     for o, i in zip(added, nearest, strict=True):
         assert (
             np.hypot(o.position[0] - seats[i][0], o.position[2] - seats[i][1]) < 0.6
         )  # in reach of the seat
     messages = [d.message for sid, d in notes if sid == "s2" and d.code == "I202"]
-    assert len(messages) == 2 and "for John" in messages[0] and "for Nora" in messages[1]
-    assert all("3 characters drink and the room has 1 glass" in m for m in messages)
+    assert len(messages) == 3 and "for John" in messages[0] and "for Nora" in messages[1]
+    assert all("3 characters drink and the room has 1 glass" in m for m in messages[:2])
+    assert "a place there has no glass in reach" in messages[2]
+
+
+def test_drinkers_at_a_table_with_a_glass_each_in_its_middle_get_one_at_their_places():
+    """group-dining_room-04: three glasses for three drinkers, but in the middle of the table, 1.1 m from
+    Nora's chair (a seated drinker reaches 0.9 m): she drank with an empty hand. Each place a drinker may
+    sit at gets one in reach until three places have one."""
+    names = ("Eve", "John", "Nora")
+    graphs = [
+        _they("s1", names, ActionNode(verb="sit", action="sit", target="dining_table")),
+        _they("s2", names, ActionNode(verb="drink", action="drink")),
+    ]
+    scene = _dining(3)
+    furnished, _ = provide(scene, graphs, _sentences("s1", "s2"))
+    added = furnished.objects[len(scene.objects) :]
+    assert [o.category for o in added] == ["glass"] * 3
+    seats = [np.array([x, z]) for x in (-0.4, 0.4) for z in (-0.75, 0.75)]
+    reached = {
+        i
+        for o in added
+        for i, s in enumerate(seats)
+        if np.hypot(o.position[0] - s[0], o.position[2] - s[1]) < 0.6
+    }
+    assert len(reached) == 3
 
 
 def test_drinkers_with_a_glass_each_or_one_drinker_get_nothing_more():

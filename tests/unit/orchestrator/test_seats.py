@@ -11,9 +11,11 @@ import numpy as np
 from proto.scene import PlacedObject, Room, Scene
 from proto.ssg import ActionNode, CharacterNode, SentenceGraph
 from services.orchestrator.backend import InProcessBackend
+from services.orchestrator.document import Sentence
 from services.orchestrator.session import Orchestrator
-from services.orchestrator.stages.seats import extra_nodes, missing_seats, seat_needs
+from services.orchestrator.stages.seats import extra_nodes, missing_seats, seat_at_instruments, seat_needs
 from wana.arrays import from_wire
+from wana.assets.catalog import asset_for, to_world
 
 ROOM = Room(room_type="kitchen", width=6, depth=6, height=3)
 
@@ -58,3 +60,37 @@ def test_two_characters_sitting_at_a_table_with_no_chairs_each_get_an_added_chai
         hips[name] = from_wire(motion.root_position)[sit.end_frame - 1]
         assert 0.35 < hips[name][1] < 0.7  # seated height, not standing, not on the floor
     assert np.linalg.norm(hips["Sam"][[0, 2]] - hips["Zoe"][[0, 2]]) > 0.4  # not on one seat
+
+
+def _studio(stool_at: tuple[float, float, float]) -> Scene:
+    kit = PlacedObject(id="drum_kit", category="drum_kit", position=(0.0, 0.0, 0.0), yaw=0.0)
+    stool = PlacedObject(id="stool", category="stool", position=stool_at, yaw=0.0)
+    return Scene(room=Room(room_type="music_studio", width=6, depth=6, height=3), objects=[kit, stool])
+
+
+def _leo() -> dict:
+    acts = [
+        ActionNode(verb="sit", action="sit", target="stool"),
+        ActionNode(verb="play", action="play_drums", target="drum_kit"),
+    ]
+    return {"Leo": (CharacterNode(name="Leo", actions=acts), ["s1", "s1"])}
+
+
+def test_the_stool_sat_on_to_play_the_drums_goes_to_the_kits_place_to_sit():
+    """duo-music_studio-12: "A stool is next to the drum kit$. Leo sits on the stool and plays the drums."
+    sat 1.5 m from the drums with the hands in the air: the stool goes to the kit's "sit" point."""
+    scene = _studio((1.4, 0.0, 0.0))
+    moved, notes = seat_at_instruments(scene, _leo(), [Sentence(id="s1", start=0, end=1, text="x")])
+    kit, stool = moved.objects
+    place = to_world(kit, np.asarray(asset_for(kit).contact_points["sit"].position, float))
+    seat = to_world(stool, np.asarray(asset_for(stool).contact_points["sit"].position, float))
+    assert np.hypot(*(place - seat)[[0, 2]]) < 1e-6
+    assert abs(np.cos(stool.yaw - np.pi)) > 0.999  # facing the kit (which faces +z)
+    assert [d.code for _, d in notes] == ["I203"] and "stool" in notes[0][1].message
+
+
+def test_a_seat_not_followed_by_an_action_at_a_place_to_sit_stays_where_it_is():
+    scene = _studio((1.4, 0.0, 0.0))
+    acts = [ActionNode(verb="sit", action="sit", target="stool"), ActionNode(verb="laugh", action="laugh")]
+    chars = {"Leo": (CharacterNode(name="Leo", actions=acts), ["s1", "s1"])}
+    assert seat_at_instruments(scene, chars, [Sentence(id="s1", start=0, end=1, text="x")]) == (scene, [])

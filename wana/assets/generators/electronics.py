@@ -97,6 +97,9 @@ def box_device(b: Builder, p: Params, kind: str = "computer") -> None:
         b.box((-w / 2 + 0.02, h * 0.75, fz), (w / 2 - 0.02, h * 0.9, fz + 0.003), p.tone("charcoal"))
         b.cyl((0, h * 0.4, fz), 0.012, 0.004, p.tone("blue"), axis="z")
         b.contact("use", "RightHandMiddle1", (0.0, h * 0.4, fz))
+        # "uses the computer" types: both hands on the desk top in front of it, where its keyboard would lie
+        # (its one "use" point is the power button: the left hand of the typing clip had nowhere to go)
+        b.two_hands("type", 0.02, fz + 0.2, 0.3)
     elif kind == "printer":
         b.box((-w / 2 + 0.05, h, -d / 2 + 0.05), (w / 2 - 0.05, h + 0.02, d / 2 - 0.1), p.shade(p.body, 0.85))
         b.box((-w * 0.35, h * 0.3, fz), (w * 0.35, h * 0.35, fz + 0.08), p.tone("paper"))
