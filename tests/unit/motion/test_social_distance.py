@@ -41,3 +41,34 @@ def test_a_walk_up_to_a_character_stops_at_the_given_distance():
 def test_an_impossible_distance_is_refused():
     with pytest.raises(InvalidInput, match="distances"):
         _gap({"Mary": 0.0})
+
+
+def _apart(verb: str, action: str, start_x: float) -> float:
+    """Hips distance at the end of Tom's ``action`` aimed at Mary (at x = 0), starting at ``start_x``."""
+    reply = handle_synthesize(
+        SynthesizeRequest(
+            header=Header(),
+            character=CharacterNode(
+                name="Tom", actions=[ActionNode(verb=verb, action=action, target="Mary")]
+            ),
+            scene=SCENE,
+            start=(start_x, 0.0, 1.57),
+            others={"Mary": (0.0, 0.0)},
+        )
+    )
+    end = from_wire(reply.motion.root_position)[-1]
+    return float(np.hypot(end[0], end[2]))
+
+
+def test_talking_to_someone_nose_to_nose_steps_back_to_room_for_the_hands():
+    """Talking gestures sweep the hands 0.45 m ahead: at 0.4 m they would go through Mary."""
+    from services.motion.planning import arms_room
+
+    assert arms_room("talk") > 0.6
+    assert _apart("talk", "talk", -0.4) >= arms_room("talk") - 0.05
+    assert _apart("talk", "talk", -1.2) == pytest.approx(1.2, abs=0.05)  # far enough already: it stays
+    assert arms_room("nod") == 0.0
+
+
+def test_a_handshake_too_close_steps_back_to_arms_length():
+    assert _apart("shake", "shake_hands", -0.4) == pytest.approx(0.75, abs=0.06)
