@@ -72,7 +72,7 @@ HANDOVER_HEIGHT = 1.0  # metres above the floor where the object passes from han
 HANDOVER_GESTURE_S = 1.2  # seconds of the presenting gesture after letting go
 CLOSE_DISTANCE = {"hug": 0.45, "shake_hands": 0.75, "high_five": 0.75}  # metres, per touching action
 TOO_CLOSE_M = 0.1  # metres closer than the wanted distance to another character that make one step back
-ARMS_CLEAR_M = 0.25  # metres past a gesture's farthest hand to the other's hips: their chest and forearm
+ARMS_CLEAR_M = 0.05  # metres left between two characters' hands gesturing at each other at their farthest
 SEATING = ("sit", "lie_down", "sleep")  # clips that leave the character on a seat or a bed
 TURN_TOLERANCE = 0.3  # radians off the wanted facing before the character turns in place
 REACH_BODY = 0.18  # metres: the clearance of a body standing at furniture to reach over it (feet, belly)
@@ -466,14 +466,15 @@ def _at_distance(pos: np.ndarray, other: np.ndarray, distance: float) -> np.ndar
 
 @functools.lru_cache(maxsize=256)
 def arms_room(clip_name: str) -> float:
-    """Metres between two characters' hips a gesture at the other needs: its hands' farthest reach forward
-    over the clip (a talking gesture sweeps 0.45 m ahead of the hips) and ARMS_CLEAR_M for the other's body,
-    so the hands stay outside it. 0 for a clip that does not bring a hand ahead of the body."""
+    """Metres between two characters' hips a gesture at the other needs: twice its hands' farthest reach
+    forward over the clip (a talking gesture sweeps 0.45 m ahead of the hips, and in "They talk" the other's
+    hands come as far towards it) and ARMS_CLEAR_M, so neither hand goes into the other. 0 for a clip that
+    does not bring a hand ahead of the body."""
     rot, _, _ = get_clip(clip_name).sample()
     pos, _ = forward_kinematics(rot.astype(np.float64), np.zeros((len(rot), 3)), rest_offsets())
     hands = pos[:, [JOINT_INDEX[n] for n in ("LeftHandMiddle1", "RightHandMiddle1")], 2]
     ahead = float(hands.max()) if hands.size else 0.0
-    return round(ahead + ARMS_CLEAR_M, 2) if ahead > 0.15 else 0.0
+    return round(2 * ahead + ARMS_CLEAR_M, 2) if ahead > 0.15 else 0.0
 
 
 def _free_beside(scene: Scene, pos: np.ndarray, other: np.ndarray, distance: float) -> np.ndarray:
