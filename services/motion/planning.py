@@ -71,6 +71,7 @@ HANDOVER_STEP_BACK = 1.2  # metres between the two hips once the giver has let g
 HANDOVER_HEIGHT = 1.0  # metres above the floor where the object passes from hand to hand
 HANDOVER_GESTURE_S = 1.2  # seconds of the presenting gesture after letting go
 CLOSE_DISTANCE = {"hug": 0.45, "shake_hands": 0.75, "high_five": 0.75}  # metres, per touching action
+LET_GO = {"hug": 0.8}  # metres between the two hips once a touching action close up is over (they part)
 TOO_CLOSE_M = 0.1  # metres closer than the wanted distance to another character that make one step back
 ARMS_CLEAR_M = 0.05  # metres left between two characters' hands gesturing at each other at their farthest
 SEATING = ("sit", "lie_down", "sleep")  # clips that leave the character on a seat or a bed
@@ -477,6 +478,28 @@ def arms_room(clip_name: str) -> float:
     return round(2 * ahead + ARMS_CLEAR_M, 2) if ahead > 0.15 else 0.0
 
 
+def _first_within(way: np.ndarray, other: np.ndarray, distance: float, goal: np.ndarray) -> np.ndarray:
+    """Where a walk along ``way`` (N, 2) first comes ``distance`` metres near ``other``: a way round furniture
+    that arrives from the far side would otherwise go through the person to the point short of them on the
+    side the walker started. ``goal`` when the way only gets that near at its end."""
+    for a, b in zip(way[:-1], way[1:], strict=True):
+        d = b - a
+        f = a - other
+        qa, qb, qc = float(d @ d), 2.0 * float(f @ d), float(f @ f) - distance**2
+        if qa < 1e-12:
+            continue
+        disc = qb * qb - 4 * qa * qc
+        if disc < 0:
+            continue
+        t = (-qb - np.sqrt(disc)) / (2 * qa)  # entering the circle
+        if qc <= 0:  # already within it at a: it was not reached walking
+            continue
+        if 0.0 <= t <= 1.0:
+            hit = a + t * d
+            return goal if np.linalg.norm(hit - goal) < 0.05 else hit
+    return goal
+
+
 def _free_beside(scene: Scene, pos: np.ndarray, other: np.ndarray, distance: float) -> np.ndarray:
     """A free spot ``distance`` metres from another character (furniture clear of a walking body), the one
     nearest the straight approach from pos; the straight approach's end when none is free."""
@@ -816,6 +839,9 @@ def plan_actions(
 
                 around = reachable_short_of(scene, (pos[0], pos[1]), (there[0], there[1]), near)
                 goal = goal if around is None else np.asarray(around)  # not the far side of the armchair
+                if np.linalg.norm(goal - pos) > 0.1:  # a way round the table that passes them stops there
+                    way = np.asarray(route((pos[0], pos[1]), (goal[0], goal[1]), frozenset()), float)
+                    goal = _first_within(way.reshape(-1, 2), there, near, goal)
                 face = _yaw_to(goal, there, yaw)
                 if "locomotion" in clip.tags:
                     walk_to(goal, SPEEDS.get(name, 1.3) * speed_k, face, name, ai, person, node.manner)
@@ -840,6 +866,12 @@ def plan_actions(
                 target_id=person,
                 action_index=ai,
             )
+            if name in LET_GO and now_posture() == "stand":  # then a step apart, as after handing over
+                off = pos - there
+                away = there + off / max(float(np.linalg.norm(off)), 1e-6) * LET_GO[name]
+                back = _free_beside(scene, away, there, LET_GO[name])
+                if np.linalg.norm(back - there) > np.linalg.norm(pos - there) + 0.1:
+                    step_back(back, there, ai, person)
             continue
         if "locomotion" in clip.tags:
             obj = find_object(scene, node.destination or node.target)

@@ -72,3 +72,31 @@ def test_talking_to_someone_nose_to_nose_steps_back_to_room_for_the_hands():
 
 def test_a_handshake_too_close_steps_back_to_arms_length():
     assert _apart("shake", "shake_hands", -0.4) == pytest.approx(0.75, abs=0.06)
+
+
+def test_a_way_round_furniture_that_passes_the_person_stops_there_not_through_them():
+    """The route to the point short of Mary (on Tom's side) goes round a table and arrives from her far side:
+    Tom stops where the way first comes within the hug's distance, on the side he arrives from."""
+    from services.motion.planning import CLOSE_DISTANCE, plan_actions
+
+    def detour(scene, a, b, ignore=frozenset()):  # noqa: ANN001, ANN202 - round a table north of them
+        del scene, ignore
+        return np.array([a, (0.0, 1.0), (-0.8, 0.0), b])
+
+    tom = CharacterNode(name="Tom", actions=[ActionNode(verb="hug", action="hug", target="Mary")])
+    plan = plan_actions(tom, SCENE, (2.0, 0.0, -1.57), route_fn=detour, others={"Mary": (0.0, 0.0)})
+    walk = next(s for s in plan.segments if s.kind == "locomotion")
+    way = np.asarray(walk.waypoints, float)
+    assert np.allclose(way[-1], (-CLOSE_DISTANCE["hug"], 0.0), atol=0.02)
+    points = np.concatenate([np.linspace(p, q, 20) for p, q in zip(way[:-1], way[1:], strict=True)])
+    assert np.linalg.norm(points, axis=1).min() >= CLOSE_DISTANCE["hug"] - 0.02  # never through Mary
+
+
+def test_after_a_hug_the_two_step_apart():
+    """At the hug's 0.45 m whatever the two do next (they dance) goes through each other: the hugger lets go
+    and steps back."""
+    from services.motion.planning import CLOSE_DISTANCE, LET_GO
+
+    apart = _apart("hug", "hug", -2.0)
+    assert apart == pytest.approx(LET_GO["hug"], abs=0.06)
+    assert apart > CLOSE_DISTANCE["hug"] + 0.2
