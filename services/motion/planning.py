@@ -71,7 +71,6 @@ HANDOVER_STEP_BACK = 1.2  # metres between the two hips once the giver has let g
 HANDOVER_HEIGHT = 1.0  # metres above the floor where the object passes from hand to hand
 HANDOVER_GESTURE_S = 1.2  # seconds of the presenting gesture after letting go
 CLOSE_DISTANCE = {"hug": 0.45, "shake_hands": 0.75, "high_five": 0.75}  # metres, per touching action
-LET_GO = {"hug": 0.8}  # metres between the two hips once a touching action close up is over (they part)
 TOO_CLOSE_M = 0.1  # metres closer than the wanted distance to another character that make one step back
 ARMS_CLEAR_M = 0.05  # metres left between two characters' hands gesturing at each other at their farthest
 SEATING = ("sit", "lie_down", "sleep")  # clips that leave the character on a seat or a bed
@@ -866,12 +865,6 @@ def plan_actions(
                 target_id=person,
                 action_index=ai,
             )
-            if name in LET_GO and now_posture() == "stand":  # then a step apart, as after handing over
-                off = pos - there
-                away = there + off / max(float(np.linalg.norm(off)), 1e-6) * LET_GO[name]
-                back = _free_beside(scene, away, there, LET_GO[name])
-                if np.linalg.norm(back - there) > np.linalg.norm(pos - there) + 0.1:
-                    step_back(back, there, ai, person)
             continue
         if "locomotion" in clip.tags:
             obj = find_object(scene, node.destination or node.target)

@@ -90,13 +90,3 @@ def test_a_way_round_furniture_that_passes_the_person_stops_there_not_through_th
     assert np.allclose(way[-1], (-CLOSE_DISTANCE["hug"], 0.0), atol=0.02)
     points = np.concatenate([np.linspace(p, q, 20) for p, q in zip(way[:-1], way[1:], strict=True)])
     assert np.linalg.norm(points, axis=1).min() >= CLOSE_DISTANCE["hug"] - 0.02  # never through Mary
-
-
-def test_after_a_hug_the_two_step_apart():
-    """At the hug's 0.45 m whatever the two do next (they dance) goes through each other: the hugger lets go
-    and steps back."""
-    from services.motion.planning import CLOSE_DISTANCE, LET_GO
-
-    apart = _apart("hug", "hug", -2.0)
-    assert apart == pytest.approx(LET_GO["hug"], abs=0.06)
-    assert apart > CLOSE_DISTANCE["hug"] + 0.2
