@@ -334,6 +334,14 @@ def _segment(motion: Motion, pair: PairedAction) -> Segment | None:
     return None
 
 
+def _together(theirs: Segment, mine: Segment) -> bool:
+    """True when the partner's segment is its half of the same action as ``mine``: of the same sentence (the one
+    who walks up from far away starts its clip after the other's has ended), else overlapping in time."""
+    if theirs.sentence_id and mine.sentence_id:
+        return theirs.sentence_id == mine.sentence_id
+    return theirs.start_frame < mine.end_frame and theirs.end_frame > mine.start_frame
+
+
 def align_mutual(motions: Mapping[str, Motion], pairs: Sequence[PairedAction]) -> dict[str, Motion]:
     """Two characters doing one action together ("They hug") start their clips on the same frame.
 
@@ -350,11 +358,7 @@ def align_mutual(motions: Mapping[str, Motion], pairs: Sequence[PairedAction]) -
         seg = _segment(motion, pair) if motion is not None else None
         if seg is None or not pair.partner or pair.partner not in out:
             continue
-        theirs = [
-            s
-            for s in out[pair.partner].segments
-            if s.action == pair.action and s.start_frame < seg.end_frame and s.end_frame > seg.start_frame
-        ]
+        theirs = [s for s in out[pair.partner].segments if s.action == pair.action and _together(s, seg)]
         if not theirs or (pair.partner, pair.actor, theirs[0].start_frame) in seen:
             continue
         other = theirs[0]

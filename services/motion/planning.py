@@ -25,6 +25,7 @@ Over 400 lines because the posture, seat, person and prop rules all read and cha
 from __future__ import annotations
 
 import dataclasses
+import functools
 import inspect
 from collections.abc import Callable
 
@@ -38,6 +39,7 @@ from services.motion.style import mood_of, style_of
 from services.motion.synthesis import MotionPlan, PlannedSegment
 from wana.domain.actions import ActionClip, contact_targets, get_clip, load_library
 from wana.domain.object_geometry import find_object
+from wana.domain.skeleton import JOINT_INDEX, forward_kinematics, rest_offsets
 
 RouteFn = Callable[..., np.ndarray]  # (scene, start_xz, goal_xz[, ignore: frozenset[str]]) -> (N, 2)
 SPEEDS = {
@@ -69,6 +71,8 @@ HANDOVER_STEP_BACK = 1.2  # metres between the two hips once the giver has let g
 HANDOVER_HEIGHT = 1.0  # metres above the floor where the object passes from hand to hand
 HANDOVER_GESTURE_S = 1.2  # seconds of the presenting gesture after letting go
 CLOSE_DISTANCE = {"hug": 0.45, "shake_hands": 0.75, "high_five": 0.75}  # metres, per touching action
+TOO_CLOSE_M = 0.1  # metres closer than the wanted distance to another character that make one step back
+ARMS_CLEAR_M = 0.05  # metres left between two characters' hands gesturing at each other at their farthest
 SEATING = ("sit", "lie_down", "sleep")  # clips that leave the character on a seat or a bed
 TURN_TOLERANCE = 0.3  # radians off the wanted facing before the character turns in place
 REACH_BODY = 0.18  # metres: the clearance of a body standing at furniture to reach over it (feet, belly)
@@ -516,6 +520,52 @@ def _short_of(pos: np.ndarray, other: np.ndarray, distance: float) -> np.ndarray
     return other - d / n * distance
 
 
+def _at_distance(pos: np.ndarray, other: np.ndarray, distance: float) -> np.ndarray:
+    """Where to stand ``distance`` metres from other: short of it on the way there, or a step back from it
+    along the same line when TOO_CLOSE_M closer already (two who end up nose to nose after one waited
+    behind the other shake hands at arm's length, not through each other)."""
+    d = pos - other
+    n = float(np.linalg.norm(d))
+    if n >= distance - TOO_CLOSE_M:
+        return _short_of(pos, other, distance)
+    return other + (d / n if n > 1e-6 else np.array([0.0, -1.0])) * distance
+
+
+@functools.lru_cache(maxsize=256)
+def arms_room(clip_name: str) -> float:
+    """Metres between two characters' hips a gesture at the other needs: twice its hands' farthest reach
+    forward over the clip (a talking gesture sweeps 0.45 m ahead of the hips, and in "They talk" the other's
+    hands come as far towards it) and ARMS_CLEAR_M, so neither hand goes into the other. 0 for a clip that
+    does not bring a hand ahead of the body."""
+    rot, _, _ = get_clip(clip_name).sample()
+    pos, _ = forward_kinematics(rot.astype(np.float64), np.zeros((len(rot), 3)), rest_offsets())
+    hands = pos[:, [JOINT_INDEX[n] for n in ("LeftHandMiddle1", "RightHandMiddle1")], 2]
+    ahead = float(hands.max()) if hands.size else 0.0
+    return round(2 * ahead + ARMS_CLEAR_M, 2) if ahead > 0.15 else 0.0
+
+
+def _first_within(way: np.ndarray, other: np.ndarray, distance: float, goal: np.ndarray) -> np.ndarray:
+    """Where a walk along ``way`` (N, 2) first comes ``distance`` metres near ``other``: a way round furniture
+    that arrives from the far side would otherwise go through the person to the point short of them on the
+    side the walker started. ``goal`` when the way only gets that near at its end."""
+    for a, b in zip(way[:-1], way[1:], strict=True):
+        d = b - a
+        f = a - other
+        qa, qb, qc = float(d @ d), 2.0 * float(f @ d), float(f @ f) - distance**2
+        if qa < 1e-12:
+            continue
+        disc = qb * qb - 4 * qa * qc
+        if disc < 0:
+            continue
+        t = (-qb - np.sqrt(disc)) / (2 * qa)  # entering the circle
+        if qc <= 0:  # already within it at a: it was not reached walking
+            continue
+        if 0.0 <= t <= 1.0:
+            hit = a + t * d
+            return goal if np.linalg.norm(hit - goal) < 0.05 else hit
+    return goal
+
+
 def _free_beside(scene: Scene, pos: np.ndarray, other: np.ndarray, distance: float) -> np.ndarray:
     """A free spot ``distance`` metres from another character (furniture clear of a walking body), the one
     nearest the straight approach from pos; the straight approach's end when none is free."""
@@ -778,6 +828,11 @@ def plan_actions(
         hand.update(grasp)
         return True
 
+    def step_back(back: np.ndarray, there: np.ndarray, ai: int, person: str) -> None:
+        """A step back to ``back``, still facing the character at ``there``."""
+        face = _yaw_to(back, there, yaw)
+        walk_to(back, 0.8, face, "walk_backward" if "walk_backward" in lib else "walk", ai, person)
+
     def hand_over(gift: PlacedObject | None, person: str, ai: int, duration_s: float) -> bool:
         """ "Gives the cup to Anna": take the cup (unless it is in the hand already), walk up to Anna, hold it
         out to the point between the two (the reach releases it there, at HANDOVER_HEIGHT) and finish with
@@ -842,11 +897,17 @@ def plan_actions(
                     if "locomotion" in clip.tags
                     else PERSON_DISTANCE
                 )
-                goal = _short_of(pos, there, near)
+                goal = _at_distance(pos, there, near)
+                if np.linalg.norm(goal - there) > np.linalg.norm(pos - there) + 0.05:  # a step back
+                    step_back(_free_beside(scene, goal, there, near), there, ai, person)
+                    goal = pos.copy()
                 from services.motion.routing import reachable_short_of
 
                 around = reachable_short_of(scene, (pos[0], pos[1]), (there[0], there[1]), near)
                 goal = goal if around is None else np.asarray(around)  # not the far side of the armchair
+                if np.linalg.norm(goal - pos) > 0.1:  # a way round the table that passes them stops there
+                    way = np.asarray(route((pos[0], pos[1]), (goal[0], goal[1]), frozenset()), float)
+                    goal = _first_within(way.reshape(-1, 2), there, near, goal)
                 face = _yaw_to(goal, there, yaw)
                 if "locomotion" in clip.tags:
                     walk_to(goal, SPEEDS.get(name, 1.3) * speed_k, face, name, ai, person, node.manner)
@@ -856,6 +917,11 @@ def plan_actions(
                 elif abs(np.arctan2(np.sin(face - yaw), np.cos(face - yaw))) > TURN_TOLERANCE:
                     walk_to(pos.copy(), 1.0, face, "turn", ai, person)
             elif not seated:
+                room = arms_room(name)
+                if room and np.linalg.norm(there - pos) < room - TOO_CLOSE_M:  # the hands need room
+                    step_back(
+                        _free_beside(scene, _at_distance(pos, there, room), there, room), there, ai, person
+                    )
                 face = _yaw_to(pos, there, yaw)
                 if abs(np.arctan2(np.sin(face - yaw), np.cos(face - yaw))) > TURN_TOLERANCE:
                     walk_to(pos.copy(), 1.0, face, "turn", ai, person)

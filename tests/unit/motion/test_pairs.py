@@ -196,3 +196,44 @@ def test_two_doing_one_hug_start_it_on_the_same_frame():
     assert after["Tom"] == after["Eve"]
     assert {m.root_position.shape[0] for m in reply.motions.values()} == {frames}
     assert max(_gaps(reply.motions, "hug")) <= CONTACT_M
+
+
+def test_a_high_five_from_far_away_waits_for_the_one_who_walks_up():
+    """Tom walks 4 m before his high five; Eve's alone would be over before he arrives (no overlap in time),
+    yet the two clips are one sentence's action and start together."""
+    tom = _synth(
+        "Tom",
+        [ActionNode(verb="high-five", action="high_five", target="Eve")],
+        (-2.0, -2.0, 0.0),
+        {"Eve": EVE},
+    )
+    eve = _synth("Eve", [ActionNode(verb="high-five", action="high_five", target="Tom")], (*EVE, 3.9))
+    frames = max(tom.root_position.shape[0], eve.root_position.shape[0]) + 30
+    motions = {
+        n: msgspec.structs.replace(
+            _hold_to(m, frames),
+            segments=[
+                msgspec.structs.replace(s, sentence_id="s1" if s.action_index == 0 else "")
+                for s in _hold_to(m, frames).segments
+            ],
+        )
+        for n, m in (("Tom", tom), ("Eve", eve))
+    }
+    spans = {n: next(s for s in m.segments if s.action == "high_five") for n, m in motions.items()}
+    assert spans["Eve"].end_frame < spans["Tom"].start_frame
+    req = PairRequest(
+        header=Header(),
+        motions=motions,
+        pairs=[
+            PairedAction(actor="Tom", action_index=0, action="high_five", partner="Eve"),
+            PairedAction(actor="Eve", action_index=0, action="high_five", partner="Tom"),
+        ],
+        give_way=False,
+    )
+    reply = call_in_process(CONTRACT, req)
+    after = {
+        n: next(s.start_frame for s in m.segments if s.action == "high_five")
+        for n, m in reply.motions.items()
+    }
+    assert after["Tom"] == after["Eve"]
+    assert max(_gaps(reply.motions, "high_five")) <= CONTACT_M

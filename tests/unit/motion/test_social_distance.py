@@ -41,3 +41,52 @@ def test_a_walk_up_to_a_character_stops_at_the_given_distance():
 def test_an_impossible_distance_is_refused():
     with pytest.raises(InvalidInput, match="distances"):
         _gap({"Mary": 0.0})
+
+
+def _apart(verb: str, action: str, start_x: float) -> float:
+    """Hips distance at the end of Tom's ``action`` aimed at Mary (at x = 0), starting at ``start_x``."""
+    reply = handle_synthesize(
+        SynthesizeRequest(
+            header=Header(),
+            character=CharacterNode(
+                name="Tom", actions=[ActionNode(verb=verb, action=action, target="Mary")]
+            ),
+            scene=SCENE,
+            start=(start_x, 0.0, 1.57),
+            others={"Mary": (0.0, 0.0)},
+        )
+    )
+    end = from_wire(reply.motion.root_position)[-1]
+    return float(np.hypot(end[0], end[2]))
+
+
+def test_talking_to_someone_nose_to_nose_steps_back_to_room_for_the_hands():
+    """Talking gestures sweep the hands 0.45 m ahead: at 0.4 m they would go through Mary."""
+    from services.motion.planning import arms_room
+
+    assert arms_room("talk") > 0.6
+    assert _apart("talk", "talk", -0.4) >= arms_room("talk") - 0.05
+    assert _apart("talk", "talk", -1.2) == pytest.approx(1.2, abs=0.05)  # far enough already: it stays
+    assert arms_room("nod") == 0.0
+
+
+def test_a_handshake_too_close_steps_back_to_arms_length():
+    assert _apart("shake", "shake_hands", -0.4) == pytest.approx(0.75, abs=0.06)
+
+
+def test_a_way_round_furniture_that_passes_the_person_stops_there_not_through_them():
+    """The route to the point short of Mary (on Tom's side) goes round a table and arrives from her far side:
+    Tom stops where the way first comes within the hug's distance, on the side he arrives from."""
+    from services.motion.planning import CLOSE_DISTANCE, plan_actions
+
+    def detour(scene, a, b, ignore=frozenset()):  # noqa: ANN001, ANN202 - round a table north of them
+        del scene, ignore
+        return np.array([a, (0.0, 1.0), (-0.8, 0.0), b])
+
+    tom = CharacterNode(name="Tom", actions=[ActionNode(verb="hug", action="hug", target="Mary")])
+    plan = plan_actions(tom, SCENE, (2.0, 0.0, -1.57), route_fn=detour, others={"Mary": (0.0, 0.0)})
+    walk = next(s for s in plan.segments if s.kind == "locomotion")
+    way = np.asarray(walk.waypoints, float)
+    assert np.allclose(way[-1], (-CLOSE_DISTANCE["hug"], 0.0), atol=0.02)
+    points = np.concatenate([np.linspace(p, q, 20) for p, q in zip(way[:-1], way[1:], strict=True)])
+    assert np.linalg.norm(points, axis=1).min() >= CLOSE_DISTANCE["hug"] - 0.02  # never through Mary
