@@ -35,7 +35,7 @@ from proto.ssg import ActionNode, CharacterNode
 from services.motion.gait_style import NEUTRAL as NEUTRAL_GAIT
 from services.motion.gait_style import gait_style
 from services.motion.style import mood_of, style_of
-from services.motion.synthesis import MotionPlan, PlannedSegment
+from services.motion.synthesis import RISE_MAX_M, MotionPlan, PlannedSegment
 from wana.domain.actions import ActionClip, contact_targets, get_clip, load_library
 from wana.domain.object_geometry import find_object
 
@@ -212,6 +212,8 @@ def seat_stand_spot(
     along = float(fwd @ (seat - centre))
     if ahead >= min(dims[2] / 2.0 - along + LEG_CLEAR_M, SEAT_APPROACH_MAX) - 1e-6:
         return front  # the legs stand clear of its front edge
+    if len(seat_slots(placed, "seat")) != 1:
+        return front  # a sofa or a bench: its side is a neighbour's seat, or too far to slide along
     from wana.domain.object_geometry import object_shape, scene_footprints
     from wana.domain.routes import point_rect_distance
 
@@ -230,6 +232,8 @@ def seat_stand_spot(
     for sign in (1.0, -1.0):
         for f in SIDE_FORWARD_M:
             spot = seat + side * sign * (dims[0] / 2.0 - sign * across + SIDE_CLEAR_M) + fwd * f
+            if np.linalg.norm(spot - (seat + fwd * SEAT_BACK)) > RISE_MAX_M:
+                continue  # farther than a stand-up moves (synthesis)
             clear = float(point_rect_distance(spot[None], fp).min()) if len(fp) else np.inf
             if len(people):
                 clear = min(clear, float(np.linalg.norm(people - spot, axis=1).min()) - TAKEN + SIDE_ROOM_M)
