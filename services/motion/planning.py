@@ -27,7 +27,7 @@ from __future__ import annotations
 import dataclasses
 import functools
 import inspect
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 
 import numpy as np
 
@@ -36,7 +36,7 @@ from proto.ssg import ActionNode, CharacterNode
 from services.motion.gait_style import NEUTRAL as NEUTRAL_GAIT
 from services.motion.gait_style import gait_style
 from services.motion.style import mood_of, style_of
-from services.motion.synthesis import MotionPlan, PlannedSegment
+from services.motion.synthesis import RISE_MAX_M, MotionPlan, PlannedSegment
 from wana.domain.actions import ActionClip, contact_targets, get_clip, load_library
 from wana.domain.object_geometry import find_object
 from wana.domain.skeleton import JOINT_INDEX, forward_kinematics, rest_offsets
@@ -63,6 +63,10 @@ LEG_CLEAR_M = 0.10
 SEAT_APPROACH_MAX = 0.6  # metres: the farthest stand-off from a seat point (a deep sofa)
 APPROACH_CLEAR_M = 0.2  # metres from the standing hips to other furniture's footprint (belly, toes)
 APPROACH_LOW_M = 0.1  # metres: furniture boxes lower than this (a rug) do not limit the stand-off
+SIDE_CLEAR_M = 0.2  # metres from hips standing beside a tucked-in seat to the seat's side (the legs clear it)
+SIDE_ROOM_M = 0.15  # ... and at least to other furniture's footprint (a desk top the thighs pass under)
+# metres before the seat point (along its facing) a spot beside it is tried at, best first
+SIDE_FORWARD_M = (0.1, 0.0, -0.1, 0.2)
 REACH = 0.42  # metres from the contact points to where the character stands
 PERSON_DISTANCE = 0.8  # metres between two characters after one walks up to the other
 HANDOVER_VERB = "give"  # ActionNode.verb the orchestrator keeps on an action that hands an object over
@@ -182,6 +186,67 @@ def seat_approach(scene: Scene, placed: PlacedObject, hips: tuple[float, float, 
     clear = point_rect_distance(seat[None] + steps[:, None] * fwd[None], fp).min(axis=1) >= APPROACH_CLEAR_M
     free = steps[np.cumprod(clear).astype(bool)]
     return float(free[-1]) if len(free) else SEAT_BACK
+
+
+def seat_stand_spot(
+    scene: Scene,
+    placed: PlacedObject,
+    hips: tuple[float, float, float],
+    others: Sequence[tuple[float, float]] = (),
+) -> np.ndarray:
+    """(2,) world x, z where the hips stand once up from a seat point.
+
+    In front of the seat (seat_approach) when the legs have room there. A chair tucked in at a table or a
+    desk has none: its front edge touches the table's, so a body standing up in front of it stands in both
+    and turns away through the chair. A person then gets up beside the seat, the hips sliding sideways off
+    it; so the spot is SIDE_CLEAR_M clear of the seat's side, on the side with more room (other furniture at
+    least SIDE_ROOM_M away, the characters at ``others`` TAKEN), or in front as before when neither side is
+    free. (Sitting down still starts SEAT_BACK in front: a side approach moved the optimiser's layouts at
+    tables, test-split seating stories 15 -> 18 penetration failures.)
+    """
+    fwd = np.array([np.sin(placed.yaw), np.cos(placed.yaw)])
+    seat = np.array([hips[0], hips[2]])
+    ahead = seat_approach(scene, placed, hips)
+    front = seat + fwd * ahead
+    try:
+        from wana.assets.catalog import asset_for
+
+        dims = np.asarray(asset_for(placed).dims, float) * np.asarray(placed.scale, float)
+    except Exception:  # noqa: BLE001 - unknown category: the clip's own travel
+        return front
+    centre = np.array([placed.position[0], placed.position[2]])
+    along = float(fwd @ (seat - centre))
+    if ahead >= min(dims[2] / 2.0 - along + LEG_CLEAR_M, SEAT_APPROACH_MAX) - 1e-6:
+        return front  # the legs stand clear of its front edge
+    if len(seat_slots(placed, "seat")) != 1:
+        return front  # a sofa or a bench: its side is a neighbour's seat, or too far to slide along
+    from wana.domain.object_geometry import object_shape, scene_footprints
+    from wana.domain.routes import point_rect_distance
+
+    skip = set(resting_on(scene, placed.id)) - {placed.id}
+    for o in scene.objects:  # a category the catalog lacks has no known footprint to step around
+        try:
+            object_shape(o)
+        except (KeyError, ValueError):
+            skip.add(o.id)
+    fp = scene_footprints(scene, ignore=skip)
+    fp = fp.select(fp.y_max > APPROACH_LOW_M)
+    side = np.array([np.cos(placed.yaw), -np.sin(placed.yaw)])
+    across = float(side @ (seat - centre))
+    people = np.asarray(others, float).reshape(-1, 2)
+    best, room = front, -1.0
+    for sign in (1.0, -1.0):
+        for f in SIDE_FORWARD_M:
+            spot = seat + side * sign * (dims[0] / 2.0 - sign * across + SIDE_CLEAR_M) + fwd * f
+            if np.linalg.norm(spot - (seat + fwd * SEAT_BACK)) > RISE_MAX_M:
+                continue  # farther than a stand-up moves (synthesis)
+            clear = float(point_rect_distance(spot[None], fp).min()) if len(fp) else np.inf
+            if len(people):
+                clear = min(clear, float(np.linalg.norm(people - spot, axis=1).min()) - TAKEN + SIDE_ROOM_M)
+            if clear >= SIDE_ROOM_M - 1e-6 and clear > room + 1e-6:
+                best, room = spot, clear
+                break
+    return best
 
 
 def seat_slots(placed: PlacedObject, kind: str) -> list[tuple[float, float, float]]:
@@ -649,17 +714,18 @@ def plan_actions(
         hand.update(prop=held_obj.id, prop_joint=g[0], prop_grip=g[1], prop_yaw=float(held_obj.yaw))
 
     sat_on: dict[str, tuple] = {}  # "seat": (object id, hips point) of the last sit-down
+    if posture == "sit" and (under := seat_under(scene, pos)) is not None:  # resumed seated: on that seat
+        sat_on["seat"] = (under[0].id, under[1])
+    elsewhere = [xz for n, xz in others.items() if n != character.name]  # kept clear of beside a seat
 
     def rise_spot() -> np.ndarray | None:
-        """Seated on a known seat: where getting up ends, clear of its front edge (seat_approach)."""
+        """Seated on a known seat: where getting up ends, clear of it and of the table (seat_stand_spot)."""
         if now_posture() != "sit" or "seat" not in sat_on:
             return None
         seat = next((o for o in scene.objects if o.id == sat_on["seat"][0]), None)
         if seat is None:
             return None
-        hips = sat_on["seat"][1]
-        fwd = np.array([np.sin(seat.yaw), np.cos(seat.yaw)])
-        return np.array([hips[0], hips[2]]) + fwd * seat_approach(scene, seat, hips)
+        return seat_stand_spot(scene, seat, sat_on["seat"][1], elsewhere)
 
     def add(**kw) -> None:
         nonlocal pos

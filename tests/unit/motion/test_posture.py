@@ -180,3 +180,33 @@ def test_falling_asleep_in_the_bed_one_lies_in_keeps_lying_when_planned_on_its_o
     assert end.posture == "lie"
     asleep = _plan(("sleep", "bed"), posture="lie", start=(end.x, end.z, end.yaw))
     assert [(s.kind, s.action) for s in asleep.segments] == [("wait", "sleep")]
+
+
+def test_a_chair_tucked_in_at_a_table_is_sat_on_and_left_from_beside_it():
+    """At a table the chair's front edge touches the table's: standing up in front of it stands in both, so
+    the character gets up beside the chair, sliding off the seat, and walks away without a leg in the chair
+    or the table; a plan resumed seated (the next sentence) knows the seat it is on and does the same."""
+    from wana.assets.catalog import world_bounds
+    from wana.fidelity.world import World
+
+    table = PlacedObject(id="table", category="dining_table", position=(0.0, 0.0, -0.75), yaw=0.0)
+    scene = _chair_only(table)
+    chair = scene.objects[0]
+    half_w = float(world_bounds(chair)[1, 0])
+    acts = [
+        ActionNode(verb=a, action=a, target="chair" if a == "sit" else "") for a in ("sit", "stand", "walk")
+    ]
+    plan = plan_actions(CharacterNode(name="Eve", actions=acts), scene, (-3.0, 1.5, np.pi / 2))
+    (stand,) = [s for s in plan.segments if s.action == "stand"]
+    rise = dict(stand.targets)["Hips"]
+    assert abs(rise[0]) > half_w + 0.15  # beside the seat, not before it
+    motion, _, states = synthesise(plan)
+    inside = body_checks.penetration(body_of(motion), World(scene), {})
+    up = next(g for g in motion.segments if g.action == "stand")
+    assert not inside.failing[up.end_frame :].any(), set(inside.what[inside.failing])  # away clear of both
+    seated = states[next(i for i, s in enumerate(plan.segments) if s.action == "sit")]
+    resumed = plan_actions(
+        CharacterNode(name="Eve", actions=acts[1:]), scene, (seated.x, seated.z, seated.yaw), posture="sit"
+    )
+    (again,) = [s for s in resumed.segments if s.action == "stand"]
+    assert np.allclose(dict(again.targets)["Hips"], rise, atol=0.02)
