@@ -32,6 +32,7 @@ import numpy as np
 
 from proto.scene import PlacedObject, Scene
 from proto.ssg import ActionNode, CharacterNode
+from services.motion.elbow_room import reaching_sides
 from services.motion.gait_style import NEUTRAL as NEUTRAL_GAIT
 from services.motion.gait_style import gait_style
 from services.motion.style import mood_of, style_of
@@ -638,6 +639,36 @@ def plan_actions(
         if np.linalg.norm(here - spot) < np.linalg.norm(here - pos) - 0.05:  # only a step that closes in
             walk_to(spot, 1.2, _yaw_to(spot, here, yaw), "walk", ai, target)
 
+    def make_room(
+        name: str,
+        ai: int,
+        target: str = "",
+        at: np.ndarray | None = None,
+        face_to: np.ndarray | None = None,
+        ignore: frozenset[str] = frozenset(),
+        reaching: frozenset[str] = frozenset(),
+        within: float = np.inf,
+    ) -> tuple[np.ndarray, float] | None:
+        """Standing, the spot and facing nearest ``at`` (default: here) where the clip's arms keep out of the
+        furniture beside it (services.motion.elbow_room), None when they are clear there already. Without
+        ``at`` the character steps there."""
+        nonlocal pos, yaw
+        if now_posture() != "stand" or name in SEATED_AS or "locomotion" in lib[name].tags:
+            return None
+        from services.motion.elbow_room import roomy_spot
+        from services.motion.routing import RADIUS
+
+        skip = ignore | (resting_on(scene, target) if target and target not in others else frozenset())
+        if hand:
+            skip |= {hand["prop"]}
+        here = pos if at is None else np.asarray(at, float)
+        got = roomy_spot(scene, name, here, yaw if at is None or face_to is None else _yaw_to(here, face_to, yaw),
+                         ignore=skip, reaching=reaching, body_radius=RADIUS if at is None else REACH_BODY,
+                         face_to=face_to, within=within)  # fmt: skip
+        if got is not None and at is None:
+            walk_to(got[0], 1.0, got[1], "walk", ai, target)
+        return got
+
     def now_posture() -> str:
         """The posture the plan so far leaves the character in."""
         for s in reversed(segs):
@@ -689,8 +720,9 @@ def plan_actions(
         target = _set_down_point(scene, pos, None, prop_obj, hand)
         return bool(np.hypot(target[0] - pos[0], target[2] - pos[1]) <= PICK_REACH)
 
-    def take(prop_obj: PlacedObject, ai: int) -> bool:
-        """Walk up to a small object and take it with an arm's reach (standing); False when out of reach."""
+    def take(prop_obj: PlacedObject, ai: int, shows: str = "") -> bool:
+        """Walk up to a small object and take it with an arm's reach (standing); False when out of reach.
+        ``shows``: the action the segment plays instead, upright (a "pick_up" at shelf height: its arm only)."""
         reach = _grasp(prop_obj)
         if reach is None or now_posture() != "stand":
             return False
@@ -706,8 +738,9 @@ def plan_actions(
             walk_to(pos.copy(), 1.0, face, "turn", ai, prop_obj.id)
         grasp = {"prop": prop_obj.id, "prop_joint": reach[0], "prop_grip": reach[1],
                  "prop_yaw": float(prop_obj.yaw)}  # fmt: skip
-        add(kind="action", action=taker, targets=((reach[0], reach[2]),), target_id=prop_obj.id,
-            action_index=ai, prop_span="grasp", **grasp)  # fmt: skip
+        played = {"action": shows, "upright": True} if shows and shows != taker else {"action": taker}
+        add(kind="action", targets=((reach[0], reach[2]),), target_id=prop_obj.id, action_index=ai,
+            prop_span="grasp", **played, **grasp)  # fmt: skip
         hand.update(grasp)
         return True
 
@@ -792,6 +825,8 @@ def plan_actions(
                 face = _yaw_to(pos, there, yaw)
                 if abs(np.arctan2(np.sin(face - yaw), np.cos(face - yaw))) > TURN_TOLERANCE:
                     walk_to(pos.copy(), 1.0, face, "turn", ai, person)
+            if not touching:  # a gesture at someone: its arms out of the furniture beside the character
+                make_room(name, ai, face_to=there)
             add(
                 kind="action",
                 action=name,
@@ -896,6 +931,7 @@ def plan_actions(
         ):
             # Already in the hand (picked up before): the action plays with it, no new reach.
             obj = next((o for o in scene.objects if o.id == hand["prop"]), obj)
+            make_room(name, ai)
             add(kind="action", action=name, duration_s=float(node.duration_s), target_id=hand["prop"],
                 action_index=ai)  # fmt: skip
             continue
@@ -941,6 +977,7 @@ def plan_actions(
                         pos, yaw = approach.copy(), face
                         add(kind="action", action="sit", targets=(("Hips", hips),), target_id=seat_obj.id,
                             action_index=ai)  # fmt: skip
+                    make_room(name, ai)  # the prop in hand: where its use has room (a sweep, a saw stroke)
                     add(kind="action", action=name, duration_s=float(node.duration_s),
                         target_id=prop_obj.id, action_index=ai)  # fmt: skip
                     continue
@@ -960,6 +997,8 @@ def plan_actions(
             kind = "reach"  # a prop that stays put (a microphone on its stand): the hand goes to its point
         if name == "pick_up" and obj is not None and now_posture() == "stand" and _grasp(obj) is not None:
             rj, rlocal, rworld = _grasp(obj)  # type: ignore[misc]
+            if rworld[1] >= TABLE_GRASP_M and take(obj, ai, shows=name):
+                continue  # at table or shelf height an arm's reach takes it: no bend down into the furniture
             held = {"prop": obj.id, "prop_joint": rj, "prop_grip": rlocal, "prop_yaw": float(obj.yaw),
                     "prop_span": "grasp"}  # fmt: skip
         if name == "put_down" and hand:
@@ -1014,6 +1053,14 @@ def plan_actions(
                         stand = np.asarray(free_spot(scene, (float(centre[0]), float(centre[1]))), float)
                 if ai in spots:
                     stand = np.asarray(spots[ai], float)
+                elif targets:  # the arm that does not reach (hanging, swinging) out of the furniture beside
+                    keep = (
+                        max(REACH, float(np.linalg.norm(stand - centre))) + 0.1
+                    )  # the contacts stay in reach
+                    roomy = make_room(name, ai, obj.id, at=stand, face_to=centre,
+                                      reaching=reaching_sides(targets), within=keep)  # fmt: skip
+                    if roomy is not None:
+                        stand = roomy[0]
                 d = centre - stand
                 face = float(np.arctan2(d[0], d[1])) if np.linalg.norm(d) > 1e-6 else yaw
                 already_there = np.linalg.norm(stand - pos) < 0.35
@@ -1030,6 +1077,8 @@ def plan_actions(
                 face = float(np.arctan2(d[0], d[1]))
                 if abs(np.arctan2(np.sin(face - yaw), np.cos(face - yaw))) > 0.3:
                     walk_to(pos.copy(), 1.0, face, "turn", ai, obj.id)
+        if not targets and not held and (kind in HELD_KINDS or clip.interaction is None):
+            make_room(name, ai, obj.id if obj else "")  # a gesture or a tool swung where it stands
         add(
             kind="action",
             action=name,
