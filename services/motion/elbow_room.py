@@ -14,10 +14,11 @@ from __future__ import annotations
 
 import functools
 from collections.abc import Iterable
+from dataclasses import dataclass
 
 import numpy as np
 
-from proto.scene import Scene
+from proto.scene import PlacedObject, Scene
 from services.motion.blend import layer, upper_body_mask
 from wana.domain import quat
 from wana.domain.actions import get_clip, neutral_rotations
@@ -88,52 +89,90 @@ def _near(points: np.ndarray, fp: Footprints) -> np.ndarray:
     return flat & (y > fp.y_min[None] - ARM_RADIUS_M) & (y < fp.y_max[None] + ARM_RADIUS_M)
 
 
-def arm_hits(points: np.ndarray, fp: Footprints, per_object: tuple | None = None) -> int:
-    """How many world arm points lie within ARM_RADIUS_M of a box. The points are first tested against one
-    box round each object's boxes (a filing cabinet is hundreds of drawer boxes), then only those inside one
-    against that object's own boxes; ``per_object``: those boxes (by_object(fp)) when already made."""
-    if not len(fp) or not len(points):
+@dataclass(frozen=True)
+class Obstacles:
+    """The collision boxes the arms keep out of, per object: one box round each object's boxes (``outer``, a
+    filing cabinet is hundreds of drawer boxes) and the object's own boxes (``inner``, in the same order)."""
+
+    outer: Footprints
+    inner: tuple[Footprints, ...]
+
+    def near(self, xz: np.ndarray, metres: float) -> Obstacles:
+        """The objects whose outer box is within ``metres`` of a floor point."""
+        keep = point_rect_distance(np.asarray(xz, dtype=np.float64)[None], self.outer)[0] < metres
+        return Obstacles(
+            self.outer.select(keep), tuple(f for f, k in zip(self.inner, keep, strict=True) if k)
+        )
+
+
+def arm_hits(points: np.ndarray, boxes: Obstacles) -> int:
+    """How many world arm points lie within ARM_RADIUS_M of a box: tested against the objects' outer boxes
+    first, then only the points inside one against that object's own boxes."""
+    if not len(boxes.outer) or not len(points):
         return 0
-    owner, coarse = per_object if per_object is not None else by_object(fp)
-    near = _near(points, coarse)  # (P, O)
+    near = _near(points, boxes.outer)  # (P, O)
     hit = np.zeros(len(points), dtype=bool)
     for k in np.flatnonzero(near.any(axis=0)):
         rows = np.flatnonzero(near[:, k] & ~hit)
         if len(rows):
-            hit[rows] = _near(points[rows], fp.select(owner == k)).any(axis=1)
+            hit[rows] = _near(points[rows], boxes.inner[k]).any(axis=1)
     return int(hit.sum())
 
 
-def by_object(fp: Footprints) -> tuple[np.ndarray, Footprints]:
-    """(N,) the index of each box's object and one world-axis box round each object's boxes."""
-    owners = sorted(set(fp.owner))
-    owner = np.array([owners.index(o) for o in fp.owner])
-    ext = _extent(fp)
-    lo = np.stack([np.min(fp.centre[owner == k] - ext[owner == k], axis=0) for k in range(len(owners))])
-    hi = np.stack([np.max(fp.centre[owner == k] + ext[owner == k], axis=0) for k in range(len(owners))])
-    y_lo = np.array([fp.y_min[owner == k].min() for k in range(len(owners))])
-    y_hi = np.array([fp.y_max[owner == k].max() for k in range(len(owners))])
-    return owner, Footprints((lo + hi) / 2, (hi - lo) / 2, np.zeros(len(owners)), y_lo, y_hi, tuple(owners))
+def _object_boxes(placed: PlacedObject) -> tuple[Footprints, Footprints] | None:
+    """(outer box, own boxes higher than LOW_BOX_M) of one placed object; None when it has none (a rug, a
+    category the catalog lacks)."""
+    key = (placed.id, placed.category, tuple(sorted(placed.attributes.items())), placed.seed, placed.position,
+           placed.yaw, placed.scale)  # fmt: skip
+    if key not in _BOXES:
+        if len(_BOXES) > 1024:
+            _BOXES.clear()
+        _BOXES[key] = _boxes_of(placed)
+    return _BOXES[key]
 
 
-def _extent(fp: Footprints) -> np.ndarray:
-    """(N, 2) half extents along world x and z of each (rotated) floor rectangle."""
+_BOXES: dict[tuple, tuple[Footprints, Footprints] | None] = {}
+
+
+def _boxes_of(placed: PlacedObject) -> tuple[Footprints, Footprints] | None:
+    from wana.domain.object_geometry import object_shape, world_obbs
+
+    try:
+        object_shape(placed)
+    except (KeyError, ValueError):
+        return None
+    centre, half = world_obbs(placed)
+    keep = centre[:, 1] + half[:, 1] > LOW_BOX_M
+    if not keep.any():
+        return None
+    centre, half = centre[keep], half[keep]
+    fp = Footprints(centre[:, [0, 2]], half[:, [0, 2]], np.full(len(centre), placed.yaw),
+                    centre[:, 1] - half[:, 1], centre[:, 1] + half[:, 1], (placed.id,) * len(centre))  # fmt: skip
     c, s = np.abs(np.cos(fp.yaw)), np.abs(np.sin(fp.yaw))
-    return np.stack([c * fp.half[:, 0] + s * fp.half[:, 1], s * fp.half[:, 0] + c * fp.half[:, 1]], axis=1)
+    ext = np.stack([c * fp.half[:, 0] + s * fp.half[:, 1], s * fp.half[:, 0] + c * fp.half[:, 1]], axis=1)
+    lo, hi = (fp.centre - ext).min(axis=0), (fp.centre + ext).max(axis=0)
+    outer = Footprints(
+        ((lo + hi) / 2)[None], ((hi - lo) / 2)[None], np.zeros(1), fp.y_min.min()[None], fp.y_max.max()[None],
+        (placed.id,),
+    )  # fmt: skip
+    return outer, fp
 
 
-def obstacles(scene: Scene, ignore: Iterable[str]) -> Footprints:
+def obstacles(scene: Scene, ignore: Iterable[str]) -> Obstacles:
     """The collision boxes the arms must keep out of: every object's but the ignored ones and low ones."""
-    from wana.domain.object_geometry import object_shape, scene_footprints
-
     skip = set(ignore)
-    for o in scene.objects:  # a category the catalog lacks has no known boxes
-        try:
-            object_shape(o)
-        except (KeyError, ValueError):
-            skip.add(o.id)
-    fp = scene_footprints(scene, ignore=skip)
-    return fp.select(fp.y_max > LOW_BOX_M)
+    got = [b for o in scene.objects if o.id not in skip and (b := _object_boxes(o)) is not None]
+    if not got:
+        return Obstacles(Footprints.from_aabbs(np.zeros((0, 2, 3))), ())
+    outer = [g[0] for g in got]
+    return Obstacles(
+        Footprints(
+            np.concatenate([f.centre for f in outer]), np.concatenate([f.half for f in outer]),
+            np.concatenate([f.yaw for f in outer]), np.concatenate([f.y_min for f in outer]),
+            np.concatenate([f.y_max for f in outer]), tuple(f.owner[0] for f in outer),
+        ),
+        tuple(g[1] for g in got),
+    )  # fmt: skip
 
 
 def roomy_spot(
@@ -167,10 +206,8 @@ def roomy_spot(
 
     path = arm_path(action, reaching)
     here = np.asarray(xz, dtype=np.float64)
-    fp = obstacles(scene, ignore)
     reach = float(np.linalg.norm(path[:, [0, 2]], axis=1).max()) + RINGS_M[-1] + ARM_RADIUS_M
-    if len(fp):  # only the boxes an arm can get to from any spot tried
-        fp = fp.select(point_rect_distance(here[None], fp)[0] < reach)
+    boxes = obstacles(scene, ignore).near(here, reach)  # only what an arm can get to from any spot tried
 
     def facing(p: np.ndarray) -> float:
         if face_to is None:
@@ -178,10 +215,7 @@ def roomy_spot(
         d = face_to - p
         return float(np.arctan2(d[0], d[1])) if np.linalg.norm(d) > 1e-6 else yaw
 
-    if not len(fp):
-        return None
-    split = by_object(fp)
-    if arm_hits(placed_path(path, here, facing(here)), fp, split) == 0:
+    if arm_hits(placed_path(path, here, facing(here)), boxes) == 0:
         return None
     grid = scene_grid(scene, frozenset(ignore), body_radius, CELL)
     angles = np.linspace(0.0, 2 * np.pi, DIRECTIONS, endpoint=False)
@@ -195,7 +229,7 @@ def roomy_spot(
                 continue
             f = facing(p)
             pts = placed_path(path, p, f)
-            if not any(arm_hits(pts[i : i + CHUNK], fp, split) for i in range(0, len(pts), CHUNK)):
+            if not any(arm_hits(pts[i : i + CHUNK], boxes) for i in range(0, len(pts), CHUNK)):
                 turn = abs(float(np.arctan2(np.sin(f - yaw), np.cos(f - yaw))))
                 if best is None or turn < best[0]:
                     best = (turn, p, f)

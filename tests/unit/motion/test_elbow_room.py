@@ -57,7 +57,7 @@ def test_a_sweep_beside_a_filing_cabinet_steps_clear_before_the_broom_swings():
 
 
 def test_papers_on_top_of_a_filing_cabinet_are_taken_with_a_standing_reach():
-    top = float(obstacles(_room(), ()).y_max.max())
+    top = float(obstacles(_room(), ()).outer.y_max.max())
     papers = PlacedObject(
         id="paper", category="paper", position=(0.0, top, 0.1), yaw=0.0, support="filing_cabinet"
     )
