@@ -91,6 +91,9 @@ GRASP_TABLE = (
     "press_switch"  # the clip that reaches out with the right hand (upper body) for a prop on a table
 )
 TABLE_GRASP_M = 0.45  # metres: a grip point this high is reached for; lower, the character bends down for it
+# metres: a pick-up this high (above tables and counters: a filing cabinet's top, a shelf) plays its arm alone,
+# upright; lower, its own bend and dip reach the table (the trunk within 30 degrees, synthesis)
+SHELF_GRASP_M = 1.1
 
 
 def straight_route(scene: Scene, start: tuple[float, float], goal: tuple[float, float]) -> np.ndarray:
@@ -997,7 +1000,7 @@ def plan_actions(
             kind = "reach"  # a prop that stays put (a microphone on its stand): the hand goes to its point
         if name == "pick_up" and obj is not None and now_posture() == "stand" and _grasp(obj) is not None:
             rj, rlocal, rworld = _grasp(obj)  # type: ignore[misc]
-            if rworld[1] >= TABLE_GRASP_M and take(obj, ai, shows=name):
+            if rworld[1] >= SHELF_GRASP_M and take(obj, ai, shows=name):
                 continue  # at table or shelf height an arm's reach takes it: no bend down into the furniture
             held = {"prop": obj.id, "prop_joint": rj, "prop_grip": rlocal, "prop_yaw": float(obj.yaw),
                     "prop_span": "grasp"}  # fmt: skip
