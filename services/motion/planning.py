@@ -631,16 +631,27 @@ def plan_actions(
             spots.append(spot)
         return min(spots, key=lambda p: float(np.linalg.norm(here - p)))
 
-    def step_up_to(here: np.ndarray, ai: int, target: str) -> None:
+    def step_up_to(here: np.ndarray, ai: int, target: str, front: np.ndarray | None = None) -> None:
         """Standing farther than STEP_IN from a point the hand must reach (a prop to take or set down):
-        step to REACH from it (reach_spot), so the arm arrives without a deep bend."""
+        step to REACH from it (reach_spot), so the arm arrives without a deep bend; from the ``front`` side
+        when given (x, z direction), else from where the character is."""
         if np.linalg.norm(here - pos) <= STEP_IN:
             return
-        away = pos - here
+        away = pos - here if front is None else np.asarray(front, float)
         n = float(np.linalg.norm(away))
         spot = reach_spot(here + (away / n if n > 1e-6 else np.array([0.0, 1.0])) * REACH, here, target)
         if np.linalg.norm(here - spot) < np.linalg.norm(here - pos) - 0.05:  # only a step that closes in
             walk_to(spot, 1.2, _yaw_to(spot, here, yaw), "walk", ai, target)
+
+    def front_of(obj_id: str) -> np.ndarray | None:
+        """The side a piece of furniture is used from (its catalog stand point from its centre), None if unknown:
+        papers on a filing cabinet are taken standing in front of it, not from beside its drawers."""
+        under = next((o for o in scene.objects if o.id == obj_id), None)
+        geo = _object_geometry(under) if under is not None else None
+        if geo is None:
+            return None
+        side = geo[0] - np.array([under.position[0], under.position[2]])  # type: ignore[union-attr]
+        return side if np.linalg.norm(side) > 1e-6 else None
 
     def make_room(
         name: str,
@@ -730,7 +741,7 @@ def plan_actions(
         if reach is None or now_posture() != "stand":
             return False
         here = np.array([prop_obj.position[0], prop_obj.position[2]])
-        step_up_to(here, ai, prop_obj.id)
+        step_up_to(here, ai, prop_obj.id, front_of(prop_obj.support) if shows else None)
         if np.linalg.norm(here - pos) > PICK_REACH:
             return False
         taker = GRASP_TABLE if reach[2][1] >= TABLE_GRASP_M else "pick_up"

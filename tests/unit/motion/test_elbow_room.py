@@ -76,3 +76,14 @@ def test_papers_on_top_of_a_filing_cabinet_are_taken_with_a_standing_reach():
     assert arm_hits(head, obstacles(scene, {"paper"})) == 0  # the head stays out of the cabinet
     hand = frames[:, JOINT_INDEX[take[0].prop_joint]]
     assert np.linalg.norm(hand - np.asarray(take[0].targets[0][1]), axis=1).min() < 0.05
+
+
+def test_papers_on_a_filing_cabinet_are_taken_from_its_front_not_beside_its_drawers():
+    top = float(obstacles(_room(), ()).outer.y_max.max())
+    papers = PlacedObject(
+        id="paper", category="paper", position=(0.0, top, 0.0), yaw=0.0, support="filing_cabinet"
+    )
+    ch = CharacterNode(name="Eve", actions=[ActionNode(verb="take", action="pick_up", target="paper")])
+    plan = plan_actions(ch, _room(papers), (2.0, 0.0, -np.pi / 2))  # coming from its side
+    stop = np.asarray([s for s in plan.segments if s.kind == "locomotion"][-1].waypoints[-1])
+    assert stop[1] > 0.3 and abs(stop[0]) < 0.3, stop  # in front of the cabinet (it faces +z)
