@@ -943,9 +943,11 @@ def plan_actions(
                 or (made_for_action(in_hand, name) and not made_for_action(obj, name))
             )
         ):
-            # Already in the hand (picked up before): the action plays with it, no new reach.
+            # Already in the hand (picked up before): the action plays with it, no new reach; its arms may go
+            # to what it works on (the nail, the plank and the bench under them), not into other furniture.
+            worked = frozenset() if obj is None else resting_on(scene, obj.support or obj.id) | {obj.id}
             obj = next((o for o in scene.objects if o.id == hand["prop"]), obj)
-            make_room(name, ai)
+            make_room(name, ai, ignore=worked)
             add(kind="action", action=name, duration_s=float(node.duration_s), target_id=hand["prop"],
                 action_index=ai)  # fmt: skip
             continue
@@ -1068,16 +1070,17 @@ def plan_actions(
                 if ai in spots:
                     stand = np.asarray(spots[ai], float)
                 elif targets:  # the arm that does not reach (hanging, swinging) out of the furniture beside
-                    keep = (
-                        max(REACH, float(np.linalg.norm(stand - centre))) + 0.1
-                    )  # the contacts stay in reach
+                    keep = float(np.linalg.norm(stand - centre)) + 0.02  # no farther off: no deeper lean
                     roomy = make_room(name, ai, obj.id, at=stand, face_to=centre,
                                       reaching=reaching_sides(targets), within=keep)  # fmt: skip
                     if roomy is not None:
                         stand = roomy[0]
                 d = centre - stand
                 face = float(np.arctan2(d[0], d[1])) if np.linalg.norm(d) > 1e-6 else yaw
-                already_there = np.linalg.norm(stand - pos) < 0.35
+                # near the stand and no farther from the contacts than it (farther off, the trunk leans deeper)
+                already_there = np.linalg.norm(stand - pos) < 0.35 and (
+                    not targets or np.linalg.norm(centre - pos) <= np.linalg.norm(centre - stand) + 0.05
+                )
                 seated = now_posture() != "stand"
                 if not already_there and not seated:
                     walk_to(stand, 1.2, face, "walk", ai, obj.id)
