@@ -33,6 +33,7 @@ import numpy as np
 
 from proto.scene import PlacedObject, Scene
 from proto.ssg import ActionNode, CharacterNode
+from services.motion.elbow_room import reaching_sides
 from services.motion.gait_style import NEUTRAL as NEUTRAL_GAIT
 from services.motion.gait_style import gait_style
 from services.motion.style import mood_of, style_of
@@ -100,6 +101,9 @@ GRASP_TABLE = (
     "press_switch"  # the clip that reaches out with the right hand (upper body) for a prop on a table
 )
 TABLE_GRASP_M = 0.45  # metres: a grip point this high is reached for; lower, the character bends down for it
+# metres: a pick-up this high (above tables and counters: a filing cabinet's top, a shelf) plays its arm alone,
+# upright; lower, its own bend and dip reach the table (the trunk within 30 degrees, synthesis)
+SHELF_GRASP_M = 1.1
 
 
 def straight_route(scene: Scene, start: tuple[float, float], goal: tuple[float, float]) -> np.ndarray:
@@ -810,16 +814,57 @@ def plan_actions(
             spots.append(spot)
         return min(spots, key=lambda p: float(np.linalg.norm(here - p)))
 
-    def step_up_to(here: np.ndarray, ai: int, target: str) -> None:
+    def step_up_to(here: np.ndarray, ai: int, target: str, front: np.ndarray | None = None) -> None:
         """Standing farther than STEP_IN from a point the hand must reach (a prop to take or set down):
-        step to REACH from it (reach_spot), so the arm arrives without a deep bend."""
+        step to REACH from it (reach_spot), so the arm arrives without a deep bend; from the ``front`` side
+        when given (x, z direction), else from where the character is."""
         if np.linalg.norm(here - pos) <= STEP_IN:
             return
-        away = pos - here
+        away = pos - here if front is None else np.asarray(front, float)
         n = float(np.linalg.norm(away))
         spot = reach_spot(here + (away / n if n > 1e-6 else np.array([0.0, 1.0])) * REACH, here, target)
         if np.linalg.norm(here - spot) < np.linalg.norm(here - pos) - 0.05:  # only a step that closes in
             walk_to(spot, 1.2, _yaw_to(spot, here, yaw), "walk", ai, target)
+
+    def front_of(obj_id: str) -> np.ndarray | None:
+        """The side a piece of furniture is used from (its catalog stand point from its centre), None if unknown:
+        papers on a filing cabinet are taken standing in front of it, not from beside its drawers."""
+        under = next((o for o in scene.objects if o.id == obj_id), None)
+        geo = _object_geometry(under) if under is not None else None
+        if geo is None:
+            return None
+        side = geo[0] - np.array([under.position[0], under.position[2]])  # type: ignore[union-attr]
+        return side if np.linalg.norm(side) > 1e-6 else None
+
+    def make_room(
+        name: str,
+        ai: int,
+        target: str = "",
+        at: np.ndarray | None = None,
+        face_to: np.ndarray | None = None,
+        ignore: frozenset[str] = frozenset(),
+        reaching: frozenset[str] = frozenset(),
+        within: float = np.inf,
+    ) -> tuple[np.ndarray, float] | None:
+        """Standing, the spot and facing nearest ``at`` (default: here) where the clip's arms keep out of the
+        furniture beside it (services.motion.elbow_room), None when they are clear there already. Without
+        ``at`` the character steps there."""
+        nonlocal pos, yaw
+        if now_posture() != "stand" or name in SEATED_AS or "locomotion" in lib[name].tags:
+            return None
+        from services.motion.elbow_room import roomy_spot
+        from services.motion.routing import RADIUS
+
+        skip = ignore | (resting_on(scene, target) if target and target not in others else frozenset())
+        if hand:
+            skip |= {hand["prop"]}
+        here = pos if at is None else np.asarray(at, float)
+        got = roomy_spot(scene, name, here, yaw if at is None or face_to is None else _yaw_to(here, face_to, yaw),
+                         ignore=skip, reaching=reaching, body_radius=RADIUS if at is None else REACH_BODY,
+                         face_to=face_to, within=within)  # fmt: skip
+        if got is not None and at is None:
+            walk_to(got[0], 1.0, got[1], "walk", ai, target)
+        return got
 
     def now_posture() -> str:
         """The posture the plan so far leaves the character in."""
@@ -872,13 +917,14 @@ def plan_actions(
         target = _set_down_point(scene, pos, None, prop_obj, hand)
         return bool(np.hypot(target[0] - pos[0], target[2] - pos[1]) <= PICK_REACH)
 
-    def take(prop_obj: PlacedObject, ai: int) -> bool:
-        """Walk up to a small object and take it with an arm's reach (standing); False when out of reach."""
+    def take(prop_obj: PlacedObject, ai: int, shows: str = "") -> bool:
+        """Walk up to a small object and take it with an arm's reach (standing); False when out of reach.
+        ``shows``: the action the segment plays instead, upright (a "pick_up" at shelf height: its arm only)."""
         reach = _grasp(prop_obj)
         if reach is None or now_posture() != "stand":
             return False
         here = np.array([prop_obj.position[0], prop_obj.position[2]])
-        step_up_to(here, ai, prop_obj.id)
+        step_up_to(here, ai, prop_obj.id, front_of(prop_obj.support) if shows else None)
         if np.linalg.norm(here - pos) > PICK_REACH:
             return False
         taker = GRASP_TABLE if reach[2][1] >= TABLE_GRASP_M else "pick_up"
@@ -889,8 +935,9 @@ def plan_actions(
             walk_to(pos.copy(), 1.0, face, "turn", ai, prop_obj.id)
         grasp = {"prop": prop_obj.id, "prop_joint": reach[0], "prop_grip": reach[1],
                  "prop_yaw": float(prop_obj.yaw)}  # fmt: skip
-        add(kind="action", action=taker, targets=((reach[0], reach[2]),), target_id=prop_obj.id,
-            action_index=ai, prop_span="grasp", **grasp)  # fmt: skip
+        played = {"action": shows, "upright": True} if shows and shows != taker else {"action": taker}
+        add(kind="action", targets=((reach[0], reach[2]),), target_id=prop_obj.id, action_index=ai,
+            prop_span="grasp", **played, **grasp)  # fmt: skip
         hand.update(grasp)
         return True
 
@@ -991,6 +1038,8 @@ def plan_actions(
                 face = _yaw_to(pos, there, yaw)
                 if abs(np.arctan2(np.sin(face - yaw), np.cos(face - yaw))) > TURN_TOLERANCE:
                     walk_to(pos.copy(), 1.0, face, "turn", ai, person)
+            if not touching:  # a gesture at someone: its arms out of the furniture beside the character
+                make_room(name, ai, face_to=there)
             add(
                 kind="action",
                 action=name,
@@ -1102,8 +1151,11 @@ def plan_actions(
                 or (made_for_action(in_hand, name) and not made_for_action(obj, name))
             )
         ):
-            # Already in the hand (picked up before): the action plays with it, no new reach.
+            # Already in the hand (picked up before): the action plays with it, no new reach; its arms may go
+            # to what it works on (the nail, the plank and the bench under them), not into other furniture.
+            worked = frozenset() if obj is None else resting_on(scene, obj.support or obj.id) | {obj.id}
             obj = next((o for o in scene.objects if o.id == hand["prop"]), obj)
+            make_room(name, ai, ignore=worked)
             add(kind="action", action=name, duration_s=float(node.duration_s), target_id=hand["prop"],
                 action_index=ai)  # fmt: skip
             continue
@@ -1149,6 +1201,7 @@ def plan_actions(
                         pos, yaw = approach.copy(), face
                         add(kind="action", action="sit", targets=(("Hips", hips),), target_id=seat_obj.id,
                             action_index=ai)  # fmt: skip
+                    make_room(name, ai)  # the prop in hand: where its use has room (a sweep, a saw stroke)
                     add(kind="action", action=name, duration_s=float(node.duration_s),
                         target_id=prop_obj.id, action_index=ai)  # fmt: skip
                     continue
@@ -1168,6 +1221,8 @@ def plan_actions(
             kind = "reach"  # a prop that stays put (a microphone on its stand): the hand goes to its point
         if name == "pick_up" and obj is not None and now_posture() == "stand" and _grasp(obj) is not None:
             rj, rlocal, rworld = _grasp(obj)  # type: ignore[misc]
+            if rworld[1] >= SHELF_GRASP_M and take(obj, ai, shows=name):
+                continue  # at table or shelf height an arm's reach takes it: no bend down into the furniture
             held = {"prop": obj.id, "prop_joint": rj, "prop_grip": rlocal, "prop_yaw": float(obj.yaw),
                     "prop_span": "grasp"}  # fmt: skip
         if name == "put_down" and hand:
@@ -1225,9 +1280,18 @@ def plan_actions(
                         stand = np.asarray(free_spot(scene, (float(centre[0]), float(centre[1]))), float)
                 if ai in spots:
                     stand = np.asarray(spots[ai], float)
+                elif targets:  # the arm that does not reach (hanging, swinging) out of the furniture beside
+                    keep = float(np.linalg.norm(stand - centre)) + 0.02  # no farther off: no deeper lean
+                    roomy = make_room(name, ai, obj.id, at=stand, face_to=centre,
+                                      reaching=reaching_sides(targets), within=keep)  # fmt: skip
+                    if roomy is not None:
+                        stand = roomy[0]
                 d = centre - stand
                 face = float(np.arctan2(d[0], d[1])) if np.linalg.norm(d) > 1e-6 else yaw
-                already_there = np.linalg.norm(stand - pos) < 0.35
+                # near the stand and no farther from the contacts than it (farther off, the trunk leans deeper)
+                already_there = np.linalg.norm(stand - pos) < 0.35 and (
+                    not targets or np.linalg.norm(centre - pos) <= np.linalg.norm(centre - stand) + 0.05
+                )
                 seated = now_posture() != "stand"
                 if seated and clip.interaction.object == "surface" and targets:
                     targets = slid_to_place(obj, targets, pos, yaw)
@@ -1243,6 +1307,8 @@ def plan_actions(
                 face = float(np.arctan2(d[0], d[1]))
                 if abs(np.arctan2(np.sin(face - yaw), np.cos(face - yaw))) > 0.3:
                     walk_to(pos.copy(), 1.0, face, "turn", ai, obj.id)
+        if not targets and not held and (kind in HELD_KINDS or clip.interaction is None):
+            make_room(name, ai, obj.id if obj else "")  # a gesture or a tool swung where it stands
         add(
             kind="action",
             action=name,

@@ -12,6 +12,7 @@ contact points; foot locking removes sliding.
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 from dataclasses import asdict, dataclass, field
 
@@ -50,6 +51,9 @@ COMFORT_REACH = 0.85  # the same for typing and playing: elbows bent ~110 degree
 STAND_MAX_LEAN = np.radians(30.0)  # radians of trunk lean a standing reach may use before ...
 CROUCH_MAX = 0.45  # ... the knees bend: metres the hips may drop (feet planted) to reach a low target
 BEND_DOWN = ("pick_up", "put_down")  # clips that bend down to the floor with the feet planted
+ARM_PREFIXES = tuple(
+    side + part for side in ("Left", "Right") for part in ("Shoulder", "Arm", "ForeArm", "Hand")
+)
 HAND_JOINTS = ("LeftHand", "RightHand", "LeftHandMiddle1", "RightHandMiddle1")
 # Getting up from a seat ends clear of the seat's front edge (the plan gives that spot as the stand's Hips
 # target, services.motion.planning.seat_approach): the body rises and moves forward to it from RISE_FROM_S into
@@ -111,6 +115,9 @@ class PlannedSegment:
         0.0,
     )  # valence, arousal in [-1, 1]: the style it is played in (style.py)
     manner: str = ""  # a locomotion's manner word ("tiredly"): its arm swing and posture
+    upright: bool = (
+        False  # the clip's arms alone on the standing pose (upright_clip): a pick-up at shelf height
+    )
     prop_span: str = "window"  # held over: "window" (the clip's contact window), "grasp" (from the grasp
     # on: picked up here), "whole" (the whole piece: held from before), "release" (until it is put down)
 
@@ -150,6 +157,27 @@ def posture_pose(posture: str) -> tuple[np.ndarray, np.ndarray]:
     return neutral_rotations(), np.zeros(3)
 
 
+@functools.lru_cache(maxsize=16)
+def upright_clip(name: str) -> ActionClip:
+    """A clip's arms alone, played on the standing pose: its trunk bend, knee dip and root travel left out. A
+    pick-up of papers on top of a filing cabinet reaches with the arm and keeps the pick-up's timing, instead
+    of bending down into the cabinet under them."""
+    clip = get_clip(name)
+    keys = tuple(
+        dataclasses.replace(
+            k, rotations={j: q for j, q in k.rotations.items() if j.startswith(ARM_PREFIXES)}, root=(0.0, 0.0, 0.0),
+            root_yaw=0.0,
+        )
+        for k in clip.keyframes
+    )  # fmt: skip
+    return dataclasses.replace(clip, name=f"{name}_upright", body_parts=("upper_body",), keyframes=keys)
+
+
+def clip_of(seg: PlannedSegment) -> ActionClip:
+    """The library clip a segment plays (its upright variant when the segment asks for it)."""
+    return upright_clip(seg.action) if seg.upright else get_clip(seg.action)
+
+
 def _to_world(
     state: SegmentState, offsets: np.ndarray, yaw_track: np.ndarray, hips_dy: np.ndarray | float | None = None
 ) -> tuple[np.ndarray, np.ndarray]:
@@ -182,7 +210,7 @@ def _clip_contacts(rot: np.ndarray, root: np.ndarray) -> np.ndarray:
 
 
 def _action_piece(seg: PlannedSegment, state: SegmentState) -> tuple[MotionPiece, SegmentState]:
-    clip: ActionClip = get_clip(seg.action)
+    clip: ActionClip = clip_of(seg)
     dur = (
         seg.duration_s
         if seg.duration_s > 0
@@ -501,7 +529,7 @@ def _held_frames(seg: PlannedSegment, t: int) -> tuple[int, int]:
     if seg.prop_span == "whole":
         return 0, t
     try:
-        clip = get_clip(seg.action)
+        clip = clip_of(seg)
     except KeyError:
         return 0, t
     w0, w1 = clip.interaction.window if clip.interaction else (0.0, clip.duration_s)
