@@ -121,8 +121,11 @@ def _fitting(
         by_limb = {_limb(j): (j, p) for j, p in pairs}
         if wanted and wanted <= set(by_limb):
             out.append((name, {by_limb[w][0]: by_limb[w][1] for w in wanted}))
-        elif clip.object in HELD and wanted & set(by_limb):
-            j, p = by_limb[next(iter(wanted & set(by_limb)))]
+        elif (clip.object in HELD or name in (clip.name, clip.name.split("_")[0])) and wanted & set(by_limb):
+            # a held thing, or the object's own point for this action serving one of its hands (the
+            # shower's one-handed "wash" point for washing the hands: solo-bathroom-23 s6 read "the shower
+            # has no place to wash" while Ben washed at it)
+            j, p = by_limb[sorted(wanted & set(by_limb))[0]]
             out.append((name, {j: p}))
     return out
 
@@ -362,6 +365,19 @@ def contact(
                 f"(within 5 cm on {shares[worst]:.0%} of the frames, needs half)"
             )
         return base(ok=False, reason=reason, frames=frame_list(far)), touching
+    if clip.object == "bed":  # the hips on the lie point and the head over the floor: across it, not on it
+        off = head_beyond(body, got.placed, fr) > HEAD_OFF_M
+        if np.mean(off) > 1.0 - CONTACT_SHARE:
+            return (
+                base(
+                    ok=False,
+                    reason=f"{who}'s hips are on the {name} but the head is "
+                    f"{float(np.median(head_beyond(body, got.placed, fr[off]))):.2f} m beyond it: {who} lies "
+                    f"across it, not on it",
+                    frames=frame_list(fr[off]),
+                ),
+                touching,
+            )
     if act.node.action == "drink":
         idx = np.clip(fr, 0, body.frames - 1)
         gaps = mouth_gap(*vessel_axis(got.placed, props.get(who, ()), fr), mouth(body)[idx])
@@ -383,6 +399,19 @@ def contact(
         ),
         touching,
     )
+
+
+HEAD_OFF_M = 0.12  # a lying body's head at most this far beyond the footprint of the bed it lies on
+
+
+def head_beyond(body: Body, placed: PlacedObject, frames: np.ndarray) -> np.ndarray:
+    """(W,) metres the head is beyond the object's footprint on each frame (0 over it): a body lying on a
+    bed or in a tub has its head over it (solo-bathroom-23 s10: the hips on the tub's lie point, the body
+    across the tub with the head through its side and out at the wall, a person's label)."""
+    head = body.joint("Head")[np.clip(frames, 0, body.frames - 1)][:, [0, 2]]
+    b = world_bounds(placed)
+    d = np.maximum(0.0, np.maximum(b[0, [0, 2]] - head, head - b[1, [0, 2]]))
+    return np.hypot(d[:, 0], d[:, 1])
 
 
 def mouth(body: Body) -> np.ndarray:
