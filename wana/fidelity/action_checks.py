@@ -14,7 +14,7 @@ from wana.fidelity.acts import SEATING, Act, window_frames
 from wana.fidelity.bodies import Body
 from wana.fidelity.clips import clip_needs
 from wana.fidelity.contact_checks import CONTACT_SHARE, HEAD_OFF_M, head_beyond
-from wana.fidelity.solids import depth_inside
+from wana.fidelity.solids import rests_on
 from wana.fidelity.words import frame_list, joint_words, span_words, third_person
 from wana.fidelity.world import World, display, point_box_distance
 
@@ -184,7 +184,6 @@ PROBE_STEP_M = 0.03
 def _on_solid(points: np.ndarray, world: World, above: float) -> np.ndarray:
     """(T,) whether some object's solid part lies under each point within `above` (probed every 3 cm)."""
     out = np.zeros(len(points), bool)
-    drops = np.arange(-SEAT_BELOW_M, above + 1e-9, PROBE_STEP_M)
     for placed, _, outer in world.solids:
         near = (
             np.all((points[:, [0, 2]] >= outer[0, [0, 2]]) & (points[:, [0, 2]] <= outer[1, [0, 2]]), axis=1)
@@ -194,9 +193,7 @@ def _on_solid(points: np.ndarray, world: World, above: float) -> np.ndarray:
         )
         if not near.any():
             continue
-        probes = points[near][:, None, :] - drops[None, :, None] * np.array([0.0, 1.0, 0.0])
-        depth = depth_inside(placed, probes.reshape(-1, 3), np.zeros(probes.shape[0] * probes.shape[1]))
-        out[np.nonzero(near)[0]] = (depth.reshape(probes.shape[:2]) >= 0.0).any(axis=1)
+        out[np.nonzero(near)[0]] = rests_on(placed, points[near], SEAT_BELOW_M, above, PROBE_STEP_M)
     return out
 
 

@@ -27,7 +27,7 @@ from wana.fidelity.acts import Act, is_locomotion, window_frames
 from wana.fidelity.bodies import Body
 from wana.fidelity.clips import ClipNeeds, clip_needs
 from wana.fidelity.handover import handover, is_handover
-from wana.fidelity.solids import depth_inside
+from wana.fidelity.solids import depth_inside, rests_on
 from wana.fidelity.words import frame_list, joint_words, stays, third_person
 from wana.fidelity.world import World, base_id, display
 
@@ -401,17 +401,28 @@ def contact(
     )
 
 
-HEAD_OFF_M = 0.12  # a lying body's head at most this far beyond the footprint of the bed it lies on
+# A lying head held by no part of its bed this far beyond the bed's footprint is off it (on the sheets: 16 cm
+# past a sofa's back read as lying on it, gump-living_room-3 s13; 27 cm out through a tub's side did not).
+HEAD_OFF_M = 0.20
+HEAD_DROP_M = 0.45  # a lying head rests on a part of the bed at most this far under it (or sunk into it)
 
 
 def head_beyond(body: Body, placed: PlacedObject, frames: np.ndarray) -> np.ndarray:
-    """(W,) metres the head is beyond the object's footprint on each frame (0 over it): a body lying on a
-    bed or in a tub has its head over it (solo-bathroom-23 s10: the hips on the tub's lie point, the body
-    across the tub with the head through its side and out at the wall, a person's label)."""
-    head = body.joint("Head")[np.clip(frames, 0, body.frames - 1)][:, [0, 2]]
+    """(W,) metres the head of a body lying on the object is beyond the object's footprint on each frame
+    where no part of the object holds it up (0 where one does, or over the object).
+
+    A body lying on a bed or in a tub has its head on it: the hips on the tub's lie point with the body across
+    the tub and the head out through its side over the floor is lying beside it (solo-bathroom-23 s10, a
+    person's label); a head on a sofa's backrest or armrest, even sunk into it, is held.
+    """
+    head = body.joint("Head")[np.clip(frames, 0, body.frames - 1)]
     b = world_bounds(placed)
-    d = np.maximum(0.0, np.maximum(b[0, [0, 2]] - head, head - b[1, [0, 2]]))
-    return np.hypot(d[:, 0], d[:, 1])
+    d = np.maximum(0.0, np.maximum(b[0, [0, 2]] - head[:, [0, 2]], head[:, [0, 2]] - b[1, [0, 2]]))
+    gap = np.hypot(d[:, 0], d[:, 1])
+    out = np.zeros(len(head))
+    far = gap > 0.0
+    out[far] = np.where(rests_on(placed, head[far], 0.06, HEAD_DROP_M, 0.03), 0.0, gap[far])
+    return out
 
 
 def mouth(body: Body) -> np.ndarray:

@@ -116,4 +116,16 @@ def depth_inside(placed: PlacedObject, centres: np.ndarray, radii: np.ndarray) -
     return radii - inside * float(np.mean(placed.scale))
 
 
-__all__ = ["Solid", "depth_inside", "object_solids", "solids_of"]
+def rests_on(placed: PlacedObject, points: np.ndarray, below: float, above: float, step: float) -> np.ndarray:
+    """(n,) whether a solid part of the object lies under each world point, from `below` under it up to
+    `above` over it (probed every `step` metres down from the point): the point rests on the object, or sinks
+    into it a little."""
+    if not len(points):
+        return np.zeros(0, bool)
+    drops = np.arange(-below, above + 1e-9, step)
+    probes = points[:, None, :] - drops[None, :, None] * np.array([0.0, 1.0, 0.0])
+    depth = depth_inside(placed, probes.reshape(-1, 3), np.zeros(probes.shape[0] * probes.shape[1]))
+    return (depth.reshape(probes.shape[:2]) >= 0.0).any(axis=1)
+
+
+__all__ = ["Solid", "depth_inside", "object_solids", "rests_on", "solids_of"]
