@@ -24,6 +24,10 @@ PENETRATION_M = 0.03  # a body part may sink this far into furniture or another 
 DEEP_M = 0.06
 SOFT_M = 0.05
 MIN_RUN = 4  # frames
+# Fingers resting on a tabletop the sentence names ("sits at the table", hands forward on it) read 4-5 cm
+# "inside" it on the finger spheres while a person sees hands lying on the top (solo-meeting_room-18 s11,
+# group-meeting_room-01 s7): a hand on the stated surface gets this much more.
+REST_M = 0.03
 SOFT = ("sofa", "armchair", "ottoman", "bean_bag", "bed", "bunk_bed", "cushion", "pillow", "mattress")
 HIPS_MAX_MS = 6.0  # metres per second between two frames
 HANDS_MAX_MS = 10.0
@@ -111,7 +115,9 @@ def runs(failing: np.ndarray, what: np.ndarray | None = None) -> list[tuple[int,
     return out
 
 
-def penetration(body: Body, world: World, exempt: dict[str, np.ndarray]) -> FrameFailures:
+def penetration(
+    body: Body, world: World, exempt: dict[str, np.ndarray], resting: dict[str, np.ndarray] | None = None
+) -> FrameFailures:
     """Frames where a body part is visibly inside a piece of furniture (see DEEP_M, SOFT_M, MIN_RUN).
 
     Depth is measured on the object's solid parts (wana.fidelity.solids), not on its voxel boxes.
@@ -121,7 +127,10 @@ def penetration(body: Body, world: World, exempt: dict[str, np.ndarray]) -> Fram
         world: the room.
         exempt: object id -> (T, P) bool: the body spheres and frames whose touching it is the stated contact
             (the whole body on the chair being sat on, the arms on the desk under the laptop being typed on).
+        resting: object id -> (T, P) bool: the hand spheres and frames that rest on a surface the sentence
+            names ("sits at the table"): they may press REST_M deeper into it before they look inside.
     """
+    resting = resting or {}
     out = FrameFailures.none(body.frames)
     frame_box = body.bounds  # (T, 2, 3)
     r = body.radii[None, :, None]
@@ -141,7 +150,9 @@ def penetration(body: Body, world: World, exempt: dict[str, np.ndarray]) -> Fram
         t_idx, p_idx = np.nonzero(near)
         depth = depth_inside(placed, body.points[t_idx, p_idx], body.radii[p_idx])
         soft = SOFT_M if is_soft(placed.category, dict(placed.attributes)) else 0.0
-        deep = depth > allowance[p_idx] + soft
+        rest = resting.get(placed.id)
+        lenient = rest[t_idx, p_idx] * REST_M if rest is not None else 0.0
+        deep = depth > allowance[p_idx] + soft + lenient
         if not deep.any():
             continue
         t_idx, p_idx, depth = t_idx[deep], p_idx[deep], depth[deep]

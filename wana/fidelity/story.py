@@ -47,6 +47,9 @@ DROPPED = {
 ARMS = np.array(
     [n.removeprefix("Left").removeprefix("Right") in ("Hand", "HandMiddle1", "ForeArm") for n in JOINT_NAMES]
 )
+HANDS = np.array(
+    [n.removeprefix("Left").removeprefix("Right") in ("Hand", "HandMiddle1") for n in JOINT_NAMES]
+)
 STAGE_NEEDS = {  # stage -> the sentence kinds that cannot be shown without it
     "parse": ("scene", "action", "command", "empty"),
     "scene": ("scene", "action"),
@@ -197,6 +200,7 @@ def _action_checks(
     motions: Mapping[str, Motion],
 ) -> None:
     exempt: dict[str, dict[str, np.ndarray]] = {name: {} for name in bodies}
+    resting: dict[str, dict[str, np.ndarray]] = {name: {} for name in bodies}  # hands on a named surface
     touching: dict[tuple[str, str], np.ndarray] = {}  # (a, b) -> frames they touch on purpose
     seen: set[str] = set()
     begins: dict[str, int] = {}  # sentence id -> the first frame any of its actions plays
@@ -228,11 +232,19 @@ def _action_checks(
             checks.append(where)
         if act.clip is not None:
             hold = np.zeros(body.frames, bool)
-            hold[act.start : touching_until] = True  # backing up to a seat touches it too
+            hold[act.clip.start_frame : touching_until] = (
+                True  # from the clip: backing up to a seat touches it
+            )
             for oid, whole in used.items():
                 points = np.ones(len(body.radii), bool) if whole else ARMS[body.point_joint]
                 mask = exempt[act.character].setdefault(oid, np.zeros((body.frames, len(body.radii)), bool))
                 mask |= hold[:, None] & points[None, :]
+            named = {o.id for oid in act.objects for o in world.copies(oid)} - set(used)
+            for oid in sorted(
+                named
+            ):  # the surface the sentence names ("sits at the table"): hands rest on it
+                mask = resting[act.character].setdefault(oid, np.zeros((body.frames, len(body.radii)), bool))
+                mask[act.start : touching_until] |= HANDS[body.point_joint][None, :]  # walking up to it too
             clip = clip_needs(act.node.action)
             if clip is not None and clip.object == "person":
                 other = cc.other_character(act, bodies)
@@ -248,7 +260,7 @@ def _action_checks(
         ):
             if check is not None:
                 checks.append(check)
-    _body_checks(out, acts, world, bodies, motions, exempt, touching)
+    _body_checks(out, acts, world, bodies, motions, exempt, touching, resting)
 
 
 def presence(motion: Motion, frames: int) -> np.ndarray:
@@ -272,6 +284,7 @@ def _body_checks(
     motions: Mapping[str, Motion],
     exempt: dict[str, dict[str, np.ndarray]],
     touching: dict[tuple[str, str], np.ndarray],
+    resting: dict[str, dict[str, np.ndarray]],
 ) -> None:
     """penetration, overlap and continuity per (sentence, acting character), from one pass per motion."""
     names = sorted(bodies)
@@ -295,7 +308,7 @@ def _body_checks(
         body, motion = bodies[name], motions[name]
         mine = [a for a in acts if a.character == name]
         owned = owned_frames(mine, motion)
-        inside = bc.penetration(body, world, exempt.get(name, {}))
+        inside = bc.penetration(body, world, exempt.get(name, {}), resting.get(name, {}))
         boundaries = sorted({s.start_frame for s in motion.segments if s.start_frame > 0})
         strikes = np.zeros(body.frames, bool)
         for seg in motion.segments:
