@@ -10,9 +10,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from proto.scene import PlacedObject
+from wana.assets import catalog
 from wana.domain.skeleton import JOINT_INDEX, JOINT_NAMES
 from wana.fidelity.bodies import Body
-from wana.fidelity.solids import depth_inside
+from wana.fidelity.solids import depth_inside, depth_inside_at
 from wana.fidelity.world import World
 
 PENETRATION_M = 0.03  # a body part may sink this far into furniture or another body (soft contact)
@@ -136,19 +138,29 @@ def penetration(
     r = body.radii[None, :, None]
     allowance = visible_depth(body.radii)
     for placed, _, outer in world.solids:
-        frames = np.nonzero(np.all((frame_box[:, 0] <= outer[1]) & (frame_box[:, 1] >= outer[0]), axis=1))[0]
+        moved = world.poses.get(placed.id)
+        box = (
+            np.broadcast_to(outer, (body.frames, 2, 3)) if moved is None else _moved_box(placed, outer, moved)
+        )
+        n = min(body.frames, len(box))
+        frames = np.nonzero(
+            np.all((frame_box[:n, 0] <= box[:n, 1]) & (frame_box[:n, 1] >= box[:n, 0]), axis=1)
+        )[0]
         if not len(frames):
             continue
         pts = body.points[frames]
         near = np.zeros((body.frames, len(body.radii)), bool)
-        near[frames] = np.all((pts >= outer[0] - r) & (pts <= outer[1] + r), axis=2)  # (T, P)
+        near[frames] = np.all((pts >= box[frames, None, 0] - r) & (pts <= box[frames, None, 1] + r), axis=2)
         allowed = exempt.get(placed.id)
         if allowed is not None:
             near &= ~allowed
         if not near.any():
             continue
         t_idx, p_idx = np.nonzero(near)
-        depth = depth_inside(placed, body.points[t_idx, p_idx], body.radii[p_idx])
+        if moved is None:
+            depth = depth_inside(placed, body.points[t_idx, p_idx], body.radii[p_idx])
+        else:  # a carried object where it is on each frame, not where it was picked up from
+            depth = depth_inside_at(placed, body.points[t_idx, p_idx], body.radii[p_idx], moved[t_idx])
         soft = SOFT_M if is_soft(placed.category, dict(placed.attributes)) else 0.0
         rest = resting.get(placed.id)
         lenient = rest[t_idx, p_idx] * REST_M if rest is not None else 0.0
@@ -173,6 +185,17 @@ def penetration(
     out.joint[~seen] = -1
     out.failing[:] = seen
     return out
+
+
+def _moved_box(placed: PlacedObject, outer: np.ndarray, poses: np.ndarray) -> np.ndarray:
+    """(T, 2, 3) world box of an object that moves: its placed world box carried to each frame's pose."""
+    placed_pose = catalog.object_to_world(placed)
+    corners = np.array(
+        [[outer[i, 0], outer[j, 1], outer[k, 2]] for i in (0, 1) for j in (0, 1) for k in (0, 1)]
+    )
+    local = (corners - placed_pose[:3, 3]) @ np.linalg.inv(placed_pose[:3, :3]).T  # (8, 3) object frame
+    world = np.einsum("tij,kj->tki", poses[:, :3, :3], local) + poses[:, None, :3, 3]  # (T, 8, 3)
+    return np.stack([world.min(axis=1), world.max(axis=1)], axis=1)
 
 
 def overlap(a: Body, b: Body, allowed: np.ndarray | None = None) -> tuple[FrameFailures, FrameFailures]:

@@ -116,6 +116,20 @@ def depth_inside(placed: PlacedObject, centres: np.ndarray, radii: np.ndarray) -
     return radii - inside * float(np.mean(placed.scale))
 
 
+def depth_inside_at(
+    placed: PlacedObject, centres: np.ndarray, radii: np.ndarray, poses: np.ndarray
+) -> np.ndarray:
+    """(n,) as `depth_inside`, with the object at its own pose per sphere: (n, 4, 4) object -> world (the
+    placement's scale included), for an object that moves (carried in a hand)."""
+    solids = solids_of(placed)
+    if not solids or not len(centres):
+        return np.full(len(centres), -np.inf)
+    inv = np.linalg.inv(poses[:, :3, :3])
+    local = np.einsum("nij,nj->ni", inv, centres - poses[:, :3, 3])
+    inside = np.min([s.signed_distance(local) for s in solids], axis=0)
+    return radii - inside * float(np.mean(placed.scale))
+
+
 def rests_on(placed: PlacedObject, points: np.ndarray, below: float, above: float, step: float) -> np.ndarray:
     """(n,) whether a solid part of the object lies under each world point, from `below` under it up to
     `above` over it (probed every `step` metres down from the point): the point rests on the object, or sinks
@@ -128,4 +142,4 @@ def rests_on(placed: PlacedObject, points: np.ndarray, below: float, above: floa
     return (depth.reshape(probes.shape[:2]) >= 0.0).any(axis=1)
 
 
-__all__ = ["Solid", "depth_inside", "object_solids", "rests_on", "solids_of"]
+__all__ = ["Solid", "depth_inside", "depth_inside_at", "object_solids", "rests_on", "solids_of"]

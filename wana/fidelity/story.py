@@ -208,6 +208,17 @@ def _action_checks(
         if act.start >= 0:
             begins[act.sentence_id] = min(begins.get(act.sentence_id, act.start), act.start)
     props = {name: list(m.props) for name, m in motions.items()}
+    frames = max((b.frames for b in bodies.values()), default=0)
+    world.follow([t for m in motions.values() for t in m.props], frames)
+    for name, tracks in props.items():  # what one carries is in one's hands, no body inside furniture
+        if name not in bodies:
+            continue
+        for t in tracks:
+            if t.object_id in world.poses:
+                mask = exempt[name].setdefault(
+                    t.object_id, np.zeros((bodies[name].frames, len(bodies[name].radii)), bool)
+                )
+                mask[max(0, t.start_frame) : max(0, t.end_frame)] = True
     floor, floors, last = 0, {}, ""
     for act in acts:  # the floor of a sentence: when the action sentence before it began
         if act.sentence_id != last and last:

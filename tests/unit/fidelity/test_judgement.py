@@ -592,3 +592,25 @@ def test_walking_through_the_seat_before_sitting_on_it_is_inside_it(make):
         assert inside.ok is ok, inside.reason
         if not ok:
             assert "inside the chair" in inside.reason and max(inside.frames) < 40
+
+
+def test_a_carried_box_is_where_the_hand_has_it_not_where_it_was_picked_up(make):
+    """The world the penetration check reads follows the objects the motions carry: Eve standing where the
+    box was picked up from is inside nothing once Tom carries it off, and inside the box where Tom carries it
+    (the carrier's own hands on it are the stated contact)."""
+    box = PlacedObject(id="box", category="box", position=(0.0, 0.0, 0.0))
+    graphs = {
+        "s1": make.action_graph("s1", "Tom", "carry", "carry", target="box"),
+        "s2": make.action_graph("s2", "Eve", "wave", "wave"),
+    }
+    sentences = [("s1", "action"), ("s2", "action")]
+    tom = make.motion("Tom", make.still(2.0, 0.95, 0.0, 60), [("carry", 0, 60, "s1", 0)])
+    tom = msgspec.structs.replace(tom, props=[track("box", "RightHand", 0, 60, (2.0, 0.6, 0.9))])
+    for at, inside in (((0.0, 0.95, 0.0), False), ((2.0, 0.95, 0.9), True)):
+        eve = make.motion("Eve", make.still(*at, 60), [("wave", 0, 60, "s2", 0)])
+        checks = story_checks(sentences, graphs, make.scene(box), {"Tom": tom, "Eve": eve})
+        (eve_in,) = by_name(checks["s2"], "penetration")
+        assert eve_in.ok is (not inside), eve_in.reason
+        if inside:
+            assert "inside the box" in eve_in.reason
+        assert by_name(checks["s1"], "penetration")[0].ok
