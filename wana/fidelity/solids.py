@@ -139,7 +139,7 @@ def rests_on(placed: PlacedObject, points: np.ndarray, below: float, above: floa
     drops = np.arange(-below, above + 1e-9, step)
     probes = points[:, None, :] - drops[None, :, None] * np.array([0.0, 1.0, 0.0])
     depth = depth_inside(placed, probes.reshape(-1, 3), np.zeros(probes.shape[0] * probes.shape[1]))
-    return (depth.reshape(probes.shape[:2]) >= 0.0).any(axis=1)
+    return np.asarray((depth.reshape(probes.shape[:2]) >= 0.0).any(axis=1), bool)
 
 
 __all__ = ["Solid", "depth_inside", "depth_inside_at", "object_solids", "rests_on", "solids_of"]
