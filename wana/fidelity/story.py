@@ -243,9 +243,7 @@ def _action_checks(
             checks.append(where)
         if act.clip is not None:
             hold = np.zeros(body.frames, bool)
-            hold[act.clip.start_frame : touching_until] = (
-                True  # from the clip: backing up to a seat touches it
-            )
+            hold[act.start : touching_until] = True  # backing up to a seat touches it too
             for oid, whole in used.items():
                 points = np.ones(len(body.radii), bool) if whole else ARMS[body.point_joint]
                 mask = exempt[act.character].setdefault(oid, np.zeros((body.frames, len(body.radii)), bool))

@@ -574,26 +574,6 @@ def test_fingers_resting_on_the_named_table_top_are_on_it_and_deeper_or_unnamed_
             assert "inside the" in inside.reason
 
 
-def test_walking_through_the_seat_before_sitting_on_it_is_inside_it(make):
-    """duo-cafe-04 s4 (a person's label): waiting to sit, the legs stand inside the chair, its seat across the
-    shins; the seat is the stated contact from the sit clip on, not through the walk up to it."""
-    chair = make.scene(PlacedObject(id="chair", category="chair", position=(0.0, 0.0, -0.02)))
-    graph = {"s1": make.action_graph("s1", "Eve", "sit", "sit", target="chair")}
-    for standing_in, ok in (
-        (0.0, False),
-        (1.2, True),
-    ):  # the walk ends in the chair, or a step in front of it
-        hips = np.concatenate(
-            [make.still(0.0, 0.95, standing_in, 30), np.linspace([0.0, 0.95, standing_in], [0.0, 0.54, 0.0], 10),
-             make.still(0.0, 0.54, 0.0, 50)]
-        )  # fmt: skip
-        eve = make.motion("Eve", hips, [("walk", 0, 30, "s1", 0), ("sit", 30, 90, "s1", 0)])
-        (inside,) = by_name(story_checks([("s1", "action")], graph, chair, {"Eve": eve})["s1"], "penetration")
-        assert inside.ok is ok, inside.reason
-        if not ok:
-            assert "inside the chair" in inside.reason and max(inside.frames) < 40
-
-
 def test_a_carried_box_is_where_the_hand_has_it_not_where_it_was_picked_up(make):
     """The world the penetration check reads follows the objects the motions carry: Eve standing where the
     box was picked up from is inside nothing once Tom carries it off, and inside the box where Tom carries it
