@@ -13,8 +13,8 @@ from proto.fidelity import Check
 from wana.fidelity.acts import SEATING, Act, window_frames
 from wana.fidelity.bodies import Body
 from wana.fidelity.clips import clip_needs
-from wana.fidelity.contact_checks import CONTACT_SHARE
-from wana.fidelity.solids import depth_inside
+from wana.fidelity.contact_checks import CONTACT_SHARE, HEAD_OFF_M, head_beyond
+from wana.fidelity.solids import rests_on
 from wana.fidelity.words import frame_list, joint_words, span_words, third_person
 from wana.fidelity.world import World, display, point_box_distance
 
@@ -93,9 +93,13 @@ def supported(act: Act, body: Body, world: World, until: int) -> Check | None:
     if action != "sit":
         held &= _on_surface(body.joint("Spine1")[frames], world, above=0.45)
     posture = "sits" if action == "sit" else "lies"
-    standing = ~held & _standing(body, frames, world)
+    upright = _standing(body, frames, world)
+    standing = ~held & upright
     held |= standing  # upright on its feet: nothing on air (whether it sat is the contact check's)
+    off = _off_stated(act, body, world, frames[~upright]) if action != "sit" else None
     air = frames[~held]
+    if off is not None and len(air) <= UNSUPPORTED_FRAMES:
+        return off
     if len(air) > UNSUPPORTED_FRAMES:
         hips = body.joint("Hips")[air]
         return Check(
@@ -113,6 +117,35 @@ def supported(act: Act, body: Body, world: World, until: int) -> Check | None:
         )  # fmt: skip
     return Check(
         name="supported", character=who, ok=True, reason=f"{who} {posture} on a surface that holds them"
+    )
+
+
+def _off_stated(act: Act, body: Body, world: World, frames: np.ndarray) -> Check | None:
+    """A failing check when a body lying on the object the sentence names has its head off that object.
+
+    The hips on the bed's or the tub's lie point with the rest of the body on the floor or through a wall is
+    lying beside it, not on it (solo-bathroom-23 s10: "He lies in the bathtub" played across the tub, the
+    head through its side and out at the wall; hips and back were "on a surface", the floor's); the head is
+    over the object's footprint when the body lies on it.
+    """
+    ref = act.node.target or act.node.destination
+    named = [o for o in world.find(ref) if any(s[0].id == o.id for s in world.surfaces)] if ref else []
+    if not named:
+        return None
+    gaps = [head_beyond(body, placed, frames) for placed in named]
+    gap = np.min(gaps, axis=0)
+    beyond = gap > HEAD_OFF_M
+    if beyond.sum() <= UNSUPPORTED_FRAMES:
+        return None
+    name = display(named[int(np.argmin([g.mean() for g in gaps]))].id)
+    return Check(
+        name="supported",
+        character=act.character,
+        ok=False,
+        essential=True,
+        reason=f"{act.character} lies half off the {name}: the head is {float(np.median(gap[beyond])):.2f} m "
+        f"beyond it ({span_words(frames[beyond])})",
+        frames=frame_list(frames[beyond]),
     )
 
 
@@ -151,7 +184,6 @@ PROBE_STEP_M = 0.03
 def _on_solid(points: np.ndarray, world: World, above: float) -> np.ndarray:
     """(T,) whether some object's solid part lies under each point within `above` (probed every 3 cm)."""
     out = np.zeros(len(points), bool)
-    drops = np.arange(-SEAT_BELOW_M, above + 1e-9, PROBE_STEP_M)
     for placed, _, outer in world.solids:
         near = (
             np.all((points[:, [0, 2]] >= outer[0, [0, 2]]) & (points[:, [0, 2]] <= outer[1, [0, 2]]), axis=1)
@@ -161,9 +193,7 @@ def _on_solid(points: np.ndarray, world: World, above: float) -> np.ndarray:
         )
         if not near.any():
             continue
-        probes = points[near][:, None, :] - drops[None, :, None] * np.array([0.0, 1.0, 0.0])
-        depth = depth_inside(placed, probes.reshape(-1, 3), np.zeros(probes.shape[0] * probes.shape[1]))
-        out[np.nonzero(near)[0]] = (depth.reshape(probes.shape[:2]) >= 0.0).any(axis=1)
+        out[np.nonzero(near)[0]] = rests_on(placed, points[near], SEAT_BELOW_M, above, PROBE_STEP_M)
     return out
 
 

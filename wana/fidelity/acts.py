@@ -108,19 +108,17 @@ def stays_until(act: Act, motion: Motion, *, through_standing_up: bool = False) 
 
     Args:
         through_standing_up: count standing up as still in the pose (it starts on the seat: the seat stays the
-            stated contact while the character gets up), not as leaving it.
+            stated contact while the character gets up), up to its last frame, not as leaving it. Once up,
+            the seat is vacated: legs left in the armchair after "Tom stands up and argues" are inside it
+            (duo-living_room-19 s7, a person's label).
     """
     seg = act.clip
     if seg is None:
         return act.end
     later = [
-        s.start_frame
+        s.end_frame if through_standing_up and s.action == "stand" else s.start_frame
         for s in motion.segments
-        if s.start_frame >= seg.end_frame
-        and (
-            (is_locomotion(s.action) and not (through_standing_up and s.action == "stand"))
-            or s.action in SEATING
-        )
+        if s.start_frame >= seg.end_frame and (is_locomotion(s.action) or s.action in SEATING)
     ]
     frames = int(motion.root_position.shape[0])
     return min(later, default=frames)

@@ -10,9 +10,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from proto.scene import PlacedObject
+from wana.assets import catalog
 from wana.domain.skeleton import JOINT_INDEX, JOINT_NAMES
 from wana.fidelity.bodies import Body
-from wana.fidelity.solids import depth_inside
+from wana.fidelity.solids import depth_inside, depth_inside_at
 from wana.fidelity.world import World
 
 PENETRATION_M = 0.03  # a body part may sink this far into furniture or another body (soft contact)
@@ -24,6 +26,10 @@ PENETRATION_M = 0.03  # a body part may sink this far into furniture or another 
 DEEP_M = 0.06
 SOFT_M = 0.05
 MIN_RUN = 4  # frames
+# Fingers resting on a tabletop the sentence names ("sits at the table", hands forward on it) read 4-5 cm
+# "inside" it on the finger spheres while a person sees hands lying on the top (solo-meeting_room-18 s11,
+# group-meeting_room-01 s7): a hand on the stated surface gets this much more.
+REST_M = 0.03
 SOFT = ("sofa", "armchair", "ottoman", "bean_bag", "bed", "bunk_bed", "cushion", "pillow", "mattress")
 HIPS_MAX_MS = 6.0  # metres per second between two frames
 HANDS_MAX_MS = 10.0
@@ -111,7 +117,9 @@ def runs(failing: np.ndarray, what: np.ndarray | None = None) -> list[tuple[int,
     return out
 
 
-def penetration(body: Body, world: World, exempt: dict[str, np.ndarray]) -> FrameFailures:
+def penetration(
+    body: Body, world: World, exempt: dict[str, np.ndarray], resting: dict[str, np.ndarray] | None = None
+) -> FrameFailures:
     """Frames where a body part is visibly inside a piece of furniture (see DEEP_M, SOFT_M, MIN_RUN).
 
     Depth is measured on the object's solid parts (wana.fidelity.solids), not on its voxel boxes.
@@ -121,27 +129,42 @@ def penetration(body: Body, world: World, exempt: dict[str, np.ndarray]) -> Fram
         world: the room.
         exempt: object id -> (T, P) bool: the body spheres and frames whose touching it is the stated contact
             (the whole body on the chair being sat on, the arms on the desk under the laptop being typed on).
+        resting: object id -> (T, P) bool: the hand spheres and frames that rest on a surface the sentence
+            names ("sits at the table"): they may press REST_M deeper into it before they look inside.
     """
+    resting = resting or {}
     out = FrameFailures.none(body.frames)
     frame_box = body.bounds  # (T, 2, 3)
     r = body.radii[None, :, None]
     allowance = visible_depth(body.radii)
     for placed, _, outer in world.solids:
-        frames = np.nonzero(np.all((frame_box[:, 0] <= outer[1]) & (frame_box[:, 1] >= outer[0]), axis=1))[0]
+        moved = world.poses.get(placed.id)
+        box = (
+            np.broadcast_to(outer, (body.frames, 2, 3)) if moved is None else _moved_box(placed, outer, moved)
+        )
+        n = min(body.frames, len(box))
+        frames = np.nonzero(
+            np.all((frame_box[:n, 0] <= box[:n, 1]) & (frame_box[:n, 1] >= box[:n, 0]), axis=1)
+        )[0]
         if not len(frames):
             continue
         pts = body.points[frames]
         near = np.zeros((body.frames, len(body.radii)), bool)
-        near[frames] = np.all((pts >= outer[0] - r) & (pts <= outer[1] + r), axis=2)  # (T, P)
+        near[frames] = np.all((pts >= box[frames, None, 0] - r) & (pts <= box[frames, None, 1] + r), axis=2)
         allowed = exempt.get(placed.id)
         if allowed is not None:
             near &= ~allowed
         if not near.any():
             continue
         t_idx, p_idx = np.nonzero(near)
-        depth = depth_inside(placed, body.points[t_idx, p_idx], body.radii[p_idx])
+        if moved is None:
+            depth = depth_inside(placed, body.points[t_idx, p_idx], body.radii[p_idx])
+        else:  # a carried object where it is on each frame, not where it was picked up from
+            depth = depth_inside_at(placed, body.points[t_idx, p_idx], body.radii[p_idx], moved[t_idx])
         soft = SOFT_M if is_soft(placed.category, dict(placed.attributes)) else 0.0
-        deep = depth > allowance[p_idx] + soft
+        rest = resting.get(placed.id)
+        lenient = rest[t_idx, p_idx] * REST_M if rest is not None else 0.0
+        deep = depth > allowance[p_idx] + soft + lenient
         if not deep.any():
             continue
         t_idx, p_idx, depth = t_idx[deep], p_idx[deep], depth[deep]
@@ -162,6 +185,17 @@ def penetration(body: Body, world: World, exempt: dict[str, np.ndarray]) -> Fram
     out.joint[~seen] = -1
     out.failing[:] = seen
     return out
+
+
+def _moved_box(placed: PlacedObject, outer: np.ndarray, poses: np.ndarray) -> np.ndarray:
+    """(T, 2, 3) world box of an object that moves: its placed world box carried to each frame's pose."""
+    placed_pose = catalog.object_to_world(placed)
+    corners = np.array(
+        [[outer[i, 0], outer[j, 1], outer[k, 2]] for i in (0, 1) for j in (0, 1) for k in (0, 1)]
+    )
+    local = (corners - placed_pose[:3, 3]) @ np.linalg.inv(placed_pose[:3, :3]).T  # (8, 3) object frame
+    world = np.einsum("tij,kj->tki", poses[:, :3, :3], local) + poses[:, None, :3, 3]  # (T, 8, 3)
+    return np.stack([world.min(axis=1), world.max(axis=1)], axis=1)
 
 
 def overlap(a: Body, b: Body, allowed: np.ndarray | None = None) -> tuple[FrameFailures, FrameFailures]:

@@ -27,7 +27,7 @@ from wana.fidelity.acts import Act, is_locomotion, window_frames
 from wana.fidelity.bodies import Body
 from wana.fidelity.clips import ClipNeeds, clip_needs
 from wana.fidelity.handover import handover, is_handover
-from wana.fidelity.solids import depth_inside
+from wana.fidelity.solids import depth_inside, rests_on
 from wana.fidelity.words import frame_list, joint_words, stays, third_person
 from wana.fidelity.world import World, base_id, display
 
@@ -121,8 +121,11 @@ def _fitting(
         by_limb = {_limb(j): (j, p) for j, p in pairs}
         if wanted and wanted <= set(by_limb):
             out.append((name, {by_limb[w][0]: by_limb[w][1] for w in wanted}))
-        elif clip.object in HELD and wanted & set(by_limb):
-            j, p = by_limb[next(iter(wanted & set(by_limb)))]
+        elif (clip.object in HELD or name in (clip.name, clip.name.split("_")[0])) and wanted & set(by_limb):
+            # a held thing, or the object's own point for this action serving one of its hands (the
+            # shower's one-handed "wash" point for washing the hands: solo-bathroom-23 s6 read "the shower
+            # has no place to wash" while Ben washed at it)
+            j, p = by_limb[sorted(wanted & set(by_limb))[0]]
             out.append((name, {j: p}))
     return out
 
@@ -362,6 +365,19 @@ def contact(
                 f"(within 5 cm on {shares[worst]:.0%} of the frames, needs half)"
             )
         return base(ok=False, reason=reason, frames=frame_list(far)), touching
+    if clip.object == "bed":  # the hips on the lie point and the head over the floor: across it, not on it
+        off = head_beyond(body, got.placed, fr) > HEAD_OFF_M
+        if np.mean(off) > 1.0 - CONTACT_SHARE:
+            return (
+                base(
+                    ok=False,
+                    reason=f"{who}'s hips are on the {name} but the head is "
+                    f"{float(np.median(head_beyond(body, got.placed, fr[off]))):.2f} m beyond it: {who} lies "
+                    f"across it, not on it",
+                    frames=frame_list(fr[off]),
+                ),
+                touching,
+            )
     if act.node.action == "drink":
         idx = np.clip(fr, 0, body.frames - 1)
         gaps = mouth_gap(*vessel_axis(got.placed, props.get(who, ()), fr), mouth(body)[idx])
@@ -383,6 +399,30 @@ def contact(
         ),
         touching,
     )
+
+
+# A lying head held by no part of its bed this far beyond the bed's footprint is off it (on the sheets: 16 cm
+# past a sofa's back read as lying on it, gump-living_room-3 s13; 27 cm out through a tub's side did not).
+HEAD_OFF_M = 0.20
+HEAD_DROP_M = 0.45  # a lying head rests on a part of the bed at most this far under it (or sunk into it)
+
+
+def head_beyond(body: Body, placed: PlacedObject, frames: np.ndarray) -> np.ndarray:
+    """(W,) metres the head of a body lying on the object is beyond the object's footprint on each frame
+    where no part of the object holds it up (0 where one does, or over the object).
+
+    A body lying on a bed or in a tub has its head on it: the hips on the tub's lie point with the body across
+    the tub and the head out through its side over the floor is lying beside it (solo-bathroom-23 s10, a
+    person's label); a head on a sofa's backrest or armrest, even sunk into it, is held.
+    """
+    head = body.joint("Head")[np.clip(frames, 0, body.frames - 1)]
+    b = world_bounds(placed)
+    d = np.maximum(0.0, np.maximum(b[0, [0, 2]] - head[:, [0, 2]], head[:, [0, 2]] - b[1, [0, 2]]))
+    gap = np.hypot(d[:, 0], d[:, 1])
+    out = np.zeros(len(head))
+    far = gap > 0.0
+    out[far] = np.where(rests_on(placed, head[far], 0.06, HEAD_DROP_M, 0.03), 0.0, gap[far])
+    return out
 
 
 def mouth(body: Body) -> np.ndarray:

@@ -116,4 +116,30 @@ def depth_inside(placed: PlacedObject, centres: np.ndarray, radii: np.ndarray) -
     return radii - inside * float(np.mean(placed.scale))
 
 
-__all__ = ["Solid", "depth_inside", "object_solids", "solids_of"]
+def depth_inside_at(
+    placed: PlacedObject, centres: np.ndarray, radii: np.ndarray, poses: np.ndarray
+) -> np.ndarray:
+    """(n,) as `depth_inside`, with the object at its own pose per sphere: (n, 4, 4) object -> world (the
+    placement's scale included), for an object that moves (carried in a hand)."""
+    solids = solids_of(placed)
+    if not solids or not len(centres):
+        return np.full(len(centres), -np.inf)
+    inv = np.linalg.inv(poses[:, :3, :3])
+    local = np.einsum("nij,nj->ni", inv, centres - poses[:, :3, 3])
+    inside = np.min([s.signed_distance(local) for s in solids], axis=0)
+    return radii - inside * float(np.mean(placed.scale))
+
+
+def rests_on(placed: PlacedObject, points: np.ndarray, below: float, above: float, step: float) -> np.ndarray:
+    """(n,) whether a solid part of the object lies under each world point, from `below` under it up to
+    `above` over it (probed every `step` metres down from the point): the point rests on the object, or sinks
+    into it a little."""
+    if not len(points):
+        return np.zeros(0, bool)
+    drops = np.arange(-below, above + 1e-9, step)
+    probes = points[:, None, :] - drops[None, :, None] * np.array([0.0, 1.0, 0.0])
+    depth = depth_inside(placed, probes.reshape(-1, 3), np.zeros(probes.shape[0] * probes.shape[1]))
+    return np.asarray((depth.reshape(probes.shape[:2]) >= 0.0).any(axis=1), bool)
+
+
+__all__ = ["Solid", "depth_inside", "depth_inside_at", "object_solids", "rests_on", "solids_of"]

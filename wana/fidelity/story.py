@@ -47,6 +47,9 @@ DROPPED = {
 ARMS = np.array(
     [n.removeprefix("Left").removeprefix("Right") in ("Hand", "HandMiddle1", "ForeArm") for n in JOINT_NAMES]
 )
+HANDS = np.array(
+    [n.removeprefix("Left").removeprefix("Right") in ("Hand", "HandMiddle1") for n in JOINT_NAMES]
+)
 STAGE_NEEDS = {  # stage -> the sentence kinds that cannot be shown without it
     "parse": ("scene", "action", "command", "empty"),
     "scene": ("scene", "action"),
@@ -197,6 +200,7 @@ def _action_checks(
     motions: Mapping[str, Motion],
 ) -> None:
     exempt: dict[str, dict[str, np.ndarray]] = {name: {} for name in bodies}
+    resting: dict[str, dict[str, np.ndarray]] = {name: {} for name in bodies}  # hands on a named surface
     touching: dict[tuple[str, str], np.ndarray] = {}  # (a, b) -> frames they touch on purpose
     seen: set[str] = set()
     begins: dict[str, int] = {}  # sentence id -> the first frame any of its actions plays
@@ -204,6 +208,17 @@ def _action_checks(
         if act.start >= 0:
             begins[act.sentence_id] = min(begins.get(act.sentence_id, act.start), act.start)
     props = {name: list(m.props) for name, m in motions.items()}
+    frames = max((b.frames for b in bodies.values()), default=0)
+    world.follow([t for m in motions.values() for t in m.props], frames)
+    for name, tracks in props.items():  # what one carries is in one's hands, no body inside furniture
+        if name not in bodies:
+            continue
+        for t in tracks:
+            if t.object_id in world.poses:
+                mask = exempt[name].setdefault(
+                    t.object_id, np.zeros((bodies[name].frames, len(bodies[name].radii)), bool)
+                )
+                mask[max(0, t.start_frame) : max(0, t.end_frame)] = True
     floor, floors, last = 0, {}, ""
     for act in acts:  # the floor of a sentence: when the action sentence before it began
         if act.sentence_id != last and last:
@@ -233,6 +248,12 @@ def _action_checks(
                 points = np.ones(len(body.radii), bool) if whole else ARMS[body.point_joint]
                 mask = exempt[act.character].setdefault(oid, np.zeros((body.frames, len(body.radii)), bool))
                 mask |= hold[:, None] & points[None, :]
+            named = {o.id for oid in act.objects for o in world.copies(oid)} - set(used)
+            for oid in sorted(
+                named
+            ):  # the surface the sentence names ("sits at the table"): hands rest on it
+                mask = resting[act.character].setdefault(oid, np.zeros((body.frames, len(body.radii)), bool))
+                mask[act.start : touching_until] |= HANDS[body.point_joint][None, :]  # walking up to it too
             clip = clip_needs(act.node.action)
             if clip is not None and clip.object == "person":
                 other = cc.other_character(act, bodies)
@@ -248,7 +269,7 @@ def _action_checks(
         ):
             if check is not None:
                 checks.append(check)
-    _body_checks(out, acts, world, bodies, motions, exempt, touching)
+    _body_checks(out, acts, world, bodies, motions, exempt, touching, resting)
 
 
 def presence(motion: Motion, frames: int) -> np.ndarray:
@@ -272,6 +293,7 @@ def _body_checks(
     motions: Mapping[str, Motion],
     exempt: dict[str, dict[str, np.ndarray]],
     touching: dict[tuple[str, str], np.ndarray],
+    resting: dict[str, dict[str, np.ndarray]],
 ) -> None:
     """penetration, overlap and continuity per (sentence, acting character), from one pass per motion."""
     names = sorted(bodies)
@@ -295,7 +317,7 @@ def _body_checks(
         body, motion = bodies[name], motions[name]
         mine = [a for a in acts if a.character == name]
         owned = owned_frames(mine, motion)
-        inside = bc.penetration(body, world, exempt.get(name, {}))
+        inside = bc.penetration(body, world, exempt.get(name, {}), resting.get(name, {}))
         boundaries = sorted({s.start_frame for s in motion.segments if s.start_frame > 0})
         strikes = np.zeros(body.frames, bool)
         for seg in motion.segments:

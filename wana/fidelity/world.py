@@ -4,11 +4,15 @@ support surfaces and contact points, each computed once per check run.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from functools import cached_property, lru_cache
 
 import numpy as np
+from scipy.spatial.transform import Rotation
 
+from proto.motion_data import PropTrack
 from proto.scene import PlacedObject, Scene
+from wana.arrays import from_wire
 from wana.assets import catalog, vocabulary
 from wana.assets.geometry import build_mesh, voxel_boxes
 
@@ -39,6 +43,27 @@ class World:
         self.by_id: dict[str, PlacedObject] = {o.id: o for o in scene.objects}
         self._boxes: dict[str, np.ndarray] = {}
         self._points: dict[str, dict[str, list[tuple[str, np.ndarray]]]] = {}
+        self.poses: dict[str, np.ndarray] = {}  # object id -> (T, 4, 4) per frame, for the objects that move
+
+    def follow(self, tracks: Sequence[PropTrack], frames: int) -> None:
+        """Let the objects the motions carry move: each one's pose per frame, the track's while a hand holds
+        it, its placement elsewhere (as the renderer draws it, services/render/scene_geometry.prop_track)."""
+        for t in tracks:
+            placed = self.by_id.get(t.object_id)
+            if placed is None:
+                continue
+            if placed.id not in self.poses:
+                self.poses[placed.id] = np.tile(catalog.object_to_world(placed), (frames, 1, 1))
+            a, b = max(0, t.start_frame), min(frames, t.end_frame)
+            if b <= a:
+                continue
+            pos = np.asarray(from_wire(t.position), float)[a - t.start_frame : b - t.start_frame]
+            rot = Rotation.from_quat(
+                np.asarray(from_wire(t.rotation), float)[a - t.start_frame : b - t.start_frame]
+            )
+            pose = self.poses[placed.id]
+            pose[a:b, :3, :3] = rot.as_matrix() @ np.diag(placed.scale)
+            pose[a:b, :3, 3] = pos
 
     def find(self, ref: str) -> list[PlacedObject]:
         """Objects a sentence's word refers to: the id itself, else its copies, else the category."""

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from proto.scene import PlacedObject
+from proto.ssg import ActionNode
 from wana.fidelity import story_checks, verdicts
 
 
@@ -256,3 +257,32 @@ def test_a_fault_that_lasts_into_the_next_sentence_is_blamed_once_on_the_sentenc
     eve = make.motion("Eve", later, [("walk", 0, 30, "s1", 0), ("walk", 30, 90, "s2", 1)])
     checks = story_checks(sentences, graphs, desk, {"Eve": eve})
     assert by_name(checks["s1"], "penetration")[0].ok and not by_name(checks["s2"], "penetration")[0].ok
+
+
+def test_a_seat_is_no_stated_contact_once_its_sitter_has_stood_up(make):
+    """ "Tom stands up and argues": standing up starts on the seat, but legs left in the armchair afterwards
+    are inside it (duo-living_room-19 s7, a person's label: his legs sink into the seat)."""
+    graphs = {
+        "s1": make.action_graph("s1", "Eve", "sit", "sit", target="chair"),
+        "s2": make.action_graph("s2", "Eve", "stand", "stand"),
+    }
+    graphs["s2"].characters[0].actions.append(ActionNode(verb="wave", action="wave"))
+    sentences = [("s1", "action"), ("s2", "action")]
+    chair = make.scene(PlacedObject(id="chair", category="chair", position=(0.0, 0.0, -0.02)))
+    for z, inside in ((0.0, True), (0.8, False)):  # standing where it sat, or a step in front of the seat
+        hips = np.concatenate(
+            [
+                make.still(0.0, 0.54, 0.0, 60),
+                np.linspace([0.0, 0.54, 0.0], [0.0, 0.95, z], 30),
+                make.still(0.0, 0.95, z, 60),
+            ]
+        )
+        eve = make.motion(
+            "Eve", hips, [("sit", 0, 60, "s1", 0), ("stand", 60, 90, "s2", 1), ("wave", 90, 150, "s2", 2)]
+        )
+        checks = story_checks(sentences, graphs, chair, {"Eve": eve})
+        assert by_name(checks["s1"], "penetration")[0].ok  # sitting in it and getting up are the contact
+        stood = by_name(checks["s2"], "penetration")[0]
+        assert stood.ok is (not inside), stood.reason
+        if inside:
+            assert "inside the chair" in stood.reason and min(stood.frames) >= 90

@@ -13,7 +13,7 @@ from proto.scene import PlacedObject
 from proto.ssg import ActionNode, CharacterNode, Diagnostic, ObjectNode, SentenceGraph
 from wana.arrays import to_wire
 from wana.assets import catalog
-from wana.domain.skeleton import JOINT_INDEX, JOINT_NAMES
+from wana.domain.skeleton import JOINT_INDEX, JOINT_NAMES, identity_pose
 from wana.fidelity import story_checks
 from wana.fidelity.bodies import Body, body_of
 from wana.fidelity.clips import clip_needs
@@ -290,6 +290,28 @@ def test_lying_on_a_bunk_mattress_beyond_its_support_rectangle_is_supported(make
         assert supported.ok is held, supported.reason
 
 
+def test_lying_across_the_tub_with_the_head_out_over_the_floor_is_not_lying_in_it(make):
+    """solo-bathroom-23 s10 (a person's label): "He lies in the bathtub" played with the hips on the tub's lie
+    point and the body across the tub, the head through its side over the floor: lying beside it, not in it.
+    Along the tub, the same hips are in it."""
+    tub = PlacedObject(id="bathtub", category="bathtub", position=(0.0, 0.0, 0.0))
+    frames = round(clip_needs("lie_down").duration_s * 30)
+    hips = catalog.to_world(tub, np.asarray(catalog.asset_for(tub).contact_points["lie"].position, float))
+    graph = {"s1": make.action_graph("s1", "Ben", "lie", "lie_down", target="bathtub")}
+    s = np.sqrt(0.5)
+    for axis, inside in (((0.0, 0.0, -s, s), True), ((s, 0.0, 0.0, s), False)):  # head along +x, or along +z
+        ben = make.motion("Ben", make.still(*hips, frames), [("lie_down", 0, frames, "s1", 0)])
+        rot = identity_pose(frames).astype(np.float32)
+        rot[:, 0] = axis  # the whole body turned to lie flat
+        ben = msgspec.structs.replace(ben, rotations=to_wire(rot))
+        checks = story_checks([("s1", "action")], graph, make.scene(tub), {"Ben": ben})["s1"]
+        (supported,) = by_name(checks, "supported")
+        (contact,) = by_name(checks, "contact")
+        assert supported.ok is inside and contact.ok is inside, (supported.reason, contact.reason)
+        if not inside:
+            assert "off the bathtub" in supported.reason and "across it" in contact.reason
+
+
 # -- continuity: a throw is fast by nature --------------------------------------------------------------
 
 
@@ -506,3 +528,69 @@ def test_a_bottle_held_by_its_middle_against_the_mouth_is_a_drink(make):
     assert across_the_face.ok, across_the_face.reason
     in_front = _drinker(make, (0.0, 0.0, 0.25), vessel="bottle", held_at=0.5)  # a hand's length before it
     assert not in_front.ok and "never reaches Eve's mouth" in in_front.reason
+
+
+def test_washing_the_hands_at_the_showers_one_handed_wash_point_is_a_place_to_wash(make):
+    """solo-bathroom-23 s6: "He turns on the shower and washes his hands" read "the shower has no place for
+    Ben to wash with": its "wash" point serves one hand, the clip asks for two. The hand at that point is
+    at the shower; two metres off it is not."""
+    shower = PlacedObject(id="shower", category="shower", position=(0.0, 0.0, 0.0))
+    frames = round(clip_needs("wash_hands").duration_s * 30)
+    node = ActionNode(verb="wash", action="wash_hands", target="hands")
+    graph = {"s1": graph_of("s1", "Ben washes his hands.", "Ben", node)}
+    probe = body_of(make.motion("Ben", make.still(0.0, 0.95, 0.0, 1), []))
+    reach = probe.joint("RightHand")[0] - probe.joint("Hips")[0]
+    point = dict(catalog.asset_for(shower).contact_points)["wash"]
+    at = catalog.to_world(shower, np.asarray(point.position, float))
+    for shift, ok in ((0.0, True), (2.0, False)):
+        hips = at - reach + np.array([shift, 0.0, 0.0])
+        ben = make.motion("Ben", make.still(*hips, frames), [("wash_hands", 0, frames, "s1", 0)])
+        (contact,) = by_name(
+            story_checks([("s1", "action")], graph, make.scene(shower), {"Ben": ben})["s1"], "contact"
+        )
+        assert contact.ok is ok, contact.reason
+        assert "no place" not in contact.reason
+
+
+def test_fingers_resting_on_the_named_table_top_are_on_it_and_deeper_or_unnamed_they_are_inside(make):
+    """solo-meeting_room-18 s11, group-meeting_room-01 s7: hands lying on the tabletop of "sits at the table"
+    read 4-5 cm inside it on the finger spheres; the surface the sentence names is where the hands rest. A
+    hand 8 cm down into a named counter, or on a table no sentence names, is still inside it."""
+    probe = body_of(make.motion("Eve", make.still(0.0, 0.95, 0.0, 1), []))
+    finger = float(probe.joint("RightHandMiddle1")[0, 1] - 0.95)
+    node = ActionNode(verb="wave", action="wave")
+    for category, named, sunk, ok in (
+        ("table", True, 0.02, True), ("kitchen_counter", True, 0.08, False), ("table", False, 0.02, False)
+    ):  # fmt: skip
+        thing = PlacedObject(id=category, category=category, position=(-1.35, 0.0, 0.0))
+        top = float(catalog.world_bounds(thing)[1, 1])
+        objects = [ObjectNode(id=category, category=category, word=category)] if named else []
+        graph = graph_of("s1", f"Eve waves at the {category}.", "Eve", node, objects)
+        eve = make.motion("Eve", make.still(0.0, top - sunk - finger, 0.0, 60), [("wave", 0, 60, "s1", 0)])
+        checks = story_checks([("s1", "action")], {"s1": graph}, make.scene(thing), {"Eve": eve})["s1"]
+        (inside,) = by_name(checks, "penetration")
+        assert inside.ok is ok, (category, named, sunk, inside.reason)
+        if not ok:
+            assert "inside the" in inside.reason
+
+
+def test_a_carried_box_is_where_the_hand_has_it_not_where_it_was_picked_up(make):
+    """The world the penetration check reads follows the objects the motions carry: Eve standing where the
+    box was picked up from is inside nothing once Tom carries it off, and inside the box where Tom carries it
+    (the carrier's own hands on it are the stated contact)."""
+    box = PlacedObject(id="box", category="box", position=(0.0, 0.0, 0.0))
+    graphs = {
+        "s1": make.action_graph("s1", "Tom", "carry", "carry", target="box"),
+        "s2": make.action_graph("s2", "Eve", "wave", "wave"),
+    }
+    sentences = [("s1", "action"), ("s2", "action")]
+    tom = make.motion("Tom", make.still(2.0, 0.95, 0.0, 60), [("carry", 0, 60, "s1", 0)])
+    tom = msgspec.structs.replace(tom, props=[track("box", "RightHand", 0, 60, (2.0, 0.6, 0.9))])
+    for at, inside in (((0.0, 0.95, 0.0), False), ((2.0, 0.95, 0.9), True)):
+        eve = make.motion("Eve", make.still(*at, 60), [("wave", 0, 60, "s2", 0)])
+        checks = story_checks(sentences, graphs, make.scene(box), {"Tom": tom, "Eve": eve})
+        (eve_in,) = by_name(checks["s2"], "penetration")
+        assert eve_in.ok is (not inside), eve_in.reason
+        if inside:
+            assert "inside the box" in eve_in.reason
+        assert by_name(checks["s1"], "penetration")[0].ok
