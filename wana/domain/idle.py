@@ -464,8 +464,18 @@ def attention(
     return out
 
 
-def enliven_motion(motion: Motion, gaze: np.ndarray | None = None, seed: int | None = None) -> Motion:
+def enliven_motion(
+    motion: Motion,
+    gaze: np.ndarray | None = None,
+    seed: int | None = None,
+    touching: Sequence[tuple[int, int]] = (),
+) -> Motion:
     """A composed Motion with the idle layer over its idle stretches (``enliven``); props' frames untouched.
+
+    ``touching``: [start, end) frames where the character's hands were solved onto another character (a
+    handshake, a hug, a hand on the shoulder, services/motion/pairs.py): there the layer leaves the body and
+    arms as solved (eased in and out like a held prop), so breathing and weight shifts do not pull the
+    meeting hands apart; the gaze still plays.
 
     The layer is laid window by window (each run of frames it touches, ``_windows``), each in its own time
     and seed, so a window is a function of its own frames only: an edit that shifts the time line
@@ -477,7 +487,9 @@ def enliven_motion(motion: Motion, gaze: np.ndarray | None = None, seed: int | N
     frames = len(root)
     held = in_hand(motion, rot, root)
     weight = idle_weight(frames, idle_spans(motion.segments, frames, rot))
-    arms = _arms_free(frames, held)
+    if touching:
+        weight = weight * _arms_free(frames, touching)
+    arms = _arms_free(frames, [*held, *touching])
     head = idle_weight(
         frames, [(s.start_frame, s.end_frame) for s in motion.segments if _head_free(s.action)]
     )

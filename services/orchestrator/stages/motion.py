@@ -574,10 +574,14 @@ def animate(
     fitted = fit_cast(
         ctx, out.motions, [*paired_actions(characters, plan), *handovers]
     )  # give way, touch on both bodies
+    touching: dict[str, list[tuple[int, int]]] = {}  # name -> frames its hands were solved onto another
     if fitted is not None:
         out.motions = dict(fitted.motions)
+        for c in fitted.contacts:
+            for who in (c.actor, c.partner):
+                touching.setdefault(who, []).append((c.start_frame, c.end_frame))
     out.motions = set_down_props(out.scene, out.motions, length)
-    out.motions = _enlivened(out.scene, characters, _in_moods(characters, out.motions, moods))
+    out.motions = _enlivened(out.scene, characters, _in_moods(characters, out.motions, moods), touching)
     out.scene = with_looks(out.scene, looks)
     out.scene = with_states(out.scene, characters, out.motions, sentences)  # doors opened, lamps on
     return out
@@ -621,9 +625,15 @@ def _in_moods(
     return out
 
 
-def _enlivened(scene: Scene, characters: Characters, motions: dict[str, Motion]) -> dict[str, Motion]:
+def _enlivened(
+    scene: Scene,
+    characters: Characters,
+    motions: dict[str, Motion],
+    touching: dict[str, list[tuple[int, int]]] | None = None,
+) -> dict[str, Motion]:
     """Every motion with the idle layer (wana.domain.idle): breathing, weight shifts and a gaze at whoever
-    acts, or at what the character's next action uses, wherever the time line holds a pose."""
+    acts, or at what the character's next action uses, wherever the time line holds a pose; not over the
+    frames where ``touching`` says its hands were solved onto another character (the cast fit's contacts)."""
     out = {}
     for name, motion in motions.items():
         upcoming: dict[int, tuple[float, float, float] | str] = {}
@@ -634,7 +644,9 @@ def _enlivened(scene: Scene, characters: Characters, motions: dict[str, Motion])
                 upcoming[k] = (placed.position[0], max(placed.position[1], 0.5), placed.position[2])
             elif goal in motions:
                 upcoming[k] = goal
-        out[name] = enliven_motion(motion, attention(name, motions, upcoming))
+        out[name] = enliven_motion(
+            motion, attention(name, motions, upcoming), touching=(touching or {}).get(name, ())
+        )
     return out
 
 

@@ -155,6 +155,27 @@ def test_a_prop_put_down_away_from_the_hand_does_not_stop_the_arms_or_follow_the
     assert not np.array_equal(from_wire(out.rotations)[:, arm], from_wire(put.rotations)[:, arm])
 
 
+def test_hands_solved_onto_another_character_are_left_where_the_solve_put_them():
+    """The partner of a handshake holds still where the cast fit met the hands (breathing and weight shifts
+    pulled them 2-3 cm apart: eval/social.py greetings hand_contact_cm 3.03 -> 0.37); before and after, the
+    hold breathes again."""
+    rot, root = _standing(150)
+    hold = Motion(
+        character="Ada",
+        root_position=to_wire(root.astype(np.float32)),
+        rotations=to_wire(rot.astype(np.float32)),
+        segments=[Segment(index=0, action="hold", start_frame=0, end_frame=150)],
+    )
+    out = idle.enliven_motion(hold, touching=[(60, 90)])
+    before, after = from_wire(hold.rotations), from_wire(out.rotations)
+    pos0, _ = forward_kinematics(before.astype(np.float64), root)
+    pos1, _ = forward_kinematics(after.astype(np.float64), from_wire(out.root_position).astype(np.float64))
+    hand = JOINT_INDEX["RightHand"]
+    assert np.abs(pos1[60:90, hand] - pos0[60:90, hand]).max() < 1e-3  # the met hand stays met
+    assert np.abs(pos1[:40, hand] - pos0[:40, hand]).max() > 2e-3  # the hold breathes before it
+    assert np.abs(pos1[110:, hand] - pos0[110:, hand]).max() > 2e-3  # and after it
+
+
 def test_whoever_acts_draws_the_eyes_and_the_next_target_wins_just_before_the_action():
     rot, root = _standing(120)
     still = Motion(
