@@ -38,3 +38,13 @@ def test_workers_import_their_handlers_on_their_first_job_and_parsing_needs_no_t
     assert before == ""  # no service's handlers before any job
     assert after == "services.nlp.handlers"  # the parse job imported the NLP service's, and only those
     assert torch_loaded == "False"
+
+
+def test_the_animate_entry_point_leaves_mesh_and_spatial_libraries_to_the_first_object_built() -> None:
+    """trimesh and scipy.spatial cost 0.4-0.6 s of imports: the pipeline imports them when it builds the first
+    object or judges the first body, not before the parse (issue 22's start-up)."""
+    child = "import sys, services.orchestrator.animate\nprint(sorted(m for m in ('trimesh', 'scipy.spatial') if m in sys.modules))"
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    out = subprocess.run([sys.executable, "-c", child], env=env, capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr[-3000:]
+    assert out.stdout.strip().splitlines()[-1] == "[]"

@@ -18,12 +18,10 @@ import hashlib
 import itertools
 from dataclasses import dataclass, field
 from functools import lru_cache
-from typing import cast
+from typing import TYPE_CHECKING, cast
 
 import numpy as np
-import trimesh
 from numpy.typing import ArrayLike
-from trimesh.visual import ColorVisuals
 
 from proto.scene import PlacedObject
 from wana.assets import vocabulary
@@ -41,6 +39,10 @@ from wana.assets.params import (
     _rgba,
     mix,
 )
+
+if TYPE_CHECKING:  # trimesh comes with the first object built (wana.assets.geometry.build_mesh)
+    import trimesh
+    from trimesh.visual import ColorVisuals
 
 FRONT = np.array([0.0, 0.0, 1.0])
 
@@ -274,7 +276,7 @@ def mesh_digest(obj: AssetObject) -> str:
     """Content hash of an object's geometry and colours (distinct variants have distinct digests)."""
     h = hashlib.sha1()
     h.update(np.round(np.asarray(obj.mesh.vertices), 5).tobytes())
-    visual = cast(ColorVisuals, obj.mesh.visual)  # catalogue meshes carry per-face colours
+    visual = cast("ColorVisuals", obj.mesh.visual)  # catalogue meshes carry per-face colours
     h.update(np.asarray(visual.face_colors).tobytes())
     return h.hexdigest()
 

@@ -9,9 +9,12 @@ object's collision boxes come from voxelising the union of its parts on a regula
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
-import trimesh
+
+if TYPE_CHECKING:  # imported by build_mesh: trimesh with scipy costs 0.65 s, parsing never needs it
+    import trimesh
 
 RGBA = tuple[int, int, int, int]
 
@@ -273,6 +276,8 @@ def _rotation_from_y(d: np.ndarray) -> np.ndarray:
 
 def build_mesh(parts: list[Part]) -> trimesh.Trimesh:
     """Concatenate parts into one mesh with per-face colours."""
+    import trimesh
+
     verts, faces, colours = [], [], []
     n = 0
     for p in parts:

@@ -12,11 +12,11 @@ from collections import OrderedDict
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
 from proto.motion_data import Motion
 from wana.arrays import from_wire
 from wana.assets.characters import character_for
+from wana.domain import quat
 from wana.domain.skeleton import JOINT_INDEX, JOINT_NAMES, PARENTS, forward_kinematics
 
 # metres, by the bone's child joint (the bone runs parent -> child)
@@ -140,7 +140,7 @@ def _body_of(motion: Motion) -> Body:
     a, b = joints[:, _SPEC_PARENT], joints[:, _SPEC_CHILD]
     spheres = a + (b - a) * _SPEC_SHARE
     head = JOINT_INDEX["Head"]
-    centre = joints[:, head] + Rotation.from_quat(global_rot[:, head]).apply(np.array(HEAD_CENTRE))
+    centre = joints[:, head] + quat.rotate(quat.normalize(global_rot[:, head]), np.array(HEAD_CENTRE))
     points = np.concatenate([spheres, centre[:, None]], axis=1)
     radii = np.concatenate([_RADII, [HEAD_RADIUS]])
     owner = np.concatenate([_OWNER, [head]])

@@ -14,7 +14,6 @@ from dataclasses import dataclass
 from functools import partial
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
 from proto.fidelity import Check
 from proto.motion_data import PropTrack
@@ -445,6 +444,8 @@ def vessel_axis(
     """(W, 3) twice: the bottom and the top centre of a drinking vessel on each frame, where it is drawn:
     moved with the hand on the frames a PropTrack of it holds it (its pose there), else where the scene
     placed it."""
+    from scipy.spatial.transform import Rotation  # scipy.spatial is not needed before the first check
+
     scale = np.asarray(placed.scale, float)
     ends = []
     for local in (np.zeros(3), np.array([0.0, float(asset_for(placed).dims[1]), 0.0])):

@@ -8,7 +8,6 @@ from collections.abc import Sequence
 from functools import cached_property, lru_cache
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
 from proto.motion_data import PropTrack
 from proto.scene import PlacedObject, Scene
@@ -48,6 +47,8 @@ class World:
     def follow(self, tracks: Sequence[PropTrack], frames: int) -> None:
         """Let the objects the motions carry move: each one's pose per frame, the track's while a hand holds
         it, its placement elsewhere (as the renderer draws it, services/render/scene_geometry.prop_track)."""
+        from scipy.spatial.transform import Rotation  # scipy.spatial is not needed before the first check
+
         for t in tracks:
             placed = self.by_id.get(t.object_id)
             if placed is None:
