@@ -26,6 +26,8 @@ sentence text answers none of them.
 
 JSON keys: action_edit_p50_ms, late_action_edit_p50_ms, scene_edit_p50_ms, scene_used_edit_p50_ms,
 full_ms, parse_ms (each a map size -> ms), nodes (size -> kind -> nodes run), startup_s, animate (per story),
+serve_ready_s, serve_first_ack_s, serve_first_edit_s (``wana serve`` launched on a fresh database: seconds to
+answer HTTP, to acknowledge a new document's first edit and to send its animation),
 animate_realtime_factor, render_fps_640, render_fps_1280, cpu_count, load_average.
 """
 
@@ -240,6 +242,80 @@ def animate_run(actions: int, characters: int, startup_only: bool = False) -> di
         }
 
 
+def serve_first_edit(
+    text: str = "In the office there is a desk$. Eve walks to the desk.",
+) -> dict[str, float]:
+    """`wana serve` in a child process on a free port and a fresh database: seconds from launch until it
+    answers HTTP (``serve_ready_s``), acknowledges the first edit of a new document (``serve_first_ack_s``)
+    and sends that edit's animation (``serve_first_edit_s``, what the user waits for; issue 22: <= 3 s)."""
+    import socket
+
+    import httpx
+    from websockets.sync.client import connect
+
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    with tempfile.TemporaryDirectory(prefix="wana-serve-") as tmp:
+        env = {**os.environ, "PYTHONPATH": str(REPO)}
+        cmd = [
+            sys.executable,
+            "-c",
+            "import sys; from wana.cli import main; sys.exit(main())",
+            "serve",
+            "--port",
+            str(port),
+            "--db",
+            str(Path(tmp) / "s.db"),
+        ]
+        launch = time.time()
+        proc = subprocess.Popen(cmd, env=env, cwd=REPO, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        try:
+            base = f"http://127.0.0.1:{port}"
+            while True:
+                if proc.poll() is not None:
+                    raise RuntimeError(f"wana serve exited: {proc.stderr.read().decode()[-2000:]}")
+                if time.time() - launch > 120:
+                    raise RuntimeError("wana serve did not answer within 120 s")
+                try:
+                    if httpx.get(f"{base}/api/documents", timeout=1.0).status_code == 200:
+                        break
+                except httpx.HTTPError:
+                    time.sleep(0.02)
+            ready = time.time()
+            doc = httpx.post(f"{base}/api/documents", json={"text": ""}, timeout=30.0).json()["doc_id"]
+            with connect(f"ws://127.0.0.1:{port}/api/documents/{doc}/live", max_size=None) as ws:
+                state = _until(ws, lambda m: m["type"] == "state")
+                edit = {"start": 0, "end": 0, "text": text}
+                ws.send(json.dumps({"type": "edit", "base_version": state["version"], "changes": [edit]}))
+                ack = _until(ws, lambda m: m["type"] in ("ack", "stale"))
+                acked = time.time()
+                _until(ws, lambda m: m["type"] == "animation" and m["version"] == ack["version"])
+                animated = time.time()
+        finally:
+            proc.terminate()
+            proc.wait(timeout=30)
+    return {
+        "serve_ready_s": round(ready - launch, 3),
+        "serve_first_ack_s": round(acked - launch, 3),
+        "serve_first_edit_s": round(animated - launch, 3),
+    }
+
+
+def _until(ws: Any, wanted: Any, timeout: float = 300.0) -> dict[str, Any]:
+    """The next JSON message on the WebSocket that ``wanted`` accepts (binary frames are skipped)."""
+    deadline = time.monotonic() + timeout
+    while True:
+        raw = ws.recv(timeout=max(deadline - time.monotonic(), 0.01))
+        if isinstance(raw, bytes):
+            continue
+        msg = json.loads(raw)
+        if msg.get("type") == "error":
+            raise RuntimeError(f"gateway error: {msg}")
+        if wanted(msg):
+            return msg
+
+
 def render_fps(width: int, height: int, frames: int) -> float:
     from render import measure_fps  # bench/render.py
 
@@ -335,6 +411,12 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
                 flush=True,
             )
         res["startup_s"] = min(r["startup_s"] for r in res["animate"])
+        res.update(serve_first_edit())
+        print(
+            f"wana serve: answers HTTP {res['serve_ready_s']:.2f}s after launch, acknowledges the first edit "
+            f"{res['serve_first_ack_s']:.2f}s, its animation {res['serve_first_edit_s']:.2f}s",
+            flush=True,
+        )
         eight = [r for r in res["animate"] if r["actions"] == 8]
         if eight:
             res["animate_realtime_factor"] = eight[0]["realtime_factor"]
