@@ -268,13 +268,15 @@ def serve_first_edit(
             "--db",
             str(Path(tmp) / "s.db"),
         ]
+        log = Path(tmp) / "serve.log"  # a file, not a pipe: a chatty server never blocks on a full pipe
         launch = time.time()
-        proc = subprocess.Popen(cmd, env=env, cwd=REPO, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        with log.open("wb") as out:
+            proc = subprocess.Popen(cmd, env=env, cwd=REPO, stdout=subprocess.DEVNULL, stderr=out)
         try:
             base = f"http://127.0.0.1:{port}"
             while True:
                 if proc.poll() is not None:
-                    raise RuntimeError(f"wana serve exited: {proc.stderr.read().decode()[-2000:]}")
+                    raise RuntimeError(f"wana serve exited: {log.read_text(errors='replace')[-2000:]}")
                 if time.time() - launch > 120:
                     raise RuntimeError("wana serve did not answer within 120 s")
                 try:
