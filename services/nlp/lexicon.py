@@ -35,10 +35,18 @@ PERSON_NOUNS = frozenset(
     # the cast of quest text and fantasy
     "rogue archer mage sorcerer sorceress warrior paladin ranger hunter blacksmith healer bandit "
     "adventurer goblin troll ogre dragon fairy ghost robot monster pilot ".split()
-    # the cast of children's stories: an animal that acts is a character (shown as a figure)
-    + "bear bunny rabbit pig piglet wolf fox frog toad owl duck duckling goose hen cat kitten "
-    "dog puppy lion tiger monkey elephant squirrel hedgehog tortoise turtle".split()
 )
+# the cast of children's stories: an animal that acts is a character (shown as a figure); "it" may
+# name one ("The bunny hops. It picks up a carrot")
+ANIMAL_NOUNS = frozenset(
+    "bear bunny rabbit pig piglet wolf fox frog toad owl duck duckling goose hen cat kitten "
+    "dog puppy lion tiger monkey elephant squirrel hedgehog tortoise turtle horse pony donkey cow "
+    "calf sheep lamb goat deer fawn bird chick chicken rooster badger beaver otter raccoon".split()
+)
+PERSON_NOUNS = PERSON_NOUNS | ANIMAL_NOUNS
+# Animals whose word also names a catalog thing (the computer mouse): a character only as the
+# subject of an action verb ("The little mouse creeps to the table"), a thing everywhere else.
+THING_ANIMALS = frozenset({"mouse"})
 NON_OBJECT_NOUNS = (
     frozenset(
         "room floor wall ceiling corner middle center centre side left right front back top bottom end time "
@@ -60,7 +68,7 @@ NON_OBJECT_NOUNS = (
         "word words groan sigh smile grin frown laugh laughter tears breath care work job task speech toast "
         "joke jokes story apology thanks greeting handshake hug kiss nod glance look silence noise sound "
         "song tune match game race fight lesson class meeting party break rest dream idea thought question "
-        "answer reply news dust dirt soil mud sand flour dough water air smoke steam darkness shadow "
+        "answer reply goodbye farewell hello news dust dirt soil mud sand flour dough water air smoke steam darkness shadow "
         "everything something nothing anything thing things piece pieces bit bits band crowd team family "
         "way time surface surfaces clipping clippings crumb crumbs ping pong tennis chess cards badminton "
         "tag puzzle homework notes".split()
@@ -71,6 +79,9 @@ NON_OBJECT_NOUNS = (
         "sleeve sleeves apron spectacles".split()
     )
 )
+# Words a character says as the object of a verb ("says goodbye", "waves hello", "bids farewell"):
+# what is said, never a thing or place the act is aimed at.
+SAID_WORDS = frozenset("goodbye bye farewell hello hi hey goodnight sorry thanks yes no cheers".split())
 WORN_NOUNS = frozenset(
     "shoe boot sock slipper coat jacket hat cap scarf dress suit tie uniform apron spectacles glasses "
     "gloves glove sweater jumper cardigan helmet mask ring necklace robe cloak".split()

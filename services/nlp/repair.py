@@ -40,6 +40,8 @@ def _is_person(tok: Token) -> bool:
         return not action_reading(lower)  # "High-five Mary": not a name
     if tok.text[:1].isupper() and (lower in lexicon.FEMALE_NAMES or lower in lexicon.MALE_NAMES):
         return True  # "Ada/NOUN thanks her"
+    if lower in lexicon.THING_ANIMALS and tok.i + 1 < tok.sent.end:
+        return bool(action_reading(tok.doc[tok.i + 1].lower_))  # "The mouse creeps/NOUN"
     return tok.lemma_.lower() in lexicon.PERSON_NOUNS or lower in lexicon.PERSON_NOUNS
 
 
@@ -71,6 +73,23 @@ def _lead_in_end(sent: SpacySpan) -> int:
                 any(time_light(t) is not None for t in lead) or all(t.pos_ in ("ADV", "SCONJ") for t in lead)
             ):
                 return tok.i + 1
+            break
+    return _bare_time_end(sent)
+
+
+def _bare_time_end(sent: SpacySpan) -> int:
+    """Index after a leading time phrase with no comma ("One morning Rosa skips", "That night he
+    sleeps"): a time word or two before a time noun, then a person; else the sentence start."""
+    from services.nlp.timephrase import TIME_MODIFIERS, TIME_NOUNS
+
+    words = sent[:4]
+    if not words or words[0].lower_ not in TIME_MODIFIERS | {"the"}:
+        return sent.start
+    for tok in words[1:]:
+        if tok.lower_ in TIME_NOUNS and tok.i + 1 < sent.end:
+            nxt = sent.doc[tok.i + 1]
+            return tok.i + 1 if nxt.text[:1].isupper() or nxt.lower_ in lexicon.PRONOUNS else sent.start
+        if tok.lower_ not in TIME_MODIFIERS:
             break
     return sent.start
 
@@ -164,6 +183,7 @@ def _repair_verbless(sent: SpacySpan) -> bool:
         if tok.head.i not in {t.i for t in appositive} or tok.head.i == tok.i:
             tok.head, tok.dep_ = subject, ("punct" if tok.is_punct else "appos")
     has_object = False
+    first_object = verb
     for i in after:
         tok = sent.doc[i]
         if tok.head.i in after and tok.head.i != tok.i:
@@ -176,6 +196,9 @@ def _repair_verbless(sent: SpacySpan) -> bool:
         elif tok.pos_ in ("NOUN", "PROPN", "PRON", "NUM") and not has_object:
             tok.dep_ = "obj"
             has_object = True
+            first_object = tok
+        elif tok.pos_ in ("NOUN", "PROPN") and tok.dep_ != "conj" and first_object.dep_ == "obj":
+            first_object.dep_, tok.dep_ = "iobj", "obj"  # "hands the baby a bottle": to whom, then what
         elif tok.pos_ == "ADV":
             tok.dep_ = "advmod"
     if old_root.i != verb.i and old_root.i in after:  # what hung under the noun the parser made the root
@@ -509,10 +532,25 @@ def _repair_subject_relative_clause(sent: SpacySpan) -> bool:
     return True
 
 
+def _repair_determined_adverb(sent: SpacySpan) -> bool:
+    """ "skips to the well/ADV": a word with a determiner and a preposition of its own is a noun, never
+    an adverb (the tagger reads "well", "back", "down" as adverbs whatever comes before them)."""
+    changed = False
+    for tok in sent:
+        if tok.pos_ != "ADV" or tok.dep_ not in ("obl", "obj", "nmod"):
+            continue
+        kids = {c.dep_ for c in tok.children if c.i < tok.i}
+        if "det" in kids and "case" in kids:
+            tok.pos_, tok.tag_ = "NOUN", "NN"
+            changed = True
+    return changed
+
+
 def repair_character_sentence(sent: SpacySpan) -> bool:
     """Repair the tree of one character sentence in place; True when something changed."""
     return (
-        _repair_subject_relative_clause(sent)
+        _repair_determined_adverb(sent)
+        | _repair_subject_relative_clause(sent)
         | _repair_progressive(sent)
         | _repair_adverb_subject(sent)
         | _repair_adverb_name(sent)

@@ -37,6 +37,7 @@ PRONOUN_WORDS = {
     "everyone": "all",
     "everybody": "all",
     "their": "they",
+    "it": "it",
 }
 
 
@@ -79,6 +80,8 @@ class _State:
         return canonical
 
     def pronoun(self, pron: str, exclude: str = "") -> list[str]:
+        if pron == "it":  # "The bunny hops. It ...": only an animal is an "it" that acts
+            return [c for c in self.characters if c != exclude and _is_animal(c)][-1:]
         if pron == "all":  # "Everyone raises their glasses": every character named so far
             return [c for c in self.characters if c != exclude]
         if pron == "they":
@@ -91,6 +94,10 @@ class _State:
             if c != exclude and self.gender.get(c.lower(), "") in ("", pron):
                 return [c]
         return []
+
+
+def _is_animal(name: str) -> bool:
+    return name in lexicon.ANIMAL_NOUNS or name in lexicon.THING_ANIMALS
 
 
 _PASSING_NAME = re.compile(r"\b(?:named|called) ([A-Z][a-z]+)\b|\b([A-Z][a-z]+)'s\b")
@@ -292,6 +299,8 @@ def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> li
                 if len(names) == 1 and pron in ("he", "she") and not state.gender.get(names[0].lower()):
                     # "Marcus ... He sits": Marcus is a he from now on, so a later "she" is Dana
                     state.gender[names[0].lower()] = pron
+                if not names and pron == "it":
+                    continue  # "It rolls away": a thing, not a character
                 if not names:
                     diagnostics.append(
                         diagnostic(
@@ -344,6 +353,8 @@ def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> li
                 for r in resolved:
                     if r not in subjects:
                         subjects.append(r)
+            if len(node.subjects) >= 2 and len(subjects) < 2:
+                continue  # "takes his hand" with no "him" to be found: no act between two characters
             for r in subjects:
                 if r not in sentence_names:
                     sentence_names.append(r)

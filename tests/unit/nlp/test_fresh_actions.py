@@ -1,0 +1,93 @@
+"""Causes of the action misses on the fresh gold split (issue 17), each tried on sentences written
+here, not the gold ones: an animal named "it", an animal whose word is also a catalog thing, a time
+phrase with no comma, a noun the tagger read as an adverb, words said as a verb's object, a body part
+that is where the hands go, a thing thrown "at" someone, two objects of a giving verb, and the things a
+relative clause or a verbless sentence names.
+
+Every sentence goes through the committed pipeline; expected values are written here by hand.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from services.nlp.parse import parse_document
+
+
+def acts(text):
+    return [
+        (c.name, a.action, a.target or a.destination)
+        for g in parse_document(text)
+        for c in g.characters
+        for a in c.actions
+    ]
+
+
+def objects(text):
+    return sorted(o.category for g in parse_document(text) for o in g.objects)
+
+
+def codes(text):
+    return [d.code for g in parse_document(text) for d in g.diagnostics]
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        # "it" that acts is the animal last named
+        (
+            "The puppy runs to the door. It jumps onto the rug.",
+            [("puppy", "run", "door"), ("puppy", "jump", "rug")],
+        ),
+        ("The kitten runs to the basket. It picks up a sock.", None),
+        # an animal whose word is a catalog thing acts as the subject of an action verb
+        ("The grey mouse runs to the bed.", [("mouse", "run", "bed")]),
+        # a time phrase with no comma before the name
+        ("That evening Omar walks to the window.", [("Omar", "walk", "window")]),
+        ("One afternoon Priya skips to the gate.", [("Priya", "skip", "gate")]),
+        # "the well": a determiner and a preposition make the word a noun
+        ("Hugo runs to the well.", [("Hugo", "run", "well")]),
+        # what is said is no target
+        ("The kids wave goodbye.", [("kid", "wave", "")]),
+        # the face is what the hands cover
+        ("Lena hides her face in her hands.", [("Lena", "cover_face", "face")]),
+        # a thing no catalog holds, thrown at someone: the target is who it is thrown at
+        ("The witch casts a curse at the knight.", [("witch", "throw", "knight")]),
+    ],
+)
+def test_fresh_action_causes(text, expected):
+    got = acts(text)
+    if expected is None:  # the second sentence's actor is the animal, whatever the clip
+        assert [name for name, _, _ in got] == ["kitten", "kitten"]
+    else:
+        assert got == expected
+
+
+def test_it_that_names_no_animal_is_a_thing_and_no_warning():
+    text = "Eve pushes the cart. It rolls to the wall."
+    assert [name for name, _, _ in acts(text)] == ["Eve"]
+    assert "W105" not in codes(text)
+
+
+def test_a_mouse_in_a_scene_sentence_stays_a_thing():
+    assert objects("A mouse lies beside the laptop$.") == ["laptop", "mouse"]
+    assert objects("The computer mouse falls off the desk.") == ["desk", "mouse"]
+
+
+def test_a_giving_verb_keeps_both_objects():
+    text = "Grandma hands the boy a cup."
+    assert acts(text) == [("grandma", "present", "boy")]
+    assert objects(text) == ["cup"]
+
+
+def test_a_relative_clause_names_a_thing_in_the_room():
+    assert "door" in objects("The boy who stands by the door waves.")
+
+
+def test_a_thing_that_does_something_is_still_in_the_story():
+    assert objects("At dawn, the clock ticks loudly.") == ["clock"]
+
+
+def test_a_social_act_with_nobody_to_aim_at_has_no_social_node():
+    graphs = parse_document("Mia takes his hand.")
+    assert [s for g in graphs for s in g.social] == []
