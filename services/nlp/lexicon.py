@@ -31,7 +31,7 @@ PERSON_NOUNS = frozenset(
     "granddaughter niece nephew fiance fiancee bride groom host hostess chief commander sheriff "
     "teammates player players spectator spectators performer drummer bassist vocalist "
     "reporter journalist photographer mechanic plumber electrician gardener housekeeper nanny "
-    "caretaker porter bellboy concierge owner landlord landlady tenant "
+    "caretaker porter bellboy concierge owner landlord landlady tenant referee umpire "
     # the cast of quest text and fantasy
     "rogue archer mage sorcerer sorceress warrior paladin ranger hunter blacksmith healer bandit "
     "adventurer goblin troll ogre dragon fairy ghost robot monster pilot ".split()
@@ -436,6 +436,9 @@ ACTION_OVERRIDES: dict[tuple[str, str], str] = {
     ("write", "whiteboard"): "write_on_blackboard",
     ("draw", "whiteboard"): "write_on_blackboard",
     ("read", "newspaper"): "read_newspaper",
+    ("open", "newspaper"): "read_newspaper",  # opened to be read, not a door
+    ("open", "book"): "read",
+    ("open", "magazine"): "read",
     ("clean", "window"): "wipe_window",
     ("wipe", "window"): "wipe_window",
     ("clean", "table"): "wipe_table",
@@ -505,7 +508,9 @@ ACTION_OVERRIDES: dict[tuple[str, str], str] = {
 }
 # Verbs whose thing decides the clip ("plays the piano", "plays ping pong"): with a thing no entry
 # knows, no clip; alone ("the kids play") the verb's own row.
-OBJECT_NAMES_THE_ACTION = frozenset({"play"})
+# "blows the whistle": what is blown says what is done (out the candles, a kiss, the flute); a thing
+# no phrase names has no clip, and the bare verb's lean (blowing out candles) is not it.
+OBJECT_NAMES_THE_ACTION = frozenset({"play", "blow"})
 # Verb lemma alone -> action name where the library's synonym table points elsewhere.
 VERB_OVERRIDES: dict[str, str] = {
     "listen": "look_at",

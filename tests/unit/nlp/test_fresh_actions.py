@@ -91,3 +91,21 @@ def test_a_thing_that_does_something_is_still_in_the_story():
 def test_a_social_act_with_nobody_to_aim_at_has_no_social_node():
     graphs = parse_document("Mia takes his hand.")
     assert [s for g in graphs for s in g.social] == []
+
+
+def test_what_one_puts_on_is_worn_not_a_thing_in_the_room():
+    assert objects("Aunt Rosa puts on her glasses.") == []
+    assert objects("Pavel takes off his glasses and smiles.") == []
+    assert objects("Pavel puts the glass on the shelf.") == ["glass", "shelf"]
+
+
+def test_a_book_opened_is_read():
+    assert acts("Pavel opens the book.") == [("Pavel", "read", "book")]
+    assert acts("Pavel opens the drawer.") == [("Pavel", "open_drawer", "drawer")]
+
+
+def test_a_blown_thing_no_phrase_names_has_no_clip():
+    text = "The referee blows the whistle."
+    assert [a for _, a, _ in acts(text)] == [""]
+    assert "W102" in codes(text)
+    assert acts("Nadia blows out the candles.") == [("Nadia", "greet_bow", "candle")]
