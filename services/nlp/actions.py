@@ -448,8 +448,9 @@ def extract_actions(sent: SpacySpan, builder: GraphBuilder) -> int:
         _add_action(chars, action, social_verb, builder)
         count += 1
     for tok in sent:
-        if tok.dep_ == "acl:relcl" and tok.pos_ == "VERB" and character_mention(tok.head) is not None:
-            arguments(tok, builder)  # "The girl who sits near the window": the window is in the story
+        if tok.dep_ == "acl:relcl" and tok.pos_ == "VERB":
+            # "The girl who sits near the window", "the book that lies on the desk": in the story
+            arguments(tok, builder)
     if count == 0 and not social:
         verbless = not any(t.pos_ in ("VERB", "AUX") for t in sent)
         things = [t for t in sent if t.pos_ == "NOUN" and object_mention(t) is not None] if verbless else []
@@ -458,6 +459,24 @@ def extract_actions(sent: SpacySpan, builder: GraphBuilder) -> int:
         if verbless and not things:
             hint = did_you_mean(sent.text.strip(" .!?$"), "command")
             builder.diagnose("W103", f"'{sent.text}'{hint}", sent.start_char, sent.end_char)
+    return count
+
+
+def extract_relative_actions(sent: SpacySpan, builder: GraphBuilder) -> int:
+    """The acts of characters a scene sentence names in a relative clause ("a table at which an old
+    sailor sits", "a sofa on which Tom sleeps"); returns their count."""
+    count = 0
+    for verb in sent:
+        if verb.dep_ != "acl:relcl" or verb.pos_ != "VERB":
+            continue
+        subjects = _subject_tokens(verb)
+        chars = _distinct_names([c for c in (character_of(s, builder) for s in subjects) if c is not None])
+        if not chars:
+            continue  # "a bed under which a box lies": the scene reader's relation
+        action, social_verb = _action(verb, builder)
+        if action.action:
+            _add_action(chars, action, social_verb, builder)
+            count += 1
     return count
 
 

@@ -24,7 +24,7 @@ from services.nlp.mentions import (
     is_unknown_object_word,
     object_mention,
 )
-from services.nlp.scene import _mention
+from services.nlp.scene import _mention, relative_antecedent
 from services.nlp.suggest import did_you_mean
 from services.nlp.timephrase import time_light
 
@@ -114,6 +114,7 @@ def _antecedent(pronoun: Token, builder: GraphBuilder) -> str:
 
 
 def _argument(tok: Token, prep: str, builder: GraphBuilder, report_unknown: bool) -> Argument:
+    tok = relative_antecedent(tok)  # "a table at which a sailor sits": at the table
     arg = Argument(tok=tok, prep=prep)
     if reciprocal_phrase(tok):
         arg.character = "each other"

@@ -61,7 +61,7 @@ NON_OBJECT_NOUNS = (
         "field meadow hill river lake sea shore street road alley path lane corridor stairs staircase "
         "stairway steps landing elevator lift lifts platform station village town city castle tower cottage "
         "hut barn stable shop store market square courtyard balcony terrace porch patio roof rooftop sky "
-        "threshold row aisle centre".split()
+        "threshold row aisle centre tavern inn pub saloon dungeon cave".split()
     )
     | frozenset(
         # what is said, felt, done or made of, not a thing to put in the room

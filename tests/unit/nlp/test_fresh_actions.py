@@ -109,3 +109,18 @@ def test_a_blown_thing_no_phrase_names_has_no_clip():
     assert [a for _, a, _ in acts(text)] == [""]
     assert "W102" in codes(text)
     assert acts("Nadia blows out the candles.") == [("Nadia", "greet_bow", "candle")]
+
+
+def test_a_character_in_a_scene_relative_clause_acts_at_the_antecedent():
+    text = "There is a bench on which an old farmer sits$."
+    assert acts(text) == [("farmer", "sit", "bench")]
+    assert objects(text) == ["bench"]
+    assert acts("There is a shelf under which a basket stands$.") == []
+
+
+def test_a_relative_clause_of_a_thing_names_a_thing_too():
+    assert objects("Mira picks up the cup which stands on the desk.") == ["cup", "desk"]
+
+
+def test_a_tavern_is_a_place_not_an_unknown_object():
+    assert "W101" not in codes("In the tavern there is a table$.")
