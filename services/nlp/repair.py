@@ -584,4 +584,15 @@ def repair_scene_sentence(sent: SpacySpan) -> bool:
         tok.pos_, tok.tag_, tok.lemma_ = "VERB", "VBZ", tok.lower_[:-1]
         things[-1].dep_ = "nsubj"
         changed = True
+    for tok in sent:  # "A basket/compound stands/VERB beside/nmod the bench": the thing is the subject
+        if tok.pos_ != "VERB" or any(c.dep_ in ("nsubj", "nsubj:pass") for c in tok.children):
+            continue
+        things = [c for c in tok.lefts if c.dep_ == "compound" and c.pos_ == "NOUN"]
+        if not things or exact_category([things[-1].lower_]) is None:
+            continue
+        things[-1].dep_ = "nsubj"
+        for c in tok.rights:
+            if c.dep_ == "nmod" and any(g.dep_ == "case" for g in c.children):
+                c.dep_ = "obl"
+        changed = True
     return changed

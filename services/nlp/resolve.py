@@ -24,6 +24,7 @@ from proto.common import Span
 from proto.ssg import ActionNode, CharacterNode, Diagnostic, ObjectNode, SentenceGraph, SocialNode
 from services.nlp import lexicon
 from services.nlp.errors import diagnostic
+from services.nlp.scene import PRONOUN_ANCHOR
 from services.nlp.senses import room_senses
 
 PRONOUN_WORDS = {
@@ -415,6 +416,7 @@ def distinct_objects(graphs: list[SentenceGraph], offsets: list[int] | None = No
     used: set[str] = set()
     out = list(graphs)
     extra_attributes: dict[str, dict[str, str]] = {}
+    topic = ""  # the first thing the last scene sentence named: what a later "next to it" is next to
     for gi, graph in enumerate(graphs):
         if graph.kind != "scene" or not graph.objects:
             continue
@@ -449,6 +451,17 @@ def distinct_objects(graphs: list[SentenceGraph], offsets: list[int] | None = No
                 for r in graph.relations
             ]
             out[gi] = msgspec.structs.replace(graph, objects=kept, relations=relations)
+        done = out[gi]
+        if any(r.object == PRONOUN_ANCHOR for r in done.relations):
+            out[gi] = msgspec.structs.replace(
+                done,
+                relations=[
+                    msgspec.structs.replace(r, object=topic) if r.object == PRONOUN_ANCHOR else r
+                    for r in done.relations
+                    if r.object != PRONOUN_ANCHOR or (topic and topic != r.subject)
+                ],
+            )
+        topic = done.objects[0].id if done.objects else topic
     for oid, attributes in extra_attributes.items():
         gi, oi = first[oid]
         objects = list(out[gi].objects)

@@ -379,6 +379,8 @@ def extract_scene(sent: SpacySpan, builder: GraphBuilder) -> None:
                 builder.room_type = builder.room_type or anchor_room
                 continue
             anchor_id = _mention(anchor, builder, report_unknown=False)
+            if anchor_id is None and anchor.lower_ == "it" and anchor.pos_ == "PRON":
+                anchor_id = PRONOUN_ANCHOR  # "another chair next to it": resolve() names the thing
             if anchor_id is None:
                 continue
             for s in subjects:
@@ -474,6 +476,11 @@ def _room_parts(sent: SpacySpan, builder: GraphBuilder) -> None:
 
 
 RELATIVE_PRONOUNS = frozenset({"which", "that", "whom", "where"})
+
+
+# The anchor of a relation to "it" ("There is another chair next to it$"): the thing an earlier scene
+# sentence named, which services.nlp.resolve.distinct_objects puts in its place (or drops the relation).
+PRONOUN_ANCHOR = "it"
 
 
 def relative_antecedent(tok: Token) -> Token:

@@ -124,3 +124,27 @@ def test_a_relative_clause_of_a_thing_names_a_thing_too():
 
 def test_a_tavern_is_a_place_not_an_unknown_object():
     assert "W101" not in codes("In the tavern there is a table$.")
+
+
+def relations(text):
+    graphs = parse_document(text)
+    cat = {o.id: o.id for g in graphs for o in g.objects}
+    return sorted((cat[r.subject], r.relation, cat[r.object]) for g in graphs for r in g.relations)
+
+
+def test_it_in_a_scene_sentence_is_the_thing_the_last_one_named_first():
+    assert relations("There is a wooden bench$. A basket stands beside it$.") == [
+        ("basket", "next_to", "bench")
+    ]
+    assert relations("There is a sofa$. There is a second sofa in front of it$.") == [
+        ("sofa#2", "in_front_of", "sofa")
+    ]
+    assert relations("A shelf hangs by the door$. On it there is a clock$.") == [
+        ("clock", "on", "shelf"),
+        ("shelf", "near", "door"),
+    ]
+    assert relations("A rug lies under it$.") == []  # nothing named before: no relation
+
+
+def test_a_thing_the_parser_hung_as_a_compound_of_its_verb_is_its_subject():
+    assert relations("A basket stands beside the bench$.") == [("basket", "next_to", "bench")]
