@@ -404,6 +404,19 @@ _NEW_OBJECT = re.compile(r"\b(also|another|second|third|fourth|more|extra|additi
 _INDEFINITE = re.compile(r"^(a|an|another|one|some|two|three|four|five|\d+)\b")
 
 
+def _sentence_offset(graph: SentenceGraph) -> int:
+    """Document offset of a graph's sentence when the caller gave none (the orchestrator's resolve):
+    where the first object's span, as long as it is, names that object in the sentence text."""
+    o = graph.objects[0]
+    length = o.span.end - o.span.start
+    text, word = graph.text.lower(), o.word.lower()
+    for m in re.finditer(re.escape(word), text) if word else ():
+        for start in range(max(0, m.end() - length), m.start() + 1):
+            if start + length >= m.end() and text[start : start + length].rstrip().endswith(word):
+                return o.span.start - start
+    return o.span.start
+
+
 def distinct_objects(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> list[SentenceGraph]:
     """One object node per object across the scene sentences.
 
@@ -420,7 +433,7 @@ def distinct_objects(graphs: list[SentenceGraph], offsets: list[int] | None = No
     for gi, graph in enumerate(graphs):
         if graph.kind != "scene" or not graph.objects:
             continue
-        base = offsets[gi] if offsets is not None and gi < len(offsets) else graph.objects[0].span.start
+        base = offsets[gi] if offsets is not None and gi < len(offsets) else _sentence_offset(graph)
         renames: dict[str, str] = {}
         kept: list[ObjectNode] = []
         for o in graph.objects:

@@ -148,3 +148,17 @@ def test_it_in_a_scene_sentence_is_the_thing_the_last_one_named_first():
 
 def test_a_thing_the_parser_hung_as_a_compound_of_its_verb_is_its_subject():
     assert relations("A basket stands beside the bench$.") == [("basket", "next_to", "bench")]
+
+
+def test_another_thing_is_new_when_resolve_gets_no_offsets():
+    # the orchestrator parses sentences one by one (spans in document offsets) and resolves them
+    # without the offsets: "another lamp" must still be a second lamp
+    from services.nlp.parse import parse_sentences
+    from services.nlp.resolve import resolve
+    from services.nlp.segment import split_sentences
+
+    text = "A lamp stands in the corner$. There is another lamp by the door$. Ivo looks at the lamp."
+    pieces = split_sentences(text)
+    graphs = parse_sentences([(text[s:e], f"s{i}", s, hint) for i, (s, e, hint) in enumerate(pieces)])
+    ids = [o.id for g in resolve(graphs) for o in g.objects if o.category == "lamp"]
+    assert ids[:2] == ["lamp", "lamp#2"]
