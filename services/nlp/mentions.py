@@ -271,6 +271,10 @@ def object_mention(head: Token) -> ObjectMention | None:
     if lexicon.room_of(head.lower_) and exact_category([head.lower_]) is None:
         return None
     mods = _left_modifiers(head)
+    verb = head.head
+    if head.dep_ == "compound" and verb.i == head.i + 1 and verb.lower_[:-1] in lexicon.SCENE_VERBS:
+        # "A large white whiteboard/compound hangs/NOUN": the adjectives hung on the misread verb
+        mods = [c for c in verb.lefts if c.dep_ == "amod" and c.pos_ == "ADJ" and c.i < head.i] + mods
     words = [t.text for t in mods] + [head.text]
     category = None
     used = len(words)

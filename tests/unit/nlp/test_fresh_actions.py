@@ -162,3 +162,12 @@ def test_another_thing_is_new_when_resolve_gets_no_offsets():
     graphs = parse_sentences([(text[s:e], f"s{i}", s, hint) for i, (s, e, hint) in enumerate(pieces)])
     ids = [o.id for g in resolve(graphs) for o in g.objects if o.category == "lamp"]
     assert ids[:2] == ["lamp", "lamp#2"]
+
+
+def test_a_placement_verb_read_as_a_noun_keeps_its_subject_and_adjectives():
+    graphs = parse_document("A big green blackboard hangs above the desk$.")
+    assert [(o.category, o.attributes) for g in graphs for o in g.objects][0] == (
+        "blackboard",
+        {"colour": "green", "size": "large"},
+    )
+    assert relations("A blue punching bag hangs near the window$.") == [("boxing_bag", "near", "window")]
