@@ -245,9 +245,11 @@ def _action(verb: Token, builder: GraphBuilder) -> tuple[ActionNode, str]:
             target = target or value
     things = [a for a in objects if not a.character]
     primary = things[0] if things and len(things) < len(objects) else (objects[0] if objects else None)
-    # "casts a spell at the troll": a thing no catalog holds yields the target to what it is aimed at
+    # "casts a spell at the troll": an act that is no thing in hand is aimed at who comes after "at"
     plain_target = any(
-        a.word == target and not (a.object_id or a.character or a.body_part) for a in objects if target
+        a.word == target and a.word in lexicon.AIMED_ACTS and not (a.object_id or a.character)
+        for a in objects
+        if target
     )
     for arg in obliques:
         value = arg.object_id or arg.character or arg.word

@@ -183,7 +183,12 @@ def arguments(verb: Token, builder: GraphBuilder) -> tuple[list[Argument], list[
     light = verb_lemma(verb) in lexicon.LIGHT_VERBS
     dressing = _dressing(verb)
     for c in verb.children:
-        if dressing and c.dep_ in ("obj", "obl") and c.lower_ in lexicon.WORN_NOUNS:
+        if (
+            dressing
+            and c.dep_ in ("obj", "obl")
+            and c.lower_ in lexicon.WORN_NOUNS
+            and not any(g.dep_ == "compound" for g in c.children)  # "the boxing gloves": a catalog thing
+        ):
             # "puts on his glasses": what he wears, not a glass to put in the room
             objects.append(Argument(tok=c, prep=case_of(c), word=c.lemma_.lower()))
             continue

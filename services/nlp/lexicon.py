@@ -82,6 +82,9 @@ NON_OBJECT_NOUNS = (
 # Words a character says as the object of a verb ("says goodbye", "waves hello", "bids farewell"):
 # what is said, never a thing or place the act is aimed at.
 SAID_WORDS = frozenset("goodbye bye farewell hello hi hey goodnight sorry thanks yes no cheers".split())
+# What one casts or throws that is no thing in hand ("casts a spell at the troll", "shoots a glance at
+# Ada"): the act is aimed at the one after "at", who is its target.
+AIMED_ACTS = frozenset("spell curse hex charm jinx glance look smile wink kiss stare glare insult".split())
 WORN_NOUNS = frozenset(
     "shoe boot sock slipper coat jacket hat cap scarf dress suit tie uniform apron spectacles glasses "
     "gloves glove sweater jumper cardigan helmet mask ring necklace robe cloak".split()

@@ -171,3 +171,12 @@ def test_a_placement_verb_read_as_a_noun_keeps_its_subject_and_adjectives():
         {"colour": "green", "size": "large"},
     )
     assert relations("A blue punching bag hangs near the window$.") == [("boxing_bag", "near", "window")]
+
+
+def test_a_thing_in_hand_thrown_at_someone_stays_the_target():
+    # only an act that is no thing in hand (a spell, a glance) yields its target to the one it is aimed at
+    assert acts("Rita tosses a pebble at Ivo.") == [("Rita", "throw", "pebble")]
+
+
+def test_worn_catalog_things_named_in_full_stay_in_the_room():
+    assert objects("Max puts on the boxing gloves.") == ["boxing_gloves"]
