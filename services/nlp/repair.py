@@ -201,6 +201,7 @@ def _repair_verbless(sent: SpacySpan) -> bool:
             first_object.dep_, tok.dep_ = "iobj", "obj"  # "hands the baby a bottle": to whom, then what
         elif tok.pos_ == "ADV":
             tok.dep_ = "advmod"
+    _giving_order(sent, verb)
     if old_root.i != verb.i and old_root.i in after:  # what hung under the noun the parser made the root
         for tok in list(old_root.children):
             if tok.dep_ in ("advcl", "parataxis") or (tok.dep_ == "conj" and tok.pos_ == "VERB"):
@@ -208,6 +209,34 @@ def _repair_verbless(sent: SpacySpan) -> bool:
             elif tok.dep_ == "nmod" and any(c.dep_ == "case" for c in tok.children) and tok.i > old_root.i:
                 tok.head, tok.dep_ = verb, "obl"
     return True
+
+
+def _giving_order(sent: SpacySpan, verb: Token) -> None:
+    """ "hands Omar the cup", "hands Ada/VERB the menu": a person right after the repaired verb and then
+    a noun phrase are to whom (iobj) and what (obj), whatever the parser hung under what."""
+    doc = sent.doc
+    if verb.i + 2 >= sent.end:
+        return
+    person, det = doc[verb.i + 1], doc[verb.i + 2]
+    if not _is_person(person) or person.lower_ in (
+        "you",
+        "me",
+        "us",
+        "i",
+    ):  # "hands you a hammer": no character
+        return
+    if det.pos_ != "DET" or det.lower_ not in ("the", "a", "an", "his", "her", "their", "some"):
+        return
+    noun = next((t for t in doc[det.i + 1 : sent.end] if t.pos_ in ("NOUN", "PROPN")), None)
+    if noun is None or any(t.is_punct for t in doc[det.i : noun.i]):
+        return
+    if person.pos_ not in ("PROPN", "NOUN", "PRON"):
+        person.pos_ = "PROPN"  # "Ada/VERB": the name it is
+    person.head, person.dep_ = verb, "iobj"
+    noun.head, noun.dep_ = verb, "obj"
+    det.head, det.dep_ = noun, "det"
+    for t in doc[det.i + 1 : noun.i]:
+        t.head, t.dep_ = noun, ("amod" if t.pos_ == "ADJ" else "compound")
 
 
 def _repair_progressive(sent: SpacySpan) -> bool:

@@ -55,6 +55,7 @@ class _State:
         self.multiword: dict[str, str] = {}  # last word of an object named in several words -> its id
         self.resolved_words: set[str] = set()  # words of this sentence that turned out to name an object
         self.passing_names: list[str] = []  # names said of no acting character ("Jen's phone", "named Rosa")
+        self.last_sentence: list[str] = []  # the characters the previous sentence named
 
     def mention(self, name: str, recent: bool = True) -> str:
         """Register a mention; ``recent=False`` (an object of a verb) keeps the subject the most recent."""
@@ -91,6 +92,11 @@ class _State:
                 return group
             others = [c for c in self.characters if c != exclude]
             return others[-2:]
+        # "The waiter hands Ada the menu. She reads it": of the last sentence's characters, one known
+        # to be a she before one whose gender nothing says; else the most recent that may be one
+        for c in reversed(self.characters):
+            if c != exclude and c in self.last_sentence and self.gender.get(c.lower(), "") == pron:
+                return [c]
         for c in reversed(self.characters):
             if c != exclude and self.gender.get(c.lower(), "") in ("", pron):
                 return [c]
@@ -383,6 +389,7 @@ def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> li
                 state.last_actor = c.name
         if len(sentence_names) >= 2:
             state.last_group = sentence_names
+        state.last_sentence = sentence_names or state.last_sentence
         # what was last acted upon: a thing targeted (in the catalog or not), else a catalog destination
         targets = [
             a.target if _is_thing(a.target, state) else a.destination

@@ -180,3 +180,16 @@ def test_a_thing_in_hand_thrown_at_someone_stays_the_target():
 
 def test_worn_catalog_things_named_in_full_stay_in_the_room():
     assert objects("Max puts on the boxing gloves.") == ["boxing_gloves"]
+
+
+def test_a_giving_verb_read_as_a_noun_gives_to_the_person_after_it():
+    assert acts("The nurse hands Omar the cup.") == [("nurse", "present", "Omar")]
+    assert objects("The nurse hands Omar the cup.") == ["cup"]
+    assert acts("The blacksmith hands you a hammer.") == [("blacksmith", "present", "hammer")]
+
+
+def test_she_is_the_character_known_to_be_a_she_before_one_of_no_known_gender():
+    assert acts("The waiter hands Ada the menu. She waves at him.") == [
+        ("waiter", "present", "Ada"),
+        ("Ada", "wave", "waiter"),
+    ]
