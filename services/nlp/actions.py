@@ -30,8 +30,8 @@ from services.nlp.arguments import (
     verb_lemma,
 )
 from services.nlp.builder import GraphBuilder
-from services.nlp.mentions import CharacterMention, character_mention, is_title
-from services.nlp.scene import SUBJECT_DEPS
+from services.nlp.mentions import CharacterMention, character_mention, is_title, object_mention
+from services.nlp.scene import SUBJECT_DEPS, _mention
 from services.nlp.suggest import did_you_mean
 
 CLAUSE_DEPS = frozenset({"ROOT", "conj", "advcl", "xcomp", "ccomp", "parataxis"})
@@ -53,8 +53,10 @@ def _subject_tokens(verb: Token) -> list[Token]:
             and c.i < verb.i
             and c.pos_ in ("PROPN", "NOUN", "ADJ")
         ]
-        if lead and (character_mention(lead[0]) is not None or unknown_capitalised_subject(lead[0])):
-            return _with_conj_people(lead[0])
+        # "One afternoon/compound Priya/compound skips": the time before the name is no one
+        who = [c for c in lead if character_mention(c) is not None or unknown_capitalised_subject(c)]
+        if who:
+            return _with_conj_people(who[0])
     v = verb
     climbed_from_conj = False
     for _ in range(6):
@@ -243,9 +245,20 @@ def _action(verb: Token, builder: GraphBuilder) -> tuple[ActionNode, str]:
             target = target or value
     things = [a for a in objects if not a.character]
     primary = things[0] if things and len(things) < len(objects) else (objects[0] if objects else None)
+    # "casts a spell at the troll": an act that is no thing in hand is aimed at who comes after "at"
+    plain_target = any(
+        a.word == target and a.word in lexicon.AIMED_ACTS and not (a.object_id or a.character)
+        for a in objects
+        if target
+    )
     for arg in obliques:
         value = arg.object_id or arg.character or arg.word
         last = arg.prep.split()[-1] if arg.prep else ""
+        if arg.body_part and any(a.body_part for a in objects):
+            continue  # "buries his face in his hands": the face is what the act is about
+        if last == "at" and plain_target and (arg.character or arg.object_id):
+            target, plain_target = value, False
+            continue
         if last in lexicon.INSTRUMENT_PREPS and arg.object_id:
             instrument = instrument or value
             if primary is None or primary.prep in ("",) and not primary.object_id and not primary.body_part:
@@ -285,6 +298,15 @@ def _action(verb: Token, builder: GraphBuilder) -> tuple[ActionNode, str]:
     if action in PERSON_CONTACT and (not target or target in lexicon.BODY_PARTS):
         owner = _body_part_owner(objects + obliques, builder)
         target = owner or target  # "takes his hand": holding Marcus's hand, not a thing called hand
+    if (
+        primary is not None
+        and target
+        and target == primary.word
+        and not (primary.object_id or primary.character or primary.body_part)
+        and primary.word in lexicon.SAID_WORDS
+    ):
+        # "says goodbye (to Mia)": the word is the act's own, nothing it is aimed at
+        target = next((a.character for a in obliques if a.character), "")
     if lemma in MAKING_VERBS and instrument:
         target = instrument  # "makes coffee with the coffee maker": the hands are at the machine
     if lemma in verbs.WITH_THING and primary is not None and primary.object_id and not person:
@@ -413,8 +435,11 @@ def extract_actions(sent: SpacySpan, builder: GraphBuilder) -> int:
         chars = [c for c in (character_of(s, builder) for s in subjects) if c is not None]
         chars = _distinct_names(chars)  # "Mr" and "Smith" both read as the subject "Mr Smith"
         if subjects and not chars:
-            arguments(verb, builder)  # "It rolls under the sofa": no action, but the sofa is in the story
-            continue  # an object does something ("the lamp hangs"): not a character action
+            if not _animal_it(subjects, verb):
+                arguments(verb, builder)  # "It rolls under the sofa": no action, but the sofa is in the story
+                continue  # an object does something ("the lamp hangs"): not a character action
+            # "The bunny hops. It picks up a carrot": resolve() names the animal, or drops the action
+            chars = [CharacterMention(head=subjects[0], name="", mention=subjects[0].text, pronoun="it")]
         action, social_verb = _action(verb, builder)
         if not action.action and verbs.not_animatable_reason(verb_lemma(verb)):
             for cm in chars:  # "she hums", "he remembers": W113 says why; who it is still counts
@@ -424,12 +449,48 @@ def extract_actions(sent: SpacySpan, builder: GraphBuilder) -> int:
             chars = [CharacterMention(head=verb, name="", mention="")]  # imperative: the current character
         _add_action(chars, action, social_verb, builder)
         count += 1
+    for tok in sent:
+        if tok.dep_ == "acl:relcl" and tok.pos_ == "VERB":
+            # "The girl who sits near the window", "the book that lies on the desk": in the story
+            arguments(tok, builder)
     if count == 0 and not social:
         verbless = not any(t.pos_ in ("VERB", "AUX") for t in sent)
-        if verbless:
+        things = [t for t in sent if t.pos_ == "NOUN" and object_mention(t) is not None] if verbless else []
+        for t in things:  # "the clock strikes/NOUN twelve": no character acts, the clock is still there
+            _mention(t, builder, report_unknown=False)
+        if verbless and not things:
             hint = did_you_mean(sent.text.strip(" .!?$"), "command")
             builder.diagnose("W103", f"'{sent.text}'{hint}", sent.start_char, sent.end_char)
     return count
+
+
+def extract_relative_actions(sent: SpacySpan, builder: GraphBuilder) -> int:
+    """The acts of characters a scene sentence names in a relative clause ("a table at which an old
+    sailor sits", "a sofa on which Tom sleeps"); returns their count."""
+    count = 0
+    for verb in sent:
+        if verb.dep_ != "acl:relcl" or verb.pos_ != "VERB":
+            continue
+        subjects = _subject_tokens(verb)
+        chars = _distinct_names([c for c in (character_of(s, builder) for s in subjects) if c is not None])
+        if not chars:
+            continue  # "a bed under which a box lies": the scene reader's relation
+        action, social_verb = _action(verb, builder)
+        if action.action:
+            _add_action(chars, action, social_verb, builder)
+            count += 1
+    return count
+
+
+def _animal_it(subjects: list[Token], verb: Token) -> bool:
+    """ "It" as the subject of a verb only an agent does ("picks up", "nibbles"): maybe an animal."""
+    if len(subjects) != 1 or subjects[0].lower_ != "it" or subjects[0].pos_ != "PRON":
+        return False
+    lemma = verb_lemma(verb)
+    if lemma in lexicon.SCENE_VERBS or lemma in lexicon.RELATION_VERBS or lemma in verbs.DOZE_VERBS:
+        return False  # "It hangs on the wall", "it falls": things do that too
+    particle = next((c.lower_ for c in verb.children if c.dep_ == "compound:prt"), "")
+    return bool(lexicon.action_for(lemma, particle))
 
 
 def _distinct_names(chars: list[CharacterMention]) -> list[CharacterMention]:

@@ -24,7 +24,7 @@ from services.nlp.mentions import (
     is_unknown_object_word,
     object_mention,
 )
-from services.nlp.scene import _mention
+from services.nlp.scene import _mention, relative_antecedent
 from services.nlp.suggest import did_you_mean
 from services.nlp.timephrase import time_light
 
@@ -114,6 +114,7 @@ def _antecedent(pronoun: Token, builder: GraphBuilder) -> str:
 
 
 def _argument(tok: Token, prep: str, builder: GraphBuilder, report_unknown: bool) -> Argument:
+    tok = relative_antecedent(tok)  # "a table at which a sailor sits": at the table
     arg = Argument(tok=tok, prep=prep)
     if reciprocal_phrase(tok):
         arg.character = "each other"
@@ -180,7 +181,17 @@ def arguments(verb: Token, builder: GraphBuilder) -> tuple[list[Argument], list[
     obliques: list[Argument] = []
     by_position = verb.pos_ not in ("VERB", "AUX")
     light = verb_lemma(verb) in lexicon.LIGHT_VERBS
+    dressing = _dressing(verb)
     for c in verb.children:
+        if (
+            dressing
+            and c.dep_ in ("obj", "obl")
+            and c.lower_ in lexicon.WORN_NOUNS
+            and not any(g.dep_ == "compound" for g in c.children)  # "the boxing gloves": a catalog thing
+        ):
+            # "puts on his glasses": what he wears, not a glass to put in the room
+            objects.append(Argument(tok=c, prep=case_of(c), word=c.lemma_.lower()))
+            continue
         if c.pos_ == "ADV" and c.lower_.endswith("ly"):
             continue  # a manner the parser attached as an argument
         if c.dep_ != "nsubj" and duration_of(c) is None and (lit := time_light(c)) is not None:
@@ -233,6 +244,19 @@ def arguments(verb: Token, builder: GraphBuilder) -> tuple[list[Argument], list[
                 if conj.dep_ == "conj" and conj.pos_ in ("NOUN", "PROPN"):
                     obliques.append(_argument(conj, prep, builder, report_unknown=True))
     return objects, obliques, duration
+
+
+def _dressing(verb: Token) -> bool:
+    """ "puts on", "takes off", "slips on/ADP", "wears": a verb of dressing, whose object is worn."""
+    from services.nlp import verbs
+
+    lemma = verb_lemma(verb)
+    particles = [c.lower_ for c in verb.children if c.dep_ == "compound:prt"]
+    particles += [g.lower_ for c in verb.children if c.dep_ == "obl" for g in c.children if g.dep_ == "case"]
+    return verbs.not_animatable_reason(lemma) == verbs.not_animatable_reason("put on") != "" or any(
+        verbs.not_animatable_reason(f"{lemma} {p}") == verbs.not_animatable_reason("put on")
+        for p in particles
+    )
 
 
 def event_action(tok: Token) -> str:

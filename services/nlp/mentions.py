@@ -271,6 +271,10 @@ def object_mention(head: Token) -> ObjectMention | None:
     if lexicon.room_of(head.lower_) and exact_category([head.lower_]) is None:
         return None
     mods = _left_modifiers(head)
+    verb = head.head
+    if head.dep_ == "compound" and verb.i == head.i + 1 and verb.lower_[:-1] in lexicon.SCENE_VERBS:
+        # "A large white whiteboard/compound hangs/NOUN": the adjectives hung on the misread verb
+        mods = [c for c in verb.lefts if c.dep_ == "amod" and c.pos_ == "ADJ" and c.i < head.i] + mods
     words = [t.text for t in mods] + [head.text]
     category = None
     used = len(words)
@@ -446,6 +450,17 @@ def named_thing(tok: Token) -> bool:
     )
 
 
+def acting_thing_animal(tok: Token) -> bool:
+    """ "The mouse/nsubj creeps": an animal whose word is also a catalog thing, as the subject of a verb
+    with an action (the computer mouse never creeps)."""
+    if tok.lemma_.lower() not in lexicon.THING_ANIMALS or not tok.dep_.startswith("nsubj"):
+        return False
+    head = tok.head
+    if any(c.dep_ == "compound" for c in tok.lefts):
+        return False  # "the computer mouse"
+    return head.pos_ == "VERB" and lexicon.is_known_verb(head.lemma_.lower())
+
+
 def character_mention(tok: Token) -> CharacterMention | None:
     """A character named by a token: a proper name, a person noun or a personal pronoun."""
     lower = tok.lower_
@@ -457,6 +472,9 @@ def character_mention(tok: Token) -> CharacterMention | None:
             return None
         return CharacterMention(head=tok, name="", mention=tok.text, pronoun=pron)
     if (tok.lemma_.lower() in lexicon.PERSON_NOUNS or lower in lexicon.PERSON_NOUNS) and not named_thing(tok):
+        start = min([tok.i] + [c.i for c in tok.lefts if c.dep_ in ("det", "amod", "compound")])
+        return CharacterMention(head=tok, name=tok.lemma_.lower(), mention=tok.doc[start : tok.i + 1].text)
+    if acting_thing_animal(tok):
         start = min([tok.i] + [c.i for c in tok.lefts if c.dep_ in ("det", "amod", "compound")])
         return CharacterMention(head=tok, name=tok.lemma_.lower(), mention=tok.doc[start : tok.i + 1].text)
     known_name = tok.text[:1].isupper() and (lower in lexicon.FEMALE_NAMES or lower in lexicon.MALE_NAMES)

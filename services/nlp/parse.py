@@ -21,7 +21,7 @@ from spacy.tokens import Doc
 
 from proto.common import Span
 from proto.ssg import Diagnostic, SentenceGraph
-from services.nlp.actions import extract_actions
+from services.nlp.actions import extract_actions, extract_relative_actions
 from services.nlp.builder import GraphBuilder
 from services.nlp.commands import looks_like_command, parse_command, unknown_camera_detail
 from services.nlp.errors import MAX_SENTENCE_CHARS, diagnostic
@@ -306,6 +306,7 @@ def _extract(doc: Doc, text: str, kind: str, diagnostics: list[Diagnostic]) -> S
         if is_scene:
             repair_scene_sentence(sent)
             extract_scene(sent, builder)
+            extract_relative_actions(sent, builder)
         else:
             extract_actions(sent, builder)
     if is_scene and not builder.objects and not builder.room_type:

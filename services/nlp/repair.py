@@ -40,6 +40,8 @@ def _is_person(tok: Token) -> bool:
         return not action_reading(lower)  # "High-five Mary": not a name
     if tok.text[:1].isupper() and (lower in lexicon.FEMALE_NAMES or lower in lexicon.MALE_NAMES):
         return True  # "Ada/NOUN thanks her"
+    if lower in lexicon.THING_ANIMALS and tok.i + 1 < tok.sent.end:
+        return bool(action_reading(tok.doc[tok.i + 1].lower_))  # "The mouse creeps/NOUN"
     return tok.lemma_.lower() in lexicon.PERSON_NOUNS or lower in lexicon.PERSON_NOUNS
 
 
@@ -71,6 +73,23 @@ def _lead_in_end(sent: SpacySpan) -> int:
                 any(time_light(t) is not None for t in lead) or all(t.pos_ in ("ADV", "SCONJ") for t in lead)
             ):
                 return tok.i + 1
+            break
+    return _bare_time_end(sent)
+
+
+def _bare_time_end(sent: SpacySpan) -> int:
+    """Index after a leading time phrase with no comma ("One morning Rosa skips", "That night he
+    sleeps"): a time word or two before a time noun, then a person; else the sentence start."""
+    from services.nlp.timephrase import TIME_MODIFIERS, TIME_NOUNS
+
+    words = sent[:4]
+    if not words or words[0].lower_ not in TIME_MODIFIERS | {"the"}:
+        return sent.start
+    for tok in words[1:]:
+        if tok.lower_ in TIME_NOUNS and tok.i + 1 < sent.end:
+            nxt = sent.doc[tok.i + 1]
+            return tok.i + 1 if nxt.text[:1].isupper() or nxt.lower_ in lexicon.PRONOUNS else sent.start
+        if tok.lower_ not in TIME_MODIFIERS:
             break
     return sent.start
 
@@ -164,6 +183,7 @@ def _repair_verbless(sent: SpacySpan) -> bool:
         if tok.head.i not in {t.i for t in appositive} or tok.head.i == tok.i:
             tok.head, tok.dep_ = subject, ("punct" if tok.is_punct else "appos")
     has_object = False
+    first_object = verb
     for i in after:
         tok = sent.doc[i]
         if tok.head.i in after and tok.head.i != tok.i:
@@ -176,8 +196,12 @@ def _repair_verbless(sent: SpacySpan) -> bool:
         elif tok.pos_ in ("NOUN", "PROPN", "PRON", "NUM") and not has_object:
             tok.dep_ = "obj"
             has_object = True
+            first_object = tok
+        elif tok.pos_ in ("NOUN", "PROPN") and tok.dep_ != "conj" and first_object.dep_ == "obj":
+            first_object.dep_, tok.dep_ = "iobj", "obj"  # "hands the baby a bottle": to whom, then what
         elif tok.pos_ == "ADV":
             tok.dep_ = "advmod"
+    _giving_order(sent, verb)
     if old_root.i != verb.i and old_root.i in after:  # what hung under the noun the parser made the root
         for tok in list(old_root.children):
             if tok.dep_ in ("advcl", "parataxis") or (tok.dep_ == "conj" and tok.pos_ == "VERB"):
@@ -185,6 +209,34 @@ def _repair_verbless(sent: SpacySpan) -> bool:
             elif tok.dep_ == "nmod" and any(c.dep_ == "case" for c in tok.children) and tok.i > old_root.i:
                 tok.head, tok.dep_ = verb, "obl"
     return True
+
+
+def _giving_order(sent: SpacySpan, verb: Token) -> None:
+    """ "hands Omar the cup", "hands Ada/VERB the menu": a person right after the repaired verb and then
+    a noun phrase are to whom (iobj) and what (obj), whatever the parser hung under what."""
+    doc = sent.doc
+    if verb.i + 2 >= sent.end:
+        return
+    person, det = doc[verb.i + 1], doc[verb.i + 2]
+    if not _is_person(person) or person.lower_ in (
+        "you",
+        "me",
+        "us",
+        "i",
+    ):  # "hands you a hammer": no character
+        return
+    if det.pos_ != "DET" or det.lower_ not in ("the", "a", "an", "his", "her", "their", "some"):
+        return
+    noun = next((t for t in doc[det.i + 1 : sent.end] if t.pos_ in ("NOUN", "PROPN")), None)
+    if noun is None or any(t.is_punct for t in doc[det.i : noun.i]):
+        return
+    if person.pos_ not in ("PROPN", "NOUN", "PRON"):
+        person.pos_ = "PROPN"  # "Ada/VERB": the name it is
+    person.head, person.dep_ = verb, "iobj"
+    noun.head, noun.dep_ = verb, "obj"
+    det.head, det.dep_ = noun, "det"
+    for t in doc[det.i + 1 : noun.i]:
+        t.head, t.dep_ = noun, ("amod" if t.pos_ == "ADJ" else "compound")
 
 
 def _repair_progressive(sent: SpacySpan) -> bool:
@@ -509,10 +561,25 @@ def _repair_subject_relative_clause(sent: SpacySpan) -> bool:
     return True
 
 
+def _repair_determined_adverb(sent: SpacySpan) -> bool:
+    """ "skips to the well/ADV": a word with a determiner and a preposition of its own is a noun, never
+    an adverb (the tagger reads "well", "back", "down" as adverbs whatever comes before them)."""
+    changed = False
+    for tok in sent:
+        if tok.pos_ != "ADV" or tok.dep_ not in ("obl", "obj", "nmod"):
+            continue
+        kids = {c.dep_ for c in tok.children if c.i < tok.i}
+        if "det" in kids and "case" in kids:
+            tok.pos_, tok.tag_ = "NOUN", "NN"
+            changed = True
+    return changed
+
+
 def repair_character_sentence(sent: SpacySpan) -> bool:
     """Repair the tree of one character sentence in place; True when something changed."""
     return (
-        _repair_subject_relative_clause(sent)
+        _repair_determined_adverb(sent)
+        | _repair_subject_relative_clause(sent)
         | _repair_progressive(sent)
         | _repair_adverb_subject(sent)
         | _repair_adverb_name(sent)
@@ -545,5 +612,16 @@ def repair_scene_sentence(sent: SpacySpan) -> bool:
             continue
         tok.pos_, tok.tag_, tok.lemma_ = "VERB", "VBZ", tok.lower_[:-1]
         things[-1].dep_ = "nsubj"
+        changed = True
+    for tok in sent:  # "A basket/compound stands/VERB beside/nmod the bench": the thing is the subject
+        if tok.pos_ != "VERB" or any(c.dep_ in ("nsubj", "nsubj:pass") for c in tok.children):
+            continue
+        things = [c for c in tok.lefts if c.dep_ == "compound" and c.pos_ == "NOUN"]
+        if not things or exact_category([things[-1].lower_]) is None:
+            continue
+        things[-1].dep_ = "nsubj"
+        for c in tok.rights:
+            if c.dep_ == "nmod" and any(g.dep_ == "case" for g in c.children):
+                c.dep_ = "obl"
         changed = True
     return changed

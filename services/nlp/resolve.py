@@ -24,6 +24,7 @@ from proto.common import Span
 from proto.ssg import ActionNode, CharacterNode, Diagnostic, ObjectNode, SentenceGraph, SocialNode
 from services.nlp import lexicon
 from services.nlp.errors import diagnostic
+from services.nlp.scene import PRONOUN_ANCHOR
 from services.nlp.senses import room_senses
 
 PRONOUN_WORDS = {
@@ -37,6 +38,7 @@ PRONOUN_WORDS = {
     "everyone": "all",
     "everybody": "all",
     "their": "they",
+    "it": "it",
 }
 
 
@@ -53,6 +55,7 @@ class _State:
         self.multiword: dict[str, str] = {}  # last word of an object named in several words -> its id
         self.resolved_words: set[str] = set()  # words of this sentence that turned out to name an object
         self.passing_names: list[str] = []  # names said of no acting character ("Jen's phone", "named Rosa")
+        self.last_sentence: list[str] = []  # the characters the previous sentence named
 
     def mention(self, name: str, recent: bool = True) -> str:
         """Register a mention; ``recent=False`` (an object of a verb) keeps the subject the most recent."""
@@ -79,6 +82,8 @@ class _State:
         return canonical
 
     def pronoun(self, pron: str, exclude: str = "") -> list[str]:
+        if pron == "it":  # "The bunny hops. It ...": only an animal is an "it" that acts
+            return [c for c in self.characters if c != exclude and _is_animal(c)][-1:]
         if pron == "all":  # "Everyone raises their glasses": every character named so far
             return [c for c in self.characters if c != exclude]
         if pron == "they":
@@ -87,10 +92,19 @@ class _State:
                 return group
             others = [c for c in self.characters if c != exclude]
             return others[-2:]
+        # "The waiter hands Ada the menu. She reads it": of the last sentence's characters, one known
+        # to be a she before one whose gender nothing says; else the most recent that may be one
+        for c in reversed(self.characters):
+            if c != exclude and c in self.last_sentence and self.gender.get(c.lower(), "") == pron:
+                return [c]
         for c in reversed(self.characters):
             if c != exclude and self.gender.get(c.lower(), "") in ("", pron):
                 return [c]
         return []
+
+
+def _is_animal(name: str) -> bool:
+    return name in lexicon.ANIMAL_NOUNS or name in lexicon.THING_ANIMALS
 
 
 _PASSING_NAME = re.compile(r"\b(?:named|called) ([A-Z][a-z]+)\b|\b([A-Z][a-z]+)'s\b")
@@ -292,6 +306,8 @@ def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> li
                 if len(names) == 1 and pron in ("he", "she") and not state.gender.get(names[0].lower()):
                     # "Marcus ... He sits": Marcus is a he from now on, so a later "she" is Dana
                     state.gender[names[0].lower()] = pron
+                if not names and pron == "it":
+                    continue  # "It rolls away": a thing, not a character
                 if not names:
                     diagnostics.append(
                         diagnostic(
@@ -344,6 +360,8 @@ def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> li
                 for r in resolved:
                     if r not in subjects:
                         subjects.append(r)
+            if len(node.subjects) >= 2 and len(subjects) < 2:
+                continue  # "takes his hand" with no "him" to be found: no act between two characters
             for r in subjects:
                 if r not in sentence_names:
                     sentence_names.append(r)
@@ -371,6 +389,7 @@ def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> li
                 state.last_actor = c.name
         if len(sentence_names) >= 2:
             state.last_group = sentence_names
+        state.last_sentence = sentence_names or state.last_sentence
         # what was last acted upon: a thing targeted (in the catalog or not), else a catalog destination
         targets = [
             a.target if _is_thing(a.target, state) else a.destination
@@ -392,6 +411,19 @@ _NEW_OBJECT = re.compile(r"\b(also|another|second|third|fourth|more|extra|additi
 _INDEFINITE = re.compile(r"^(a|an|another|one|some|two|three|four|five|\d+)\b")
 
 
+def _sentence_offset(graph: SentenceGraph) -> int:
+    """Document offset of a graph's sentence when the caller gave none (the orchestrator's resolve):
+    where the first object's span, as long as it is, names that object in the sentence text."""
+    o = graph.objects[0]
+    length = o.span.end - o.span.start
+    text, word = graph.text.lower(), o.word.lower()
+    for m in re.finditer(re.escape(word), text) if word else ():
+        for start in range(max(0, m.end() - length), m.start() + 1):
+            if start + length >= m.end() and text[start : start + length].rstrip().endswith(word):
+                return o.span.start - start
+    return o.span.start
+
+
 def distinct_objects(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> list[SentenceGraph]:
     """One object node per object across the scene sentences.
 
@@ -404,10 +436,11 @@ def distinct_objects(graphs: list[SentenceGraph], offsets: list[int] | None = No
     used: set[str] = set()
     out = list(graphs)
     extra_attributes: dict[str, dict[str, str]] = {}
+    topic = ""  # the first thing the last scene sentence named: what a later "next to it" is next to
     for gi, graph in enumerate(graphs):
         if graph.kind != "scene" or not graph.objects:
             continue
-        base = offsets[gi] if offsets is not None and gi < len(offsets) else graph.objects[0].span.start
+        base = offsets[gi] if offsets is not None and gi < len(offsets) else _sentence_offset(graph)
         renames: dict[str, str] = {}
         kept: list[ObjectNode] = []
         for o in graph.objects:
@@ -438,6 +471,17 @@ def distinct_objects(graphs: list[SentenceGraph], offsets: list[int] | None = No
                 for r in graph.relations
             ]
             out[gi] = msgspec.structs.replace(graph, objects=kept, relations=relations)
+        done = out[gi]
+        if any(r.object == PRONOUN_ANCHOR for r in done.relations):
+            out[gi] = msgspec.structs.replace(
+                done,
+                relations=[
+                    msgspec.structs.replace(r, object=topic) if r.object == PRONOUN_ANCHOR else r
+                    for r in done.relations
+                    if r.object != PRONOUN_ANCHOR or (topic and topic != r.subject)
+                ],
+            )
+        topic = done.objects[0].id if done.objects else topic
     for oid, attributes in extra_attributes.items():
         gi, oi = first[oid]
         objects = list(out[gi].objects)

@@ -98,8 +98,20 @@ def _misread_verb(tok: Token) -> bool:
     )
 
 
+def _subject_verb_noun(tok: Token) -> bool:
+    """A placement verb tagged as a noun that the parser still gave its subject ("A punching bag/nsubj
+    hangs/NOUN near the ring")."""
+    return (
+        tok.pos_ in ("NOUN", "PROPN")
+        and tok.lower_ in SCENE_VERB_FORMS
+        and any(c.dep_ in SUBJECT_DEPS and c.i < tok.i for c in tok.children)
+    )
+
+
 def _verb_lemma(tok: Token) -> str:
-    return SCENE_VERB_FORMS.get(tok.lower_, tok.lemma_.lower()) if _misread_verb(tok) else tok.lemma_.lower()
+    if _misread_verb(tok) or _subject_verb_noun(tok):
+        return SCENE_VERB_FORMS.get(tok.lower_, tok.lemma_.lower())
+    return tok.lemma_.lower()
 
 
 def _case_words(tok: Token) -> list[Token]:
@@ -178,6 +190,8 @@ def _subjects_of(attach: Token) -> list[Token]:
     if _misread_verb(head) and head.i != attach.i:
         compounds = [c for c in head.children if c.dep_ in ("compound", "amod") and c.i < head.i]
         return _expand_subject(compounds[-1])
+    if _subject_verb_noun(head) and head.i != attach.i:
+        return _expand_subject(next(c for c in head.children if c.dep_ in SUBJECT_DEPS))
     if dep in ("nmod", "acl", "amod") and head.pos_ in ("NOUN", "PROPN", "X", "NUM") and head.i != attach.i:
         if head.lemma_.lower() in lexicon.NON_OBJECT_NOUNS and object_mention(head) is None:
             return _subjects_of(head)  # "on the floor near the bed": what is on the floor is near the bed
@@ -379,6 +393,8 @@ def extract_scene(sent: SpacySpan, builder: GraphBuilder) -> None:
                 builder.room_type = builder.room_type or anchor_room
                 continue
             anchor_id = _mention(anchor, builder, report_unknown=False)
+            if anchor_id is None and anchor.lower_ == "it" and anchor.pos_ == "PRON":
+                anchor_id = PRONOUN_ANCHOR  # "another chair next to it": resolve() names the thing
             if anchor_id is None:
                 continue
             for s in subjects:
@@ -474,6 +490,11 @@ def _room_parts(sent: SpacySpan, builder: GraphBuilder) -> None:
 
 
 RELATIVE_PRONOUNS = frozenset({"which", "that", "whom", "where"})
+
+
+# The anchor of a relation to "it" ("There is another chair next to it$"): the thing an earlier scene
+# sentence named, which services.nlp.resolve.distinct_objects puts in its place (or drops the relation).
+PRONOUN_ANCHOR = "it"
 
 
 def relative_antecedent(tok: Token) -> Token:

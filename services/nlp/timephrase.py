@@ -54,7 +54,7 @@ TIME_NOUNS: dict[str, str] = {
     "second": "",
 }
 # Words that make a preceding noun a time ("the next morning", "that evening", "one day").
-_TIME_MODIFIERS = frozenset("next same following previous that this one every each early late last".split())
+TIME_MODIFIERS = frozenset("next same following previous that this one every each early late last".split())
 _TIME_PREPS = frozenset("after before during until till by at in on for since within".split())
 # Meals are times only after these ("after lunch", "before dinner"); "eats lunch" is food on a plate.
 MEALS = frozenset("breakfast brunch lunch lunchtime dinner dinnertime supper tea teatime".split())
@@ -78,6 +78,6 @@ def time_light(tok: Token) -> str | None:
     preps = {c.lower_ for c in tok.children if c.dep_ == "case"}
     if lower in ("while", "meantime", "meanwhile", "tonight", "today", "tomorrow", "yesterday", "later"):
         return light
-    if mods & _TIME_MODIFIERS or preps & _TIME_PREPS or tok.dep_ in ("obl:tmod", "nmod:tmod", "obl:npmod"):
+    if mods & TIME_MODIFIERS or preps & _TIME_PREPS or tok.dep_ in ("obl:tmod", "nmod:tmod", "obl:npmod"):
         return light
     return None

@@ -119,7 +119,7 @@ beckon: call in, usher, wave in, summon, call over, motion, gesture, invite, wav
 point: indicate, point out, gesture at, aim, direct, signpost
 point_up: raise a hand, raise one's hand, put up a hand
 bow: thank, curtsy, curtsey, bow down, take a bow, kowtow
-greet_bow: nod hello, bow to greet, blow out, blow out the candles, blow on, blow
+greet_bow: nod hello, bow to greet, blow out, blow out the candles, blow on, blow, blow the candles, blow the candle
 salute: salute smartly, give a salute
 nod: agree, accept, approve, nod along, confirm, acknowledge, consent, say yes
 shake_head: refuse, decline, deny, disagree, reject, say no, disapprove, forbid
