@@ -17,12 +17,15 @@ its passes are drawn as often as the common failures) and writes a contact sheet
 frames) and the first and last frame of the sentence; ``samples.json`` there lists them. A person looks at
 each sheet and writes a label into ``eval/data/agreement_labels.json``: the unit, ``human`` (``ok`` when what
 the check is about looks right in the frames, ``fail`` when it looks wrong), a one-line ``why``, and the
-``animation`` fingerprint of the frames judged.
+``unit`` fingerprint of the frames judged (unit_fingerprint: the room, and every character, held object,
+object state and, for a camera check, the camera over the unit's own frames, counted from the sentence's
+start; older labels carry only ``animation``, the whole story's fingerprint).
 
 The comparison runs on every labelled unit of the computed stories: agreement is the share of labels whose
 human verdict is the check's verdict (a check that no longer exists claims nothing: ``ok``). A label whose
-animation changed since it was judged (another stage changed the motion) is *stale*: it is not counted and is
-listed to be looked at again. Each label records the pipeline seed of the animation judged, and its story is
+unit's frames changed since it was judged (another stage changed the motion there) is *stale*: it is not
+counted and is listed to be looked at again; a change elsewhere in the story (another sentence, a longer walk
+before it) leaves it counted. A label with no ``unit`` is stale when anything in its story changed. Each label records the pipeline seed of the animation judged, and its story is
 computed with that seed. ``--labelled`` compares every label and computes nothing else; ``--quick`` checks only
 the QUICK_STORIES stories with the most labels, from the cache (seconds once cached; a cold cache computes
 them first).
@@ -115,20 +118,130 @@ def render_version(root: Path = REPO) -> str:
 
 
 def camera_checks_of(result: Any, fingerprint: str, cache: Path) -> dict[str, Any]:
-    """The camera checks of one animation, cached by its fingerprint and the render sources (the camera
-    planner and the visibility test take most of a story's checking time)."""
+    """The camera checks of one animation (see camera_of)."""
+    return camera_of(result, fingerprint, cache)[0]
+
+
+def camera_of(result: Any, fingerprint: str, cache: Path) -> tuple[dict[str, Any], dict[str, Any]]:
+    """The camera checks of one animation and its camera track (eye, target, fov_deg per frame), cached by
+    its fingerprint and the render sources (the camera planner and the visibility test take most of a
+    story's checking time)."""
     file = cache / f"camera-{fingerprint}-{render_version()}.pkl"
     if file.exists():
         try:
             with file.open("rb") as f:
-                return dict(pickle.load(f))
+                checks, track = pickle.load(f)
+            return dict(checks), dict(track)
         except Exception:
             file.unlink(missing_ok=True)
-    camera = story_eval.story_camera_checks(result)
+    checks, track = story_camera(result)
     cache.mkdir(parents=True, exist_ok=True)
     with file.open("wb") as f:
-        pickle.dump(camera, f, protocol=pickle.HIGHEST_PROTOCOL)
-    return camera
+        pickle.dump((checks, track), f, protocol=pickle.HIGHEST_PROTOCOL)
+    return checks, track
+
+
+def story_camera(result: Any) -> tuple[dict[str, Any], dict[str, Any]]:
+    """The render service's camera checks of one computed story (as eval/story.py runs them) and the camera
+    track they judged: the picture an in_view or command_visible label was judged on."""
+    from services.render.camera_checks import staged_checks
+    from services.render.staging import Staging
+    from services.render.timeline import as_motion_list, place_commands
+
+    mlist = as_motion_list(result.motions)
+    sents = list(result.sentences or [])
+    stage = Staging.build(result.scene, mlist, place_commands(result.commands, sents, mlist))
+    track = stage.camera_track(story_eval.WIDTH, story_eval.HEIGHT)
+    checks = staged_checks(stage, sents, width=story_eval.WIDTH, height=story_eval.HEIGHT, track=track)
+    return dict(checks), {"eye": track.eye, "target": track.target, "fov_deg": track.fov_deg}
+
+
+# --- what one label is about: its unit's own frames ------------------------------------------------------
+
+FINGERPRINT_STEP = 1e-3  # metres and quaternion units: far below what a sheet shows
+CAMERA_CHECKS = ("in_view", "command_visible")
+
+
+def unit_window(motions: dict[str, Any], sentence: str, check: str) -> tuple[int, int] | None:
+    """The frames a unit's verdict is about: its sentence's frames, the frame before them for a jump
+    (continuity), every frame up to its end for an entrance (unseen before), and to the video's end for a
+    command (in force for the rest of the video); None for a sentence with no frames (a scene sentence)."""
+    span = story_eval.sentence_frames(motions, sentence)
+    if span is None:
+        return None
+    total = max((m.root_position.shape[0] for m in motions.values()), default=0)
+    start, end = span
+    if check == "continuity":
+        start = max(0, start - 1)
+    elif check == "entrance":
+        start = 0
+    elif check == "command_visible":
+        end = total
+    return start, min(end, total)
+
+
+def from_wire(a: Any) -> Any:
+    from wana.arrays import from_wire as unpack
+
+    return unpack(a)
+
+
+def _quantised(a: Any) -> bytes:
+    import numpy as np
+
+    return np.round(np.asarray(a, dtype=np.float64) / FINGERPRINT_STEP).astype(np.int64).tobytes()
+
+
+def unit_fingerprint(
+    result: Any, story: str, sentence: str, check: str, track: dict[str, Any] | None = None
+) -> str:
+    """A hash of what a label of (sentence, check) judged: the room and its objects, and over the unit's
+    window (unit_window; frames counted from its start, so that a longer sentence before it does not
+    count) every character's pose, presence, actions, held objects and the objects' states, and for a
+    camera check the camera. A change elsewhere in the story (another sentence's motion) leaves it as it
+    was; anything the label's frames show changes it. Values are rounded to FINGERPRINT_STEP."""
+    import msgspec
+    import numpy as np
+
+    def arr(a: Any) -> Any:
+        return a if isinstance(a, np.ndarray) else from_wire(a)
+
+    h = hashlib.blake2b(digest_size=8)
+    h.update(f"{story}|{sentence}|{check}".encode())
+    scene = result.scene
+    if scene is not None:
+        h.update(msgspec.json.encode(scene.room))
+        h.update(msgspec.json.encode(sorted(scene.objects, key=lambda o: o.id)))
+    window = unit_window(result.motions, sentence, check)
+    if window is not None:
+        a, b = window
+        frames = np.arange(a, b)
+        for name in sorted(result.motions):
+            m = result.motions[name]
+            h.update(name.encode())
+            h.update(_quantised(arr(m.root_position)[a:b]))
+            h.update(_quantised(arr(m.rotations)[a:b]))
+            if m.present is not None:
+                h.update(np.asarray(arr(m.present)[a:b], dtype=np.uint8).tobytes())
+            for g in m.segments:
+                if g.start_frame < b and g.end_frame > a:
+                    h.update(f"{g.action}|{g.sentence_id}|{g.start_frame - a}|{g.end_frame - a}".encode())
+            for p in m.props:
+                lo, hi = max(a, p.start_frame), min(b, p.end_frame)
+                if lo < hi:
+                    h.update(f"{p.object_id}|{p.joint}|{lo - a}|{hi - a}".encode())
+                    h.update(_quantised(arr(p.position)[lo - p.start_frame : hi - p.start_frame]))
+        if scene is not None:
+            for st in sorted(scene.states, key=lambda t: (t.object_id, t.state)):
+                h.update(f"{st.object_id}|{st.state}".encode())
+                if st.frames:
+                    h.update(_quantised(np.interp(frames, st.frames, st.values)))
+        if check in CAMERA_CHECKS and track is not None:
+            for key in ("eye", "target", "fov_deg"):
+                h.update(_quantised(np.asarray(track[key])[a:b]))
+    if check in CAMERA_CHECKS:
+        h.update(repr(result.commands).encode())
+    return h.hexdigest()
 
 
 def computed(path: Path, seed: int, version: str, cache: Path, *, compute: bool = True) -> Any | None:
@@ -248,6 +361,7 @@ def compare(
     found: dict[tuple[Any, ...], dict[str, Any]],
     fingerprints: dict[tuple[str, int], str],
     count_stale: bool = False,
+    unit_fps: dict[tuple[Any, ...], str] | None = None,
 ) -> dict[str, Any]:
     """Agreement of each label with the current check verdict of its unit.
 
@@ -257,6 +371,8 @@ def compare(
         fingerprints: (story, seed) -> its animation's fingerprint (the stories computed this run).
         count_stale: count a stale label too (still listed under ``stale``): an indicative number only, the
             person judged an older animation of the unit.
+        unit_fps: unit key -> its unit_fingerprint now: a label keyed by its unit's frames (``unit``) is
+            stale when those changed; one keyed by the whole animation only (``animation``) when any changed.
     """
     per: dict[str, collections.Counter[str]] = collections.defaultdict(collections.Counter)
     stale, skipped, disagreements = [], [], []
@@ -266,7 +382,7 @@ def compare(
         if story not in fingerprints:
             skipped.append(key)
             continue
-        if lab.get("animation") and lab["animation"] != fingerprints[story]:
+        if is_stale(lab, fingerprints[story], (unit_fps or {}).get(key)):
             stale.append(key)
             if not count_stale:
                 continue
@@ -308,6 +424,14 @@ def compare(
     }
 
 
+def is_stale(lab: dict[str, Any], animation: str, unit: str | None) -> bool:
+    """Whether what a label judged has changed: its unit's own frames when it records their fingerprint
+    (``unit``), else the whole animation's (``animation``; a label with neither is never stale)."""
+    if lab.get("unit"):
+        return lab["unit"] != unit
+    return bool(lab.get("animation")) and lab["animation"] != animation
+
+
 def label_group(lab: dict[str, Any], splits: dict[str, str]) -> str:
     """The blind set a label was drawn in (``fresh``; ``fresh2``, drawn after ``fresh`` was tuned on), else
     its story's split."""
@@ -323,6 +447,7 @@ def compare_groups(
     fingerprints: dict[tuple[str, int], str],
     splits: dict[str, str],
     count_stale: bool = False,
+    unit_fps: dict[tuple[Any, ...], str] | None = None,
 ) -> dict[str, dict[str, Any]]:
     """Group (dev, test, others, fresh) -> its agreement and counted labels: a target must hold on the labels
     the checks were not fixed on (held-out test, fresh), not only on the dev labels they were."""
@@ -331,7 +456,7 @@ def compare_groups(
         groups[label_group(lab, splits)].append(lab)
     out = {}
     for name, labs in sorted(groups.items()):
-        c = compare(labs, found, fingerprints, count_stale)
+        c = compare(labs, found, fingerprints, count_stale, unit_fps)
         out[name] = {"agreement": c["check_agreement"], "counted": c["counted"], "labels": len(labs)}
     return out
 
@@ -436,6 +561,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     fingerprints: dict[tuple[str, int], str] = {}
     results: dict[tuple[str, int], Any] = {}
     rows: dict[tuple[str, int], dict[str, Any]] = {}
+    tracks: dict[tuple[str, int], dict[str, Any]] = {}
     for stem, seed in wanted:
         path = every.get(stem)
         if path is None:
@@ -443,15 +569,24 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         result = computed(path, seed, version, cache)
         text = path.read_text(encoding="utf-8", errors="replace")
         fingerprints[(stem, seed)] = fp = animation_fingerprint(result)
-        camera = camera_checks_of(result, fp, cache / "camera")
+        camera, track = camera_of(result, fp, cache / "camera")
         row = story_eval.check_result(stem, text, result, camera=camera)
         results[(stem, seed)] = result
         rows[(stem, seed)] = row
+        tracks[(stem, seed)] = track
         for u in units(row, fp, seed):
             found[unit_key(u)] = u
-    summary = compare(labels, found, fingerprints, args.count_stale)
+    unit_fps = {
+        unit_key(lab): unit_fingerprint(
+            results[(lab["story"], int(lab.get("seed", 0)))], lab["story"], lab["sentence"], lab["check"],
+            tracks[(lab["story"], int(lab.get("seed", 0)))],
+        )
+        for lab in labels
+        if (lab["story"], int(lab.get("seed", 0))) in results
+    }  # fmt: skip
+    summary = compare(labels, found, fingerprints, args.count_stale, unit_fps)
     splits = {p.stem: p.parent.name for p in every.values()}
-    summary["by_group"] = compare_groups(labels, found, fingerprints, splits, args.count_stale)
+    summary["by_group"] = compare_groups(labels, found, fingerprints, splits, args.count_stale, unit_fps)
     for group, key in (
         ("test", "agreement_held_out"),
         ("fresh", "agreement_fresh"),
@@ -473,11 +608,12 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         labelled = {unit_key(lab) for lab in labels}
         pool = [u for u in found.values() if unit_key(u) not in labelled]
         picked = stratified_sample(pool, args.blind, args.sample_seed)
+        keyed(picked, results, tracks)
         sheets = draw_sheets(picked, results, args.out / "blind", draw_blind_sheet)
         for i, u in enumerate(picked):
             who = f" about {u['character']}" if u["character"] else ""
             print(f"[{i}] {u['story']} {u['sentence']} {u['check']}{who}: {u['text']}")
-        keep = ("story", "seed", "sentence", "check", "character", "text", "animation", "sheet")
+        keep = ("story", "seed", "sentence", "check", "character", "text", "animation", "unit", "sheet")
         (sheets / "units.json").write_text(json.dumps([{k: u[k] for k in keep} for u in picked], indent=1))
     if args.sample:
         labelled = {unit_key(lab) for lab in labels}
@@ -487,6 +623,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
             if u["seed"] == args.seed and (unit_key(u) not in labelled or args.relabel)
         ]
         picked = stratified_sample(pool, args.sample, args.sample_seed)
+        keyed(picked, results, tracks)
         draw_sheets(picked, results, args.out / "sheets", draw_sheet)
         for i, u in enumerate(picked):
             who = f" ({u['character']})" if u["character"] else ""
@@ -496,6 +633,13 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     summary["quick"] = bool(args.quick)
     summary["wall_s"] = time.perf_counter() - t0
     return summary
+
+
+def keyed(picked: list[dict[str, Any]], results: dict[Any, Any], tracks: dict[Any, Any]) -> None:
+    """Note each picked unit's ``unit`` fingerprint: the frames a label of it judges (its key for staleness)."""
+    for u in picked:
+        story = (u["story"], u["seed"])
+        u["unit"] = unit_fingerprint(results[story], u["story"], u["sentence"], u["check"], tracks[story])
 
 
 def story_paths_all() -> list[Path]:

@@ -14,7 +14,7 @@ from proto.scene import PlacedObject
 from wana.assets import catalog
 from wana.domain.skeleton import JOINT_INDEX, JOINT_NAMES
 from wana.fidelity.bodies import Body
-from wana.fidelity.solids import depth_inside, depth_inside_at
+from wana.fidelity.solids import depth_inside, depth_inside_at, depth_inside_open, leaf_transforms
 from wana.fidelity.world import World
 
 PENETRATION_M = 0.03  # a body part may sink this far into furniture or another body (soft contact)
@@ -139,9 +139,12 @@ def penetration(
     allowance = visible_depth(body.radii)
     for placed, _, outer in world.solids:
         moved = world.poses.get(placed.id)
+        opened = world.open_values(placed.id, body.frames) if moved is None else None
         box = (
             np.broadcast_to(outer, (body.frames, 2, 3)) if moved is None else _moved_box(placed, outer, moved)
         )
+        if opened is not None:  # a door leaf swung open stands out of the closed door's box
+            box = np.broadcast_to(_swept_box(placed, outer), (body.frames, 2, 3))
         n = min(body.frames, len(box))
         frames = np.nonzero(
             np.all((frame_box[:n, 0] <= box[:n, 1]) & (frame_box[:n, 1] >= box[:n, 0]), axis=1)
@@ -157,7 +160,9 @@ def penetration(
         if not near.any():
             continue
         t_idx, p_idx = np.nonzero(near)
-        if moved is None:
+        if opened is not None:  # its leaves where Scene.states has them on each frame
+            depth = depth_inside_open(placed, body.points[t_idx, p_idx], body.radii[p_idx], opened[t_idx])
+        elif moved is None:
             depth = depth_inside(placed, body.points[t_idx, p_idx], body.radii[p_idx])
         else:  # a carried object where it is on each frame, not where it was picked up from
             depth = depth_inside_at(placed, body.points[t_idx, p_idx], body.radii[p_idx], moved[t_idx])
@@ -185,6 +190,24 @@ def penetration(
     out.joint[~seen] = -1
     out.failing[:] = seen
     return out
+
+
+def _swept_box(placed: PlacedObject, outer: np.ndarray) -> np.ndarray:
+    """(2, 3) world box of an object whose leaves open and shut: its closed box and its leaves' corners at
+    every tenth of their swing."""
+    placed_pose = catalog.object_to_world(placed)
+    yaw = placed_pose[:3, :3] @ np.diag(1.0 / np.asarray(placed.scale, float))
+    pts = [outer]
+    for value in np.linspace(0.0, 1.0, 11):
+        for t in leaf_transforms(placed, float(value)).values():
+            local = (outer - placed_pose[:3, 3]) @ np.linalg.inv(yaw).T  # scaled object frame
+            corners = np.array(
+                [[local[i, 0], local[j, 1], local[k, 2]] for i in (0, 1) for j in (0, 1) for k in (0, 1)]
+            )
+            swung = corners @ t[:3, :3].T + t[:3, 3]
+            pts.append(swung @ yaw.T + placed_pose[:3, 3])
+    allp = np.concatenate(pts)
+    return np.stack([allp.min(axis=0), allp.max(axis=0)])
 
 
 def _moved_box(placed: PlacedObject, outer: np.ndarray, poses: np.ndarray) -> np.ndarray:

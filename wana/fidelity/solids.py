@@ -130,6 +130,74 @@ def depth_inside_at(
     return radii - inside * float(np.mean(placed.scale))
 
 
+@lru_cache(maxsize=256)
+def object_leaves(
+    category: str, attributes: tuple[tuple[str, str], ...], seed: int, scale: tuple[float, float, float]
+) -> tuple[tuple[int, ...], dict[int, np.ndarray]]:
+    """Which leaf an "open" state turns each solid part with (0: still; wana.domain.object_state), and each
+    leaf's (2, 3) bounds, in the scaled object frame the renderer poses the leaf in (render.object_states)."""
+    from wana.assets.geometry import Part
+    from wana.domain.object_state import moving_faces
+
+    placed = PlacedObject(id="", category=category, attributes=dict(attributes), seed=seed, scale=scale)
+    mesh = catalog.asset_for(placed).mesh
+    k = np.asarray(scale, float)
+    tri = np.asarray(mesh.vertices, float)[np.asarray(mesh.faces)] * k
+    faces = moving_faces(category, tri)
+    parts = {
+        int(leaf): np.stack(
+            [tri[faces == leaf].reshape(-1, 3).min(axis=0), tri[faces == leaf].reshape(-1, 3).max(axis=0)]
+        )
+        for leaf in np.unique(faces)
+        if leaf > 0
+    }
+    leaves = []
+    for solid in solids_of(placed):
+        part = build_mesh([Part(solid.kind, solid.params, solid.rotation, solid.translation, (0, 0, 0, 255))])
+        own = np.asarray(part.vertices, float)[np.asarray(part.faces)] * k
+        # the part's faces judged among the whole mesh's (the rule reads the mesh's extent)
+        votes = moving_faces(category, np.concatenate([tri, own]))[len(tri) :]
+        leaves.append(int(np.bincount(votes, minlength=3).argmax()) if len(votes) else 0)
+    return tuple(leaves), parts
+
+
+def leaf_transforms(placed: PlacedObject, value: float) -> dict[int, np.ndarray]:
+    """Leaf -> (4, 4) scaled-object-frame transform of that leaf at an "open" value (as the renderer poses it)."""
+    from wana.domain.object_state import open_transform
+
+    _, parts = object_leaves(
+        placed.category, tuple(sorted(placed.attributes.items())), placed.seed, placed.scale
+    )
+    return {k: open_transform(placed.category, part, value, k) for k, part in parts.items()}
+
+
+def depth_inside_open(
+    placed: PlacedObject, centres: np.ndarray, radii: np.ndarray, values: np.ndarray
+) -> np.ndarray:
+    """(n,) as `depth_inside`, with the object's door leaves, lids or fronts turned to each sphere's "open"
+    value (n,) (Scene.states): an open door's leaf stands out in the room, its doorway is clear."""
+    solids = solids_of(placed)
+    if not solids or not len(centres):
+        return np.full(len(centres), -np.inf)
+    leaves, _ = object_leaves(
+        placed.category, tuple(sorted(placed.attributes.items())), placed.seed, placed.scale
+    )
+    k = np.asarray(placed.scale, float)
+    m = catalog.object_to_world(placed)
+    local = (centres - m[:3, 3]) @ np.linalg.inv(m[:3, :3]).T  # unscaled object frame
+    inside = np.full(len(centres), np.inf)
+    for value in np.unique(np.round(values, 3)):
+        at = np.nonzero(np.round(values, 3) == value)[0]
+        turns = leaf_transforms(placed, float(value))
+        for solid, leaf in zip(solids, leaves, strict=True):
+            q = local[at]
+            if leaf in turns:  # back into the leaf's shut pose: where the solid is modelled
+                t = turns[leaf]
+                q = ((q * k - t[:3, 3]) @ t[:3, :3]) / k
+            inside[at] = np.minimum(inside[at], solid.signed_distance(q))
+    return radii - inside * float(np.mean(placed.scale))
+
+
 def rests_on(placed: PlacedObject, points: np.ndarray, below: float, above: float, step: float) -> np.ndarray:
     """(n,) whether a solid part of the object lies under each world point, from `below` under it up to
     `above` over it (probed every `step` metres down from the point): the point rests on the object, or sinks
@@ -142,4 +210,14 @@ def rests_on(placed: PlacedObject, points: np.ndarray, below: float, above: floa
     return np.asarray((depth.reshape(probes.shape[:2]) >= 0.0).any(axis=1), bool)
 
 
-__all__ = ["Solid", "depth_inside", "depth_inside_at", "object_solids", "rests_on", "solids_of"]
+__all__ = [
+    "Solid",
+    "depth_inside",
+    "depth_inside_at",
+    "depth_inside_open",
+    "leaf_transforms",
+    "object_leaves",
+    "object_solids",
+    "rests_on",
+    "solids_of",
+]

@@ -66,6 +66,19 @@ class World:
             pose[a:b, :3, :3] = rot.as_matrix() @ np.diag(placed.scale)
             pose[a:b, :3, 3] = pos
 
+    def open_values(self, object_id: str, frames: int) -> np.ndarray | None:
+        """(frames,) how open an object's door, lid or fronts are on each frame (Scene.states, 0 shut to 1
+        open), None when no sentence changes it (it stands as modelled)."""
+        from wana.domain.object_state import STATEFUL
+
+        placed = self.by_id.get(object_id)
+        if placed is None or "open" not in STATEFUL.get(placed.category, {}):
+            return None
+        for t in self.scene.states:
+            if t.object_id == object_id and t.state == "open" and t.frames:
+                return np.interp(np.arange(frames), t.frames, t.values)
+        return None
+
     def find(self, ref: str) -> list[PlacedObject]:
         """Objects a sentence's word refers to: the id itself, else its copies, else the category."""
         if not ref:

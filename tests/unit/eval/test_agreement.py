@@ -103,3 +103,68 @@ def test_fresh_labels_are_counted_apart_from_the_split_their_story_is_in(agreeme
     assert groups["test"] == {"agreement": 1.0, "counted": 1, "labels": 1}
     assert groups["fresh"] == {"agreement": 0.0, "counted": 1, "labels": 1}  # s2 has no failing check
     assert groups["fresh2"] == {"agreement": 1.0, "counted": 1, "labels": 1}  # a second blind set, apart
+
+
+def story_result(tom_frames, pad=0, door=None):
+    """A computed story's result as the fingerprint reads it: a room, one chair, Tom's motion over
+    sentences s1 (frames 0..9) and s2 (the rest), ``pad`` still frames inserted before s1's."""
+    import types
+
+    import numpy as np
+
+    from proto.motion_data import Motion, Segment
+    from proto.scene import ObjectStateTrack, PlacedObject, Room, Scene
+    from wana.arrays import to_wire
+
+    root = np.concatenate([np.repeat(tom_frames[:1], pad, axis=0), tom_frames]).astype(np.float32)
+    n = len(root)
+    rotations = np.tile(np.array([0.0, 0.0, 0.0, 1.0], np.float32), (n, 3, 1))
+    segments = [
+        Segment(index=0, action="walk", start_frame=0, end_frame=pad + 10, sentence_id="s1"),
+        Segment(index=1, action="wave", start_frame=pad + 10, end_frame=n, sentence_id="s2"),
+    ]
+    motion = Motion(
+        character="Tom", root_position=to_wire(root), rotations=to_wire(rotations), segments=segments
+    )
+    states = (
+        [ObjectStateTrack(object_id="door", state="open", frames=door, values=[0.0, 1.0])] if door else []
+    )
+    scene = Scene(
+        room=Room(room_type="office", width=5, depth=4, height=3),
+        objects=[PlacedObject(id="chair", category="office_chair"), PlacedObject(id="door", category="door")],
+        states=states,
+    )
+    return types.SimpleNamespace(scene=scene, motions={"Tom": motion}, commands=[])
+
+
+def test_a_unit_fingerprint_keys_the_frames_its_label_judged_not_the_whole_story(agreement):
+    import numpy as np
+
+    walk = np.linspace([0.1234, 0.9, 0.0], [2.1234, 0.9, 1.0], 20)
+    key = agreement.unit_fingerprint(story_result(walk), "x", "s2", "penetration")
+    assert key == agreement.unit_fingerprint(story_result(walk + 1e-7), "x", "s2", "penetration")  # noise
+    earlier = walk.copy()
+    earlier[:10, 2] += 0.3  # s1's walk changed: s2's frames did not
+    assert key == agreement.unit_fingerprint(story_result(earlier), "x", "s2", "penetration")
+    assert key == agreement.unit_fingerprint(story_result(walk, pad=5), "x", "s2", "penetration")  # later
+    assert key != agreement.unit_fingerprint(story_result(earlier), "x", "s1", "penetration")
+    moved = walk.copy()
+    moved[15, 0] += 0.01  # a centimetre in s2's own frames
+    assert key != agreement.unit_fingerprint(story_result(moved), "x", "s2", "penetration")
+    opened = story_result(walk, door=[12, 16])  # the door opens during s2
+    assert key != agreement.unit_fingerprint(opened, "x", "s2", "penetration")
+    assert agreement.unit_fingerprint(story_result(walk, door=[2, 6]), "x", "s2", "penetration") != key
+    # a continuity label looks at the frame before its sentence too; an entrance at every frame before
+    assert agreement.unit_window(story_result(walk).motions, "s2", "continuity") == (9, 20)
+    assert agreement.unit_window(story_result(walk).motions, "s2", "entrance") == (0, 20)
+
+
+def test_a_label_keyed_by_its_unit_is_stale_only_when_its_unit_changed(agreement):
+    lab = {"story": "a", "seed": 0, "sentence": "s1", "check": "contact", "character": "Tom", "human": "ok",
+           "why": "-", "animation": "old", "unit": "u1"}  # fmt: skip
+    key = agreement.unit_key(lab)
+    found = {key: {**lab, "check_verdict": "ok", "reason": "r"}}
+    same = agreement.compare([lab], found, {("a", 0): "new"}, unit_fps={key: "u1"})
+    assert same["counted"] == 1 and not same["stale"]
+    changed = agreement.compare([lab], found, {("a", 0): "new"}, unit_fps={key: "u2"})
+    assert changed["counted"] == 0 and changed["stale"] == [list(key)]

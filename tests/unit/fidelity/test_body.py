@@ -286,3 +286,32 @@ def test_a_seat_is_no_stated_contact_once_its_sitter_has_stood_up(make):
         assert stood.ok is (not inside), stood.reason
         if inside:
             assert "inside the chair" in stood.reason and min(stood.frames) >= 90
+
+
+def test_an_open_door_leaf_is_where_scene_states_swing_it_not_shut_in_its_doorway():
+    # The penetration check measured a door as modelled (shut) whatever Scene.states said: someone walking
+    # through the doorway of an opened door was "inside the door", and standing where its leaf swung to
+    # was clear of it. The leaf is now posed as the renderer poses it (wana.domain.object_state).
+    from proto.scene import ObjectStateTrack, Room, Scene
+    from wana.domain.skeleton import JOINT_NAMES
+    from wana.fidelity.bodies import Body
+    from wana.fidelity.body_checks import penetration
+    from wana.fidelity.world import World
+
+    door = PlacedObject(id="door", category="door", position=(0.0, 0.0, 0.0))
+    room = Room(room_type="office", width=6.0, depth=6.0, height=2.8)
+    shut = Scene(room=room, objects=[door])
+    track = ObjectStateTrack(object_id="door", state="open", frames=[10, 28], values=[0.0, 1.0])
+    opening = Scene(room=room, objects=[door], states=[track])  # shut until frame 10, open from 28
+
+    def inside(x: float, z: float, scene: Scene) -> np.ndarray:
+        """(40,) frames a trunk (hips to chest, 15 cm spheres) standing at (x, z) is inside the door."""
+        points = np.tile(np.array([[x, y, z] for y in (0.9, 1.1, 1.3)]), (40, 1, 1))
+        joints = np.zeros((40, len(JOINT_NAMES), 3))
+        body = Body("Eve", joints, points, np.full(3, 0.15), np.zeros(3, np.int64))
+        return penetration(body, World(scene), {}).failing
+
+    doorway, leaf = (0.0, 0.0), (-0.48, 0.45)  # the hinge is on the left (x < 0), the leaf swings to +z
+    assert inside(*doorway, shut).all() and not inside(*leaf, shut).any()
+    assert inside(*doorway, opening)[:10].all() and not inside(*doorway, opening)[30:].any()
+    assert not inside(*leaf, opening)[:10].any() and inside(*leaf, opening)[30:].all()
