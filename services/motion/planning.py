@@ -104,6 +104,11 @@ TABLE_GRASP_M = 0.45  # metres: a grip point this high is reached for; lower, th
 # metres: a pick-up this high (above tables and counters: a filing cabinet's top, a shelf) plays its arm alone,
 # upright; lower, its own bend and dip reach the table (the trunk within 30 degrees, synthesis)
 SHELF_GRASP_M = 1.1
+# A seated character takes a prop whose grip is this near its hips (horizontally) and at most SEATED_GRASP_BELOW_M
+# below them (the seat's top beside it, not the floor) with an arm's reach where it sits (the box of chocolates on the bench beside it), not by getting up and
+# bending over the seat from behind it, its shins through the bench (gump-lobby-1 s7).
+SEATED_REACH_M = 0.7
+SEATED_GRASP_BELOW_M = 0.25
 
 
 def straight_route(scene: Scene, start: tuple[float, float], goal: tuple[float, float]) -> np.ndarray:
@@ -873,8 +878,8 @@ def plan_actions(
                 return "stand"
             if s.action in SEATED_AS:
                 return SEATED_AS[s.action]
-            if s.kind == "action" and s.action in lib and lib[s.action].drives_lower_body:
-                return "stand"
+            if s.kind == "action" and not s.upright and s.action in lib and lib[s.action].drives_lower_body:
+                return "stand"  # an upright segment plays the clip's arms alone: the posture holds
         return posture
 
     def now_seat() -> str:
@@ -937,6 +942,32 @@ def plan_actions(
                  "prop_yaw": float(prop_obj.yaw)}  # fmt: skip
         played = {"action": shows, "upright": True} if shows and shows != taker else {"action": taker}
         add(kind="action", targets=((reach[0], reach[2]),), target_id=prop_obj.id, action_index=ai,
+            prop_span="grasp", **played, **grasp)  # fmt: skip
+        hand.update(grasp)
+        return True
+
+    def take_seated(prop_obj: PlacedObject, ai: int, shows: str) -> bool:
+        """Seated on a known seat, take a small object in arm's reach of the hips (SEATED_REACH_M) where one
+        sits, with the arms of ``shows`` (its upright variant) on the seated pose; False when there is none,
+        it is out of reach or on the floor."""
+        reach = _grasp(prop_obj)
+        if reach is None or now_posture() != "sit" or "seat" not in sat_on:
+            return False
+        hips = sat_on["seat"][1]
+        point = reach[2]
+        if (
+            point[1] < hips[1] - SEATED_GRASP_BELOW_M
+            or np.hypot(point[0] - hips[0], point[2] - hips[2]) > SEATED_REACH_M
+        ):
+            return False
+        if hand and hand["prop"] != prop_obj.id:
+            if not set_down_in_reach():
+                return False
+            set_down(None, ai, GRASP_TABLE)
+        grasp = {"prop": prop_obj.id, "prop_joint": reach[0], "prop_grip": reach[1],
+                 "prop_yaw": float(prop_obj.yaw)}  # fmt: skip
+        played = {"action": shows, "upright": True}
+        add(kind="action", targets=((reach[0], point),), target_id=prop_obj.id, action_index=ai,
             prop_span="grasp", **played, **grasp)  # fmt: skip
         hand.update(grasp)
         return True
@@ -1076,6 +1107,13 @@ def plan_actions(
             add(kind="action", action=name, action_index=ai)
             yaw += {"turn_left": np.pi / 2, "turn_right": -np.pi / 2, "turn_around": np.pi}[name]
             continue
+        if name == "pick_up" and now_posture() == "sit":
+            prop_obj = next(
+                (o for r in (node.target, node.instrument, node.destination) if (o := find_object(scene, r))),
+                None,
+            )
+            if prop_obj is not None and take_seated(prop_obj, ai, name):
+                continue  # in reach where one sits: taken seated, not by getting up and bending over the seat
         if (
             clip.drives_lower_body
             and name not in SEATED_AS

@@ -24,6 +24,11 @@ from services.retrieval.geometry import Footprint, extents, footprint_boxes_at, 
 
 LEFT_SIGN = 1.0  # the anchor's left is its +X side (characters face +Z with their left on +X)
 WALL_GAP = 0.005  # metres between a wall and what hangs on it
+# metres from the wall to the front of a seat that faces what hangs on it ("a bench in front of the paintings"):
+# room for the sitter's lower legs and feet (knees ~0.5 m ahead of the seat's front, feet under them) and to
+# stand up and walk away; 0.05-0.3 m left the shins in the wall and the walk away through the bench
+# (solo-gallery-12 s8/s11).
+SEAT_FACING_GAPS = (0.9, 0.7, 1.2, 0.6)
 
 # Centre height of the base of wall-mounted objects, metres above the floor.
 WALL_MOUNT_Y: dict[str, float] = {
@@ -197,7 +202,8 @@ def relation_candidates(
                 rel_yaws = [math.pi, 0.0] if fp.sitters else [0.0, math.pi]
             lats = [lateral0 * half_w, 0.0, half_w, -half_w] if side in ("front", "below") else [0.0]
             for rel_yaw in rel_yaws:
-                for gap in gaps:
+                facing = side == "front" and bool(fp.sitters) and rel_yaw == math.pi
+                for gap in SEAT_FACING_GAPS if facing else gaps:
                     for lat in lats:
                         yield _side(anchor, fp, side, gap, lat, rel_yaw, y, support)
         return

@@ -3,6 +3,7 @@ and pieces that meet at their boundaries without a pose pop (the story checks' o
 
 from __future__ import annotations
 
+import msgspec
 import numpy as np
 
 from proto.scene import PlacedObject, Room, Scene
@@ -210,3 +211,29 @@ def test_a_chair_tucked_in_at_a_table_is_sat_on_and_left_from_beside_it():
     )
     (again,) = [s for s in resumed.segments if s.action == "stand"]
     assert np.allclose(dict(again.targets)["Hips"], rise, atol=0.02)
+
+
+def test_a_seated_character_takes_a_box_beside_it_on_the_bench_without_getting_up():
+    from services.motion.planning import seat_slots, straight_route
+    from wana.assets.catalog import world_support_surfaces
+
+    bench = PlacedObject(id="bench", category="bench", position=(0.0, 0.0, 0.0))
+    hips = seat_slots(bench, "seat")[0]
+    top = world_support_surfaces(bench)[0][0]
+    box = PlacedObject(
+        id="box", category="chocolate_box", position=(hips[0] + 0.35, top, 0.0), support="bench"
+    )
+    scene = Scene(room=Room(room_type="lobby", width=6, depth=6, height=3), objects=[bench, box])
+    node = CharacterNode(name="Ann", actions=[
+        ActionNode(verb="sit", action="sit", target="bench"),
+        ActionNode(verb="pick", action="pick_up", target="box"),
+    ])  # fmt: skip
+    plan = plan_actions(node, scene, (hips[0], 1.5, np.pi), straight_route)
+    after = [s for s in plan.segments if s.action_index == 1]
+    assert [s.action for s in after] == ["pick_up"]  # no stand-up, no walk round the bench to bend over it
+    assert after[0].upright and after[0].prop == "box" and after[0].prop_span == "grasp"
+    far = msgspec.structs.replace(box, position=(hips[0] + 1.2, top, 0.0))  # out of reach: gets up for it
+    plan = plan_actions(
+        node, msgspec.structs.replace(scene, objects=[bench, far]), (hips[0], 1.5, np.pi), straight_route
+    )
+    assert plan.segments[[s.action_index for s in plan.segments].index(1)].action == "stand"

@@ -189,3 +189,21 @@ def test_typing_at_a_laptop_puts_the_fingers_on_the_keys_with_bent_elbows():
     neck = pos[f0 + frames, JOINT_INDEX["Neck"]] - pos[f0 + frames, JOINT_INDEX["Hips"]]
     lean = np.degrees(np.arctan2(np.linalg.norm(neck[:, [0, 2]], axis=1), neck[:, 1]))
     assert lean.max() < 45.0  # leaning in, not folded over the desk
+
+
+def test_a_walk_to_the_far_side_of_a_table_goes_round_it_not_over_it():
+    from services.motion.routing import _scene_route, passes_through, scene_route
+
+    scene = Scene(room=ROOM, objects=[TABLE, DOOR])
+    boxes = world_collision_boxes(TABLE)
+    far = (0.0, float(boxes[:, 1, 2].max()) + 0.3)  # just past the table's +Z edge
+    start = (0.0, float(boxes[:, 0, 2].min()) - 0.8)  # in front of its -Z edge
+    ignore = frozenset({"table"})  # the object walked to does not block the end of the walk
+    old, _ = _scene_route(scene, start, far, ignore)
+    assert passes_through(scene, old, ignore)  # ignoring it, the straight line leads over the top
+    way, why = scene_route(scene, start, far, ignore)
+    assert why == "" and len(way) > 2
+    assert np.allclose(way[-1], far)
+    assert not passes_through(scene, way, ignore)
+    pts = np.vstack([np.linspace(a, b, 20) for a, b in zip(way[:-1], way[1:], strict=True)])
+    assert not _inside_footprints(pts, boxes).any()

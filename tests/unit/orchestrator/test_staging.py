@@ -70,6 +70,19 @@ def test_the_added_door_leaves_its_way_in_free_of_furniture():
     assert all(grid.is_free_xz(np.array(door.inside(d))) for d in (0.5, 1.0))
 
 
+def test_a_door_whose_way_in_is_blocked_gets_a_second_one_that_entrances_use():
+    door = PlacedObject(id="ctx_door", category="door", position=(2.4, 0.0, 0.0), yaw=-np.pi / 2)
+    toilet = PlacedObject(id="toilet", category="toilet", position=(1.9, 0.0, 0.0), yaw=-np.pi / 2)
+    scene = with_door(Scene(room=ROOM, objects=[door, toilet]))  # the toilet stands in the door's way in
+    doors = [o for o in scene.objects if o.category == "door"]
+    assert len(doors) == 2
+    way = doorway(scene)
+    assert not np.allclose(way.centre, (2.4, 0.0))
+    grid = occupancy_grid(ROOM, scene_footprints(scene), radius=0.25)
+    assert all(grid.is_free_xz(np.array(way.inside(d))) for d in (0.5, 1.0))
+    assert with_door(scene) is scene  # and no third
+
+
 def test_a_hidden_character_waits_outside_the_room_and_each_at_its_own_place():
     door = doorway(with_door(Scene(room=ROOM)))
     places = [np.array(door.outside(i)) for i in range(3)]

@@ -52,3 +52,24 @@ def test_what_rests_on_a_bench_keeps_off_its_sitters_place():
     assert index.first_collider(middle) == "bench"
     assert index.first_collider(end) is None
     assert index.first_colliders([middle, end]) == ["bench", None]
+
+
+def test_a_bench_in_front_of_a_painting_faces_it_with_room_for_the_legs():
+    from services.retrieval.placement import relation_candidates
+
+    painting_fp = footprint("painting", {}, 0)
+    assert painting_fp.mount == "wall"
+    painting = Placed("painting", painting_fp, np.array([0.0, 1.3, 0.0]), 0.0)  # on the wall z = 0, facing +Z
+    bench_fp = footprint("bench", {}, 0)
+    assert bench_fp.sitters
+    front = float(painting_fp.bounds[1, 2])
+    seen = 0
+    for position, yaw, _ in relation_candidates(
+        "in_front_of", bench_fp, painting, np.random.default_rng(3), room_height=2.8
+    ):
+        if abs(math.remainder(yaw - math.pi, 2 * math.pi)) > 1e-6:
+            continue  # its back to the painting
+        seen += 1
+        half = float(make_object("bench").dims[2]) / 2
+        assert position[2] - half - front >= 0.55  # the seat's front this far from the wall: shins and feet
+    assert seen
