@@ -75,7 +75,16 @@ HANDOVER_DISTANCE = 0.75  # metres between the two hips while one hands the othe
 HANDOVER_STEP_BACK = 1.2  # metres between the two hips once the giver has let go and stepped back
 HANDOVER_HEIGHT = 1.0  # metres above the floor where the object passes from hand to hand
 HANDOVER_GESTURE_S = 1.2  # seconds of the presenting gesture after letting go
-CLOSE_DISTANCE = {"hug": 0.45, "shake_hands": 0.75, "high_five": 0.75}  # metres, per touching action
+# metres between the two hips, per touching action: a hand on the other's shoulder or chest needs them
+# within an arm's reach of it (at PERSON_DISTANCE the straight arm stops 0.2 m short of the shoulder)
+CLOSE_DISTANCE = {
+    "hug": 0.45,
+    "shake_hands": 0.75,
+    "high_five": 0.75,
+    "comfort": 0.55,
+    "kiss_cheek": 0.45,
+    "push_person": 0.6,
+}
 TOO_CLOSE_M = 0.1  # metres closer than the wanted distance to another character that make one step back
 ARMS_CLEAR_M = 0.05  # metres left between two characters' hands gesturing at each other at their farthest
 SEATING = ("sit", "lie_down", "sleep")  # clips that leave the character on a seat or a bed
