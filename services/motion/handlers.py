@@ -64,6 +64,7 @@ def handle_synthesize(req: SynthesizeRequest) -> SynthesizeReply:
         seats=dict(req.seats),
         spots={k: (float(v[0]), float(v[1])) for k, v in req.spots.items()},
         occupied=[(float(x), float(z)) for x, z in req.occupied],
+        bodies=[(float(x), float(z)) for x, z in req.bodies],
     )
     if req.from_segment < 0 or req.from_segment > len(plan.segments):
         raise InvalidInput(f"from_segment {req.from_segment} outside 0..{len(plan.segments)}")

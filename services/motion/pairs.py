@@ -44,6 +44,8 @@ REACH_SHARE = 0.93  # a meeting point is kept within this share of each arm's st
 HANDS_MAX_MS = 9.0  # m/s: a fit that moves a hand faster than this is dropped (the story checks allow 10)
 BUSY_HIPS_M = 0.1  # metres the partner's hips rise or drop during the clip that mean it sits down or gets up
 SEATED_HIPS_M = 0.75  # metres: hips lower than this are seated
+# radians the actor may bend down to reach the other's shoulder or back (a seated partner's, from behind)
+LEAN_STEPS = (0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7)
 REACH_MAX = 1.6  # metres between the two hips beyond which no contact is attempted (nobody walked up)
 ARM_JOINTS = tuple(
     n for n in JOINT_NAMES if n.startswith(("LeftShoulder", "LeftArm", "LeftForeArm", "LeftHand"))
@@ -454,9 +456,11 @@ def solve_pairs(
             leaned.add(together)
         if not mutual and not busy:
             b.rotations = answer_pose(b.rotations, a.rotations, spec.answer, reach_b)
-        pos_a, grot_a = a.fk()
         pos_b, grot_b = b.fk()
         goals_a = [(t.joint, surface_point(pos_b, grot_b, t)) for t in spec.actor]
+        # a shoulder out of the standing arm's reach (the partner sits): the actor bends down to it
+        a.rotations = lean_in(a.rotations, _reach_lean(a, goals_a, c0, c1), reach_a)
+        pos_a, grot_a = a.fk()
         goals_b = [] if mutual or busy else [(t.joint, surface_point(pos_a, grot_a, t)) for t in spec.partner]
         for ja, jb in spec.meet:
             if busy:
@@ -525,6 +529,33 @@ def _within_reach(
             limit = reach[:, None] * share
             goal = np.where(n > limit, shoulder + d / np.maximum(n, 1e-9) * limit, goal)
     return goal
+
+
+def _reach_lean(side: _Side, goals: list[tuple[str, np.ndarray]], c0: int, c1: int) -> float:
+    """Radians more the spine leans forward so that every goal is within REACH_SHARE of its arm's reach
+    at the contact frames (the smallest of LEAN_STEPS that does it, the largest when none does); 0 when
+    the goals are within reach as the character stands."""
+    if not goals or c1 <= c0:
+        return 0.0
+    frames = slice(c0, c1)
+
+    def short(rotations: np.ndarray) -> float:
+        pos, _ = forward_kinematics(rotations[frames], side.root[frames], side.offsets)
+        worst = -math.inf
+        for joint, goal in goals:
+            shoulder, reach = _shoulder_reach(pos, joint)
+            worst = max(
+                worst, float((np.linalg.norm(goal[frames] - shoulder, axis=1) - reach * REACH_SHARE).max())
+            )
+        return worst
+
+    if short(side.rotations) <= 0.0:
+        return 0.0
+    ones = np.ones(len(side.rotations))
+    for pitch in LEAN_STEPS:
+        if short(lean_in(side.rotations, pitch, ones)) <= 0.0:
+            return pitch
+    return LEAN_STEPS[-1]
 
 
 def _mutual(theirs: Motion, pair: PairedAction, partner: str, w0: int, w1: int) -> bool:

@@ -75,8 +75,18 @@ HANDOVER_DISTANCE = 0.75  # metres between the two hips while one hands the othe
 HANDOVER_STEP_BACK = 1.2  # metres between the two hips once the giver has let go and stepped back
 HANDOVER_HEIGHT = 1.0  # metres above the floor where the object passes from hand to hand
 HANDOVER_GESTURE_S = 1.2  # seconds of the presenting gesture after letting go
-CLOSE_DISTANCE = {"hug": 0.45, "shake_hands": 0.75, "high_five": 0.75}  # metres, per touching action
+# metres between the two hips, per touching action: a hand on the other's shoulder or chest needs them
+# within an arm's reach of it (at PERSON_DISTANCE the straight arm stops 0.2 m short of the shoulder)
+CLOSE_DISTANCE = {
+    "hug": 0.45,
+    "shake_hands": 0.75,
+    "high_five": 0.75,
+    "comfort": 0.55,
+    "kiss_cheek": 0.45,
+    "push_person": 0.6,
+}
 TOO_CLOSE_M = 0.1  # metres closer than the wanted distance to another character that make one step back
+SOLO_BODY_M = 0.25  # metres: the other's body and a margin beyond one's hands' reach, gesturing at nobody
 ARMS_CLEAR_M = 0.05  # metres left between two characters' hands gesturing at each other at their farthest
 SEATING = ("sit", "lie_down", "sleep")  # clips that leave the character on a seat or a bed
 TURN_TOLERANCE = 0.3  # radians off the wanted facing before the character turns in place
@@ -687,6 +697,7 @@ def plan_actions(
     spots: dict[int, tuple[float, float]] | None = None,
     occupied: list[tuple[float, float]] | None = None,
     holding: str = "",
+    bodies: list[tuple[float, float]] | None = None,
 ) -> MotionPlan:
     """Turn a character's ordered actions into a MotionPlan.
 
@@ -705,6 +716,8 @@ def plan_actions(
         spots: action index -> x, z where it stands at or walks to its object (its stand slot).
         occupied: (x, z) metres, world, of other characters already seated: seat slots there are taken.
         holding: id of the scene object already in the hand (picked up by an earlier action): it stays there.
+        bodies: (x, z) metres, world, of the other characters standing near: a gesture aimed at nobody steps
+            back from one its hands would reach.
 
     Returns:
         the plan; unknown actions become a 1 s wait and a diagnostic.
@@ -976,6 +989,20 @@ def plan_actions(
         """A step back to ``back``, still facing the character at ``there``."""
         face = _yaw_to(back, there, yaw)
         walk_to(back, 0.8, face, "walk_backward" if "walk_backward" in lib else "walk", ai, person)
+
+    def clear_of_others(name: str, ai: int) -> None:
+        """Standing, a step back from the nearest other character when a gesture aimed at nobody would put
+        a hand into them: to half the room two need gesturing at each other (arms_room) and a body more, so
+        that one gesturing clears the other, and two who both step back clear each other's hands."""
+        room = arms_room(name)
+        people = [(np.asarray(xz, float), n) for n, xz in others.items() if n != character.name]
+        people += [(np.asarray(xz, float), "") for xz in bodies or ()]
+        if not room or not people or now_posture() != "stand":
+            return
+        there, who = min(people, key=lambda p_n: float(np.linalg.norm(p_n[0] - pos)))
+        need = room / 2 + SOLO_BODY_M
+        if float(np.linalg.norm(there - pos)) < need - TOO_CLOSE_M:
+            step_back(_free_beside(scene, _at_distance(pos, there, need), there, need), there, ai, who)
 
     def hand_over(gift: PlacedObject | None, person: str, ai: int, duration_s: float) -> bool:
         """ "Gives the cup to Anna": take the cup (unless it is in the hand already), walk up to Anna, hold it
@@ -1345,6 +1372,8 @@ def plan_actions(
                 face = float(np.arctan2(d[0], d[1]))
                 if abs(np.arctan2(np.sin(face - yaw), np.cos(face - yaw))) > 0.3:
                     walk_to(pos.copy(), 1.0, face, "turn", ai, obj.id)
+        if obj is None and not held and clip.interaction is None:
+            clear_of_others(name, ai)  # "They dance" right after a hug: a step apart first
         if not targets and not held and (kind in HELD_KINDS or clip.interaction is None):
             make_room(name, ai, obj.id if obj else "")  # a gesture or a tool swung where it stands
         add(

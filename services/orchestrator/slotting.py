@@ -21,13 +21,15 @@ import numpy as np
 
 from proto.scene import PlacedObject, Scene
 from proto.ssg import ActionNode
+from wana.assets.relations import footprint_gap
 from wana.domain.actions import ActionClip, get_clip
 from wana.domain.object_geometry import find_object, scene_footprints
 from wana.domain.routes import OccupancyGrid, occupancy_grid
 from wana.domain.slots import SlotBook, seat_slots, stand_slots
 
 LYING = ("lie_down", "sleep")
-AROUND_M = 1.6  # metres: the seats "at" a table are within this of it
+AROUND_M = 1.6  # metres: the seats "at" a table are within this of its middle
+AT_GAP_M = 1.0  # ... or within this of its footprint (as "near"): the ends of a long table
 RING_M = 0.45  # metres from an object's centre at most for a stand spot round it
 CLEAR_M = 0.75  # metres from a bystander's hips within which a stand slot is not clear (arms that move)
 ELBOW_M = 0.7  # metres between two sitters' hips below which their arms and shoulders touch
@@ -193,7 +195,8 @@ class Slotting:
         here: tuple[float, float] | None = None,
         company: Sequence[tuple[float, float]] = (),
     ) -> Claim:
-        """A free seat slot of the seats within AROUND_M of an object that has none itself (a table).
+        """A free seat slot of the seats at an object that has none itself (a table): within AROUND_M of its
+        middle or AT_GAP_M of its footprint.
 
         Seats whose slot is within ELBOW_M of one another already holds are passed over while others are
         free (two chairs pushed together seat two people shoulder in shoulder), and with company the seats
@@ -207,16 +210,20 @@ class Slotting:
             ),
             key=lambda d_o: d_o[0],
         )
-        free: list[tuple[PlacedObject, list[str], tuple[float, float]]] = []
-        for distance, seat in near:
-            if distance > AROUND_M:
-                break
-            slots = seat_slots(seat, kind, self.scene.objects)
-            if not slots:
-                continue
-            open_slots = [n for n in slots if self.book.holder(seat.id, n) in ("", who)]
-            if open_slots:
-                free.append((seat, slots, seat_points(seat, open_slots[:1])[0]))
+        # beyond AROUND_M of its middle, a seat whose footprint is within AT_GAP_M of the table's is at it
+        # too (a chair at the end of a long conference table), when none nearer is free
+        far = sorted(((_gap_to(o, obj), o) for d, o in near if d > AROUND_M), key=lambda g_o: g_o[0])
+
+        def free_of(seats: list[PlacedObject]) -> list[tuple[PlacedObject, list[str], tuple[float, float]]]:
+            out = []
+            for seat in seats:
+                slots = seat_slots(seat, kind, self.scene.objects)
+                open_slots = [n for n in slots if self.book.holder(seat.id, n) in ("", who)]
+                if open_slots:
+                    out.append((seat, slots, seat_points(seat, open_slots[:1])[0]))
+            return out
+
+        free = free_of([o for d, o in near if d <= AROUND_M]) or free_of([o for g, o in far if g <= AT_GAP_M])
         held = self._held_points(who)
         roomy = [f for f in free if all(np.hypot(f[2][0] - h[0], f[2][1] - h[1]) >= ELBOW_M for h in held)]
         free = roomy + [f for f in free if f not in roomy]
@@ -297,6 +304,14 @@ class Slotting:
             if bool(self.grid.is_free_xz(p)):
                 out.append((round(float(p[0]), 3), round(float(p[1]), 3)))
         return out
+
+
+def _gap_to(seat: PlacedObject, table: PlacedObject) -> float:
+    """Metres between two objects' footprints (their centres' distance for an unknown category)."""
+    try:
+        return footprint_gap(seat, table)
+    except KeyError:  # no catalog entry: the centres stand for them
+        return float(np.hypot(seat.position[0] - table.position[0], seat.position[2] - table.position[2]))
 
 
 def _near_any(p: tuple[float, float], crowd: Sequence[tuple[float, float]]) -> bool:

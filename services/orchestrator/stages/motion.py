@@ -13,6 +13,7 @@ each motion gets its presence track (Motion.present) and waits outside the room 
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
@@ -70,6 +71,7 @@ HANDS_WHAT_HELD = (
 )  # hand-over verbs that always pass an object ("gives her a smile" need not)
 HANDOVER_VERB = "give"  # the verb an action that hands an object over keeps for the motion service (planning)
 
+GESTURE_NEAR_M = 1.0  # metres: the standing others a gesture aimed at nobody may step back from
 TRAIL_STEP = 8  # frames between the points kept of a character's last walk
 TRAIL_MIN_M = 0.3  # metres: an action that moves its character less than this leaves no trail
 Characters = dict[str, tuple[CharacterNode, list[str]]]  # name -> (its actions in order, their sentence ids)
@@ -144,12 +146,18 @@ def standing_others(
     except KeyError:
         clip = None
     walks = clip is not None and "locomotion" in clip.tags
-    if not (walks or action.target or action.destination or action.instrument):
+    aimed = walks or action.target or action.destination or action.instrument
+    me = states.get(name)
+    if not aimed and (clip is None or clip.interaction is not None or me is None):
         return []
+    # a gesture aimed at nobody ("They dance") steps away from those within GESTURE_NEAR_M (planning)
     return sorted(
         (round(st.x, 3), round(st.z, 3))
         for c, st in states.items()
-        if c != name and c not in hidden and st.posture == "stand"
+        if c != name
+        and c not in hidden
+        and st.posture == "stand"
+        and (aimed or (me is not None and math.hypot(st.x - me.x, st.z - me.z) < GESTURE_NEAR_M))
     )
 
 

@@ -237,3 +237,41 @@ def test_a_high_five_from_far_away_waits_for_the_one_who_walks_up():
     }
     assert after["Tom"] == after["Eve"]
     assert max(_gaps(reply.motions, "high_five")) <= CONTACT_M
+
+
+def test_a_hand_on_a_seated_partners_shoulder_reaches_it_bending_down():
+    """Eve sits on a chair; Tom walks up and comforts her: her shoulder is 0.5 m lower than his, out of his
+    standing arm's reach, so he bends down to put his hand on it."""
+    from proto.scene import PlacedObject
+
+    scene = Scene(
+        room=EMPTY.room,
+        objects=[PlacedObject(id="chair", category="chair", position=(1.0, 0.0, 1.0), yaw=0.0)],
+    )
+
+    def synth(name: str, actions: list[ActionNode], start, others=None) -> Motion:  # noqa: ANN001
+        req = SynthesizeRequest(
+            header=Header(),
+            character=CharacterNode(name=name, actions=actions),
+            scene=scene,
+            start=start,
+            others=others or {},
+        )
+        reply = call_in_process(CONTRACT, req)
+        assert reply.status == "ok"
+        return reply.motion
+
+    eve = synth("Eve", [ActionNode(verb="sit", action="sit", target="chair")], (1.0, 1.4, 0.0))
+    seat = from_wire(eve.root_position)[-1]
+    assert seat[1] < 0.7  # seated
+    tom = synth(
+        "Tom",
+        [ActionNode(verb="comfort", action="comfort", target="Eve")],
+        (1.0, 3.0, np.pi),
+        {"Eve": (seat[0], seat[2])},
+    )
+    lead = eve.root_position.shape[0]
+    frames = lead + tom.root_position.shape[0] + 10
+    motions = {"Tom": _hold_to(tom, frames, lead), "Eve": _hold_to(eve, frames)}
+    reply = _solve(motions, "comfort")
+    assert max(_gaps(reply.motions, "comfort")) <= CONTACT_M

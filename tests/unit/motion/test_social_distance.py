@@ -90,3 +90,25 @@ def test_a_way_round_furniture_that_passes_the_person_stops_there_not_through_th
     assert np.allclose(way[-1], (-CLOSE_DISTANCE["hug"], 0.0), atol=0.02)
     points = np.concatenate([np.linspace(p, q, 20) for p, q in zip(way[:-1], way[1:], strict=True)])
     assert np.linalg.norm(points, axis=1).min() >= CLOSE_DISTANCE["hug"] - 0.02  # never through Mary
+
+
+def test_dancing_right_after_a_hug_steps_back_from_the_one_still_there():
+    """Tom dances with nobody named while Mary stands 0.45 m away (they just hugged): the dance's hands
+    would go into her, so he steps back first; someone 2 m off is no reason to."""
+    from services.motion.planning import arms_room
+
+    def apart(mary_x: float) -> float:
+        reply = handle_synthesize(
+            SynthesizeRequest(
+                header=Header(),
+                character=CharacterNode(name="Tom", actions=[ActionNode(verb="dance", action="dance")]),
+                scene=SCENE,
+                start=(0.0, 0.0, 1.57),
+                bodies=[(mary_x, 0.0)],
+            )
+        )
+        end = from_wire(reply.motion.root_position)[-1]
+        return float(np.hypot(end[0] - mary_x, end[2]))
+
+    assert apart(0.45) >= arms_room("dance") / 2 + 0.2
+    assert apart(2.0) == pytest.approx(2.0, abs=0.05)

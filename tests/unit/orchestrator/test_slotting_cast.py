@@ -86,3 +86,26 @@ def test_a_stand_slot_where_someone_already_stands_is_passed_over():
     default = stand_slots(COUNTER.objects[0], rows=2)[0]
     moved = slotting.claim("Ben", EAT, crowd=[default])  # Nora stands on the planner's spot
     assert moved.spot is not None and math.dist(moved.spot, default) >= 0.75
+
+
+# A long conference table (3 m along x) with its chairs at its two ends: far from its middle, at its edge.
+LONG_TABLE = Scene(
+    room=ROOM,
+    objects=[
+        PlacedObject(id="conference_table", category="conference_table", position=(0.0, 0.0, 0.0)),
+        PlacedObject(id="chair", category="chair", position=(1.9, 0.0, 0.0), yaw=-math.pi / 2),
+        PlacedObject(id="chair/2", category="chair", position=(-1.9, 0.0, 0.0), yaw=math.pi / 2),
+        PlacedObject(id="stool", category="stool", position=(3.5, 0.0, 3.0)),
+    ],
+)
+SIT_AT = ActionNode(verb="sit", action="sit", target="conference_table")
+
+
+def test_two_sitting_at_a_long_table_each_get_a_chair_at_its_ends():
+    slotting = Slotting(LONG_TABLE)
+    for who in ("Walter", "Cheryl"):
+        slotting.expect(who, SIT_AT)
+    walter = slotting.claim("Walter", SIT_AT, here=(1.0, 1.5), company=[(-1.0, 1.5)])
+    cheryl = slotting.claim("Cheryl", SIT_AT, here=(-1.0, 1.5))
+    # each a chair at the table (0.4 m from its end, 1.9 m from its middle), not the stool far off
+    assert {walter.action.target, cheryl.action.target} == {"chair", "chair/2"}
