@@ -85,6 +85,12 @@ CLOSE_DISTANCE = {
     "kiss_cheek": 0.45,
     "push_person": 0.6,
 }
+REACH_SIDES = 8  # directions round a point tried for the nearest spot to reach it from
+BODY_CLEAR_M = 0.6  # metres from another character's hips a spot to stand and reach from keeps
+WALK_WEIGHT = 0.15  # metres of reach one metre more of walking is worth, choosing that spot
+POUR_INTO = ("pour",)  # actions whose held vessel empties into what the sentence names
+POUR_BACK_M = 0.12  # metres from the hand on a kettle's handle to its spout
+POUR_ABOVE_M = 0.15  # metres above the vessel's rim where the pouring hand holds the kettle
 TOO_CLOSE_M = 0.1  # metres closer than the wanted distance to another character that make one step back
 SOLO_BODY_M = 0.25  # metres: the other's body and a margin beyond one's hands' reach, gesturing at nobody
 ARMS_CLEAR_M = 0.05  # metres left between two characters' hands gesturing at each other at their farthest
@@ -595,6 +601,38 @@ def _yaw_to(frm: np.ndarray, to: np.ndarray, default: float) -> float:
     return float(np.arctan2(d[0], d[1])) if np.linalg.norm(d) > 1e-6 else default
 
 
+def _seat_fronts(scene: Scene) -> list[tuple[float, float]]:
+    """(x, z) where one stands to sit on each seat of the scene: SEAT_BACK in front of its sit point."""
+    geos = [_object_geometry(o) for o in scene.objects]
+    out = []
+    for o, geo in zip(scene.objects, geos, strict=True):
+        if geo is None or "sit" not in geo[1]:
+            continue
+        hips = geo[1]["sit"][0][1]
+        out.append((float(hips[0] + np.sin(o.yaw) * SEAT_BACK), float(hips[2] + np.cos(o.yaw) * SEAT_BACK)))
+    return out
+
+
+def _pour_point(vessel: PlacedObject, pos: np.ndarray) -> tuple[float, float, float]:
+    """Where the hand holding a kettle or a bottle pours into ``vessel``: above its rim, POUR_BACK_M back
+    towards the one pouring (x, z ``pos``), so the spout ahead of the hand is over the opening."""
+    try:
+        from wana.assets.catalog import asset_for
+
+        tall = float(asset_for(vessel).dims[1]) * float(vessel.scale[1])
+    except Exception:  # noqa: BLE001 - unknown category: a cup's height
+        tall = 0.1
+    top = vessel.position[1] + tall
+    d = pos - np.array([vessel.position[0], vessel.position[2]])
+    n = float(np.linalg.norm(d))
+    back = d / n * POUR_BACK_M if n > 1e-6 else np.zeros(2)
+    return (
+        float(vessel.position[0] + back[0]),
+        float(top + POUR_ABOVE_M),
+        float(vessel.position[2] + back[1]),
+    )
+
+
 def _short_of(pos: np.ndarray, other: np.ndarray, distance: float) -> np.ndarray:
     """The point on the line from pos to other that stops ``distance`` metres short of other."""
     d = other - pos
@@ -843,6 +881,46 @@ def plan_actions(
         spot = reach_spot(here + (away / n if n > 1e-6 else np.array([0.0, 1.0])) * REACH, here, target)
         if np.linalg.norm(here - spot) < np.linalg.norm(here - pos) - 0.05:  # only a step that closes in
             walk_to(spot, 1.2, _yaw_to(spot, here, yaw), "walk", ai, target)
+
+    def poured_into(held: str) -> PlacedObject | None:
+        """The vessel a pouring action (POUR_INTO) empties the held one into: the sentence's destination."""
+        into = node.destination or node.target  # "pours juice into the glass": no juice, the glass its target
+        if name not in POUR_INTO or not into:
+            return None
+        kind = into.split("#")[0].split("/")[0]
+        alike = [
+            o
+            for o in scene.objects
+            if o.id != held and (o.id == into or o.category == kind or o.id.split("/")[0] == kind)
+        ]
+        return min(
+            alike, key=lambda o: np.hypot(o.position[0] - pos[0], o.position[2] - pos[1]), default=None
+        )
+
+    def step_up_close(here: np.ndarray, ai: int, target: str) -> None:
+        """As step_up_to, from the side nearest the point whichever that is (REACH_SIDES tried, the approach
+        among them): a cup in the middle of a kitchen island is poured into from the side it is nearest,
+        not from across the island; a longer walk counts WALK_WEIGHT against the nearer spot."""
+        if np.linalg.norm(here - pos) <= STEP_IN:
+            return
+        # the others, and the fronts of seats where one steps to sit (someone may be sitting down there)
+        bodies = [*(occupied or []), *others.values(), *_seat_fronts(scene)]
+        sides = [pos - here] + [
+            np.array([np.sin(a), np.cos(a)]) for a in np.arange(REACH_SIDES) * 2 * np.pi / REACH_SIDES
+        ]
+        best: tuple[float, np.ndarray] | None = None
+        for side in sides:
+            n = float(np.linalg.norm(side))
+            if n < 1e-6:
+                continue
+            spot = reach_spot(here + side / n * REACH, here, target)
+            cost = float(np.linalg.norm(here - spot)) + WALK_WEIGHT * float(np.linalg.norm(spot - pos))
+            if any(np.hypot(spot[0] - b[0], spot[1] - b[1]) < BODY_CLEAR_M for b in bodies):
+                cost += 10.0  # beside the one seated at the cup, not in their lap
+            if best is None or cost < best[0]:
+                best = (cost, spot)
+        if best is not None and np.linalg.norm(here - best[1]) < np.linalg.norm(here - pos) - 0.05:
+            walk_to(best[1], 1.2, _yaw_to(best[1], here, yaw), "walk", ai, target)
 
     def front_of(obj_id: str) -> np.ndarray | None:
         """The side a piece of furniture is used from (its catalog stand point from its centre), None if unknown:
@@ -1219,10 +1297,23 @@ def plan_actions(
             # Already in the hand (picked up before): the action plays with it, no new reach; its arms may go
             # to what it works on (the nail, the plank and the bench under them), not into other furniture.
             worked = frozenset() if obj is None else resting_on(scene, obj.support or obj.id) | {obj.id}
+            poured = poured_into(hand["prop"])
+            if poured is not None and now_posture() == "stand":
+                # what it pours into is elsewhere ("pours tea into the mug" on the table, the kettle in hand
+                # at the counter): up to it first, as a prop is walked up to before it is taken
+                step_up_close(np.array([poured.position[0], poured.position[2]]), ai, poured.id)
             obj = next((o for o in scene.objects if o.id == hand["prop"]), obj)
-            make_room(name, ai, ignore=worked)
+            if poured is None:
+                make_room(name, ai, ignore=worked)
+            # seated, the vessel is poured into where the clip reaches: an arm stretched at a far glass
+            # pulled the trunk over the table
+            aim = (
+                ()
+                if poured is None or now_posture() != "stand"
+                else ((hand["prop_joint"], _pour_point(poured, pos)),)
+            )
             add(kind="action", action=name, duration_s=float(node.duration_s), target_id=hand["prop"],
-                action_index=ai)  # fmt: skip
+                targets=aim, action_index=ai)  # fmt: skip
             continue
         grip = prop_grip(scene, name, obj, pos) if kind in HELD_KINDS else None
         back_to = None  # seated with the prop out of reach: get up, fetch it, and sit back down
@@ -1266,9 +1357,16 @@ def plan_actions(
                         pos, yaw = approach.copy(), face
                         add(kind="action", action="sit", targets=(("Hips", hips),), target_id=seat_obj.id,
                             action_index=ai)  # fmt: skip
-                    make_room(name, ai)  # the prop in hand: where its use has room (a sweep, a saw stroke)
+                    vessel = poured_into(prop_obj.id)
+                    if vessel is not None and standing:  # taken from the counter, poured into the cup
+                        step_up_close(np.array([vessel.position[0], vessel.position[2]]), ai, vessel.id)
+                    else:
+                        make_room(
+                            name, ai
+                        )  # the prop in hand: where its use has room (a sweep, a saw stroke)
+                    aim = () if vessel is None or not standing else ((rj, _pour_point(vessel, pos)),)
                     add(kind="action", action=name, duration_s=float(node.duration_s),
-                        target_id=prop_obj.id, action_index=ai)  # fmt: skip
+                        target_id=prop_obj.id, targets=aim, action_index=ai)  # fmt: skip
                     continue
                 if reach is not None:  # held where a later action (or the put-down) finds it
                     joint, local = reach[0], reach[1]

@@ -217,6 +217,13 @@ def _body_part_owner(args: list[Argument], builder: GraphBuilder) -> str:
 
 # Verbs whose object is what gets made: the action happens at the instrument, not at the product.
 MAKING_VERBS = frozenset({"make", "brew", "cook", "bake", "prepare", "fix"})
+# Verbs whose object is a liquid poured into what the destination names ("pours tea into the mug").
+POURING_VERBS = frozenset({"pour", "splash", "spill"})
+POURED_FROM = frozenset({"bottle", "kettle", "teapot", "jug", "pitcher"})  # vessels one pours out of
+# Drinks the catalog reads as the vessel they come in ("drinks tea": a cup); poured, they are the liquid.
+DRINK_WORDS = frozenset(
+    {"tea", "coffee", "water", "juice", "milk", "wine", "beer", "espresso", "cocoa", "lemonade", "soda"}
+)
 
 
 def _action(verb: Token, builder: GraphBuilder) -> tuple[ActionNode, str]:
@@ -309,6 +316,15 @@ def _action(verb: Token, builder: GraphBuilder) -> tuple[ActionNode, str]:
         target = next((a.character for a in obliques if a.character), "")
     if lemma in MAKING_VERBS and instrument:
         target = instrument  # "makes coffee with the coffee maker": the hands are at the machine
+    if lemma in POURING_VERBS and destination and target:
+        poured = next((a for a in objects if (a.object_id or a.word) == target), None)
+        liquid = poured is not None and poured.tok.lemma_.lower() in DRINK_WORDS
+        if liquid and target.split("#")[0] not in POURED_FROM:
+            # "pours tea into the mug": the tea is no cup to fetch, the mug is what it pours into (as "pours
+            # wine into the glasses" reads the wine as the glasses); a bottle or kettle named is poured from
+            if destination.split("#")[0] == target.split("#")[0]:
+                destination = target  # "pours tea into a cup": the tea took the id cup, the cup got cup#2
+            target = destination
     if lemma in verbs.WITH_THING and primary is not None and primary.object_id and not person:
         action = verbs.WITH_THING[lemma]  # "balances three plates"
     if (

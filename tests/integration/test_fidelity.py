@@ -149,3 +149,29 @@ def test_walking_into_the_room_asks_for_no_object_called_room(orchestrator):
     checks = [c for items in checks_of(result).values() for c in items]
     assert not [c for c in checks if "no room in the room" in c.reason]
     assert not [c for c in checks if c.name == "contact" and not c.ok and "room" in c.reason]
+
+
+POUR = (
+    "In the kitchen there is a table$. A kettle is on the counter$. A cup is on the table$.\n"
+    "Mira picks up the kettle.\nMira pours coffee into the cup.\n"
+)
+
+
+def test_pouring_from_a_kettle_in_hand_walks_to_the_cup_and_holds_the_kettle_over_it(orchestrator):
+    """The kettle taken at the counter is poured over the cup on the table (it was poured into the air where
+    the character stood, and the check only asked for the kettle in the hand)."""
+    from wana.arrays import from_wire
+
+    result = orchestrator.create(POUR).compute()
+    pours = next(s for s in result.sentences if "pours" in s.text)
+    (contact,) = [c for c in checks_of(result)[pours.id] if c.name == "contact"]
+    assert contact.ok, contact
+    motion = result.motions["Mira"]
+    (seg,) = [s for s in motion.segments if s.action == "pour"]
+    cup = next(o for o in result.scene.objects if o.category == "cup")
+    track = next(
+        p for p in motion.props if p.start_frame <= (seg.start_frame + seg.end_frame) // 2 < p.end_frame
+    )
+    at = from_wire(track.position)[(seg.start_frame + seg.end_frame) // 2 - track.start_frame]
+    assert track.object_id.split("/")[0] == "kettle"
+    assert float(((at[0] - cup.position[0]) ** 2 + (at[2] - cup.position[2]) ** 2) ** 0.5) < 0.3

@@ -32,6 +32,9 @@ from wana.fidelity.world import World, base_id, display
 
 CONTACT_M = 0.05  # the contact joint within this of the object's contact point ...
 CONTACT_SHARE = 0.5  # ... on at least this share of the window's frames
+POURING = ("pour",)  # held-vessel actions that empty into what the sentence's destination names
+POUR_M = 0.25  # metres across from a pouring vessel's axis to the rim it pours into ...
+POUR_ABOVE_M = (-0.05, 0.45)  # ... with the vessel's middle this far above that rim (metres)
 MOUTH_M = 0.12  # a drink's vessel (its axis, bottom to rim, where it is drawn) within this of the mouth
 MOUTH_UP_M = 0.03  # the mouth: this far up the head from the Head joint (the skull's base) ...
 MOUTH_FORWARD_M = 0.09  # ... and this far forward, the way the shoulders face
@@ -391,6 +394,20 @@ def contact(
                 ),
                 touching,
             )
+    into = world.find(act.node.destination or act.node.target) if act.node.action in POURING else []
+    into = [o for o in into if o.id != got.placed.id]
+    if into:  # "pours tea into the mug": the kettle held over the mug's rim, not anywhere in the room
+        over, vessel = _poured_over(got.placed, into, props.get(who, ()), fr)
+        if np.mean(over) < CONTACT_SHARE:
+            return (
+                base(
+                    ok=False,
+                    reason=f"{who} pours from the {name} away from the {display(vessel.id)}: over its rim on "
+                    f"{np.mean(over):.0%} of the frames (needs half)",
+                    frames=frame_list(fr[~over]),
+                ),
+                touching,
+            )
     return (
         base(
             ok=True,
@@ -459,6 +476,25 @@ def vessel_axis(
             out[inside] = pos[k] + Rotation.from_quat(rot[k]).apply(local * scale)
         ends.append(out)
     return ends[0], ends[1]
+
+
+def _poured_over(
+    held: PlacedObject, into: Sequence[PlacedObject], tracks: Sequence[PropTrack], frames: np.ndarray
+) -> tuple[np.ndarray, PlacedObject]:
+    """(W,) bool, per frame, whether the held vessel (where it is drawn) is over the rim of the one it pours
+    into, POUR_M across and POUR_ABOVE_M above, and which of the alike vessels (the one it is over most)."""
+    bottom, top = vessel_axis(held, tracks, frames)
+    middle = (bottom + top) / 2.0
+    best: tuple[np.ndarray, PlacedObject] | None = None
+    for vessel in into:
+        rim = to_world(vessel, np.array([0.0, float(asset_for(vessel).dims[1]), 0.0]))
+        across = np.hypot(middle[:, 0] - rim[0], middle[:, 2] - rim[2])
+        above = middle[:, 1] - rim[1]
+        over = (across <= POUR_M) & (above >= POUR_ABOVE_M[0]) & (above <= POUR_ABOVE_M[1])
+        if best is None or over.sum() > best[0].sum():
+            best = (over, vessel)
+    assert best is not None  # into is not empty
+    return best
 
 
 def mouth_gap(bottom: np.ndarray, top: np.ndarray, mouth_at: np.ndarray) -> np.ndarray:
