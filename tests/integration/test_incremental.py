@@ -83,9 +83,9 @@ def test_an_action_whose_end_state_changes_reruns_the_actions_after_it(session):
         "face:Tom",
     ]
     assert [(g.action, g.start_frame, g.end_frame) for g in result.motions["Tom"].segments][-3:] == [
-        ("walk", 135, 191),
-        ("walk", 191, 223),  # the step out, part of the wave (services/motion/elbow_room.py)
-        ("wave", 223, 309),
+        ("walk", 142, 198),
+        ("walk", 198, 230),  # the step out, part of the wave (services/motion/elbow_room.py)
+        ("wave", 230, 316),
     ]
 
 
