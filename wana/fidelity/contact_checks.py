@@ -23,6 +23,7 @@ from wana.arrays import from_wire
 from wana.assets.catalog import asset_for, to_world, world_bounds
 from wana.assets.relations import footprint_gap
 from wana.assets.vocabulary import CATEGORIES, hypernyms, lookup_room
+from wana.domain.actions import names_object
 from wana.fidelity.acts import Act, is_locomotion, window_frames
 from wana.fidelity.bodies import Body
 from wana.fidelity.clips import ClipNeeds, clip_needs
@@ -209,6 +210,14 @@ def _fixed_for(world: World, meant: set[str]) -> list[PlacedObject]:
     ]
 
 
+def _made_for(world: World, placed: PlacedObject, action: str, meant: set[str]) -> bool:
+    """Whether an object offers the held action's own point, or the action's name names it (the phone one
+    texts with: its one held point is "call"; the planner holds it the same way, planning.made_for_action)."""
+    return bool(meant & set(world.contact_points(placed))) or (
+        "pick_up" in world.contact_points(placed) and names_object(action, placed.category)
+    )
+
+
 # The actor's own body named as the object ("snaps his fingers", "washes her hands", "checks his watch"): no
 # thing in the room is meant, the hand or the clip's own object (the sink) is.
 BODY_PARTS = frozenset(
@@ -250,7 +259,7 @@ def _candidates(act: Act, world: World, characters: set[str]) -> tuple[list[Plac
             found = world.find(ref)
             if not held:
                 return found, ref
-            tools = [o for o in found if meant & set(world.contact_points(o)) and _holdable(world, o, tool)]
+            tools = [o for o in found if _made_for(world, o, action, meant) and _holdable(world, o, tool)]
             if not tools and not tool:  # the microphone on its stand: the hand on its own point
                 tools = [o for o in found if o in _fixed_for(world, meant)]
             if tools or (not found and ref == act.node.instrument):  # the tool it names ("with a hammer")
@@ -262,9 +271,7 @@ def _candidates(act: Act, world: World, characters: set[str]) -> tuple[list[Plac
         return [], ""
     if held:
         made_for = [
-            o
-            for o in world.scene.objects
-            if meant & set(world.contact_points(o)) and _holdable(world, o, tool)
+            o for o in world.scene.objects if _made_for(world, o, action, meant) and _holdable(world, o, tool)
         ]
         if not made_for and not tool:
             made_for = _fixed_for(world, meant)

@@ -1,0 +1,62 @@
+"""The contact check's held object: the copy in the hand, and the phone one texts or answers with."""
+
+from __future__ import annotations
+
+import msgspec
+import numpy as np
+
+from proto.motion_data import PropTrack
+from proto.scene import PlacedObject
+from proto.ssg import ActionNode, CharacterNode, SentenceGraph
+from wana.arrays import to_wire
+from wana.fidelity import story_checks
+from wana.fidelity.clips import clip_needs
+
+
+def _held(object_id: str, start: int, end: int) -> PropTrack:
+    n = end - start
+    return PropTrack(
+        object_id=object_id,
+        joint="RightHand",
+        start_frame=start,
+        end_frame=end,
+        position=to_wire(np.tile(np.array([0.3, 1.0, 0.3], np.float32), (n, 1))),
+        rotation=to_wire(np.tile(np.array([0, 0, 0, 1], np.float32), (n, 1))),
+    )
+
+
+def _contact(make, objects, node: ActionNode, text: str, held: str):
+    frames = round(clip_needs(node.action).duration_s * 30)
+    eve = make.motion("Eve", make.still(0.0, 0.95, 0.0, frames), [(node.action, 0, frames, "s1", 0)])
+    eve = msgspec.structs.replace(eve, props=[_held(held, 0, frames)] if held else [])
+    graph = SentenceGraph(
+        sentence_id="s1",
+        text=text,
+        kind="action",
+        characters=[CharacterNode(name="Eve", actions=[node], mention="Eve")],
+    )
+    checks = story_checks([("s1", "action")], {"s1": graph}, make.scene(*objects), {"Eve": eve})["s1"]
+    return next(c for c in checks if c.name == "contact")
+
+
+def test_a_phone_in_the_hand_is_what_one_texts_or_answers_with(make):
+    """solo-cafe-15 s8 "He takes out his phone and texts", solo-home_office-02 s10 "answers the phone": the
+    phone's one held point is "call", and the check said "nothing in the room to text with" while the phone
+    was in his hand."""
+    phone = PlacedObject(id="phone", category="phone", position=(1.5, 0.75, 0.0))
+    texts = ActionNode(verb="text", action="text_on_phone")
+    held = _contact(make, [phone], texts, "Eve texts.", "phone")
+    assert held.ok, held.reason
+    answers = ActionNode(verb="answer", action="pick_up_phone_answer", target="phone")
+    held = _contact(make, [phone], answers, "Eve answers the phone.", "phone")
+    assert held.ok, held.reason
+    left = _contact(make, [phone], texts, "Eve texts.", "")
+    assert not left.ok and "not in Eve's hand" in left.reason
+
+
+def test_an_object_a_clip_name_names_only_past_its_head_noun_is_not_made_for_it():
+    from wana.domain.actions import names_object
+
+    assert names_object("text_on_phone", "phone") and names_object("play_guitar", "electric_guitar")
+    assert not names_object("take_photo", "photo_frame")  # a photo is taken, not a frame
+    assert not names_object("drink", "cup")  # the cup's own "drink" point says that
