@@ -259,6 +259,13 @@ def _candidates(act: Act, world: World, characters: set[str]) -> tuple[list[Plac
             found = world.find(ref)
             if not held:
                 return found, ref
+            if len(found) == 1 and "/" not in found[0].id:
+                # "drinks from her mug" with two mugs on the table: any of them, the one the hand came to (the
+                # planner takes the nearest alike, planning.prop_grip; duo-cafe-04 s8 read the mug in her
+                # hand as 0.88 m off, measuring to the first one, which stayed by Dr. Jones)
+                found += [
+                    o for o in world.scene.objects if o.category == found[0].category and o is not found[0]
+                ]
             tools = [o for o in found if _made_for(world, o, action, meant) and _holdable(world, o, tool)]
             if not tools and not tool:  # the microphone on its stand: the hand on its own point
                 tools = [o for o in found if o in _fixed_for(world, meant)]

@@ -39,6 +39,20 @@ def _contact(make, objects, node: ActionNode, text: str, held: str):
     return next(c for c in checks if c.name == "contact")
 
 
+def test_the_mug_in_her_hand_is_hers_though_the_word_names_the_first_of_two(make):
+    """duo-cafe-04 s8 "She drinks from her mug" with "Two mugs are on the table": the planner takes the mug
+    nearest Ms Lee (mug/2, at her mouth on the frames), the check measured "mug" by Dr. Jones, 0.88 m off."""
+    mugs = [
+        PlacedObject(id="mug", category="mug", position=(1.5, 0.75, 0.0)),
+        PlacedObject(id="mug/2", category="mug", position=(0.3, 0.75, 0.3)),
+    ]
+    node = ActionNode(verb="drink", action="drink", target="mug")
+    second = _contact(make, mugs, node, "Eve drinks from her mug.", "mug/2")
+    assert "not in Eve's hand" not in second.reason, second.reason
+    neither = _contact(make, mugs, node, "Eve drinks from her mug.", "")
+    assert not neither.ok and "not in Eve's hand" in neither.reason
+
+
 def test_a_phone_in_the_hand_is_what_one_texts_or_answers_with(make):
     """solo-cafe-15 s8 "He takes out his phone and texts", solo-home_office-02 s10 "answers the phone": the
     phone's one held point is "call", and the check said "nothing in the room to text with" while the phone
