@@ -637,20 +637,35 @@ def _arrival(act: Act, body: Body, world: World, bodies: Mapping[str, Body]) -> 
             ok=False,
             reason=f"there is no {display(dest)} in the room for {who} to walk to",
         )
+    via = passes_through(act, dest)
+    # "comes in through the door", "leaves through the back door": the walk passes it, wherever it ends
+    at = np.arange(max(0, seg.start_frame), end + 1) if via else np.array([end])
+    walked = body.joint("Hips")[np.clip(at, 0, body.frames - 1)][:, [0, 2]]
     gaps = []
     for placed in found:
         b = world_bounds(placed)
-        d = np.maximum(0.0, np.maximum(b[0, [0, 2]] - hips, hips - b[1, [0, 2]]))
-        gaps.append(float(np.hypot(*d)))
-    gap = min(gaps)
+        d = np.maximum(0.0, np.maximum(b[0, [0, 2]] - walked, walked - b[1, [0, 2]]))
+        gaps.append(np.hypot(d[:, 0], d[:, 1]))
+    each = np.min(gaps, axis=0)
+    gap = float(each.min())
     ok = gap <= ARRIVE_M
+    where = "passes" if via else "stops"
     return Check(
         name="contact",
         character=who,
         ok=ok,
-        reason=f"{who} stops {gap:.1f} m from the {display(dest)}"
+        reason=f"{who} {where} {gap:.1f} m from the {display(dest)}"
         + ("" if ok else f" (at most {ARRIVE_M} m)"),
-        frames=[] if ok else [end],
+        frames=[] if ok else [int(at[int(np.argmin(each))])],
+    )
+
+
+def passes_through(act: Act, dest: str) -> bool:
+    """Whether the sentence walks through the destination ("enters through the front door"), not to it."""
+    name = re.escape(display(dest).split(" ")[-1])
+    return (
+        re.search(rf"\bthrough\s+(?:the|a|an|his|her|their)?\s*(?:\w+\s+)?{name}\b", act.text.lower())
+        is not None
     )
 
 

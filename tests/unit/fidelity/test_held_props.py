@@ -74,3 +74,29 @@ def test_an_object_a_clip_name_names_only_past_its_head_noun_is_not_made_for_it(
     assert names_object("text_on_phone", "phone") and names_object("play_guitar", "electric_guitar")
     assert not names_object("take_photo", "photo_frame")  # a photo is taken, not a frame
     assert not names_object("drink", "cup")  # the cup's own "drink" point says that
+
+
+def test_coming_in_through_the_door_passes_it_and_walking_to_it_must_end_there(make):
+    """solo-lobby-16 s5 "Dr. Jones enters through the front door", solo-workshop-05 s5: the character comes in
+    at the door and walks on into the room; the check read the walk's end 1.5 m inside as "stops 1.5 m from the
+    door" though the sentence names the way in, not a goal."""
+    door = PlacedObject(id="door", category="door", position=(0.0, 0.0, -2.9))
+    frames = 60
+    root = np.stack([np.zeros(frames), np.full(frames, 0.95), np.linspace(-2.6, -0.8, frames)], 1)
+    walker = make.motion("Eve", root.astype(np.float32), [("walk", 0, frames, "s1", 0)])
+
+    def arrival(text: str):
+        node = ActionNode(verb="come in", action="walk", destination="door")
+        graph = SentenceGraph(
+            sentence_id="s1",
+            text=text,
+            kind="action",
+            characters=[CharacterNode(name="Eve", actions=[node], mention="Eve")],
+        )
+        checks = story_checks([("s1", "action")], {"s1": graph}, make.scene(door), {"Eve": walker})["s1"]
+        return next(c for c in checks if c.name == "contact")
+
+    through = arrival("Eve comes in through the front door.")
+    assert through.ok, through.reason
+    to = arrival("Eve walks to the door.")  # ends 1.8 m from it: not there
+    assert not to.ok and "stops" in to.reason
