@@ -7,7 +7,7 @@ Scenarios: generated scenes (a chair, a desk, a bed, a button on a wall...) with
 sitting, typing, standing, waving, lying down, pushing buttons, plus free locomotion along random
 waypoints (>= 30 in the full run), and held-out CMU clips from ../shared/data (their captured root
 path replayed through the controller; skipped when the data is absent).
-JSON keys: foot_slide_cm, path_error_cm, contact_cm, jerk, spine_bend_p95_deg (trunk from upright while a
+JSON keys: foot_slide_cm, path_error_cm, contact_cm (on each character's own skeleton, as drawn), jerk, spine_bend_p95_deg (trunk from upright while a
 standing hand reaches a target), prop_grip_error_cm (worst held frame: a prop's grip point to its hand),
 actions, scenarios, cmu_clips, ...
 Liveliness (issue 23): frozen_share (share of on-stage frames in which no joint turns more than 0.1 degree
@@ -36,6 +36,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from proto.scene import PlacedObject, Room, Scene  # noqa: E402
 from proto.ssg import ActionNode, CharacterNode  # noqa: E402
 from services.motion.ik import global_transforms  # noqa: E402
+from services.motion.pairs import offsets_of  # noqa: E402
 from services.motion.planning import plan_actions  # noqa: E402
 from services.motion.synthesis import synthesise  # noqa: E402
 from wana.arrays import from_wire  # noqa: E402
@@ -241,6 +242,9 @@ def run_scenario(character: CharacterNode, scene: Scene, start) -> dict:
     rot = from_wire(motion.rotations).astype(np.float64)
     contacts = from_wire(motion.foot_contact)
     pos, grot = global_transforms(rot, root)
+    # contacts where the character is drawn: on its own skeleton (wana.assets.characters), as the renderer
+    # and the story checks pose it, not the reference skeleton the clips are authored on
+    drawn, _ = global_transforms(rot, root, offsets_of(character.name))
     slides = foot_slide(pos, contacts)
     paths, contact = [], []
     f0 = 0
@@ -253,7 +257,7 @@ def run_scenario(character: CharacterNode, scene: Scene, start) -> dict:
         for joint, (frames, target) in p.contact_frames.items():
             if len(frames):
                 contact.extend(
-                    (np.linalg.norm(pos[f0 + frames, JOINT_INDEX[joint]] - target, axis=1) * 100).tolist()
+                    (np.linalg.norm(drawn[f0 + frames, JOINT_INDEX[joint]] - target, axis=1) * 100).tolist()
                 )
         f0 += n
     return {

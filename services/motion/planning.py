@@ -38,7 +38,7 @@ from services.motion.gait_style import NEUTRAL as NEUTRAL_GAIT
 from services.motion.gait_style import gait_style
 from services.motion.style import mood_of, style_of
 from services.motion.synthesis import RISE_MAX_M, MotionPlan, PlannedSegment
-from wana.domain.actions import ActionClip, contact_targets, get_clip, load_library
+from wana.domain.actions import ActionClip, contact_targets, get_clip, load_library, names_object
 from wana.domain.object_geometry import find_object
 from wana.domain.skeleton import JOINT_INDEX, forward_kinematics, rest_offsets
 
@@ -394,7 +394,8 @@ def _is_tool_action(action: str) -> bool:
 
 def made_for_action(placed: PlacedObject | None, action: str) -> bool:
     """Whether a small object is made for an action: the catalog lets a hand pick it up and names a contact
-    point for the action (a cup's "drink", a hammer's "hammer")."""
+    point for the action (a cup's "drink", a hammer's "hammer"), or the action's name names it (a phone for
+    "text_on_phone")."""
     if placed is None:
         return False
     try:
@@ -403,7 +404,8 @@ def made_for_action(placed: PlacedObject | None, action: str) -> bool:
         names = set(asset_for(placed).contact_points)
     except Exception:  # noqa: BLE001 - unknown category or no catalog
         return False
-    if not ("pick_up" in names and bool({action, action.split("_")[0]} & names)):
+    own = bool({action, action.split("_")[0]} & names) or names_object(action, placed.category)
+    if not ("pick_up" in names and own):
         return False
     if not _is_tool_action(action):
         return True

@@ -297,6 +297,21 @@ def get_clip(name: str) -> ActionClip:
     raise KeyError(f"unknown action {name!r}")
 
 
+_NAME_FILLERS = frozenset(
+    {"with", "on", "at", "to", "in", "of", "up", "down", "off", "out", "and", "the", "a"}
+)
+
+
+def names_object(action: str, category: str) -> bool:
+    """Whether an action's clip name names a kind of object after its verb, the category's head noun
+    ("text_on_phone", "pick_up_phone_answer": a phone; "play_guitar": an electric guitar; not "take_photo"
+    for a photo frame). Such an object is made for the action though the catalog names no point for it:
+    the phone's one held point is "call", and "texts" or "answers the phone" hold it there too."""
+    words = [w for w in action.lower().split("_")[1:] if w not in _NAME_FILLERS]
+    head = category.lower().split("_")[-1]
+    return bool(head) and head in words
+
+
 # Frames a synthesised piece blends from its start state's rest pose and into its end state's (both
 # ends), so pieces made apart meet without a pose pop; contacts hold only between them.
 JOIN_FRAMES = 10
@@ -394,6 +409,7 @@ __all__ = [
     "action_names",
     "get_clip",
     "load_library",
+    "names_object",
     "reload_library",
     "synonym_index",
     "neutral_rotations",

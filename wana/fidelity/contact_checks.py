@@ -22,6 +22,7 @@ from wana.arrays import from_wire
 from wana.assets.catalog import asset_for, to_world, world_bounds
 from wana.assets.relations import footprint_gap
 from wana.assets.vocabulary import CATEGORIES, hypernyms, lookup_room
+from wana.domain.actions import names_object
 from wana.fidelity.acts import Act, is_locomotion, window_frames
 from wana.fidelity.bodies import Body
 from wana.fidelity.clips import ClipNeeds, clip_needs
@@ -211,6 +212,14 @@ def _fixed_for(world: World, meant: set[str]) -> list[PlacedObject]:
     ]
 
 
+def _made_for(world: World, placed: PlacedObject, action: str, meant: set[str]) -> bool:
+    """Whether an object offers the held action's own point, or the action's name names it (the phone one
+    texts with: its one held point is "call"; the planner holds it the same way, planning.made_for_action)."""
+    return bool(meant & set(world.contact_points(placed))) or (
+        "pick_up" in world.contact_points(placed) and names_object(action, placed.category)
+    )
+
+
 # The actor's own body named as the object ("snaps his fingers", "washes her hands", "checks his watch"): no
 # thing in the room is meant, the hand or the clip's own object (the sink) is.
 BODY_PARTS = frozenset(
@@ -252,7 +261,14 @@ def _candidates(act: Act, world: World, characters: set[str]) -> tuple[list[Plac
             found = world.find(ref)
             if not held:
                 return found, ref
-            tools = [o for o in found if meant & set(world.contact_points(o)) and _holdable(world, o, tool)]
+            if len(found) == 1 and "/" not in found[0].id:
+                # "drinks from her mug" with two mugs on the table: any of them, the one the hand came to (the
+                # planner takes the nearest alike, planning.prop_grip; duo-cafe-04 s8 read the mug in her
+                # hand as 0.88 m off, measuring to the first one, which stayed by Dr. Jones)
+                found += [
+                    o for o in world.scene.objects if o.category == found[0].category and o is not found[0]
+                ]
+            tools = [o for o in found if _made_for(world, o, action, meant) and _holdable(world, o, tool)]
             if not tools and not tool:  # the microphone on its stand: the hand on its own point
                 tools = [o for o in found if o in _fixed_for(world, meant)]
             if tools or (not found and ref == act.node.instrument):  # the tool it names ("with a hammer")
@@ -264,9 +280,7 @@ def _candidates(act: Act, world: World, characters: set[str]) -> tuple[list[Plac
         return [], ""
     if held:
         made_for = [
-            o
-            for o in world.scene.objects
-            if meant & set(world.contact_points(o)) and _holdable(world, o, tool)
+            o for o in world.scene.objects if _made_for(world, o, action, meant) and _holdable(world, o, tool)
         ]
         if not made_for and not tool:
             made_for = _fixed_for(world, meant)
@@ -660,20 +674,35 @@ def _arrival(act: Act, body: Body, world: World, bodies: Mapping[str, Body]) -> 
             ok=False,
             reason=f"there is no {display(dest)} in the room for {who} to walk to",
         )
+    via = passes_through(act, dest)
+    # "comes in through the door", "leaves through the back door": the walk passes it, wherever it ends
+    at = np.arange(max(0, seg.start_frame), end + 1) if via else np.array([end])
+    walked = body.joint("Hips")[np.clip(at, 0, body.frames - 1)][:, [0, 2]]
     gaps = []
     for placed in found:
         b = world_bounds(placed)
-        d = np.maximum(0.0, np.maximum(b[0, [0, 2]] - hips, hips - b[1, [0, 2]]))
-        gaps.append(float(np.hypot(*d)))
-    gap = min(gaps)
+        d = np.maximum(0.0, np.maximum(b[0, [0, 2]] - walked, walked - b[1, [0, 2]]))
+        gaps.append(np.hypot(d[:, 0], d[:, 1]))
+    each = np.min(gaps, axis=0)
+    gap = float(each.min())
     ok = gap <= ARRIVE_M
+    where = "passes" if via else "stops"
     return Check(
         name="contact",
         character=who,
         ok=ok,
-        reason=f"{who} stops {gap:.1f} m from the {display(dest)}"
+        reason=f"{who} {where} {gap:.1f} m from the {display(dest)}"
         + ("" if ok else f" (at most {ARRIVE_M} m)"),
-        frames=[] if ok else [end],
+        frames=[] if ok else [int(at[int(np.argmin(each))])],
+    )
+
+
+def passes_through(act: Act, dest: str) -> bool:
+    """Whether the sentence walks through the destination ("enters through the front door"), not to it."""
+    name = re.escape(display(dest).split(" ")[-1])
+    return (
+        re.search(rf"\bthrough\s+(?:the|a|an|his|her|their)?\s*(?:\w+\s+)?{name}\b", act.text.lower())
+        is not None
     )
 
 

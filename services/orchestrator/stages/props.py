@@ -23,7 +23,7 @@ from proto.common import Span
 from proto.scene import PlacedObject, Scene
 from proto.ssg import ActionNode, CharacterNode, Diagnostic, ObjectNode, SentenceGraph
 from services.orchestrator.document import Sentence
-from wana.domain.actions import get_clip
+from wana.domain.actions import get_clip, names_object
 from wana.domain.object_geometry import find_object
 
 # The object an action uses when the sentence names none ("Tom hammers", "She drinks"): catalog categories.
@@ -102,7 +102,8 @@ def _clip_kind(action: ActionNode) -> str:
 
 
 def _usable(scene: Scene, action: str) -> list[PlacedObject]:
-    """The small objects of the room the action can use: a "pick_up" point and the action's own point."""
+    """The small objects of the room the action can use: a "pick_up" point and the action's own point (or
+    the action's name names them: a phone for "text_on_phone")."""
     keys = {action, action.split("_")[0]}
     out = []
     for o in scene.objects:
@@ -110,7 +111,7 @@ def _usable(scene: Scene, action: str) -> list[PlacedObject]:
             points = set(_catalog().asset_for(o).contact_points)
         except Exception:  # noqa: BLE001 - unknown category
             continue
-        if "pick_up" in points and keys & points:
+        if "pick_up" in points and (keys & points or names_object(action, o.category)):
             out.append(o)
     return out
 

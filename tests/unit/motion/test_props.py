@@ -68,6 +68,15 @@ def test_the_nearest_prop_made_for_the_action_is_used_when_none_is_named():
     assert max(_grip_errors(motion)) < 0.01
 
 
+def test_texting_fetches_the_phone_its_clip_is_named_for_though_the_phone_has_no_text_point():
+    """solo-cafe-15, solo-home_office-02: the phone's one held point is "call"; "texts" and "answers the phone"
+    (text_on_phone, pick_up_phone_answer) found nothing made for them and played with an empty hand."""
+    for action in ("text_on_phone", "pick_up_phone_answer"):
+        tom = CharacterNode(name="Tom", actions=[ActionNode(verb="text", action=action)])
+        plan = plan_actions(tom, SCENE, (-1.0, -1.0, 0.0))
+        assert plan.segments[-1].prop == "phone", action
+
+
 def test_the_story_motion_keeps_the_prop_in_the_hand_after_timing():
     text = "In the kitchen there is a table$. A cup is on the table$.\nEve waves.\nEve drinks from the cup.\n"
     with tempfile.TemporaryDirectory() as tmp:
