@@ -760,7 +760,7 @@ def _per_beat(shot: Shot, beats: list[_Beat], tracks: Mapping[str, CharacterTrac
         lo, hi = max(shot.start, b.start), min(shot.end, b.end)
         if hi <= lo or b.lead not in tracks:
             continue
-        partner = _widest(b.lead, b.acting[1:], tracks, lo)
+        partner = _widest(b.lead, b.acting[1:], tracks, lo, hi)
         piece = replace(shot, start=lo, end=hi, subject=b.lead, partner=partner, acting=b.acting)
         if out and (hi - lo < MIN_SHOT_FRAMES or (out[-1].subject, out[-1].partner) == (b.lead, partner)):
             out[-1] = replace(out[-1], end=hi, acting=tuple(dict.fromkeys([*out[-1].acting, *b.acting])))
@@ -773,18 +773,22 @@ def _per_beat(shot: Shot, beats: list[_Beat], tracks: Mapping[str, CharacterTrac
     return out
 
 
-def _widest(lead: str, others: Sequence[str], tracks: Mapping[str, CharacterTrack], frame: int) -> str:
+def _widest(
+    lead: str, others: Sequence[str], tracks: Mapping[str, CharacterTrack], lo: int, hi: int | None = None
+) -> str:
     """Who a view of ``lead`` pairs with so that everyone acting with them is in the picture: the one
-    farthest from the lead ("" when nobody). Sentences that start together ("Nora tells a story.",
-    "Max comes in", "John stands up" at once) all act in the beat; the pair at its two ends frames the rest
-    between them, where the first name alone left Nora and Max out of a "camera left" two-shot."""
-    here = tracks[lead].at(frame)[0]
-    near = [a for a in others if a in tracks]
-    return max(
-        near,
-        key=lambda a: (float(np.linalg.norm((tracks[a].at(frame)[0] - here)[[0, 2]])), a),
-        default="",
-    )
+    that gets farthest from the lead over frames [lo, hi) ("" when nobody). Sentences that start together
+    ("Nora tells a story.", "Max comes in", "John stands up" at once) all act in the beat; the pair at its
+    two ends frames the rest between them, where the first name alone left Nora and Max out of a "camera
+    left" two-shot. Measured over the beat, not on its first frame: "Mom kisses Sam and leaves" starts
+    beside Sam, and a pair chosen then left her walking out of the picture for 3 s."""
+    frames = np.unique(np.linspace(lo, max(lo, (hi or lo + 1) - 1), 9).round().astype(int))
+
+    def farthest(a: str) -> tuple[float, str]:
+        d = [float(np.linalg.norm((tracks[a].at(f)[0] - tracks[lead].at(f)[0])[[0, 2]])) for f in frames]
+        return max(d), a
+
+    return max((a for a in others if a in tracks), key=farthest, default="")
 
 
 def _overlay(base: list[Shot], commanded: list[Shot]) -> list[Shot]:

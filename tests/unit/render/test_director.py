@@ -295,3 +295,33 @@ def test_two_people_side_by_side_are_filmed_from_the_front_not_from_behind() -> 
         mid = (s.start + s.end) // 2
         eye = camera_at(mid, keys, stage.tracks, ROOM).eye
         assert eye[2] > 0.3, (s, eye)  # in front of them
+
+
+def test_an_unnamed_view_pairs_its_character_with_whoever_walks_farthest_away_in_the_sentence() -> None:
+    """Seen in group-kitchen-09: under "camera left", "Sam drinks milk." and "Mom kisses Sam on the cheek
+    and leaves." start together; the view paired Sam with Tom (farther from Sam when both began) and Mom
+    walked out of the picture for 3 s. The pair is who is farthest apart over the sentence, not at its start."""
+    from services.render.camera_checks import camera_checks
+
+    bob = actor("Bob", -1.0, 0.0, 150, [("eat", 0, 150, "s1")])
+    ann = actor("Ann", 0.0, 0.0, 150, [("drink", 0, 150, "s2")])
+    cat = walk_motion("Cat", (0.4, 0.0), (2.6, -2.0), 150, expression="none")
+    segs = [
+        Segment(index=0, action="kiss_cheek", start_frame=0, end_frame=40, sentence_id="s3"),
+        Segment(index=1, action="walk", start_frame=40, end_frame=150, sentence_id="s3"),
+    ]
+    cat = msgspec.structs.replace(cat, segments=segs)
+    left = TimedCommand(
+        frame=0,
+        command=Command(kind="camera", value="left", target="Ann"),
+        sentence_id="s0",
+        implied_target=True,
+    )
+    stage = Staging.build(SCENE, [bob, ann, cat], [left])
+    [view] = [s for s in stage.shots if s.source == "command"]
+    assert (view.subject, view.partner) == ("Ann", "Cat")
+    cmds = [("s0", Command(kind="camera", value="left"))]
+    sentences = [("s0", "camera left"), ("s1", "Bob eats."), ("s2", "Ann drinks."), ("s3", "Cat leaves.")]
+    checks = camera_checks(SCENE, [bob, ann, cat], cmds, sentences, width=320, height=240)
+    for sid in ("s1", "s2", "s3"):
+        assert all(c.ok for c in checks[sid] if c.name == "in_view"), checks[sid]
