@@ -49,15 +49,13 @@ def path_to(joint: int) -> list[int]:
     return path[::-1]
 
 
-def joint_globals(
-    rotations: np.ndarray, root: np.ndarray, joint: int, offsets: np.ndarray = REST_OFFSETS
-) -> tuple[np.ndarray, np.ndarray]:
+def joint_globals(rotations: np.ndarray, root: np.ndarray, joint: int) -> tuple[np.ndarray, np.ndarray]:
     """FK along one path only: world position (T, 3) and global rotation (T, 4) of joint."""
     path = path_to(joint)
     g = rotations[:, path[0]]
     pos = np.asarray(root, dtype=np.float64)
     for j in path[1:]:
-        pos = pos + quat.rotate(g, offsets[j])
+        pos = pos + quat.rotate(g, REST_OFFSETS[j])
         g = quat.mul(g, rotations[:, j])
     return pos, g
 
@@ -233,14 +231,12 @@ def lean_needed(
     weight: np.ndarray,
     max_pitch: float = np.radians(80.0),
     slack: float = 0.97,
-    offsets: np.ndarray = REST_OFFSETS,
 ) -> float | None:
     """The smallest spine pitch (radians, of 15 candidates up to max_pitch) that brings the shoulder
     within slack * reach of the target over the frames where weight is 1; 0 with no such frame;
     None when even max_pitch is not enough.
 
-    Args: as bend_spine_to_reach; offsets: (J, 3) rest offsets of the skeleton that reaches (a child's
-        shorter arm leans farther).
+    Args: as bend_spine_to_reach.
     """
     t = rotations.shape[0]
     w = np.broadcast_to(np.asarray(weight, dtype=np.float64), (t,))
@@ -252,9 +248,9 @@ def lean_needed(
     sub = rotations[full]
     hips = np.asarray(root)[full]
     # Reach as posed: the wrist's bend shortens the lower "bone" (forearm + hand) below its straight length.
-    mid, _ = joint_globals(sub, hips, mb, offsets)
-    tip, _ = joint_globals(sub, hips, ec, offsets)
-    reach = (float(np.linalg.norm(offsets[mb])) + float(np.min(_norm(tip - mid)))) * slack
+    mid, _ = joint_globals(sub, hips, mb)
+    tip, _ = joint_globals(sub, hips, ec)
+    reach = (float(np.linalg.norm(REST_OFFSETS[mb])) + float(np.min(_norm(tip - mid)))) * slack
     spine = [JOINT_INDEX[n] for n in SPINE]
     x_axis = np.array([1.0, 0.0, 0.0])
     for pitch in np.linspace(0.0, max_pitch, 15):
@@ -262,7 +258,7 @@ def lean_needed(
         bend = quat.from_axis_angle(x_axis, pitch / len(spine))
         for j in spine:
             trial[:, j] = quat.mul(trial[:, j], bend)
-        shoulder, _ = joint_globals(trial, hips, ua, offsets)
+        shoulder, _ = joint_globals(trial, hips, ua)
         if np.max(_norm(tgt - shoulder)) <= reach:
             return float(pitch)
     return None

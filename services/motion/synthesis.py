@@ -23,9 +23,8 @@ from proto.motion_data import Motion, PropTrack, Segment
 from services.motion.blend import fade_from, layer, upper_body_mask
 from services.motion.gait_style import NEUTRAL as NEUTRAL_GAIT
 from services.motion.gait_style import gait_style
-from services.motion.ik import joint_globals, lean_needed, lean_spine, lock_feet, trunk_tilt
+from services.motion.ik import joint_globals, lean_needed, lean_spine, lock_feet, trunk_tilt, two_bone_ik
 from services.motion.locomotion import lock_walk, locomote
-from services.motion.pairs import offsets_of, two_bone
 from services.motion.style import apply_style, resample_fps, style_of
 from wana.arrays import to_wire
 from wana.domain import quat
@@ -210,15 +209,7 @@ def _clip_contacts(rot: np.ndarray, root: np.ndarray) -> np.ndarray:
     return out
 
 
-def _action_piece(
-    seg: PlannedSegment, state: SegmentState, offsets: np.ndarray = REST_OFFSETS
-) -> tuple[MotionPiece, SegmentState]:
-    """One action's piece; ``offsets``: the rest offsets of the character who plays it. Its hands are brought
-    to what stays put (a microphone on its stand, keys, a table top) on its own skeleton, where the renderer
-    and the story checks draw them; a segment with a prop in or into the hand keeps the reference skeleton,
-    which the prop's grip (held_prop) and the planner's reach spots are made for."""
-    if seg.prop:
-        offsets = REST_OFFSETS
+def _action_piece(seg: PlannedSegment, state: SegmentState) -> tuple[MotionPiece, SegmentState]:
     clip: ActionClip = clip_of(seg)
     dur = (
         seg.duration_s
@@ -278,7 +269,7 @@ def _action_piece(
     ):
         low = {j: p for j, p in targets.items() if j in HAND_JOINTS}
         if low and clip.interaction.object != "person":
-            root, stand_lean = _crouch_to_reach(rot, root, low, _contact_weight(clip, t, dur), clip, offsets)
+            root, stand_lean = _crouch_to_reach(rot, root, low, _contact_weight(clip, t, dur), clip)
     rot = lock_feet(rot, root, contacts)  # feet stay planted: a lowered root bends the knees
     if (
         clip.interaction
@@ -302,10 +293,10 @@ def _action_piece(
         if posture in ("sit", "sit_floor") and not clip.drives_lower_body and hands:
             # Seated, the trunk leans at most SEATED_MAX_LEAN; past that the hips slide forward on the seat.
             max_lean = SEATED_MAX_LEAN
-            root = _scoot_to_reach(rot, root, heading, hands, weight, slack, offsets)
+            root = _scoot_to_reach(rot, root, heading, hands, weight, slack)
         if hands:  # one lean for both hands: the one the farther hand needs
             needs = [
-                lean_needed(rot, root, j, np.asarray(p, dtype=np.float64), weight, max_lean, slack, offsets)
+                lean_needed(rot, root, j, np.asarray(p, dtype=np.float64), weight, max_lean, slack)
                 for j, p in hands.items()
             ]
             rot = lean_spine(
@@ -313,7 +304,7 @@ def _action_piece(
             )
         for joint, target in hands.items():
             tgt = np.broadcast_to(np.asarray(target, dtype=np.float64), (t, 3))
-            rot = two_bone(rot, root, offsets, joint, tgt, weight)
+            rot = two_bone_ik(rot, root, joint, tgt, weight)
             inside = frames[weight >= 0.999]
             contact_frames[joint] = (inside, np.asarray(target))
     end_off = offs[-1] if clip.drives_lower_body else np.zeros(3)
@@ -371,7 +362,6 @@ def _crouch_to_reach(
     hands: dict[str, tuple[float, float, float]],
     weight: np.ndarray,
     clip: ActionClip,
-    offsets: np.ndarray = REST_OFFSETS,
 ) -> tuple[np.ndarray, float | None]:
     """Root (T, 3) lowered (at most CROUCH_MAX, eased in by weight) just far enough that the spine lean
     bringing every hand target within reach leaves the trunk (hips -> neck, the clip's own bend included:
@@ -385,9 +375,7 @@ def _crouch_to_reach(
         lowered = root.copy()
         lowered[:, 1] -= weight * drop
         needs = [
-            lean_needed(
-                rot, lowered, j, np.asarray(p, dtype=np.float64), weight, np.radians(80.0), slack, offsets
-            )
+            lean_needed(rot, lowered, j, np.asarray(p, dtype=np.float64), weight, np.radians(80.0), slack)
             for j, p in hands.items()
         ]
         if None in needs:
@@ -408,7 +396,6 @@ def _scoot_to_reach(
     hands: dict[str, tuple[float, float, float]],
     weight: np.ndarray,
     slack: float,
-    offsets: np.ndarray = REST_OFFSETS,
 ) -> np.ndarray:
     """Root (T, 3) slid forward (at most SCOOT_MAX, eased in by weight) just far enough that a lean of
     SEATED_MAX_LEAN brings every hand target within slack * reach; the farthest slide when none is."""
@@ -417,9 +404,7 @@ def _scoot_to_reach(
     for scoot in np.linspace(0.0, SCOOT_MAX, 6):
         moved = root + (weight * scoot)[:, None] * fwd
         if all(
-            lean_needed(
-                rot, moved, j, np.asarray(p, dtype=np.float64), weight, SEATED_MAX_LEAN, slack, offsets
-            )
+            lean_needed(rot, moved, j, np.asarray(p, dtype=np.float64), weight, SEATED_MAX_LEAN, slack)
             is not None
             for j, p in hands.items()
         ):
@@ -612,7 +597,7 @@ def _synthesise_segment(
         rot[:, 0] = quat.mul(quat.yaw(np.full(t, start_state.yaw)), rot[:, 0])
         root, _ = _to_world(start_state, np.repeat(base_off[None], t, 0), np.zeros(t))
         return MotionPiece(root, rot, np.ones((t, 2), np.uint8), seg), start_state
-    return _action_piece(seg, start_state, offsets_of(plan.character))
+    return _action_piece(seg, start_state)
 
 
 def synthesise(plan: MotionPlan) -> tuple[Motion, list[MotionPiece], list[SegmentState]]:

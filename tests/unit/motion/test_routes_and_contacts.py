@@ -11,7 +11,6 @@ from proto.scene import PlacedObject, Room, Scene
 from proto.ssg import ActionNode, CharacterNode
 from services.motion.handlers import handle_synthesize
 from services.motion.ik import global_transforms
-from services.motion.pairs import offsets_of
 from services.motion.planning import _object_geometry, contact_targets, plan_actions, straight_route
 from services.motion.routing import plan_scene_route
 from services.motion.synthesis import synthesise
@@ -137,10 +136,8 @@ def _seated_story(scene: Scene, *after: ActionNode):  # noqa: ANN202
     eve = CharacterNode(name="Eve", actions=[ActionNode(verb="sit", action="sit", target="chair"), *after])
     plan = plan_actions(eve, scene, (2.0, 2.0, np.pi))
     motion, pieces, states = synthesise(plan)
-    pos, _ = global_transforms(  # on Eve's own skeleton, as drawn: the hands reach on it
-        from_wire(motion.rotations).astype(float),
-        from_wire(motion.root_position).astype(float),
-        offsets_of(eve.name),
+    pos, _ = global_transforms(
+        from_wire(motion.rotations).astype(float), from_wire(motion.root_position).astype(float)
     )
     return plan, pieces, states, pos
 
