@@ -17,7 +17,7 @@ from services.gateway import animwire
 from tests.unit.gateway.test_live_delta import services_gateway  # noqa: F401  (the fixture)
 from tests.unit.gateway.test_live_socket import edit, new_doc
 
-TEXT = "Eve walks to the door. Tom waves. Eve walks to the window."
+TEXT = "Eve walks to the door. Eve waves. Tom waves. Eve walks to the window."  # the edit: the last walk
 TIMEOUT_S = 180.0
 
 
