@@ -1399,6 +1399,11 @@ def plan_actions(
             continue
         if obj is not None and clip.interaction and kind not in ("handheld", "person", "seat", "bed"):
             obj = work_place(scene, obj, name)
+        if obj is not None and kind == "surface" and "/" not in obj.id and _grasp(obj) is not None:
+            # "They eat dinner" with a plate at each place: each eats from the one nearest, as a cup is drunk
+            # from (prop_grip), not both from the first plate (0.84 m across the table)
+            alike = [o for o in scene.objects if o.category == obj.category and _grasp(o) is not None]
+            obj = min(alike, key=lambda o: float(np.hypot(o.position[0] - pos[0], o.position[2] - pos[1])))
         if obj is not None and clip.interaction and kind not in ("handheld", "person"):
             geo = _object_geometry(obj) or _fallback_geometry(obj)
             stand, points = geo
