@@ -1332,6 +1332,12 @@ def plan_actions(
             here = np.array([prop_obj.position[0], prop_obj.position[2]])
             if now_posture() == "stand":  # walk up to the prop first (it is picked up where it lies)
                 step_up_to(here, ai, prop_obj.id)
+            if back_to is None and take_seated(prop_obj, ai, GRASP_TABLE):
+                # seated with it in arm's reach (the bowl on the low coffee table): taken with the arm where
+                # one sits, not by getting up and bending over the table (a floor-height pick-up)
+                add(kind="action", action=name, duration_s=float(node.duration_s), target_id=prop_obj.id,
+                    action_index=ai)  # fmt: skip
+                continue
             if np.linalg.norm(here - pos) <= PICK_REACH:  # within reach: it is held from now on
                 reach = _grasp(prop_obj)
                 # A prop on a table is taken with an arm's reach (upper body: seated too), one on the floor
