@@ -1332,6 +1332,12 @@ def plan_actions(
             here = np.array([prop_obj.position[0], prop_obj.position[2]])
             if now_posture() == "stand":  # walk up to the prop first (it is picked up where it lies)
                 step_up_to(here, ai, prop_obj.id)
+            if back_to is None and take_seated(prop_obj, ai, GRASP_TABLE):
+                # seated with it in arm's reach (the bowl on the low coffee table): taken with the arm where
+                # one sits, not by getting up and bending over the table (a floor-height pick-up)
+                add(kind="action", action=name, duration_s=float(node.duration_s), target_id=prop_obj.id,
+                    action_index=ai)  # fmt: skip
+                continue
             if np.linalg.norm(here - pos) <= PICK_REACH:  # within reach: it is held from now on
                 reach = _grasp(prop_obj)
                 # A prop on a table is taken with an arm's reach (upper body: seated too), one on the floor
@@ -1399,6 +1405,11 @@ def plan_actions(
             continue
         if obj is not None and clip.interaction and kind not in ("handheld", "person", "seat", "bed"):
             obj = work_place(scene, obj, name)
+        if obj is not None and kind == "surface" and "/" not in obj.id and _grasp(obj) is not None:
+            # "They eat dinner" with a plate at each place: each eats from the one nearest, as a cup is drunk
+            # from (prop_grip), not both from the first plate (0.84 m across the table)
+            alike = [o for o in scene.objects if o.category == obj.category and _grasp(o) is not None]
+            obj = min(alike, key=lambda o: float(np.hypot(o.position[0] - pos[0], o.position[2] - pos[1])))
         if obj is not None and clip.interaction and kind not in ("handheld", "person"):
             geo = _object_geometry(obj) or _fallback_geometry(obj)
             stand, points = geo

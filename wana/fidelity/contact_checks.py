@@ -259,9 +259,18 @@ def _candidates(act: Act, world: World, characters: set[str]) -> tuple[list[Plac
     for ref in (act.node.instrument, act.node.target, act.node.destination):
         if ref and ref not in characters and not (is_body_part(ref) and names_own_body(act)):
             found = world.find(ref)
+            alike = len(found) == 1 and "/" not in found[0].id
             if not held:
+                if alike and _holdable(world, found[0], False):
+                    # "They eat dinner" with a plate at each place: any plate, the one in front of each
+                    # (the planner eats from the nearest alike as it drinks from one)
+                    found += [
+                        o
+                        for o in world.scene.objects
+                        if o.category == found[0].category and o is not found[0]
+                    ]
                 return found, ref
-            if len(found) == 1 and "/" not in found[0].id:
+            if alike:
                 # "drinks from her mug" with two mugs on the table: any of them, the one the hand came to (the
                 # planner takes the nearest alike, planning.prop_grip; duo-cafe-04 s8 read the mug in her
                 # hand as 0.88 m off, measuring to the first one, which stayed by Dr. Jones)

@@ -100,3 +100,20 @@ def test_coming_in_through_the_door_passes_it_and_walking_to_it_must_end_there(m
     assert through.ok, through.reason
     to = arrival("Eve walks to the door.")  # ends 1.8 m from it: not there
     assert not to.ok and "stops" in to.reason
+
+
+def test_eating_from_the_plate_is_from_the_plate_at_hand_though_the_word_names_the_first_of_two(make):
+    """duo-dining_room-11 s10 "They eat dinner" with a plate at each place: the planner eats from the plate
+    nearest (as it drinks from the nearest mug), the check measured Tom's hand to "plate", at Mary's place."""
+    from wana.fidelity.bodies import body_of
+
+    frames = round(clip_needs("eat").duration_s * 30)
+    eve = make.motion("Eve", make.still(0.0, 0.95, 0.0, frames), [("eat", 0, frames, "s1", 0)])
+    hand = np.asarray(body_of(eve).joint("RightHandMiddle1"))[0]
+    plates = [
+        PlacedObject(id="plate", category="plate", position=(0.0, 0.75, 1.6)),
+        PlacedObject(id="plate/2", category="plate", position=(hand[0] - 0.13, hand[1] - 0.01, hand[2])),
+    ]
+    node = ActionNode(verb="eat", action="eat", target="plate")
+    check = _contact(make, plates, node, "Eve eats from the plate.", "")
+    assert check.ok, check.reason

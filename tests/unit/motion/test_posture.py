@@ -237,3 +237,28 @@ def test_a_seated_character_takes_a_box_beside_it_on_the_bench_without_getting_u
         node, msgspec.structs.replace(scene, objects=[bench, far]), (hips[0], 1.5, np.pi), straight_route
     )
     assert plan.segments[[s.action_index for s in plan.segments].index(1)].action == "stand"
+
+
+def test_a_seated_character_eats_from_a_bowl_in_reach_on_the_low_coffee_table_without_getting_up():
+    """solo-living_room-08 "He eats a snack from the bowl" from the sofa: the bowl's grip on a coffee table
+    (0.46 m) is below a table reach, so it was a floor-height pick-up, which needs standing: Ben got up and
+    bent over the table. In arm's reach of the hips it is taken with the seated arm, then eaten from."""
+    from services.motion.planning import seat_slots, straight_route
+    from wana.assets.catalog import world_support_surfaces
+
+    sofa = PlacedObject(id="sofa", category="sofa", position=(0.0, 0.0, 0.0))
+    table = PlacedObject(id="coffee_table", category="coffee_table", position=(0.0, 0.0, 0.85))
+    top = max(h for h, _ in world_support_surfaces(table))
+    hips = seat_slots(sofa, "seat")[0]
+    bowl = PlacedObject(
+        id="bowl", category="bowl", position=(hips[0] + 0.1, top, 0.66), support="coffee_table"
+    )
+    scene = Scene(room=Room(room_type="living_room", width=6, depth=6, height=3), objects=[sofa, table, bowl])
+    node = CharacterNode(name="Ben", actions=[
+        ActionNode(verb="sit", action="sit", target="sofa"),
+        ActionNode(verb="eat", action="eat_snack", target="snack"),
+    ])  # fmt: skip
+    plan = plan_actions(node, scene, (hips[0], 1.8, np.pi), straight_route)
+    after = [s for s in plan.segments if s.action_index == 1]
+    assert [s.action for s in after][-1] == "eat_snack" and "stand" not in [s.action for s in after]
+    assert after[0].upright and after[0].prop == "bowl" and after[0].prop_span == "grasp"

@@ -141,3 +141,22 @@ def test_a_held_action_naming_one_of_two_mugs_sees_both():
         "mug/2",
         "cup",
     }
+
+
+def test_eating_from_the_plate_with_a_plate_at_each_place_eats_from_the_nearest():
+    """duo-dining_room-11 "They eat dinner": two plates, one at each place; Tom ate from the first plate,
+    across the table (his hand 0.84 m from it), not from his own."""
+    from services.motion.planning import straight_route
+    from wana.assets.catalog import world_support_surfaces
+
+    table = PlacedObject(id="dining_table", category="dining_table", position=(0.0, 0.0, 0.0))
+    top = max(h for h, _ in world_support_surfaces(table))
+    far = PlacedObject(id="plate", category="plate", position=(0.0, top, -0.35), support="dining_table")
+    near = PlacedObject(id="plate/2", category="plate", position=(0.0, top, 0.35), support="dining_table")
+    scene = Scene(room=Room(room_type="dining_room", width=6, depth=6, height=3), objects=[table, far, near])
+    node = CharacterNode(name="Tom", actions=[ActionNode(verb="eat", action="eat", target="plate")])
+    plan = plan_actions(node, scene, (0.0, 1.2, np.pi), straight_route)
+    (eat,) = [s for s in plan.segments if s.action == "eat"]
+    assert eat.target_id == "plate/2"
+    (hand,) = np.array(list(dict(eat.targets).values()))
+    assert np.hypot(hand[0] - near.position[0], hand[2] - near.position[2]) < 0.2
