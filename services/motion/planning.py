@@ -900,7 +900,7 @@ def plan_actions(
         )
 
     def step_up_close(here: np.ndarray, ai: int, target: str) -> None:
-        """As step_up_to, from the side nearest the point whichever that is (REACH_SIDES tried, the approach
+        """step_up_to from the side nearest the point whichever that is (REACH_SIDES tried, the approach
         among them): a cup in the middle of a kitchen island is poured into from the side it is nearest,
         not from across the island; a longer walk counts WALK_WEIGHT against the nearer spot."""
         if np.linalg.norm(here - pos) <= STEP_IN:
@@ -910,19 +910,19 @@ def plan_actions(
         sides = [pos - here] + [
             np.array([np.sin(a), np.cos(a)]) for a in np.arange(REACH_SIDES) * 2 * np.pi / REACH_SIDES
         ]
-        best: tuple[float, np.ndarray] | None = None
-        for side in sides:
-            n = float(np.linalg.norm(side))
-            if n < 1e-6:
-                continue
-            spot = reach_spot(here + side / n * REACH, here, target)
-            cost = float(np.linalg.norm(here - spot)) + WALK_WEIGHT * float(np.linalg.norm(spot - pos))
-            if any(np.hypot(spot[0] - b[0], spot[1] - b[1]) < BODY_CLEAR_M for b in bodies):
-                cost += 10.0  # beside the one seated at the cup, not in their lap
-            if best is None or cost < best[0]:
-                best = (cost, spot)
-        if best is not None and np.linalg.norm(here - best[1]) < np.linalg.norm(here - pos) - 0.05:
-            walk_to(best[1], 1.2, _yaw_to(best[1], here, yaw), "walk", ai, target)
+
+        def cost(side: np.ndarray) -> float:
+            spot = reach_spot(here + side / np.linalg.norm(side) * REACH, here, target)
+            crowded = any(np.hypot(spot[0] - b[0], spot[1] - b[1]) < BODY_CLEAR_M for b in bodies)
+            return (  # beside the one seated at the cup, not in their lap
+                float(np.linalg.norm(here - spot))
+                + WALK_WEIGHT * float(np.linalg.norm(spot - pos))
+                + 10.0 * crowded
+            )
+
+        sides = [side for side in sides if np.linalg.norm(side) > 1e-6]
+        if sides:
+            step_up_to(here, ai, target, front=min(sides, key=cost))
 
     def front_of(obj_id: str) -> np.ndarray | None:
         """The side a piece of furniture is used from (its catalog stand point from its centre), None if unknown:
