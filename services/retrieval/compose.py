@@ -36,6 +36,8 @@ from wana.assets import catalog
 GROW_STEPS = 3  # times the room may grow by GROW_BY when objects do not fit
 GROW_BY = 1.0  # metres added to width and depth
 VARIANTS_PER_OBJECT = 1000  # catalog variant seeds are object seeds modulo this
+# Relations that say where on the floor a thing stands: for a thing resting on another, its support's.
+FLOOR_RELATIONS = frozenset({"next_to", "near", "left_of", "right_of", "in_front_of", "behind"})
 
 
 @dataclass
@@ -119,6 +121,32 @@ def _expand(objects: list[ObjectNode], relations: list[RelationNode]) -> list[tu
     for i, r in enumerate(relations):
         for sid in copies[r.subject]:
             out.append((i, RelationNode(subject=sid, relation=r.relation, object=r.object, span=r.span)))
+    return out
+
+
+def via_support(relations: Sequence[RelationNode]) -> list[RelationNode]:
+    """The relations the layout places by: where a thing resting on another stands on the floor is where its
+    support stands ("a towel hangs on the towel rack next to the sink": the rack stands next to the sink and
+    the towel hangs on it). Kept on the thing when the anchor rests on the same support ("a lamp on the desk
+    next to the monitor") or is that support's own support; dropped when the support already relates to the
+    anchor."""
+    support = {r.subject: r.object for r in relations if r.relation in ("on", "in")}
+    have = {(r.subject, r.object) for r in relations}
+    out: list[RelationNode] = []
+    for r in relations:
+        base = support.get(r.subject)
+        if (
+            r.relation in FLOOR_RELATIONS
+            and base is not None
+            and r.object != base
+            and support.get(r.object) != base
+            and support.get(base) != r.object
+        ):
+            if (base, r.object) in have or (r.object, base) in have:
+                continue
+            have.add((base, r.object))
+            r = RelationNode(subject=base, relation=r.relation, object=r.object, span=r.span)
+        out.append(r)
     return out
 
 
@@ -217,7 +245,7 @@ def compose_scene(
 
     layout = None
     for step in range(GROW_STEPS + 1):
-        layout = Layout(items + ctx_items, expanded + ctx_rels, RoomBox(w, d, h), seed, holds)
+        layout = Layout(items + ctx_items, via_support(expanded) + ctx_rels, RoomBox(w, d, h), seed, holds)
         for members in layout.components([it.id for it in items]):
             layout.place_component(members)
         if not layout.result.forced or not layout.result.crowded or step == GROW_STEPS:

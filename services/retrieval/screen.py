@@ -79,6 +79,8 @@ def screen(relation: str, s: Placed, a: Placed) -> bool:
     if relation == "right_of":
         return _side(s, a, 0, -1.0)
     if relation == "under":
+        if a.fp.mount == "wall":  # a sink under the mirror stands against its wall, below it
+            return s.box[0, 1] < a.box[0, 1] and _gap(s, a) <= NEAR_M
         return _over(s, a, 0.0) and s.box[1, 1] <= a.box[1, 1] - 0.02
     if relation == "above":
         return _over(s, a, 0.1) and s.box[0, 1] >= a.box[1, 1] - 0.01

@@ -171,3 +171,30 @@ def test_a_chair_behind_a_desk_under_the_window_sits_at_the_desk_inside_the_room
     placed = {p.id: p for p in scene.objects}
     assert relation_holds("in_front_of", placed["chair"], placed["desk"])  # at the desk's working side
     assert relation_holds("facing", placed["chair"], placed["desk"])
+
+
+def test_a_sink_under_the_mirror_fits_the_room_as_first_sized():
+    """Under a wall object is judged against its wall: nothing is forced and the room does not grow."""
+    scene, report = compose_scene(
+        [o("bathroom_sink", "bathroom_sink"), o("mirror", "mirror")],
+        [r("bathroom_sink under mirror")],
+        room_type="bathroom",
+    )
+    assert all(c.held for c in report.relations)
+    assert not [d for d in report.diagnostics if d.code in ("I508", "W505")]
+    assert scene.room.width < 4.0 and scene.room.depth < 4.0
+
+
+def test_a_thing_on_a_rack_next_to_the_sink_stands_there_with_its_rack():
+    """ "A towel hangs on the towel rack next to the sink": the rack stands next to the sink, the towel on it."""
+    scene, report = compose_scene(
+        [o("bathroom_sink", "bathroom_sink"), o("towel", "towel"), o("towel_rack", "towel_rack")],
+        [r("towel on towel_rack"), r("towel next_to bathroom_sink")],
+        room_type="bathroom",
+    )
+    placed = {p.id: p for p in scene.objects}
+    assert placed["towel"].support == "towel_rack"
+    assert all(c.held for c in report.relations)
+    assert relation_holds(
+        r("towel_rack next_to bathroom_sink"), placed["towel_rack"], placed["bathroom_sink"]
+    )
