@@ -49,7 +49,7 @@ one plan: each step reads the one before.
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import Any, Protocol
 
 import numpy as np
@@ -342,6 +342,7 @@ class _Unit:
 
     who: str
     frames: np.ndarray  # (F,) sorted story frames
+    key: int = 0  # its place in the story's list of units (what the frames it has missed are kept under)
 
 
 def _units(motions: Mapping[str, Motion], n_frames: int) -> list[_Unit]:
@@ -352,7 +353,8 @@ def _units(motions: Mapping[str, Motion], n_frames: int) -> list[_Unit]:
             if seg.sentence_id:
                 lo, hi = max(0, seg.start_frame), min(seg.end_frame, n_frames)
                 spans.setdefault((seg.sentence_id, name), set()).update(range(lo, hi))
-    return [_Unit(who, np.array(sorted(f), dtype=np.int64)) for (_, who), f in sorted(spans.items()) if f]
+    kept = [(who, f) for (_, who), f in sorted(spans.items()) if f]
+    return [_Unit(who, np.array(sorted(f), dtype=np.int64), k) for k, (who, f) in enumerate(kept)]
 
 
 def _samples(s: Shot, units: Sequence[_Unit] = ()) -> list[int]:
@@ -369,15 +371,24 @@ def _samples(s: Shot, units: Sequence[_Unit] = ()) -> list[int]:
 
 
 def _unit_score(
-    shown: np.ndarray, frames: Sequence[int], who: Sequence[str], s: Shot, units: Sequence[_Unit]
+    shown: np.ndarray,
+    frames: Sequence[int],
+    who: Sequence[str],
+    s: Shot,
+    units: Sequence[_Unit],
+    missed: Mapping[int, float] | None = None,
+    out: dict[int, float] | None = None,
 ) -> tuple[float | None, bool]:
     """How well (F, C) ``shown`` passes the shot's sentences' checks, in [0, 1]: each (sentence,
     character) in the shot counts by the share of its frames the shot holds; its score is the share of
-    its sampled frames shown, plus PASS_BONUS when that share would pass the check with a margin.
-    None when no sentence acts in the shot; and whether every one passes."""
+    its sampled frames shown, plus PASS_BONUS when the whole sentence would still pass its check with a
+    margin: the frames the shots before missed of it (``missed``, by unit key) and those this one misses
+    (written to ``out``) together at most 1 - PASS_SHARE of its frames. None when no sentence acts in
+    the shot; and whether every one passes."""
     col = {w: j for j, w in enumerate(who)}
     fr = np.asarray(frames, dtype=np.int64)
     total, weight, passes = 0.0, 0.0, True
+    missed = missed or {}
     for u in units:
         if u.who not in col:
             continue
@@ -389,8 +400,12 @@ def _unit_score(
             continue
         share = float(shown[mask, col[u.who]].mean())
         w = len(inside) / len(u.frames)
-        passes &= share >= PASS_SHARE
-        total += w * (share + PASS_BONUS * (share >= PASS_SHARE)) / (1.0 + PASS_BONUS)
+        here = (1.0 - share) * len(inside)
+        if out is not None:
+            out[u.key] = here
+        ok = missed.get(u.key, 0.0) + here <= (1.0 - PASS_SHARE) * len(u.frames) + 1e-9
+        passes &= ok
+        total += w * (share + PASS_BONUS * ok) / (1.0 + PASS_BONUS)
         weight += w
     return (total / weight if weight > 0 else None), passes
 
@@ -435,6 +450,7 @@ def _framed(
 
     out: list[Shot] = []
     last: tuple[Shot, Any] | None = None  # the shot before and its camera on its last frame
+    missed: dict[int, float] = {}  # frames of each unit the shots framed so far leave unseen (by key)
     todo = list(reversed(shots))
     while todo:
         s = todo.pop()
@@ -443,22 +459,30 @@ def _framed(
             last = None
             continue
         pair = (min(s.subject, s.partner), max(s.subject, s.partner)) if s.partner else None
-        found = _search(s, kept_side(pair, s.start), track_map, room, scorer, units, last)
+        found = _search(s, kept_side(pair, s.start), track_map, room, scorer, units, last, missed=missed)
         if scorer is not None and not found.passes and s.source == "director" and s.kind != "wide":
             wide = replace(s, kind="wide", subject="", partner="")
-            other = _search(wide, None, track_map, room, scorer, units, last)
+            other = _search(wide, None, track_map, room, scorer, units, last, missed=missed)
             if other.score > found.score + WIDE_GAIN:
                 s, found, pair = wide, other, None
         if pair is not None and s.source == "director":  # a command's framing keeps no side of the line
             pair_side[pair] = (found.side, _line(pair, track_map, max(s.start, s.end - 1)))
         framed = replace(s, side=found.side, adjust=found.adjust if scorer is not None else None)
         if scorer is not None and not found.passes:  # a measured command's view too, on its side
-            split = _replan(framed, track_map, room, scorer, units, kept_side(pair, s.start))
+            split = _replan(framed, track_map, room, scorer, units, kept_side(pair, s.start), missed)
             if split is not None:
                 framed = replace(framed, end=split)
-                found = replace(found, end_pose=_pose(_key(framed), track_map, room, split - 1))
+                only = (found.side, found.adjust)
+                part = _search(
+                    framed, found.side, track_map, room, scorer, units, None, only=only, missed=missed
+                )
+                found = replace(
+                    found, end_pose=_pose(_key(framed), track_map, room, split - 1), missed=part.missed
+                )
                 todo.append(replace(s, start=split))
         out.append(framed)
+        for k, m in found.missed.items():
+            missed[k] = missed.get(k, 0.0) + m
         last = (framed, found.end_pose) if found.end_pose is not None else None
     return out
 
@@ -507,6 +531,7 @@ def _replan(
     scorer: Scorer,
     units: Sequence[_Unit],
     fixed_side: int | None,
+    missed: Mapping[int, float] | None = None,
 ) -> int | None:
     """Where a director's shot whose framing loses an acting character part-way is cut and re-framed:
     at the frame it loses them (held MIN_SHOT_FRAMES first, and the rest at least as long), when another
@@ -519,11 +544,14 @@ def _replan(
         return None
     split = min(max(lost, s.start + MIN_SHOT_FRAMES), s.end - MIN_SHOT_FRAMES)
     rest = replace(s, start=split)
-    kept = _search(rest, s.side, tracks, room, scorer, units, None, only=(s.side, s.adjust or Adjust()))
+    only = (s.side, s.adjust or Adjust())
+    kept = _search(rest, s.side, tracks, room, scorer, units, None, only=only, missed=missed)
     if kept.passes:
         return None
     end_pose = _pose(_key(s), tracks, room, split - 1)
-    other = _search(rest, fixed_side, tracks, room, scorer, units, (replace(s, end=split), end_pose))
+    other = _search(
+        rest, fixed_side, tracks, room, scorer, units, (replace(s, end=split), end_pose), missed=missed
+    )
     return split if other.score > kept.score + REPLAN_GAIN else None
 
 
@@ -537,6 +565,7 @@ class _Found:
     score: float
     end_pose: Any
     passes: bool
+    missed: Mapping[int, float] = field(default_factory=dict)  # frames it misses of each unit (by key)
 
 
 def _search(
@@ -548,9 +577,10 @@ def _search(
     units: Sequence[_Unit],
     last: tuple[Shot, Any] | None,
     only: tuple[int, Adjust] | None = None,
+    missed: Mapping[int, float] | None = None,
 ) -> _Found:
     """Measure a shot's candidates (preferred first) and keep the one that shows most (``only``: measure
-    just that side and framing)."""
+    just that side and framing; ``missed``: the frames the shots before missed of each unit)."""
     frames = _samples(s, units)
     inside = [u for u in units if u.who in tracks and ((u.frames >= s.start) & (u.frames < s.end)).any()]
     who = list(dict.fromkeys([*(s.acting or (s.subject,)), *(u.who for u in inside)]))
@@ -567,14 +597,17 @@ def _search(
             continue
         passes = True
         frontal = 1.0
+        here: dict[int, float] = {}
         if scorer is None:
             score = -float(np.mean([_outside(room, p.eye) for p in poses]))
         else:
-            score, passes, frontal = _measured(poses, frames, who, s, inside, tracks, room, scorer)
+            score, passes, frontal = _measured(
+                poses, frames, who, s, inside, tracks, room, scorer, missed, here
+            )
         score -= PREFERENCE * rank
         if score > best.score + 1e-12:
             end_pose = _pose(key, tracks, room, max(s.start, s.end - 1))
-            best = _Found(side, adj, score, end_pose, passes)
+            best = _Found(side, adj, score, end_pose, passes, here)
         if scorer is None and rank >= 1:
             break  # without measuring, only the side is chosen
         if (
@@ -585,7 +618,7 @@ def _search(
         ):
             break  # the preferred framing shows everyone, from the front: nothing to improve
     if scorer is not None and not best.passes and only is None:
-        best = _rescue(s, fixed_side, tracks, room, scorer, units, frames, who, inside, best, len(main))
+        best = _rescue(s, fixed_side, tracks, room, scorer, frames, who, inside, best, len(main), missed)
     return best
 
 
@@ -598,11 +631,14 @@ def _measured(
     tracks: Mapping[str, CharacterTrack],
     room: Room,
     scorer: Scorer,
+    missed: Mapping[int, float] | None = None,
+    out: dict[int, float] | None = None,
 ) -> tuple[float, bool, float]:
     """A candidate's score (what it shows of the shot's sentences, less the eye outside the room, plus
-    FACES for faces seen), whether it passes every sentence's check, and how frontal it is."""
+    FACES for faces seen), whether it passes every sentence's check, and how frontal it is (``missed``
+    and ``out``: as in _unit_score)."""
     seen = scorer.shown_each(poses, frames, who)
-    by_unit, passes = _unit_score(seen, frames, who, s, inside)
+    by_unit, passes = _unit_score(seen, frames, who, s, inside, missed, out)
     acting_names = [w for w in (s.acting or (s.subject,)) if w in who]
     fallback = float(seen[:, [who.index(w) for w in acting_names]].mean()) if acting_names else 1.0
     outside = float(np.mean([_outside(room, p.eye) for p in poses]))
@@ -638,12 +674,12 @@ def _rescue(
     tracks: dict[str, CharacterTrack],
     room: Room,
     scorer: Scorer,
-    units: Sequence[_Unit],
     frames: list[int],
     who: list[str],
     inside: list[_Unit],
     best: _Found,
     first_rank: int,
+    missed: Mapping[int, float] | None = None,
 ) -> _Found:
     """The last-resort framings (RESCUE_CHOICES), measured as the others, ranked after them: one wins
     only when it shows more than every preferred framing did."""
@@ -654,11 +690,12 @@ def _rescue(
         poses = [_pose(key, tracks, room, f) for f in frames]
         if any(p is None for p in poses):
             break
-        score, passes, _ = _measured(poses, frames, who, s, inside, tracks, room, scorer)
+        here: dict[int, float] = {}
+        score, passes, _ = _measured(poses, frames, who, s, inside, tracks, room, scorer, missed, here)
         score -= PREFERENCE * (first_rank + i)
         if score > best.score + 1e-12:
             end_pose = _pose(key, tracks, room, max(s.start, s.end - 1))
-            best = _Found(side, adj, score, end_pose, passes)
+            best = _Found(side, adj, score, end_pose, passes, here)
             if passes:
                 break
     return best

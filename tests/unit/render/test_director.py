@@ -325,3 +325,21 @@ def test_an_unnamed_view_pairs_its_character_with_whoever_walks_farthest_away_in
     checks = camera_checks(SCENE, [bob, ann, cat], cmds, sentences, width=320, height=240)
     for sid in ("s1", "s2", "s3"):
         assert all(c.ok for c in checks[sid] if c.name == "in_view"), checks[sid]
+
+
+def test_a_sentence_split_over_shots_passes_by_what_all_of_them_miss():
+    """A sentence's character is judged over the whole sentence, as the in_view check judges it: a shot
+    holding its last fifth may leave a little of it unseen when the shots before showed the rest, and not
+    when they already missed their share."""
+    from services.render.director import Shot, _Unit, _unit_score
+
+    unit = _Unit("Ada", np.arange(0, 100), key=3)
+    shot = Shot(start=80, end=100, kind="medium", subject="Ada")
+    frames = list(range(80, 100))
+    shown = np.ones((20, 1))
+    shown[:2, 0] = 0.0  # 2 of its 20 frames unseen: 90 % of this shot, 98 % of the sentence
+    out: dict[int, float] = {}
+    _, passes = _unit_score(shown, frames, ["Ada"], shot, [unit], {}, out)
+    assert passes and out == {3: pytest.approx(2.0)}
+    _, passes = _unit_score(shown, frames, ["Ada"], shot, [unit], {3: 4.0}, {})
+    assert not passes  # 6 of 100 frames unseen: under 95 %
