@@ -239,11 +239,29 @@ def arguments(verb: Token, builder: GraphBuilder) -> tuple[list[Argument], list[
             ):
                 continue  # "walks in", "looks outside", "dances happily": no object
             prep = case_of(c)
+            of = _relation_noun_object(c)
+            if of is not None:  # "stands in front of the mirror": at the mirror, not at a "front"
+                c = of  # with its own preposition: "walks to the front of the desk" goes to the desk
             obliques.append(_argument(c, prep, builder, report_unknown=True))
             for conj in c.children:
                 if conj.dep_ == "conj" and conj.pos_ in ("NOUN", "PROPN"):
                     obliques.append(_argument(conj, prep, builder, report_unknown=True))
     return objects, obliques, duration
+
+
+def _relation_noun_object(tok: Token) -> Token | None:
+    """The thing of "in front of the mirror", "at the back of the room", "on top of the shelf": the noun
+    after "of" under a relational noun (lexicon.RELATION_NOUNS) that has a preposition of its own."""
+    if tok.lower_ not in lexicon.RELATION_NOUNS or not any(g.dep_ == "case" for g in tok.children):
+        return None
+    return next(
+        (
+            g
+            for g in tok.children
+            if g.dep_ == "nmod" and g.pos_ in ("NOUN", "PROPN") and case_of(g) == "of" and g.i > tok.i
+        ),
+        None,
+    )
 
 
 def _dressing(verb: Token) -> bool:

@@ -242,6 +242,8 @@ PRONOUNS = {
     "everybody": "all",
 }
 OBJECT_PRONOUNS = frozenset({"it", "this", "that", "them"})
+# A group named as one ("The band bows", "the whole team cheers"): everyone on stage, as "everyone" is.
+COLLECTIVE_NOUNS = frozenset("band team group class family crew choir orchestra troupe cast".split())
 FEMALE_NAMES = frozenset(
     "eve mary alice anna lucy kate emma lily sara sarah nina julia jane emily olivia sophia mia amy laura "
     "linda susan lisa maria anne ann helen grace chloe zoe ella ava rose ruth clara lena ada eva ivy iris "

@@ -461,6 +461,13 @@ def acting_thing_animal(tok: Token) -> bool:
     return head.pos_ == "VERB" and lexicon.is_known_verb(head.lemma_.lower())
 
 
+def _the_group(tok: Token) -> bool:
+    """ "the band", "the whole team": a collective noun said of the group on stage (not "a band")."""
+    return any(c.dep_ == "det" and c.lower_ == "the" for c in tok.lefts) and not any(
+        c.dep_ in ("compound", "nmod:poss") for c in tok.lefts
+    )
+
+
 def character_mention(tok: Token) -> CharacterMention | None:
     """A character named by a token: a proper name, a person noun or a personal pronoun."""
     lower = tok.lower_
@@ -471,6 +478,9 @@ def character_mention(tok: Token) -> CharacterMention | None:
         if pron is None:
             return None
         return CharacterMention(head=tok, name="", mention=tok.text, pronoun=pron)
+    if lower in lexicon.COLLECTIVE_NOUNS and tok.dep_.startswith("nsubj") and _the_group(tok):
+        start = min([tok.i] + [c.i for c in tok.lefts if c.dep_ in ("det", "amod")])
+        return CharacterMention(head=tok, name="", mention=tok.doc[start : tok.i + 1].text, pronoun="all")
     if (tok.lemma_.lower() in lexicon.PERSON_NOUNS or lower in lexicon.PERSON_NOUNS) and not named_thing(tok):
         start = min([tok.i] + [c.i for c in tok.lefts if c.dep_ in ("det", "amod", "compound")])
         return CharacterMention(head=tok, name=tok.lemma_.lower(), mention=tok.doc[start : tok.i + 1].text)

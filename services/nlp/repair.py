@@ -40,6 +40,12 @@ def _is_person(tok: Token) -> bool:
         return not action_reading(lower)  # "High-five Mary": not a name
     if tok.text[:1].isupper() and (lower in lexicon.FEMALE_NAMES or lower in lexicon.MALE_NAMES):
         return True  # "Ada/NOUN thanks her"
+    if (
+        lower in lexicon.COLLECTIVE_NOUNS
+        and tok.i > tok.sent.start
+        and tok.doc[tok.i - 1].lower_ in ("the", "whole")
+    ):
+        return True  # "The whole team cheers/NOUN": the group on stage
     if lower in lexicon.THING_ANIMALS and tok.i + 1 < tok.sent.end:
         return bool(action_reading(tok.doc[tok.i + 1].lower_))  # "The mouse creeps/NOUN"
     return tok.lemma_.lower() in lexicon.PERSON_NOUNS or lower in lexicon.PERSON_NOUNS
@@ -138,10 +144,17 @@ def _repair_verbless(sent: SpacySpan) -> bool:
             verb = sent.doc[close.i + 1]
     root_is_noun = sent.root.pos_ in ("NOUN", "PROPN", "ADJ")
     misread = verb.pos_ == "NOUN" and verb.tag_ == "NNS" and root_is_noun  # "Ada kneads/NNS dough/ROOT"
+    # "Max high-fives/VERB/flat Tom/list": a verb the parser hung under the name as part of it
+    loose = (
+        verb.pos_ == "VERB"
+        and verb.dep_ in ("flat", "list", "compound", "dep")
+        and verb.head.i in {t.i for t in group}
+    )
     if (
         any(t.pos_ in ("VERB", "AUX") for t in sent)
         and not (verb.i == sent.root.i and verb.pos_ == "NOUN")
         and not misread
+        and not loose
     ):
         return False  # a verb elsewhere is the root; but "The hero sprints/NOUN/ROOT ... and kicks" is not
     if verb.pos_ in _NOT_VERBS or verb.is_punct:
@@ -575,10 +588,37 @@ def _repair_determined_adverb(sent: SpacySpan) -> bool:
     return changed
 
 
+def _repair_title_root(sent: SpacySpan) -> bool:
+    """ "Coach Kim stands/acl:relcl in front of the mirror": the title read as a noun the root and the rest a
+    relative clause with the name its subject -> the verb the root, the title part of the name."""
+    title = sent.root
+    if (
+        title.i != sent.start
+        or not title.text[:1].isupper()
+        or title.lower_.rstrip(".") not in lexicon.TITLES
+    ):
+        return False
+    if title.i + 1 >= sent.end or not sent.doc[title.i + 1].text[:1].isupper():
+        return False
+    name = sent.doc[title.i + 1]
+    verb = next(
+        (c for c in title.children if c.dep_ == "acl:relcl" and c.pos_ == "VERB" and name.head.i == c.i), None
+    )
+    if verb is None or name.dep_ != "nsubj":
+        return False
+    rest = [c for c in title.children if c.i not in (name.i, verb.i)]
+    verb.head, verb.dep_ = verb, "ROOT"
+    title.head, title.dep_ = name, "compound"
+    for c in rest:  # the full stop and anything else the title held: the sentence's
+        c.head = verb
+    return True
+
+
 def repair_character_sentence(sent: SpacySpan) -> bool:
     """Repair the tree of one character sentence in place; True when something changed."""
     return (
-        _repair_determined_adverb(sent)
+        _repair_title_root(sent)
+        | _repair_determined_adverb(sent)
         | _repair_subject_relative_clause(sent)
         | _repair_progressive(sent)
         | _repair_adverb_subject(sent)

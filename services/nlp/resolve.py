@@ -124,6 +124,9 @@ def _names_in_passing(text: str) -> list[str]:
 
 
 def _pronoun_of(mention: str) -> str:
+    words = mention.lower().split()
+    if len(words) >= 2 and words[0] == "the" and words[-1] in lexicon.COLLECTIVE_NOUNS:
+        return "all"  # "The band bows": everyone on stage
     return PRONOUN_WORDS.get(mention.lower().strip(), "")
 
 

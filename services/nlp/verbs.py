@@ -60,7 +60,7 @@ kneel: kneel down, get down, genuflect, drop to one's knees
 squat: dive, dodge, crouch, stoop down, hunker down, duck, bend down, huddle
 hide: cower, take cover, duck behind, hide behind, lurk, conceal oneself, hide under, hide in, duck down behind, crouch behind
 lean_on_wall: lean, lean against, lean back, lean on, rest against, prop oneself
-idle: wait around, stand around, linger, loiter, pause, stay, remain, freeze, hesitate, stop, halt,, say nothing, do nothing, keep quiet, fall silent, keep still
+idle: wait around, stand around, linger, loiter, pause, stay, remain, freeze, hesitate, stop, halt,, say nothing, do nothing, keep quiet, fall silent, keep still, hang around, hang about
     pose, watch on, stand by
 wait: await, wait for, hold on, hang on, stay put
 stretch: limber up, warm up, loosen up, unwind
@@ -84,7 +84,7 @@ pick_up: fumble, fumble for, reach for, pick, take, grab, seize, snatch, collect
     grasp, clutch, lift up, unpack, pluck, grip, find, pocket
 pull: pull out
 put_down: stuff, shove in, lower, put, place, set, lay, drop, deposit, leave, set down, lay down, put away, put back, put in,
-    pack, stow, store, hang up, plant, position, arrange, stack, pile, load, unload
+    pack, stow, store, hang, hang up, plant, position, arrange, stack, pile, load, unload
 carry: hold, bring, take along, haul, lug, deliver, transport, carry in, carry out, bring in, keep
 pull: drag, tug, yank, heave, draw, pull back, pull up, tow, pull over
 push: shove, press against, nudge, push open, push back, roll, slide, shift, move aside
@@ -94,7 +94,7 @@ present: give, hand, pass, offer, hand over, pass over, give back, hand out, pas
 introduce: introduce oneself
 talk: give a speech, make a speech, speechify, say, tell, speak, reply, answer, respond, ask, explain, discuss, chat, converse, mention, state,
     announce, declare, add, continue, remark, comment, suggest, insist, admit, confess, promise, warn,
-    report, describe, inform, joke, chatter, babble, ramble, gossip, lecture, preach, recite, narrate,
+    report, describe, inform, joke, chatter, babble, ramble, gossip, lecture, preach, recite, narrate, hang out,
     read aloud, propose, demand, order, command, call, exclaim, interrupt, repeat, speak up, talk back,
     chime in, negotiate, bargain, plead with, persuade, convince, complain, grumble, mutter, mumble,
     stammer, stutter, lie to, question, query, inquire, enquire, wonder aloud
