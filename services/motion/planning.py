@@ -969,6 +969,8 @@ def plan_actions(
         for s in reversed(segs):
             if s.kind == "locomotion":
                 return "stand"
+            if s.kind == "wait":
+                continue  # held where it was ("dozes off in the armchair": still sitting)
             if s.action in SEATED_AS:
                 return SEATED_AS[s.action]
             if s.kind == "action" and not s.upright and s.action in lib and lib[s.action].drives_lower_body:
@@ -1243,6 +1245,15 @@ def plan_actions(
         if obj is None and at_object and not clip.drives_lower_body:
             # "washes her hands", "takes notes": at the nearest object made for it (seated: in reach only)
             obj = offering(scene, name, pos, PICK_REACH if now_posture() != "stand" else OFFER_NEAR_M)
+        if (
+            name == "sleep"
+            and now_posture() == "sit"
+            and (obj is None or obj.id == now_seat() or not seat_slots(obj, "bed"))
+        ):
+            # "She sits in the armchair ... falls asleep in the armchair": dozes off where she sits
+            dur = float(node.duration_s) if node.duration_s > 0 else SLEEP_S
+            add(kind="wait", action=name, duration_s=dur, target_id=now_seat(), action_index=ai)
+            continue
         seat_pick: tuple[PlacedObject, tuple[float, float, float]] | None = None
         if clip.interaction and clip.interaction.object in ("seat", "bed"):
             near_xz = np.asarray(others[sitting_by], float) if sitting_by and obj is None else pos

@@ -595,9 +595,23 @@ def _synthesise_segment(
         t = max(1, int(round(seg.duration_s * FPS)))
         rot = np.repeat(base_rot[None], t, 0)
         rot[:, 0] = quat.mul(quat.yaw(np.full(t, start_state.yaw)), rot[:, 0])
+        if seg.action == "sleep" and start_state.posture == "sit":
+            _doze(rot)
         root, _ = _to_world(start_state, np.repeat(base_off[None], t, 0), np.zeros(t))
         return MotionPiece(root, rot, np.ones((t, 2), np.uint8), seg), start_state
     return _action_piece(seg, start_state)
+
+
+DOZE_PITCH = (("Neck", 18.0), ("Head", 16.0))  # degrees a head dozing off in a chair sinks forward
+
+
+def _doze(rot: np.ndarray) -> None:
+    """Falling asleep sitting up: the head sinks towards the chest over the first second, then stays."""
+    u = np.clip(np.arange(len(rot)) / float(FPS), 0.0, 1.0)
+    ease = u * u * (3.0 - 2.0 * u)
+    for joint, degrees in DOZE_PITCH:
+        nod = quat.from_euler("ZYX", np.stack([np.zeros_like(u), np.zeros_like(u), degrees * ease], -1))
+        rot[:, JOINT_INDEX[joint]] = quat.mul(rot[:, JOINT_INDEX[joint]], nod)
 
 
 def synthesise(plan: MotionPlan) -> tuple[Motion, list[MotionPiece], list[SegmentState]]:

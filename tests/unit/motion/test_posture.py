@@ -262,3 +262,21 @@ def test_a_seated_character_eats_from_a_bowl_in_reach_on_the_low_coffee_table_wi
     after = [s for s in plan.segments if s.action_index == 1]
     assert [s.action for s in after][-1] == "eat_snack" and "stand" not in [s.action for s in after]
     assert after[0].upright and after[0].prop == "bowl" and after[0].prop_span == "grasp"
+
+
+def test_falling_asleep_in_a_chair_dozes_off_sitting_and_a_bed_is_walked_to():
+    """ "Sits in the armchair ... falls asleep in the armchair": asleep where she sits (the head sinks, the
+    hips stay on the seat), not lying down on a chair nor idling; "falls asleep on the bed" from the chair
+    still gets up and lies down there."""
+    plan = _plan(("sit", "sofa"), ("sleep", "sofa"))
+    assert [(s.kind, s.action) for s in plan.segments][-2:] == [("action", "sit"), ("wait", "sleep")]
+    motion, _, _ = synthesise(plan)
+    hips = from_wire(motion.root_position)
+    rot = from_wire(motion.rotations)
+    doze = motion.segments[-1]
+    assert np.ptp(hips[doze.start_frame : doze.end_frame, 1]) < 0.01
+    head = list(motion.joint_names).index("Head")
+    mid = (doze.start_frame + doze.end_frame) // 2
+    assert abs(rot[mid, head, 0]) > abs(rot[doze.start_frame, head, 0]) + 0.05  # the head has sunk
+    to_bed = _plan(("sit", "sofa"), ("sleep", "bed"))
+    assert [s.action for s in to_bed.segments][-2:] == ["lie_down", "sleep"]
