@@ -336,6 +336,7 @@ ASPECT_VERBS = frozenset(
         "start",
         "begin",
         "continue",
+        "help",  # "Cheryl helps him pick it up": she picks it up
         "keep",
         "try",
         "go",

@@ -64,3 +64,8 @@ def test_in_front_of_a_thing_is_at_that_thing():
 def test_hanging_a_coat_on_the_rack_puts_it_there():
     (who, action, target, _), *_ = acts("There is a coat rack$. Tom hangs his coat on the coat rack.")
     assert (who, action, target) == ("Tom", "put_down", "coat")
+
+
+def test_helping_someone_do_a_thing_is_doing_it():
+    assert acts("Walter drops the photo. Cheryl helps him pick it up.")[0][:2] == ("Cheryl", "pick_up")
+    assert acts("Tom helps Mia carry the box.") == [("Tom", "carry", "box", "")]
