@@ -32,6 +32,7 @@ if TYPE_CHECKING:
 
 os.environ.setdefault("XDG_RUNTIME_DIR", "/tmp")
 
+Z_NEAR, Z_FAR = 0.05, 100.0  # metres: the camera's clipping planes
 _LOCK = threading.Lock()  # guards _ACTIVE
 _ACTIVE: list[Canvas] = []  # the open canvas, if any
 
@@ -209,11 +210,12 @@ class Canvas:
         fx, fy, cx, cy = intrinsics(pose.fov_deg, self.width, self.height)
         params.intrinsic = o3d.camera.PinholeCameraIntrinsic(self.width, self.height, fx, fy, cx, cy)
         params.extrinsic = pose.extrinsic()
-        ctl.set_constant_z_near(0.05)
-        ctl.set_constant_z_far(100.0)
+        ctl.set_constant_z_near(Z_NEAR)
+        ctl.set_constant_z_far(Z_FAR)
         ctl.convert_from_pinhole_camera_parameters(params, allow_arbitrary=True)
-        if self._bytes is not None and not with_depth:  # drawn into our framebuffer, read back as bytes
-            return graded(self._bytes.draw(self._vis), gain), None
+        if self._bytes is not None:  # drawn into our framebuffer, read back as bytes (and depth)
+            rgb, depth = self._bytes.draw(self._vis, (Z_NEAR, Z_FAR) if with_depth else None)
+            return graded(rgb, gain), depth
         self._vis.update_renderer()
         frame = to_uint8(np.asarray(self._vis.capture_screen_float_buffer(do_render=True)), gain)
         depth = None

@@ -8,6 +8,10 @@ visualiser draw into it (``update_renderer`` + ``poll_events`` draw into whateve
 reads it back with ``glReadPixels(GL_RGB, GL_UNSIGNED_BYTE)``: the same pixels, since the colour buffer
 holds 8 bits a channel either way, with no float buffers and no per-frame framebuffer.
 
+Fog needs the frame's depth: it is read from the same framebuffer. (``capture_depth_float_buffer`` after
+the float capture read the window's depth buffer, which nothing is drawn into offscreen: every pixel at the
+near plane, so the fog was one flat veil, as thin near as far.)
+
 GL is reached through ctypes in the process's libGL (the one open3d draws with); where it cannot be
 loaded or the framebuffer is not complete, ``ByteReadback.open`` returns None and the canvas keeps the
 float capture.
@@ -34,6 +38,7 @@ GL_DEPTH24_STENCIL8 = 0x88F0
 GL_DEPTH_STENCIL_ATTACHMENT = 0x821A
 GL_FRAMEBUFFER_COMPLETE = 0x8CD5
 GL_PACK_ALIGNMENT = 0x0D05
+GL_DEPTH_COMPONENT = 0x1902
 
 _UINT, _INT, _PTR = ctypes.c_uint, ctypes.c_int, ctypes.c_void_p
 _SIGNATURES: dict[str, tuple[Any, list[Any]]] = {
@@ -105,8 +110,12 @@ class ByteReadback:
             return None
         return rb
 
-    def draw(self, vis: Any) -> np.ndarray:
-        """Have the visualiser draw one frame into the framebuffer; (H, W, 3) uint8, top row first."""
+    def draw(
+        self, vis: Any, depth_range: tuple[float, float] | None = None
+    ) -> tuple[np.ndarray, np.ndarray | None]:
+        """Have the visualiser draw one frame into the framebuffer: (H, W, 3) uint8, top row first, and with
+        ``depth_range`` (the camera's near and far planes, metres) (H, W) float32 depth in metres along the
+        view axis, 0 where nothing was drawn (as open3d's ``capture_depth_float_buffer`` converts it)."""
         gl = self._gl
         gl.glBindFramebuffer(GL_FRAMEBUFFER, self._fbo)
         try:
@@ -115,9 +124,19 @@ class ByteReadback:
             buf = np.empty((self.height, self.width, 3), dtype=np.uint8)
             gl.glPixelStorei(GL_PACK_ALIGNMENT, 1)  # rows of 3 * width bytes, no padding (open3d's own)
             gl.glReadPixels(0, 0, self.width, self.height, GL_RGB, GL_UNSIGNED_BYTE, buf.ctypes.data)
+            z = None
+            if depth_range is not None:
+                z = np.empty((self.height, self.width), dtype=np.float32)
+                gl.glReadPixels(0, 0, self.width, self.height, GL_DEPTH_COMPONENT, GL_FLOAT, z.ctypes.data)
         finally:
             gl.glBindFramebuffer(GL_FRAMEBUFFER, 0)
-        return np.ascontiguousarray(buf[::-1])  # GL's first row is the bottom one
+        rgb = np.ascontiguousarray(buf[::-1])  # GL's first row is the bottom one
+        if z is None or depth_range is None:
+            return rgb, None
+        near, far = depth_range
+        d = z[::-1].astype(np.float64)
+        metres = 2.0 * near * far / (far + near - (2.0 * d - 1.0) * (far - near))
+        return rgb, np.where(d >= 1.0, 0.0, metres).astype(np.float32)  # 1.0: the cleared background
 
     def close(self) -> None:
         """Free the framebuffer (while the context is still current)."""

@@ -105,3 +105,21 @@ def test_frames_read_back_as_bytes_have_the_pixels_of_the_float_capture() -> Non
         assert a.dtype == np.uint8 and a.flags.writeable and a.flags.c_contiguous
         assert np.array_equal(a, b)
     assert not np.array_equal(fast[0], fast[1])  # the walk and the night are in the pictures
+
+
+@pytest.mark.slow
+def test_fog_reads_the_depth_of_the_frame_it_greys() -> None:
+    from services.render.demo import demo_scene, walk_motion
+    from services.render.renderer import FrameRenderer
+
+    motions = [walk_motion("Eve", (-2.0, 1.5), (1.0, -0.5), 10, sentence_id="s1")]
+    with FrameRenderer(demo_scene(), motions, width=96, height=72) as r:
+        r.render(0)
+        canvas = r._canvas
+        assert canvas is not None
+        _, depth = canvas.draw(r.camera(3), with_depth=True)
+    assert depth is not None and depth.shape == (72, 96) and depth.dtype == np.float32
+    drawn = depth > 0
+    assert 0.2 < drawn.mean() < 1.0  # the room is drawn, the sky around it is not (0)
+    near, far = np.percentile(depth[drawn], [5, 95])
+    assert 0.5 < near < far - 1.0 and far < 30.0  # metres to the floor in front and the far walls
