@@ -31,7 +31,8 @@ cycles_silhouette: does Cycles show the character where open3d does? The demo vi
 silhouette is where the body changes the picture; reported: the largest centroid offset (pixels) and the
 smallest share of open3d's silhouette that Cycles' covers.
 
-JSON keys: fps, cycles_seconds_per_frame, cycles_silhouette_offset_px, cycles_silhouette_overlap, cycles_setup_seconds, cycles_samples, speedup_2_workers, plan_seconds, plan_seconds_no_director (plus context: frames, width, height, seconds_1_worker,
+JSON keys: fps, cpu_ms_per_frame (this process's CPU time per frame, all threads: what load does not
+distort), cycles_seconds_per_frame, cycles_silhouette_offset_px, cycles_silhouette_overlap, cycles_setup_seconds, cycles_samples, speedup_2_workers, plan_seconds, plan_seconds_no_director (plus context: frames, width, height, seconds_1_worker,
 seconds_2_workers, cpu_count, load_average).
 """
 
@@ -74,7 +75,11 @@ def plan_seconds(frames: int, director: bool) -> float:
     return time.perf_counter() - t0
 
 
-def measure_fps(frames: int, width: int, height: int, director: bool = True) -> float:
+def measure_frames(frames: int, width: int, height: int, director: bool = True) -> tuple[float, float]:
+    """(frames per second, CPU milliseconds per frame) of one FrameRenderer on the demo office.
+
+    The CPU time is this process's, all its threads (llvmpipe's rasteriser threads included): what a
+    frame costs whatever else the machine runs, where the frames per second follow the load."""
     from services.render.renderer import FrameRenderer
 
     with FrameRenderer(demo_scene(), demo_motions(frames + 1), [], width=width, height=height) as r:
@@ -83,10 +88,14 @@ def measure_fps(frames: int, width: int, height: int, director: bool = True) -> 
 
             r.staging = Staging.build(r.scene, demo_motions(frames + 1), director=False)
         r.render(0)  # warm-up: GL context, buffers
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         for _ in tqdm(r.frames(1, frames + 1), total=frames, desc="fps", unit="frame", leave=False):
             pass
-        return frames / (time.perf_counter() - t0)
+        return frames / (time.perf_counter() - t0), 1000.0 * (time.process_time() - c0) / frames
+
+
+def measure_fps(frames: int, width: int, height: int, director: bool = True) -> float:
+    return measure_frames(frames, width, height, director)[0]
 
 
 def time_processes(frames: int, width: int, height: int) -> tuple[float, float]:
@@ -274,7 +283,7 @@ def main(argv: list[str] | None = None) -> dict:
     ap.add_argument("--cycles-samples", type=int, default=0, help="Cycles samples (default 16, quick 4)")
     args = ap.parse_args(argv)
     frames = args.frames or (10 if args.quick else 120)
-    fps = measure_fps(frames, args.width, args.height, director=not args.no_director)
+    fps, cpu_ms = measure_frames(frames, args.width, args.height, director=not args.no_director)
     samples = args.cycles_samples or (4 if args.quick else 16)
     cycles = silhouette = None
     if not args.no_cycles:
@@ -293,6 +302,7 @@ def main(argv: list[str] | None = None) -> dict:
         p1, p2 = time_processes(max(frames, 96), args.width, args.height)
     result = {
         "fps": round(fps, 2),
+        "cpu_ms_per_frame": round(cpu_ms, 2),
         "cycles_seconds_per_frame": round(cycles["seconds_per_frame"], 3) if cycles else None,
         "cycles_setup_seconds": round(cycles["setup_seconds"], 2) if cycles else None,
         "cycles_samples": samples,
@@ -315,6 +325,7 @@ def main(argv: list[str] | None = None) -> dict:
     }
     print(f"{'metric':<22}{'value':>10}")
     print(f"{'fps (1 worker)':<22}{result['fps']:>10}")
+    print(f"{'CPU ms per frame':<22}{result['cpu_ms_per_frame']:>10}")
     spf = result["cycles_seconds_per_frame"]
     print(f"{'cycles s/frame':<22}{'skipped' if spf is None else spf:>10}  ({samples} samples, 1 process)")
     if silhouette:

@@ -28,7 +28,8 @@ JSON keys: action_edit_p50_ms, late_action_edit_p50_ms, scene_edit_p50_ms, scene
 full_ms, parse_ms (each a map size -> ms), nodes (size -> kind -> nodes run), startup_s, animate (per story),
 serve_ready_s, serve_first_ack_s, serve_first_edit_s (``wana serve`` launched on a fresh database: seconds to
 answer HTTP, to acknowledge a new document's first edit and to send its animation),
-animate_realtime_factor, render_fps_640, render_fps_1280, cpu_count, load_average.
+animate_realtime_factor, render_fps_640, render_fps_1280, render_cpu_ms_per_frame_640 and _1280 (CPU time per
+frame, all threads: what load does not distort), cpu_count, load_average.
 """
 
 from __future__ import annotations
@@ -202,6 +203,16 @@ def story(actions: int, characters: int) -> str:
     return "\n".join(lines)
 
 
+def _children_cpu_s() -> float:
+    """User + system CPU seconds of this process's finished children (and theirs)."""
+    try:
+        import resource
+    except ImportError:  # pragma: no cover - not on Unix
+        return 0.0
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
 def animate_run(actions: int, characters: int, startup_only: bool = False) -> dict[str, Any]:
     """One `wana animate` in a child process: start-up, compute, export seconds, peak RSS, real-time factor
     (``startup_only``: the child stops at the pipeline's first step, as ``--quick`` does)."""
@@ -210,9 +221,11 @@ def animate_run(actions: int, characters: int, startup_only: bool = False) -> di
         path.write_text(story(actions, characters))
         env = {**os.environ, "PYTHONPATH": str(REPO), "WANA_BENCH_STARTUP_ONLY": "1" if startup_only else "0"}
         cmd = [sys.executable, "-c", CHILD, str(path), "-o", str(Path(tmp) / "out"), "--no-progress"]
+        cpu0 = _children_cpu_s()
         launch = time.time()
         proc = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=900, cwd=REPO)
         wall = time.time() - launch
+        cpu = _children_cpu_s() - cpu0
         line = next((x for x in proc.stdout.splitlines() if x.startswith("TIMES ")), None)
         if line is None:
             raise RuntimeError(f"wana animate failed: {proc.stderr[-2000:]}")
@@ -238,6 +251,10 @@ def animate_run(actions: int, characters: int, startup_only: bool = False) -> di
             "wall_s": round(wall, 3),
             "animation_s": duration,
             "realtime_factor": round(duration / wall, 3) if wall > 0 else 0.0,
+            "cpu_s": round(
+                cpu, 2
+            ),  # the child's CPU time, its render processes included: load does not distort it
+            "load_average": [round(x, 2) for x in os.getloadavg()],
             "peak_rss_mb_max_so_far": round(rss_kb / 1024, 1),
         }
 
@@ -318,10 +335,11 @@ def _until(ws: Any, wanted: Any, timeout: float = 300.0) -> dict[str, Any]:
             return msg
 
 
-def render_fps(width: int, height: int, frames: int) -> float:
-    from render import measure_fps  # bench/render.py
+def render_fps(width: int, height: int, frames: int) -> tuple[float, float]:
+    """(frames per second, CPU ms per frame): bench/render.py's measure."""
+    from render import measure_frames  # bench/render.py
 
-    return measure_fps(frames, width, height)
+    return measure_frames(frames, width, height)
 
 
 def encode_overlap(frames: int) -> dict[str, float]:
@@ -409,7 +427,8 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
             print(
                 f"animate {actions} actions / {characters} characters: start-up {run['startup_s']:.2f}s, compute "
                 f"{run['compute_s']:.2f}s, export {run['export_s']:.2f}s, wall {run['wall_s']:.2f}s, "
-                f"{run['animation_s']:.1f}s of animation ({run['realtime_factor']:.2f}x real time)",
+                f"{run['animation_s']:.1f}s of animation ({run['realtime_factor']:.2f}x real time), "
+                f"{run['cpu_s']:.1f}s CPU, load {run['load_average'][0]:.1f}",
                 flush=True,
             )
         res["startup_s"] = min(r["startup_s"] for r in res["animate"])
@@ -424,11 +443,14 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
             res["animate_realtime_factor"] = eight[0]["realtime_factor"]
     if not args.no_render:
         frames = 8 if args.quick else 60
-        res["render_fps_640"] = round(render_fps(640, 480, frames), 2)
-        res["render_fps_1280"] = round(render_fps(1280, 720, frames // 2), 2)
+        fps_640, cpu_640 = render_fps(640, 480, frames)
+        fps_1280, cpu_1280 = render_fps(1280, 720, frames // 2)
+        res["render_fps_640"], res["render_cpu_ms_per_frame_640"] = round(fps_640, 2), round(cpu_640, 2)
+        res["render_fps_1280"], res["render_cpu_ms_per_frame_1280"] = round(fps_1280, 2), round(cpu_1280, 2)
         res["encode_overlap"] = encode_overlap(frames)
         print(
-            f"render: {res['render_fps_640']:.1f} fps at 640x480, {res['render_fps_1280']:.1f} fps at 1280x720; "
+            f"render: {res['render_fps_640']:.1f} fps at 640x480 ({res['render_cpu_ms_per_frame_640']:.1f} ms CPU a "
+            f"frame), {res['render_fps_1280']:.1f} fps at 1280x720 ({res['render_cpu_ms_per_frame_1280']:.1f} ms); "
             f"{frames} frames rendered {res['encode_overlap']['render_only_s']:.2f}s, rendered and encoded "
             f"{res['encode_overlap']['render_and_encode_s']:.2f}s",
             flush=True,

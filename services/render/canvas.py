@@ -6,8 +6,8 @@ first frame, but the next ``render_to_image`` after any ``add_geometry`` / ``rem
 ``show_geometry`` blocks forever in ``FilamentRenderer::BeginFrame`` (a condition wait seen with gdb);
 only ``set_geometry_transform`` keeps working, which cannot deform a skinned mesh. The legacy
 visualizer falls back to an EGL pbuffer context on Mesa ("EGLOffscreenContext") with no display,
-updates vertex buffers in place every frame and reads back colour and depth, at about 10 frames per
-second at 640x480 on one llvmpipe core. Lighting there is the renderer's fixed Phong set; weather
+updates vertex buffers in place every frame and reads back colour (as bytes: services.render.readback)
+and depth, at about 10 frames per second at 640x480 on one llvmpipe core. Lighting there is the renderer's fixed Phong set; weather
 is applied through colours, background, fog (from the depth buffer) and particle geometry, and
 shadows are projected planar shadows (see ``services.render.shadows``).
 
@@ -22,14 +22,17 @@ import threading
 from typing import TYPE_CHECKING, cast
 
 import numpy as np
+from PIL import Image
 
 from services.render.camera import CameraPose, intrinsics
+from services.render.readback import ByteReadback
 
 if TYPE_CHECKING:
     import open3d
 
 os.environ.setdefault("XDG_RUNTIME_DIR", "/tmp")
 
+Z_NEAR, Z_FAR = 0.05, 100.0  # metres: the camera's clipping planes
 _LOCK = threading.Lock()  # guards _ACTIVE
 _ACTIVE: list[Canvas] = []  # the open canvas, if any
 
@@ -49,15 +52,29 @@ def to_uint8(rgb: np.ndarray, gain: np.ndarray | None = None) -> np.ndarray:
     return scaled.astype(np.uint8)
 
 
+_LEVELS = (np.arange(256, dtype=np.float32) / np.float32(255.0))[None, :, None].repeat(3, axis=2)  # k / 255
+
+
+def graded(rgb: np.ndarray, gain: np.ndarray | None) -> np.ndarray:
+    """(H, W, 3) uint8 read back as bytes, with ``gain`` (3,) graded: the pixels ``to_uint8`` gives the same
+    picture read back as floats (a per-channel table of its 256 levels, applied by Pillow in one pass)."""
+    if gain is None:
+        return rgb
+    table = to_uint8(_LEVELS, gain)[0]  # (256, 3)
+    return np.array(Image.fromarray(rgb).point(table.T.ravel().tolist()))
+
+
 class Canvas:
     """An offscreen drawing surface of a fixed size.
 
     Args:
         width: image width in pixels.
         height: image height in pixels.
+        byte_readback: read frames back as bytes (services.render.readback) where GL allows; False: the
+            visualiser's float capture (the same pixels, slower; for comparing the two).
     """
 
-    def __init__(self, width: int = 640, height: int = 480) -> None:
+    def __init__(self, width: int = 640, height: int = 480, *, byte_readback: bool = True) -> None:
         import open3d as o3d
 
         if not (16 <= width <= 4096 and 16 <= height <= 4096):
@@ -75,6 +92,7 @@ class Canvas:
             ):
                 raise RuntimeError("open3d could not create an offscreen (EGL) rendering context")
             _ACTIVE.append(self)
+        self._bytes = ByteReadback.open(self.width, self.height) if byte_readback else None
         opt = self._vis.get_render_option()
         opt.mesh_show_back_face = False  # walls are one-sided: the camera sees into the room through them
         opt.point_size = 3.0
@@ -192,9 +210,12 @@ class Canvas:
         fx, fy, cx, cy = intrinsics(pose.fov_deg, self.width, self.height)
         params.intrinsic = o3d.camera.PinholeCameraIntrinsic(self.width, self.height, fx, fy, cx, cy)
         params.extrinsic = pose.extrinsic()
-        ctl.set_constant_z_near(0.05)
-        ctl.set_constant_z_far(100.0)
+        ctl.set_constant_z_near(Z_NEAR)
+        ctl.set_constant_z_far(Z_FAR)
         ctl.convert_from_pinhole_camera_parameters(params, allow_arbitrary=True)
+        if self._bytes is not None:  # drawn into our framebuffer, read back as bytes (and depth)
+            rgb, depth = self._bytes.draw(self._vis, (Z_NEAR, Z_FAR) if with_depth else None)
+            return graded(rgb, gain), depth
         self._vis.update_renderer()
         frame = to_uint8(np.asarray(self._vis.capture_screen_float_buffer(do_render=True)), gain)
         depth = None
@@ -205,6 +226,9 @@ class Canvas:
     def close(self) -> None:
         if not self._closed:
             self._closed = True
+            if self._bytes is not None:
+                self._bytes.close()
+                self._bytes = None
             self._vis.clear_geometries()
             self._vis.destroy_window()
             self._geoms.clear()

@@ -24,7 +24,7 @@ from services.render.camera import CameraPose
 from services.render.sightlines import Furniture
 from services.render.skinning import Rig
 from services.render.staging import CameraTrack
-from services.render.visibility import VISIBLE_SHARE, capsule_radii, judged_view
+from services.render.visibility import VISIBLE_SHARE, capsule_radii, judged_view, own_supports
 
 
 @dataclass(frozen=True)
@@ -98,7 +98,16 @@ class Coverage:
         for j, n in enumerate(who):
             if n in self.joints:
                 _, part = judged_view(
-                    n, steps, local, track, self.furniture, self.room, self.width, self.height, self.radii
+                    n,
+                    steps,
+                    local,
+                    track,
+                    self.furniture,
+                    self.room,
+                    self.width,
+                    self.height,
+                    self.radii,
+                    supports=own_supports(self.joints[n], idx, self.furniture),  # the same for every camera
                 )
                 out[:, j] = part >= VISIBLE_SHARE
         return out

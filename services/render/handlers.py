@@ -17,7 +17,9 @@ import numpy as np
 from PIL import Image
 
 from proto.common import reply_header
+from proto.motion_data import Motion
 from proto.render import Caption, ExportReply, ExportRequest, RenderReply, RenderRequest, TimedCommand
+from proto.scene import Scene
 from services.render.bvh_export import motion_bvh, safe_filename
 from services.render.camera_checks import staged_checks
 from services.render.cast_gltf import CastCharacter, load_cast
@@ -38,6 +40,22 @@ MAX_SIDE = 2048
 
 _lock = threading.Lock()
 _cache: dict[str, Any] = {"key": None, "renderer": None}
+_staged: dict[str, Any] = {"key": None, "staging": None}
+_staged_lock = threading.Lock()
+
+
+def staging_for(
+    scene: Scene, motions: list[Motion], commands: list[TimedCommand], n_frames: int = 0
+) -> Staging:
+    """The video staged (rigs, tracks, the director's shots), the latest one remembered: the MP4, the GLB,
+    the USD and the FBX of one story ask for the same staging, and the director's planning is most of it."""
+    key = hashlib.sha256(msgspec.msgpack.encode([scene, motions, commands, n_frames])).hexdigest()
+    with _staged_lock:
+        if _staged["key"] != key:
+            _staged["staging"] = _staged["key"] = None
+            _staged["staging"] = Staging.build(scene, motions, commands, n_frames)
+            _staged["key"] = key
+        return _staged["staging"]
 
 
 def placed(req: RenderRequest | ExportRequest) -> tuple[list[TimedCommand], list[Caption]]:
@@ -91,6 +109,7 @@ def _renderer_for(req: RenderRequest | ExportRequest, n_frames: int = 0) -> Fram
             width=req.width,
             height=req.height,
             cast=_cast(req),
+            staging=staging_for(req.scene, list(req.motions), commands, n_frames),
         )
     except (ValueError, KeyError) as exc:
         raise InvalidInput(str(exc)) from exc
@@ -213,7 +232,7 @@ def handle_export(req: ExportRequest) -> ExportReply:
     try:
         if req.format == "glb":  # with the camera the MP4 of the same request shows
             _check_size(req.width, req.height)
-            stage = Staging.build(req.scene, list(req.motions), placed(req)[0])
+            stage = staging_for(req.scene, list(req.motions), placed(req)[0])
             return ExportReply(
                 header=h,
                 format="glb",
@@ -230,7 +249,7 @@ def handle_export(req: ExportRequest) -> ExportReply:
             )
         if req.format in ("usd", "fbx"):  # the whole animation with the MP4's camera
             _check_size(req.width, req.height)
-            stage = Staging.build(req.scene, list(req.motions), placed(req)[0])
+            stage = staging_for(req.scene, list(req.motions), placed(req)[0])
             camera = stage.camera_track(req.width, req.height)
             try:
                 if req.format == "usd":

@@ -61,6 +61,8 @@ class FrameRenderer:
         cast: story name -> the user's own character (services.render.cast_gltf): drawn with its mesh skinned
             on its own joints (services.render.cast_skin), the motion retargeted as in the GLB; the camera
             and the checks follow the story's motion as without it.
+        staging: the video already staged from these scene, motions, commands and n_frames (the render
+            service stages a story once for its MP4 and its GLB); None: staged here.
     """
 
     def __init__(
@@ -74,10 +76,11 @@ class FrameRenderer:
         width: int = 640,
         height: int = 480,
         cast: Mapping[str, CastCharacter] | None = None,
+        staging: Staging | None = None,
     ) -> None:
         self.scene = scene
         self.width, self.height = int(width), int(height)
-        self.staging = Staging.build(scene, motions, commands, n_frames)
+        self.staging = staging or Staging.build(scene, motions, commands, n_frames)
         self.rigs = self.staging.rigs
         self.bodies: dict[str, CastBody] = {}
         if cast:

@@ -329,13 +329,44 @@ def judged_view(
     width: int,
     height: int,
     radii: dict[str, np.ndarray] | None = None,
+    supports: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> tuple[BodyView, np.ndarray]:
     """What the ``in_view`` check counts of one character: its view (its own seat and what its hands are on
     hiding nothing) and (F,) the share of its head, trunk and arms shown per frame. The director scores its
-    candidate cameras with this same function, so a framing it picks passes the check it was picked for."""
+    candidate cameras with this same function, so a framing it picks passes the check it was picked for.
+
+    ``supports``: the character's (seat, held) at the frames when the caller has them (``own_supports``
+    of its whole skeleton: the director asks about the same frames for every candidate camera).
+    """
     view = body_view(name, frames, joints, track, furniture, room, width, height, radii)
-    j = joints[name]
-    pose = j[np.clip(np.asarray(frames, dtype=np.int64), 0, len(j) - 1)]  # (F, J, 3)
-    view = unhide_own_seat(view, seat_under(pose[:, JOINT_INDEX["Hips"]], furniture))
-    view = unhide_own_seat(view, held_under(pose[:, [JOINT_INDEX[h] for h in HANDS]], furniture))
+    seat, held = supports if supports is not None else own_supports(joints[name], frames, furniture)
+    view = unhide_own_seat(unhide_own_seat(view, seat), held)
     return view, shown_share(view)
+
+
+_SUPPORTS: dict[tuple[int, int, bytes], tuple[np.ndarray, Furniture, np.ndarray, np.ndarray]] = {}
+SUPPORTS_KEPT = 64  # (joints, frames) pairs remembered: the director's candidate cameras share a few
+
+
+def own_supports(
+    joints: np.ndarray, frames: np.ndarray, furniture: Furniture
+) -> tuple[np.ndarray, np.ndarray]:
+    """(F,) the seat under the hips and (F,) the furniture under the hands of one character (joints (T, J, 3))
+    at the frames: ``seat_under`` and ``held_under``, memoised.
+
+    They depend on the skeleton and the frames, not on the camera, and the director measures every
+    candidate camera of a shot over the same frames: remembered by the very arrays asked about (identity,
+    so a new skeleton or scene is never answered from an old one), the last SUPPORTS_KEPT of them.
+    """
+    frames = np.asarray(frames, dtype=np.int64)
+    key = (id(joints), id(furniture), frames.tobytes())
+    hit = _SUPPORTS.get(key)
+    if hit is not None and hit[0] is joints and hit[1] is furniture:
+        return hit[2], hit[3]
+    pose = joints[np.clip(frames, 0, len(joints) - 1)]  # (F, J, 3)
+    seat = seat_under(pose[:, JOINT_INDEX["Hips"]], furniture)
+    held = held_under(pose[:, [JOINT_INDEX[h] for h in HANDS]], furniture)
+    if len(_SUPPORTS) >= SUPPORTS_KEPT:
+        _SUPPORTS.pop(next(iter(_SUPPORTS)))
+    _SUPPORTS[key] = (joints, furniture, seat, held)
+    return seat, held

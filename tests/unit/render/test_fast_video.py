@@ -73,3 +73,53 @@ def test_frame_ranges_rendered_in_two_processes_join_into_the_video_of_one() -> 
         err_two, err_one = (float(np.abs(v[i].astype(int) - raw[i]).mean()) for v in (a, b))
         assert err_two < 8.0 and err_two <= err_one + 1.0, (i, err_two, err_one)
     assert np.abs(a[n // 2].astype(int) - raw[0]).mean() > np.abs(a[n // 2].astype(int) - raw[n // 2]).mean()
+
+
+def test_the_byte_graded_read_back_equals_the_float_one() -> None:
+    from services.render.canvas import graded
+
+    rgb = np.random.default_rng(3).integers(0, 256, (48, 64, 3), dtype=np.uint8)
+    for name in ["sunny", "night", "snowy", "rainy"]:
+        gain = LOOKS[name].gain
+        assert np.array_equal(graded(rgb, gain), to_uint8(rgb.astype(np.float32) / np.float32(255.0), gain))
+    assert graded(rgb, None) is rgb
+
+
+@pytest.mark.slow
+def test_frames_read_back_as_bytes_have_the_pixels_of_the_float_capture() -> None:
+    from proto.render import TimedCommand
+    from proto.ssg import Command
+    from services.render.demo import demo_scene, walk_motion
+    from services.render.renderer import FrameRenderer
+
+    motions = [walk_motion("Eve", (-2.0, 1.5), (1.0, -0.5), 30, sentence_id="s1")]
+    night = [TimedCommand(frame=10, command=Command(kind="weather", value="night"))]
+    with FrameRenderer(demo_scene(), motions, night, width=96, height=72) as r:
+        r.render(0)
+        canvas = r._canvas
+        assert canvas is not None and canvas._bytes is not None  # the byte read-back is what renders here
+        fast = [r.render(f) for f in (0, 15, 29)]
+        canvas._bytes = None  # the visualiser's own float capture
+        slow = [r.render(f) for f in (0, 15, 29)]
+    for a, b in zip(fast, slow, strict=True):
+        assert a.dtype == np.uint8 and a.flags.writeable and a.flags.c_contiguous
+        assert np.array_equal(a, b)
+    assert not np.array_equal(fast[0], fast[1])  # the walk and the night are in the pictures
+
+
+@pytest.mark.slow
+def test_fog_reads_the_depth_of_the_frame_it_greys() -> None:
+    from services.render.demo import demo_scene, walk_motion
+    from services.render.renderer import FrameRenderer
+
+    motions = [walk_motion("Eve", (-2.0, 1.5), (1.0, -0.5), 10, sentence_id="s1")]
+    with FrameRenderer(demo_scene(), motions, width=96, height=72) as r:
+        r.render(0)
+        canvas = r._canvas
+        assert canvas is not None
+        _, depth = canvas.draw(r.camera(3), with_depth=True)
+    assert depth is not None and depth.shape == (72, 96) and depth.dtype == np.float32
+    drawn = depth > 0
+    assert 0.2 < drawn.mean() < 1.0  # the room is drawn, the sky around it is not (0)
+    near, far = np.percentile(depth[drawn], [5, 95])
+    assert 0.5 < near < far - 1.0 and far < 30.0  # metres to the floor in front and the far walls
