@@ -29,6 +29,7 @@ from services.render.canvas import Canvas
 from services.render.object_states import lights_at, posed, relit, stateful_objects
 from services.render.scene_geometry import (
     FLOOR_RGBA,
+    ColouredMesh,
     held_ids,
     merge,
     object_meshes,
@@ -37,6 +38,8 @@ from services.render.scene_geometry import (
     prop_pose,
     room_meshes,
     shadow_faces,
+    wall_of,
+    walls_behind,
 )
 from services.render.staging import Staging
 from services.render.timeline import caption_at, chunk_ranges
@@ -45,6 +48,8 @@ from services.render.weather import background_for_render, grade, look_at, rain_
 if TYPE_CHECKING:
     from services.render.cast_gltf import CastCharacter
     from services.render.cast_skin import CastBody
+
+AWAY = np.array([0.0, -1000.0, 0.0])  # where a mesh that must not show is moved (below the floor, unseen)
 
 
 class FrameRenderer:
@@ -101,7 +106,15 @@ class FrameRenderer:
         self._props = {o.id: (o, prop_mesh(o)) for o in scene.objects if o.id in held}
         self._stateful = {k: v for k, v in stateful_objects(scene).items() if k not in held}
         still = [m for m in objects if m.name not in self._stateful]  # doors, lamps, screens: drawn per frame
-        self._static = merge(room_parts + still)
+        # what hangs on a wall is drawn with its wall: cut away when the camera stands behind that wall
+        self._wall = {o.id: wall_of(o, scene.room) for o in scene.objects}
+        hung: dict[str, list[ColouredMesh]] = {}
+        for m in still:
+            if self._wall.get(m.name):
+                hung.setdefault(self._wall[m.name], []).append(m)
+        self._static = merge(room_parts + [m for m in still if not self._wall.get(m.name)])
+        self._hung = {wall: merge(ms, f"hung:{wall}") for wall, ms in sorted(hung.items())}
+        self._cut: frozenset[str] = frozenset()  # the walls cut away in the last frame drawn
         self._objects = merge(objects, "objects")
         self._lit: tuple[float, ...] = ()  # the lamps' values the static mesh's colours show (set on open)
         self._canvas: Canvas | None = None
@@ -117,6 +130,9 @@ class FrameRenderer:
             st = self._static
             if len(st.faces):
                 c.set_mesh("static", st.vertices, st.faces, st.colours[:, :3] / 255.0)
+            for wall, mesh in self._hung.items():
+                c.set_mesh(f"hung:{wall}", mesh.vertices, mesh.faces, mesh.colours[:, :3] / 255.0)
+            self._cut = frozenset()
             for name, rig in self.rigs.items():
                 body = self.bodies.get(name)
                 if body is not None:
@@ -199,6 +215,8 @@ class FrameRenderer:
     ) -> np.ndarray:
         c = self._open()
         look = look_at(f, self.weather_keys)
+        pose = pose or self.camera(f)
+        self._cut_walls(c, walls_behind(pose.eye, self.scene.room))
         for name, v in verts.items():
             c.set_mesh(f"char:{name}", v + np.array([0.0, -1000.0, 0.0]) if hide else v)  # far below
         for oid, (placed, mesh) in self._props.items():  # held props move with the hand
@@ -218,7 +236,7 @@ class FrameRenderer:
         c.set_points("snow", snow_points(f, room, look.snow), (1.0, 1.0, 1.0))
         fog = look.fog > 1e-4
         rgb, depth = c.draw(
-            pose or self.camera(f),
+            pose,
             tuple(background_for_render(look)),
             with_depth=fog,
             gain=None if fog else look.gain,  # no fog: the light's gain is graded in the read-back
@@ -233,6 +251,8 @@ class FrameRenderer:
         """Doors and lids posed, lamps and screens lit at frame f; the room relit when a lamp changed."""
         for oid, obj in self._stateful.items():
             v, rgb = posed(obj, self.scene, f)
+            if self._wall.get(oid) in self._cut:
+                v = v + AWAY  # a door in a wall cut away
             key = f"state:{oid}"
             fresh = key not in c.names()
             c.set_mesh(key, v, obj.mesh.faces if fresh else None, rgb)
@@ -245,7 +265,23 @@ class FrameRenderer:
                 None,
                 relit(st.colours[:, :3] / 255.0, st.vertices, self._stateful, lit),
             )
+            for wall, mesh in self._hung.items():
+                colours = relit(mesh.colours[:, :3] / 255.0, mesh.vertices, self._stateful, lit)
+                c.set_mesh(f"hung:{wall}", self._hung_vertices(wall), None, colours)
             self._lit = lit
+
+    def _hung_vertices(self, wall: str) -> np.ndarray:
+        mesh = self._hung[wall]
+        return mesh.vertices + AWAY if wall in self._cut else mesh.vertices
+
+    def _cut_walls(self, c: Canvas, cut: frozenset[str]) -> None:
+        """Hide what hangs on the walls the camera stands behind (moved far below), show the rest."""
+        if cut == self._cut:
+            return
+        changed = (cut ^ self._cut) & set(self._hung)
+        self._cut = cut
+        for wall in changed:
+            c.set_mesh(f"hung:{wall}", self._hung_vertices(wall))
 
     def frames(
         self, start: int = 0, end: int | None = None, progress: Callable[[int], None] | None = None
