@@ -38,11 +38,10 @@ from services.render.scene_geometry import (
     prop_pose,
     room_meshes,
     shadow_faces,
-    wall_of,
-    walls_behind,
 )
 from services.render.staging import Staging
 from services.render.timeline import caption_at, chunk_ranges
+from services.render.walls import wall_of, walls_behind
 from services.render.weather import background_for_render, grade, look_at, rain_segments, snow_points
 
 if TYPE_CHECKING:

@@ -13,7 +13,7 @@ voxels). The voxels still say which joints are buried inside an object (``first_
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -73,18 +73,21 @@ class Furniture:
         names: what each object is, in words ("bookshelf").
         boxes: per object (N_i, 2, 3) collision boxes.
         triangles: per object (T_i, 3, 3) drawn triangles.
+        walls: per object the wall it hangs on ("" when it stands free; services.render.walls.wall_of).
     """
 
     names: list[str]
     boxes: list[np.ndarray]
     triangles: list[np.ndarray]
+    walls: list[str] = field(default_factory=list)
 
     @classmethod
     def from_scene(cls, scene: Scene) -> Furniture:
         """The scene's objects (ones the catalog lacks are skipped, as the camera's occluders skip them)."""
+        from services.render.walls import wall_of
         from wana.assets.catalog import asset_for, object_to_world, world_collision_boxes
 
-        names, boxes, tris = [], [], []
+        names, boxes, tris, walls = [], [], [], []
         for p in scene.objects:
             try:
                 asset = asset_for(p)
@@ -96,7 +99,8 @@ class Furniture:
             names.append(p.category.replace("_", " "))
             boxes.append(np.asarray(b, dtype=np.float64).reshape(-1, 2, 3))
             tris.append(v[np.asarray(asset.mesh.faces, dtype=np.int64)])
-        return cls(names, boxes, tris)
+            walls.append(wall_of(p, scene.room))
+        return cls(names, boxes, tris, walls)
 
     @classmethod
     def from_boxes(cls, boxes: Sequence[np.ndarray], names: Sequence[str]) -> Furniture:

@@ -21,6 +21,7 @@ from proto.scene import Room
 from services.render.camera import project
 from services.render.sightlines import Furniture
 from services.render.staging import CameraTrack
+from services.render.walls import walls_behind
 from wana.domain.skeleton import JOINT_INDEX
 
 # What a camera must see of a character: head and trunk, shoulders, arms and hands, hips, knees, feet and
@@ -196,6 +197,23 @@ def _stop_short(starts: np.ndarray, ends: np.ndarray) -> np.ndarray:
     return starts + d * np.clip(1.0 - STOP_SHORT / np.maximum(length, 1e-9), 0.0, 1.0)
 
 
+def _cut_away(hidden: np.ndarray, furniture: Furniture, eyes: np.ndarray, room: Room, per_frame: int) -> None:
+    """Nothing hides a character from behind the camera's wall: what hangs on a wall the eye stands behind
+    is cut away with it (services.render.walls), as the renderer leaves it out."""
+    walls = furniture.walls
+    hung = {k for k, w in enumerate(walls) if w}
+    if not hung:
+        return
+    for i, eye in enumerate(eyes):
+        behind = walls_behind(eye, room)
+        if not behind:
+            continue
+        part = hidden[i * per_frame : (i + 1) * per_frame]
+        for k in hung:
+            if walls[k] in behind:
+                part[part == k] = -1
+
+
 def body_view(
     name: str,
     frames: np.ndarray,
@@ -241,6 +259,7 @@ def body_view(
     # check's finding; no camera could show it, so the surface it is buried under does not count against
     # the camera (a backrest in front of it still does).
     hidden = furniture.first_blocker(starts, ends, targets)
+    _cut_away(hidden, furniture, track.eye[frames], room, n_p)
     names = [f"the {n}" for n in furniture.names]
     names.append("the wall")
     hidden[(hidden < 0) & wall_hits(starts, targets, room)] = len(names) - 1

@@ -344,3 +344,15 @@ def test_the_writers_camera_close_is_close_in_the_picture_the_director_draws():
     span = float(close.reason.rsplit("fill ", 1)[1].split("%")[0]) / 100.0
     assert span >= 0.3, close.reason
     assert all(c.ok for c in checks["s1"] if c.name == "in_view"), checks["s1"]
+
+
+def test_a_window_on_the_wall_behind_the_camera_hides_nobody():
+    """The wall the camera stands behind is cut away with what hangs on it (the renderer does not draw the
+    window there), so the window does not hide Eve; from inside the room the same window does."""
+    window = PlacedObject(id="window", category="window", position=(0.0, 0.9, 2.47), yaw=np.pi)  # front wall
+    scene = Scene(room=ROOM, objects=[window])
+    through = in_view(scene, [standing("Eve", 0.0, 0.0)], fixed_camera((0.0, 1.4, 4.0), (0.0, 1.0, 0.0)))
+    assert through.ok, through.reason
+    outside = standing("Eve", 0.0, 3.2)
+    from_inside = in_view(scene, [outside], fixed_camera((0.0, 1.4, 0.5), (0.0, 1.2, 3.2)))
+    assert not from_inside.ok

@@ -8,7 +8,7 @@ import numpy as np
 from proto.scene import PlacedObject, Room, Scene
 from services.render.camera import CameraPose
 from services.render.renderer import FrameRenderer
-from services.render.scene_geometry import wall_of, walls_behind
+from services.render.walls import wall_of, walls_behind
 
 ROOM = Room(room_type="living_room", width=4.0, depth=4.0, height=2.6)
 WINDOW = PlacedObject(id="window", category="window", position=(1.97, 0.9, 0.0), yaw=-np.pi / 2)
