@@ -81,10 +81,16 @@ def _subject_tokens(verb: Token) -> list[Token]:
             continue
         break
     if climbed_from_conj and v is not verb and v.pos_ == "VERB":
-        # "Sofia/compound stuffs the clothes ... and slams the lid": the name hung on the first verb
-        lead = [c for c in v.children if c.dep_ in ("compound", "flat") and c.i < v.i and c.pos_ == "PROPN"]
-        if lead and character_mention(lead[0]) is not None:
-            return _with_conj_people(lead[0])
+        # "Sofia/compound stuffs the clothes ... and slams the lid", "Mom/NOUN/compound hugs Lily and walks
+        # out": the name hung on the first verb
+        lead = [
+            c
+            for c in v.children
+            if c.dep_ in ("compound", "flat") and c.i < v.i and c.pos_ in ("PROPN", "NOUN", "ADJ")
+        ]
+        who = [c for c in lead if character_mention(c) is not None or unknown_capitalised_subject(c)]
+        if who:
+            return _with_conj_people(who[0])
     return []
 
 
@@ -219,6 +225,7 @@ def _body_part_owner(args: list[Argument], builder: GraphBuilder) -> str:
 MAKING_VERBS = frozenset({"make", "brew", "cook", "bake", "prepare", "fix"})
 # Verbs whose object is a liquid poured into what the destination names ("pours tea into the mug").
 POURING_VERBS = frozenset({"pour", "splash", "spill"})
+BRINGING_VERBS = frozenset({"bring", "deliver"})  # "brings the cup to Sam": handed over on arrival
 POURED_FROM = frozenset({"bottle", "kettle", "teapot", "jug", "pitcher"})  # vessels one pours out of
 # Drinks the catalog reads as the vessel they come in ("drinks tea": a cup); poured, they are the liquid.
 DRINK_WORDS = frozenset(
@@ -352,6 +359,17 @@ def _action(verb: Token, builder: GraphBuilder) -> tuple[ActionNode, str]:
             social_verb = primary.word
             people = [a for a in objects + obliques if a.character]
             target = people[0].character if people else ""
+    person_to = next((a.character for a in objects + obliques if a.character), "")
+    # the thing: an object of the verb, or a bare noun the parser left as an oblique ("brings Sam a/obl cup")
+    bare = [a for a in obliques if not a.prep]
+    thing = next((a.object_id for a in objects + bare if a.object_id and not a.character), "")
+    if lemma in BRINGING_VERBS and person_to and thing and person_to in (target, destination):
+        # "brings the cup to Sam", "brings Sam a cup": the cup passes to Sam's hand, as "gives Sam the cup"
+        # (the planner walks it there, services.motion.planning hand_over), not carried there and kept
+        action, target, instrument, destination = "present", person_to, thing, ""
+    if action == "present" and not instrument and any(a.character == target for a in objects if target):
+        # "gives Tom a bowl": Tom is the target; the bowl is what changes hands (the planner takes it)
+        instrument = thing
     first = verb.i
     last_tok = max([verb.i] + [a.tok.i for a in objects + obliques])
     doc = verb.doc

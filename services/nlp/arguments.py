@@ -68,6 +68,9 @@ def duration_of(tok: Token) -> float | None:
     return None if value is None else value * UNIT_SECONDS[unit]
 
 
+GIVING_VERBS = frozenset({"give", "hand", "pass", "offer", "bring", "deliver"})  # "... the cup to Sam"
+
+
 def character_of(tok: Token, builder: GraphBuilder) -> CharacterMention | None:
     cm = character_mention(tok)
     if cm is None and (tok.pos_ == "PROPN" or unknown_capitalised_subject(tok)):
@@ -216,6 +219,8 @@ def arguments(verb: Token, builder: GraphBuilder) -> tuple[list[Argument], list[
         if (
             c.dep_ in ("obj", "iobj", "dobj")
             or (c.dep_ == "advmod" and c.pos_ in ("NOUN", "PROPN"))
+            # "hugs Forrest/ADJ/advmod": a capitalised name after the verb, tagged as an adverb
+            or (c.dep_ == "advmod" and c.i > verb.i and c.text[:1].isupper() and character_of(c, builder))
             or (by_position and c.dep_ in ("vocative", "appos") and c.i > verb.i)  # "Tom thanks/NOUN Mary"
         ):
             event = light and not character_of(c, builder) and bool(event_action(c))
@@ -226,6 +231,12 @@ def arguments(verb: Token, builder: GraphBuilder) -> tuple[list[Argument], list[
                     _argument(g, case_of(g), builder, report_unknown=True)
                     for g in c.children
                     if g.dep_ in ("nmod", "obl") and any(h.dep_ == "case" for h in g.children)
+                ]
+            elif verb_lemma(verb) in GIVING_VERBS:  # "hands the hammer to Sam": "to Sam" may hang under
+                obliques += [  # "hammer"; Sam is whom it goes to
+                    _argument(g, case_of(g), builder, report_unknown=True)
+                    for g in c.children
+                    if g.dep_ == "nmod" and case_of(g) == "to" and character_of(g, builder) is not None
                 ]
         elif c.dep_ in ("obl", "obl:unmarked", "obl:tmod", "obl:npmod", "nmod:tmod", "nmod"):
             seconds = duration_of(c)

@@ -31,6 +31,8 @@ HANDOVER_VERBS = (
     "give back",
     "hand out",
     "pass on",
+    "bring",  # "brings the cup to Sam" (services.nlp.actions: a hand-over when it is brought to someone)
+    "deliver",
 )
 HANDOFF_FRAMES = 15  # the receiver's grip starts within this of the giver's letting go (0.5 s)
 HANDOFF_M = 0.15  # ... with the object this close to where the giver let go of it (no jump between hands)

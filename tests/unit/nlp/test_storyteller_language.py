@@ -129,6 +129,40 @@ def test_giving_someone_something_targets_the_recipient_and_keeps_the_thing():
     assert [o.category for o in graphs[0].objects] == ["book"]
 
 
+def handed(graphs):
+    return [(c.name, a.action, a.target, a.instrument, a.destination) for g in graphs for c in g.characters for a in c.actions]  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        # the thing given is what the planner takes and hands over, beside the recipient
+        ("Mom gives Tom a bowl.", ("mom", "present", "Tom", "bowl", "")),
+        ("Tom hands Eve a cup.", ("Tom", "present", "Eve", "cup", "")),
+        # "to Sam" hung under "hammer" by the parser: still whom it goes to
+        ("Pete hands the hammer to Sam.", ("Pete", "present", "hammer", "", "Sam")),
+        # bringing something to someone hands it over on arrival, it is not carried there and kept
+        ("Mia brings the cup to Sam.", ("Mia", "present", "Sam", "cup", "")),
+        ("Mia brings Sam a cup.", ("Mia", "present", "Sam", "cup", "")),
+    ],
+)
+def test_what_is_handed_over_and_to_whom(text, expected):
+    assert handed(parse_document(text)) == [expected]
+
+
+def test_a_gift_that_is_no_thing_hands_nothing_over():
+    assert handed(parse_document("Mia brings the book to the desk."))[0][:4] == ("Mia", "carry", "book", "")
+    assert handed(parse_document("Tom gives Ben a thumbs up.")) == [("Tom", "present", "Ben", "", "")]
+    assert handed(parse_document("Tom gives Mary a hug.")) == [("Tom", "hug", "Mary", "", "")]
+
+
+def test_a_second_verb_keeps_the_subject_the_parser_hung_on_the_first():
+    # "Mom/NOUN/compound hugs Lily and walks out": Mom walks out, not Lily (the last one named)
+    assert [(c.name, a.action) for g in parse_document("Mom hugs Lily and walks out.") for c in g.characters for a in c.actions] == [("mom", "hug"), ("mom", "walk")]  # fmt: skip
+    # "hugs Forrest/ADJ/advmod": the name is whom she hugs
+    assert acts(parse_document("Jenny stands up and hugs Forrest.")) == [("Jenny", "stand", ""), ("Jenny", "hug", "Forrest")]  # fmt: skip
+
+
 def test_a_verb_with_nothing_to_show_says_why_instead_of_unknown():
     graphs = parse_document("Tom remembers the party.")
     assert "W113" in codes(graphs) and "W102" not in codes(graphs)
