@@ -36,6 +36,10 @@ IN_WALL_M = 0.35  # metres: a door whose centre is this close to a wall is in it
 BESIDE_M = 0.6  # metres along the wall between characters coming in together
 BODY_M = 0.3  # metres: a body's radius for the starting-spot grid
 APART_M = 1.25  # metres between starting spots (two stretching side by side, arms out, still clear)
+ROUTE_BODY_M = 0.25  # metres: a walking body's clearance (wana.domain.routes.plan_route's default)
+STEP_OUT_CANDIDATES = 2000  # free points, nearest first, tried as where a boxed-in start steps out to
+STEP_OUT_SAMPLES = 40  # points along each candidate step tested against the furniture
+STEP_OUT_WEIGHT = 10.0  # metres of a longer step one metre less through furniture is worth
 
 
 def _verb_is(action: ActionNode, verbs: Sequence[str]) -> bool:
@@ -267,6 +271,36 @@ def spot_near(
     return 0.0, 0.0, 0.0
 
 
+def kept_clear(
+    scene: Scene,
+    starts: dict[str, tuple[float, float, float]],
+    hidden: Sequence[str] = (),
+) -> dict[str, tuple[float, float, float]]:
+    """The starting spots with each one furniture now covers moved to the nearest free one, facing as before.
+
+    Starts are picked on the composed layout, before the optimiser moves furniture round the interactions; a
+    table slid onto a spot would have the character stand inside it on the first frames. Spots still free, and
+    those of the characters waiting ``hidden`` outside the door, stay as they are; a moved one keeps APART_M
+    from the others when the room has such a spot, else takes the nearest free one.
+    """
+    grid = _grid(scene)
+    free = np.argwhere(~grid.blocked)
+    out = dict(starts)
+    if not len(free):
+        return out
+    cells = grid.to_world(free)
+    for name, (x, z, yaw) in starts.items():
+        xz = np.array([x, z], float)
+        if name in hidden or grid.is_free_xz(xz):
+            continue
+        taken = [np.array(out[n][:2], float) for n in out if n != name and n not in hidden]
+        order = np.argsort(np.linalg.norm(cells - xz, axis=1), kind="stable")
+        apart = [i for i in order[:4000] if all(np.linalg.norm(cells[i] - t) >= APART_M for t in taken)]
+        p = cells[apart[0] if apart else order[0]]
+        out[name] = (round(float(p[0]), 3), round(float(p[1]), 3), yaw)
+    return out
+
+
 def _object_xz(scene: Scene, ref: str) -> tuple[float, float] | None:
     for o in scene.objects:
         if ref and (o.id == ref or o.category == ref or o.id.split("/")[0].split("#")[0] == ref):
@@ -303,7 +337,40 @@ def route(
             break
         except NoRouteError:
             continue
+    else:
+        points = _stepped_out(scene, start, goal) or points
     return _dedupe([start, *points[1:]])
+
+
+def _stepped_out(
+    scene: Scene, start: tuple[float, float], goal: tuple[float, float]
+) -> list[tuple[float, float]] | None:
+    """A route for a start boxed in by furniture (got up from a chair hemmed in between a table, another
+    chair and the wall): the short step out to the nearest free point from which the goal is reachable, then
+    the route from there; None when no free point reaches the goal. Better than the straight line to the
+    goal, which crosses the room through the table."""
+    from scipy import ndimage
+
+    grid = occupancy_grid(scene.room, scene_footprints(scene), radius=ROUTE_BODY_M, cell=0.05)
+    labels, _ = ndimage.label(~grid.blocked)
+    g_rc = grid.to_cell(np.asarray(goal, float))
+    if grid.blocked[g_rc[0], g_rc[1]]:
+        return None
+    here = np.asarray(start, float)
+    pts = grid.to_world(np.argwhere(labels == labels[g_rc[0], g_rc[1]]))
+    away = np.linalg.norm(pts - here, axis=1)
+    near = np.argsort(away, kind="stable")[:STEP_OUT_CANDIDATES]
+    # the step that crosses the least furniture (its own footprints, no clearance), then the shortest
+    solid = occupancy_grid(scene.room, scene_footprints(scene), radius=0.0, cell=0.05)
+    t = np.linspace(0.0, 1.0, STEP_OUT_SAMPLES)
+    ways = here + t[None, :, None] * (pts[near][:, None] - here)  # (C, S, 2)
+    inside = (~solid.is_free_xz(ways)).mean(axis=1) * away[near]
+    out = pts[near[int(np.argmin(inside * STEP_OUT_WEIGHT + away[near]))]]
+    try:
+        found = plan_route(scene, out, np.asarray(goal, float))
+    except NoRouteError:
+        return None
+    return [start, *((float(p[0]), float(p[1])) for p in found)]
 
 
 def _dedupe(points: Sequence[tuple[float, float]]) -> list[tuple[float, float]]:
@@ -348,6 +415,7 @@ __all__ = [
     "first_spot",
     "is_entrance",
     "is_exit",
+    "kept_clear",
     "presence",
     "route",
     "spot_near",

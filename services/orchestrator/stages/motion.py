@@ -42,6 +42,7 @@ from services.orchestrator.staging import (
     first_spot,
     is_entrance,
     is_exit,
+    kept_clear,
     presence,
     route,
     spot_near,
@@ -530,6 +531,7 @@ def animate(
         out.optimisations.append(reply)
         done += 1
     out.scene = scene
+    starts = kept_clear(scene, starts, hidden)  # furniture the optimiser slid onto a starting spot
     tick("motion", done, total)
     notes: list[tuple[str, str]] = []
     handovers: list[PairedAction] = []

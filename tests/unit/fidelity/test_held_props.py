@@ -117,3 +117,24 @@ def test_eating_from_the_plate_is_from_the_plate_at_hand_though_the_word_names_t
     node = ActionNode(verb="eat", action="eat", target="plate")
     check = _contact(make, plates, node, "Eve eats from the plate.", "")
     assert check.ok, check.reason
+
+
+def test_the_hand_letting_go_of_a_prop_it_set_down_is_on_its_grip_not_inside_it(make):
+    """solo-workshop-19 s7: the saw set down on the workbench, the hand on it for the frames it lets go (the
+    frames show the hand on the saw); the check read the hand 7 cm inside the saw. A hand that never held
+    it is still inside it."""
+    from wana.fidelity.bodies import body_of
+
+    frames = 32
+    still = make.motion("Eve", make.still(0.0, 0.95, 0.0, frames), [("wave", 0, frames, "s1", 0)])
+    hand = np.asarray(body_of(still).joint("RightHand"))[0]
+    box = PlacedObject(id="box", category="box", position=(hand[0], hand[1] - 0.1, hand[2]), scale=(0.5,) * 3)
+    graph = make.action_graph("s1", "Eve", "wave", "wave")
+
+    def inside(props: list[PropTrack]) -> bool:
+        eve = msgspec.structs.replace(still, props=props)
+        checks = story_checks([("s1", "action")], {"s1": graph}, make.scene(box), {"Eve": eve})["s1"]
+        return not next(c for c in checks if c.name == "penetration").ok
+
+    assert not inside([_held("box", 0, 20)])  # set down at frame 20, the hand on it 12 frames more
+    assert inside([])

@@ -66,3 +66,20 @@ def test_a_cup_beyond_comfortable_reach_is_stepped_up_to_before_it_is_taken():
     assert np.linalg.norm(stop - np.array([0.3, 0.1])) < np.linalg.norm(np.array(start[:2]) - [0.3, 0.1])
     assert np.linalg.norm(stop - np.array([0.3, 0.1])) <= STEP_IN
     assert any(s.prop_span == "grasp" for s in plan.segments)
+
+
+def test_a_tool_on_a_bench_is_taken_from_the_side_it_is_nearest_not_from_the_end_one_comes_from():
+    """solo-workshop-19 s6: the saw near the workbench's front edge, Mr Garcia coming from the sawhorse beyond
+    the bench's end stopped at the free spot on his way in, 0.8 m from the saw's handle, and the reach bent
+    the chest 9 cm into the bench; from the front edge the hand gets there with the trunk upright."""
+    bench = PlacedObject(id="workbench", category="workbench", position=(0.0, 0.0, 0.0), yaw=-np.pi / 2)
+    saw = PlacedObject(id="saw", category="saw", position=(-0.125, 1.06, 0.58), yaw=-np.pi / 2,
+                       support="workbench")  # fmt: skip
+    horse = PlacedObject(id="sawhorse", category="sawhorse", position=(-0.065, 0.0, 1.75), yaw=-np.pi / 2)
+    scene = Scene(room=Room(room_type="workshop", width=6, depth=6, height=3), objects=[bench, saw, horse])
+    ch = CharacterNode(name="Eve", actions=[ActionNode(verb="saw", action="saw", instrument="saw")])
+    plan = plan_actions(ch, scene, (-0.67, 1.75, np.pi))
+    take = next(i for i, s in enumerate(plan.segments) if s.prop_span == "grasp")
+    grip = np.asarray(plan.segments[take].targets[0][1])
+    stop = np.asarray(plan.segments[take - 1].waypoints[-1])
+    assert np.hypot(*(stop - grip[[0, 2]])) < 0.6

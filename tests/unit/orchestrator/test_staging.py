@@ -13,7 +13,9 @@ from services.orchestrator.staging import (
     first_spot,
     is_entrance,
     is_exit,
+    kept_clear,
     presence,
+    route,
     spot_near,
     with_door,
 )
@@ -111,6 +113,31 @@ def test_starting_spots_are_free_apart_and_near_what_each_first_acts_on():
 def test_a_spot_near_a_point_faces_it():
     x, z, yaw = spot_near(Scene(room=ROOM), (0.0, 0.0), [])
     assert np.allclose([np.sin(yaw), np.cos(yaw)], -np.array([x, z]) / np.hypot(x, z), atol=1e-3)
+
+
+def test_a_start_the_optimiser_slid_a_table_onto_moves_to_the_nearest_free_spot_and_keeps_its_facing():
+    table = PlacedObject(id="table", category="table", position=(0.0, 0.0, 0.0), yaw=0.0)
+    scene = Scene(room=ROOM, objects=[table])
+    starts = {"Lily": (0.05, 0.1, 1.0), "Max": (1.9, 1.5, 0.5), "Eve": (0.0, 0.0, 0.2)}
+    got = kept_clear(scene, starts, hidden=["Eve"])
+    grid = occupancy_grid(ROOM, scene_footprints(scene), radius=0.3)
+    assert got["Max"] == starts["Max"] and got["Eve"] == starts["Eve"]  # free, and waiting outside
+    assert grid.is_free_xz(np.array(got["Lily"][:2])) and got["Lily"][2] == 1.0
+    assert np.linalg.norm(np.array(got["Lily"][:2]) - np.array(got["Max"][:2])) >= APART_M - 1e-6
+    assert np.linalg.norm(np.array(got["Lily"][:2]) - np.array([0.05, 0.1])) < 1.0  # beside the table
+
+
+def test_a_start_boxed_in_by_furniture_steps_out_past_the_tables_not_through_them():
+    tables = [
+        PlacedObject(id="table", category="table", position=(1.3, 0.0, 1.2), yaw=0.0),
+        PlacedObject(id="table#2", category="table", position=(2.1, 0.0, 0.55), yaw=np.pi / 2),
+    ]
+    scene = Scene(room=ROOM, objects=tables)
+    way = np.array(route(scene, (2.3, 1.75), (-2.0, -1.5)))
+    solid = occupancy_grid(ROOM, scene_footprints(scene), radius=0.0)
+    t = np.linspace(0.0, 1.0, 50)[:, None]
+    along = np.concatenate([a + t * (b - a) for a, b in zip(way[:-1], way[1:], strict=True)])
+    assert len(way) > 2 and solid.is_free_xz(along).all()  # the straight line crosses the first table
 
 
 def test_presence_starts_at_the_first_action_and_ends_after_an_exit():
