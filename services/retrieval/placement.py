@@ -208,16 +208,21 @@ def relation_candidates(
                         yield _side(anchor, fp, side, gap, lat, rel_yaw, y, support)
         return
     if relation == "around":
+        # Each copy takes its own side first (front, back, left, right in turn), then, where a wall or
+        # another thing leaves that side no room (a table against the wall has no back), the others.
         order = ["front", "back", "left", "right"]
-        side = order[instance % 4]
-        lateral = ((instance // 4) % 3 - 1) * 0.6 * (half_w if side in ("front", "back") else half_d)
-        # Each copy turns to face the anchor: front copies face -Z, back +Z, side copies face inwards.
-        rel_yaw = {"front": math.pi, "back": 0.0, "left": -math.pi / 2.0, "right": math.pi / 2.0}[side]
-        if LEFT_SIGN < 0 and side in ("left", "right"):
-            rel_yaw = -rel_yaw
-        for gap in (float(rng.uniform(0.05, 0.2)), 0.05, 0.3, 0.6):
-            for lat in (lateral, 0.0, -lateral):
-                yield _side(anchor, fp, side, gap, lat, rel_yaw, y, support)
+        start = instance % 4
+        for k, side in enumerate(order[start:] + order[:start]):
+            half = half_w if side in ("front", "back") else half_d
+            lateral = ((instance // 4) % 3 - 1) * 0.6 * half
+            lats = (lateral, 0.0, -lateral) if k == 0 else (0.0, 0.5 * half, -0.5 * half)
+            # Each copy turns to face the anchor: front copies face -Z, back +Z, side copies face inwards.
+            rel_yaw = {"front": math.pi, "back": 0.0, "left": -math.pi / 2.0, "right": math.pi / 2.0}[side]
+            if LEFT_SIGN < 0 and side in ("left", "right"):
+                rel_yaw = -rel_yaw
+            for gap in (float(rng.uniform(0.05, 0.2)), 0.05, 0.3, 0.6):
+                for lat in lats:
+                    yield _side(anchor, fp, side, gap, lat, rel_yaw, y, support)
         return
     sides, rel_yaws = _SIDES.get(relation, (["front", "left", "right", "back"], [0.0, math.pi]))
     sides = list(sides)

@@ -198,3 +198,19 @@ def test_a_thing_on_a_rack_next_to_the_sink_stands_there_with_its_rack():
     assert relation_holds(
         r("towel_rack next_to bathroom_sink"), placed["towel_rack"], placed["bathroom_sink"]
     )
+
+
+def test_chairs_around_a_table_by_the_fridge_take_free_sides_not_the_wall():
+    """ "A dining table next to the refrigerator. Three chairs around the table": the table stands by the
+    wall, so its back has no room; the chair that would go there takes a free side, inside the room, and
+    the room is not grown to make space behind the wall."""
+    scene, report = compose_scene(
+        [o("dining_table", "dining_table"), o("refrigerator", "refrigerator"), o("chair", "chair", count=3)],
+        [r("dining_table next_to refrigerator"), r("chair around dining_table")],
+        room_type="kitchen",
+    )
+    assert all(c.held for c in report.relations)
+    assert not [d for d in report.diagnostics if d.code in ("I508", "W505")]
+    half_w, half_d = scene.room.width / 2, scene.room.depth / 2
+    for p in scene.objects:
+        assert abs(p.position[0]) < half_w and abs(p.position[2]) < half_d, p.id
