@@ -32,7 +32,7 @@ from services.orchestrator.document import Sentence
 from services.orchestrator.slotting import Slotting, matched
 from services.orchestrator.stages import StageContext, content_of
 from services.orchestrator.stages.props import aimed, brought_notes, carried, made_for, provide
-from services.orchestrator.stages.scene import keep_relations
+from services.orchestrator.stages.scene import kept_relations
 from services.orchestrator.stages.seats import furnish, seat_at_instruments
 from services.orchestrator.stages.social import fit_cast, frame_count, paired_actions
 from services.orchestrator.stages.states import with_states
@@ -230,25 +230,25 @@ def segments(
     order = story_order(characters, sentences)
     for name, k in order:
         slotting.expect(name, characters[name][0].actions[k])
+    ends = _sentence_ends(order, characters)
     for i, (name, k) in enumerate(order):
         if upto is not None and k > upto.get(name, -1):
             continue
         node, sids = characters[name]
         action = node.actions[k]
         state = states[name]
+        later = order[i + 1 : ends[i]]  # the actions of this sentence after this one
         company = [
             (states[o].x, states[o].z)
-            for o, j in order[i + 1 :]
-            if o != name
-            and characters[o][1][j] == sids[k]
-            and _same_goal(characters[o][0].actions[j], action)
+            for o, j in later
+            if o != name and _same_goal(characters[o][0].actions[j], action)
         ]
         lane = None
         if door is not None and is_exit(action):  # "They leave": each its own lane through the door
             going = [
                 (states[o].x, states[o].z)
-                for o, j in order[i + 1 :]
-                if o != name and characters[o][1][j] == sids[k] and is_exit(characters[o][0].actions[j])
+                for o, j in later
+                if o != name and is_exit(characters[o][0].actions[j])
             ]
             lanes = exit_lanes.setdefault(sids[k], [door.inside(beside=b) for b in range(len(going) + 1)])
             pick = matched([(state.x, state.z), *going], lanes) if going and lanes else 0
@@ -342,6 +342,18 @@ def segments(
 
             pieces[name] = [ctx.engine.query(f"{kind}:{name}:idle", [name, view, st], idle).motion]
     return pieces
+
+
+def _sentence_ends(order: Sequence[tuple[str, int]], characters: Characters) -> list[int]:
+    """For each place in ``order`` (story_order: a sentence's actions side by side), where its sentence's
+    actions end: the actions of one sentence after an action are ``order[i + 1 : ends[i]]``, found without
+    a pass over the rest of the story for every action."""
+    ends = [len(order)] * len(order)
+    for i in range(len(order) - 2, -1, -1):
+        (a, k), (b, j) = order[i], order[i + 1]
+        same = characters[a][1][k] == characters[b][1][j]
+        ends[i] = ends[i + 1] if same else i + 1
+    return ends
 
 
 def _same_goal(a: ActionNode, b: ActionNode) -> bool:
@@ -526,7 +538,7 @@ def animate(
             warning = Diagnostic(code="W301", message=why, span=Span(0, 0), severity="warning")
             out.diagnostics.append((characters[name][1][k], warning))
             continue
-        scene = keep_relations(scene, reply.scene, stated)
+        scene = kept_relations(scene, reply.scene, stated)
         out.optimisations.append(reply)
         done += 1
     out.scene = scene
