@@ -26,7 +26,7 @@ from proto.motion_data import Motion
 from proto.optimizer import Interaction, OptimiseReply, OptimiseRequest, OptimiseSettings
 from proto.scene import Scene
 from proto.social import SocialPlan
-from proto.ssg import ActionNode, CharacterNode, Command, Diagnostic, SentenceGraph
+from proto.ssg import ActionNode, CharacterNode, Command, Diagnostic, RelationNode, SentenceGraph
 from services.orchestrator.backend import StageFailed
 from services.orchestrator.document import Sentence
 from services.orchestrator.slotting import Slotting, matched
@@ -490,14 +490,61 @@ def animate(
     scene, stools = seat_at_instruments(scene, characters, sentences)  # the stool to the drum kit's place
     added = [*provided, *brought_notes(characters, brought, scene, sentences), *stools, *added]
     looks, scene = scene, geometry_view(scene)  # the nodes below read shapes, not paint
+    stated = scene_part(graphs).relations  # kept true through every optimisation
+    # The story is played on the sentences' order alone (their ids): the text was read into the graphs, and
+    # the offsets only place diagnostics on their sentence, put back after. So an edit elsewhere (a colour,
+    # a word that shifts the text) re-plays nothing: the `motion` node's inputs are unchanged.
+    order = [Sentence(id=s.id, start=0, end=1, text="") for s in sentences]
+    social = ctx.engine.hash_of("social", plan) if plan is not None else ""
+    waits = [(sid, c) for sid, c in commands if c.kind == "wait"]  # the only commands motion reads
+    inputs = [scene, characters, brought, [s.id for s in sentences], waits, social, stated]
+
+    def run() -> Animated:
+        return _played(ctx, scene, characters, order, waits, plan, brought, stated, tick)
+
+    played = ctx.engine.query_unhashed("motion", inputs, run)
+    spans = {s.id: Span(s.start, s.end) for s in sentences}
+    out = Animated(
+        scene=with_looks(played.scene, looks),
+        motions=played.motions,
+        optimisations=played.optimisations,
+        diagnostics=[*added, *(_on_sentence(sid, d, spans) for sid, d in played.diagnostics)],
+    )
+    out.scene = with_states(out.scene, characters, out.motions, sentences)  # doors opened, lamps on
+    return out
+
+
+def _on_sentence(sid: str, diagnostic: Diagnostic, spans: dict[str, Span]) -> tuple[str, Diagnostic]:
+    """A diagnostic of the played story on its sentence as the text is now: every span `_played` gives is a
+    whole sentence's (or Span(0, 0), no span, kept)."""
+    if diagnostic.span.end <= diagnostic.span.start or sid not in spans:
+        return sid, diagnostic
+    return sid, msgspec.structs.replace(diagnostic, span=spans[sid])
+
+
+def _played(
+    ctx: StageContext,
+    scene: Scene,
+    characters: Characters,
+    sentences: Sequence[Sentence],
+    commands: Sequence[tuple[str, Command]],
+    plan: SocialPlan | None,
+    brought: dict[str, str],
+    stated: Sequence[RelationNode],
+    tick: Callable[[str, int, int], None],
+) -> Animated:
+    """The story played on the geometry of the furnished layout: drafts, the layout optimised around each
+    interaction, every character's motion on one time line, fitted to each other and enlivened (the
+    `motion` node: the paint, the states of objects and the diagnostics' spans are put on after).
+    ``sentences``: their ids in order (spans and text are placeholders: nothing here may read them);
+    ``commands``: the wait commands (the only ones motion reads)."""
     door = doorway(scene)
     wait_ids = {sid for sid, c in commands if c.kind == "wait"}
     answering = {r.responder for r in (plan.responses if plan is not None else []) if r.response_index == 0}
     starts, hidden = _first_positions(scene, door, characters, sentences, wait_ids, answering)
     waiting_place = {name: i for i, name in enumerate(sorted(characters, key=lambda n: n not in hidden))}
     ids = {o.id for o in scene.objects}
-    out = Animated(scene=scene, diagnostics=[*added, *_door_added(scene, characters, sentences, hidden)])
-    stated = scene_part(graphs).relations  # kept true through every optimisation
+    out = Animated(scene=scene, diagnostics=_door_added(scene, characters, sentences, hidden))
     # Interactions: actions that touch an object of the scene; the layout is optimised around each.
     interactions = [
         (name, k, a)
@@ -602,8 +649,6 @@ def animate(
                 touching.setdefault(who, []).append((c.start_frame, c.end_frame))
     out.motions = set_down_props(out.scene, out.motions, length)
     out.motions = _enlivened(out.scene, characters, _in_moods(characters, out.motions, moods), touching)
-    out.scene = with_looks(out.scene, looks)
-    out.scene = with_states(out.scene, characters, out.motions, sentences)  # doors opened, lamps on
     return out
 
 
