@@ -62,7 +62,9 @@ class Slotting:
     sitters: dict[str, set[str]] = field(default_factory=dict)  # object id -> who sits on it in the story
     standers: dict[str, set[str]] = field(default_factory=dict)  # object id -> who stands at it in the story
     _grid: OccupancyGrid | None = None
-    _spots: dict[str, tuple[list[tuple[float, float]], set[tuple[float, float]]]] = field(default_factory=dict)
+    _spots: dict[str, tuple[list[tuple[float, float]], set[tuple[float, float]]]] = field(
+        default_factory=dict
+    )
 
     def expect(self, who: str, action: ActionNode) -> None:
         """Note, before the story is planned, that ``who`` sits on or stands at the object ``action`` names: a
@@ -283,9 +285,7 @@ class Slotting:
         # default spot is where someone else stands is sent to a clear one.
         return Claim(action, spot=spots[int(taken)])
 
-    def _stand_spots(
-        self, obj: PlacedObject
-    ) -> tuple[list[tuple[float, float]], set[tuple[float, float]]]:
+    def _stand_spots(self, obj: PlacedObject) -> tuple[list[tuple[float, float]], set[tuple[float, float]]]:
         """The free stand spots at ``obj`` (two rows; its first spot when none is free) and its first row (within
         reach), worked out once per object: the layout and the grid do not change while the story runs."""
         if obj.id not in self._spots:
