@@ -37,6 +37,7 @@ from services.orchestrator.stages.parse import parse_all, resolve
 from services.orchestrator.stages.scene import scene
 from services.orchestrator.stages.social import faces, social_plan
 from services.orchestrator.views import map_span
+from wana.blas import single_threaded
 
 __all__ = ["STAGES", "Pipeline", "PipelineResult", "SentenceView"]
 
@@ -62,6 +63,7 @@ class Pipeline:
         self.doc_id = doc_id
         self.seed = seed
         self.budget = budget or Budget()
+        single_threaded()  # the services' small products: one BLAS thread (wana/blas.py)
 
     def run(
         self,

@@ -101,6 +101,21 @@ class QueryEngine:
             self.log.append(LogEntry(self.revision, key, "ran", changed))
         return value
 
+    def query_unhashed(self, key: str, inputs: Any, compute: Callable[[], T]) -> T:
+        """``query`` for a value too big to hash on every run (every character's whole motion): memoised by
+        its input hash alone, logged like any query; it never backdates, so no node may key on its hash."""
+        input_hash = content_hash(inputs)
+        with self._lock:
+            memo = self.memos.get(key)
+            if memo is not None and memo.input_hash == input_hash:
+                self.log.append(LogEntry(self.revision, key, "reused", False))
+                return memo.value  # type: ignore[no-any-return]
+        value = compute()
+        with self._lock:
+            self.memos[key] = Memo(input_hash, "", value)
+            self.log.append(LogEntry(self.revision, key, "ran", True))
+        return value
+
     def result_hash(self, key: str) -> str:
         return self.memos[key].result_hash
 
@@ -108,7 +123,7 @@ class QueryEngine:
         """The content hash of a query's value: its memo's when the value is the memoised one (hashed once,
         when it was computed), else hashed now (a value that was not memoised, e.g. a failed parse)."""
         memo = self.memos.get(key)
-        if memo is not None and memo.value is value:
+        if memo is not None and memo.value is value and memo.result_hash:
             return memo.result_hash
         return content_hash(value)
 

@@ -62,6 +62,9 @@ class Slotting:
     sitters: dict[str, set[str]] = field(default_factory=dict)  # object id -> who sits on it in the story
     standers: dict[str, set[str]] = field(default_factory=dict)  # object id -> who stands at it in the story
     _grid: OccupancyGrid | None = None
+    _spots: dict[str, tuple[list[tuple[float, float]], set[tuple[float, float]]]] = field(
+        default_factory=dict
+    )
 
     def expect(self, who: str, action: ActionNode) -> None:
         """Note, before the story is planned, that ``who`` sits on or stands at the object ``action`` names: a
@@ -264,9 +267,7 @@ class Slotting:
         company: Sequence[tuple[float, float]] = (),
         crowd: Sequence[tuple[float, float]] = (),
     ) -> Claim:
-        spots = [p for p in stand_slots(obj, rows=2) if bool(self.grid.is_free_xz(np.asarray(p)))]
-        spots = spots or stand_slots(obj)[:1]
-        front = set(stand_slots(obj))  # the first row: within reach of the object
+        spots, front = self._stand_spots(obj)
         reach = [p for p in spots if p in front]
         if crowd and reach and all(_near_any(p, crowd) for p in reach):  # bystanders there: round the object
             spots = [*reach, *self._ring(obj, reach[0]), *(p for p in spots if p not in front)]
@@ -283,6 +284,15 @@ class Slotting:
         # the front, would stand between the first two slots, within a body of the second); one whose
         # default spot is where someone else stands is sent to a clear one.
         return Claim(action, spot=spots[int(taken)])
+
+    def _stand_spots(self, obj: PlacedObject) -> tuple[list[tuple[float, float]], set[tuple[float, float]]]:
+        """The free stand spots at ``obj`` (two rows; its first spot when none is free) and its first row (within
+        reach), worked out once per object: the layout and the grid do not change while the story runs."""
+        if obj.id not in self._spots:
+            spots = [p for p in stand_slots(obj, rows=2) if bool(self.grid.is_free_xz(np.asarray(p)))]
+            self._spots[obj.id] = (spots or stand_slots(obj)[:1], set(stand_slots(obj)))
+        spots, front = self._spots[obj.id]
+        return list(spots), front
 
     def _ring(self, obj: PlacedObject, front: tuple[float, float]) -> list[tuple[float, float]]:
         """Free stand spots round an object, as far from it as its front spot (RING_M at most: within reach of

@@ -13,6 +13,7 @@ line. The room gets a door when its description has none (`with_door`), so every
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -42,8 +43,15 @@ STEP_OUT_SAMPLES = 40  # points along each candidate step tested against the fur
 STEP_OUT_WEIGHT = 10.0  # metres of a longer step one metre less through furniture is worth
 
 
-def _verb_is(action: ActionNode, verbs: Sequence[str]) -> bool:
-    verb = action.verb.lower()
+def _verb_is(action: ActionNode, verbs: tuple[str, ...]) -> bool:
+    return _verb_in(action.verb, verbs)
+
+
+@functools.lru_cache(maxsize=4096)
+def _verb_in(verb: str, verbs: tuple[str, ...]) -> bool:
+    """Whether ``verb`` (as written) is one of ``verbs`` or starts with one (asked for every action of the
+    story on every compute: a long story asks the same few verbs thousands of times)."""
+    verb = verb.lower()
     return any(verb == v or verb.startswith(v + " ") for v in verbs)
 
 

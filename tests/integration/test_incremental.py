@@ -64,6 +64,7 @@ def test_editing_one_action_reruns_its_parse_and_that_action_of_that_character_o
         "social",  # a new verb: Tom's emotions are sampled again; Eve never meets him, her face stays
         "segment:Tom:1",
         "cast",  # Tom passes within 0.6 m of Eve (the give-way clearance): the cast fit sees the new motion
+        "motion",  # the story played again (its nodes above re-ran; the rest were not asked)
         "face:Tom",
     ]
     assert [seg.action for seg in result.motions["Tom"].segments][-1] == "clap"
@@ -78,6 +79,7 @@ def test_an_action_whose_end_state_changes_reruns_the_actions_after_it(session):
         "segment:Tom:0",
         "segment:Tom:1",
         "cast",  # his walk to the desk now passes Eve at its chair: who gives way is asked again
+        "motion",
         # the walk to the desk takes as many frames as the one to the window (56), but at the desk, beside
         # Eve's chair, the wave first steps out for its arm's room (32 frames), so his face's timing changes
         "face:Tom",
@@ -97,6 +99,7 @@ def test_an_action_whose_end_state_is_unchanged_stops_early(session):
         "resolve",
         "segment:Tom:0",
         "cast",
+        "motion",
         "face:Tom",
     ]
 
@@ -142,7 +145,7 @@ def test_changing_a_scene_object_recomposes_the_scene_and_the_motion_in_it(sessi
 def test_deleting_a_sentence_reruns_resolve_and_the_affected_character(session):
     replace(session, " Tom waves.", "")
     result = session.compute()
-    assert result.ran == ["resolve", "social", "cast", "face:Tom"]
+    assert result.ran == ["resolve", "social", "cast", "motion", "face:Tom"]
     assert all(seg.action != "wave" for seg in result.motions["Tom"].segments)
 
 
@@ -167,6 +170,7 @@ def test_inserting_an_action_runs_only_its_parse_and_its_new_motion_node(session
         "social",
         "segment:Eve:2",
         "cast",
+        "motion",
         "face:Eve",
         "face:Tom",  # his sentences now start after Eve's new one
     ]
@@ -175,7 +179,15 @@ def test_inserting_an_action_runs_only_its_parse_and_its_new_motion_node(session
 def test_reordering_two_sentences_reparses_nothing_and_reruns_that_characters_motion(session):
     replace(session, "Tom walks to the window. Tom waves.", "Tom waves. Tom walks to the window.")
     result = session.compute()
-    assert result.ran == ["resolve", "social", "segment:Tom:0", "segment:Tom:1", "cast", "face:Tom"]
+    assert result.ran == [
+        "resolve",
+        "social",
+        "segment:Tom:0",
+        "segment:Tom:1",
+        "cast",
+        "motion",
+        "face:Tom",
+    ]
     # Tom's first action is now the wave (after the walk in at the door: he comes in with his sentence).
     assert [s.action for s in result.motions["Tom"].segments if s.action_index == 0][-1] == "wave"
 
@@ -224,3 +236,48 @@ def test_an_action_edit_in_a_long_story_reruns_only_motion_near_it(orchestrator)
     # the story's first window keep their distances, so none of their motion nodes re-runs
     assert all(int(k.rsplit(":", 1)[1]) >= 10 for k in motion), motion
     assert len(motion) < 12
+
+
+SCENE = (
+    "In the office there is a desk near a window$. A laptop is on the desk$. A chair is in front of the desk$. "
+    "A sofa is next to the bookshelf$. A green plant is in the corner$.\n"  # no action uses the plant
+)
+TURNS = [
+    "Eve walks to the chair.",
+    "Tom walks to the sofa.",
+    "Eve sits on the chair.",
+    "Tom waves at Eve.",
+    "Eve types on the laptop.",
+    "Tom sits on the sofa.",
+    "Eve stands up.",
+    "Tom stands up.",
+    "Eve walks to the window.",
+    "Tom walks to the sofa.",
+]
+
+
+def _edits_at(orchestrator, actions: int) -> dict[str, list[str]]:
+    """The nodes an action edit (a verb in the middle) and a paint edit of an object no action uses ran, in a
+    document of ``actions`` action sentences (bench/scale.py's document, smaller)."""
+    s = orchestrator.create(SCENE + "\n".join(TURNS[i % len(TURNS)] for i in range(actions)))
+    s.compute()
+    at = s.doc.text.index("walks", len(s.doc.text) // 2)
+    s.edit(s.doc.version, [TextChange(start=at, end=at + 5, text="runs")])
+    action = s.compute().ran
+    at = s.doc.text.index("green plant")
+    s.edit(s.doc.version, [TextChange(start=at, end=at + 5, text="red")])
+    paint = s.compute().ran
+    orchestrator.delete(s.doc_id)
+    return {"action": action, "paint": paint}
+
+
+def test_an_edit_reruns_as_many_nodes_in_a_long_document_as_in_a_short_one(orchestrator):
+    short, long = _edits_at(orchestrator, 48), _edits_at(orchestrator, 96)
+    # a verb: its parse, resolve, the social plan's window (services/social/windows.py: 24 to 96 character
+    # sentences), the motion nodes whose distances or timing that window's plan changed (the waves at Eve in
+    # it), the played story and the faces; never more in the longer document
+    assert len(long["action"]) <= len(short["action"]) + 1, (short["action"], long["action"])
+    assert len(long["action"]) <= 14, long["action"]
+    # the plant's colour: its parse, resolve and the room; no motion node, the story is not played again
+    assert [k.split(":")[0] for k in short["paint"]] == ["parse", "resolve", "scene"]
+    assert [k.split(":")[0] for k in long["paint"]] == ["parse", "resolve", "scene"]

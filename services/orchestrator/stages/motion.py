@@ -26,13 +26,13 @@ from proto.motion_data import Motion
 from proto.optimizer import Interaction, OptimiseReply, OptimiseRequest, OptimiseSettings
 from proto.scene import Scene
 from proto.social import SocialPlan
-from proto.ssg import ActionNode, CharacterNode, Command, Diagnostic, SentenceGraph
+from proto.ssg import ActionNode, CharacterNode, Command, Diagnostic, RelationNode, SentenceGraph
 from services.orchestrator.backend import StageFailed
 from services.orchestrator.document import Sentence
 from services.orchestrator.slotting import Slotting, matched
 from services.orchestrator.stages import StageContext, content_of
 from services.orchestrator.stages.props import aimed, brought_notes, carried, made_for, provide
-from services.orchestrator.stages.scene import keep_relations
+from services.orchestrator.stages.scene import kept_relations
 from services.orchestrator.stages.seats import furnish, seat_at_instruments
 from services.orchestrator.stages.social import fit_cast, frame_count, paired_actions
 from services.orchestrator.stages.states import with_states
@@ -231,25 +231,25 @@ def segments(
     order = story_order(characters, sentences)
     for name, k in order:
         slotting.expect(name, characters[name][0].actions[k])
+    ends = _sentence_ends(order, characters)
     for i, (name, k) in enumerate(order):
         if upto is not None and k > upto.get(name, -1):
             continue
         node, sids = characters[name]
         action = node.actions[k]
         state = states[name]
+        later = order[i + 1 : ends[i]]  # the actions of this sentence after this one
         company = [
             (states[o].x, states[o].z)
-            for o, j in order[i + 1 :]
-            if o != name
-            and characters[o][1][j] == sids[k]
-            and _same_goal(characters[o][0].actions[j], action)
+            for o, j in later
+            if o != name and _same_goal(characters[o][0].actions[j], action)
         ]
         lane = None
         if door is not None and is_exit(action):  # "They leave": each its own lane through the door
             going = [
                 (states[o].x, states[o].z)
-                for o, j in order[i + 1 :]
-                if o != name and characters[o][1][j] == sids[k] and is_exit(characters[o][0].actions[j])
+                for o, j in later
+                if o != name and is_exit(characters[o][0].actions[j])
             ]
             lanes = exit_lanes.setdefault(sids[k], [door.inside(beside=b) for b in range(len(going) + 1)])
             pick = matched([(state.x, state.z), *going], lanes) if going and lanes else 0
@@ -343,6 +343,18 @@ def segments(
 
             pieces[name] = [ctx.engine.query(f"{kind}:{name}:idle", [name, view, st], idle).motion]
     return pieces
+
+
+def _sentence_ends(order: Sequence[tuple[str, int]], characters: Characters) -> list[int]:
+    """For each place in ``order`` (story_order: a sentence's actions side by side), where its sentence's
+    actions end: the actions of one sentence after an action are ``order[i + 1 : ends[i]]``, found without
+    a pass over the rest of the story for every action."""
+    ends = [len(order)] * len(order)
+    for i in range(len(order) - 2, -1, -1):
+        (a, k), (b, j) = order[i], order[i + 1]
+        same = characters[a][1][k] == characters[b][1][j]
+        ends[i] = ends[i + 1] if same else i + 1
+    return ends
 
 
 def _same_goal(a: ActionNode, b: ActionNode) -> bool:
@@ -479,14 +491,61 @@ def animate(
     scene, stools = seat_at_instruments(scene, characters, sentences)  # the stool to the drum kit's place
     added = [*provided, *brought_notes(characters, brought, scene, sentences), *stools, *added]
     looks, scene = scene, geometry_view(scene)  # the nodes below read shapes, not paint
+    stated = scene_part(graphs).relations  # kept true through every optimisation
+    # The story is played on the sentences' order alone (their ids): the text was read into the graphs, and
+    # the offsets only place diagnostics on their sentence, put back after. So an edit elsewhere (a colour,
+    # a word that shifts the text) re-plays nothing: the `motion` node's inputs are unchanged.
+    order = [Sentence(id=s.id, start=0, end=1, text="") for s in sentences]
+    social = ctx.engine.hash_of("social", plan) if plan is not None else ""
+    waits = [(sid, c) for sid, c in commands if c.kind == "wait"]  # the only commands motion reads
+    inputs = [scene, characters, brought, [s.id for s in sentences], waits, social, stated]
+
+    def run() -> Animated:
+        return _played(ctx, scene, characters, order, waits, plan, brought, stated, tick)
+
+    played = ctx.engine.query_unhashed("motion", inputs, run)
+    spans = {s.id: Span(s.start, s.end) for s in sentences}
+    out = Animated(
+        scene=with_looks(played.scene, looks),
+        motions=played.motions,
+        optimisations=played.optimisations,
+        diagnostics=[*added, *(_on_sentence(sid, d, spans) for sid, d in played.diagnostics)],
+    )
+    out.scene = with_states(out.scene, characters, out.motions, sentences)  # doors opened, lamps on
+    return out
+
+
+def _on_sentence(sid: str, diagnostic: Diagnostic, spans: dict[str, Span]) -> tuple[str, Diagnostic]:
+    """A diagnostic of the played story on its sentence as the text is now: every span `_played` gives is a
+    whole sentence's (or Span(0, 0), no span, kept)."""
+    if diagnostic.span.end <= diagnostic.span.start or sid not in spans:
+        return sid, diagnostic
+    return sid, msgspec.structs.replace(diagnostic, span=spans[sid])
+
+
+def _played(
+    ctx: StageContext,
+    scene: Scene,
+    characters: Characters,
+    sentences: Sequence[Sentence],
+    commands: Sequence[tuple[str, Command]],
+    plan: SocialPlan | None,
+    brought: dict[str, str],
+    stated: Sequence[RelationNode],
+    tick: Callable[[str, int, int], None],
+) -> Animated:
+    """The story played on the geometry of the furnished layout: drafts, the layout optimised around each
+    interaction, every character's motion on one time line, fitted to each other and enlivened (the
+    `motion` node: the paint, the states of objects and the diagnostics' spans are put on after).
+    ``sentences``: their ids in order (spans and text are placeholders: nothing here may read them);
+    ``commands``: the wait commands (the only ones motion reads)."""
     door = doorway(scene)
     wait_ids = {sid for sid, c in commands if c.kind == "wait"}
     answering = {r.responder for r in (plan.responses if plan is not None else []) if r.response_index == 0}
     starts, hidden = _first_positions(scene, door, characters, sentences, wait_ids, answering)
     waiting_place = {name: i for i, name in enumerate(sorted(characters, key=lambda n: n not in hidden))}
     ids = {o.id for o in scene.objects}
-    out = Animated(scene=scene, diagnostics=[*added, *_door_added(scene, characters, sentences, hidden)])
-    stated = scene_part(graphs).relations  # kept true through every optimisation
+    out = Animated(scene=scene, diagnostics=_door_added(scene, characters, sentences, hidden))
     # Interactions: actions that touch an object of the scene; the layout is optimised around each.
     interactions = [
         (name, k, a)
@@ -527,7 +586,7 @@ def animate(
             warning = Diagnostic(code="W301", message=why, span=Span(0, 0), severity="warning")
             out.diagnostics.append((characters[name][1][k], warning))
             continue
-        scene = keep_relations(scene, reply.scene, stated)
+        scene = kept_relations(scene, reply.scene, stated)
         out.optimisations.append(reply)
         done += 1
     out.scene = scene
@@ -592,8 +651,6 @@ def animate(
                 touching.setdefault(who, []).append((c.start_frame, c.end_frame))
     out.motions = set_down_props(out.scene, out.motions, length)
     out.motions = _enlivened(out.scene, characters, _in_moods(characters, out.motions, moods), touching)
-    out.scene = with_looks(out.scene, looks)
-    out.scene = with_states(out.scene, characters, out.motions, sentences)  # doors opened, lamps on
     return out
 
 
