@@ -100,6 +100,7 @@ REACH_BODY = 0.18  # metres: the clearance of a body standing at furniture to re
 STEP_IN = 0.5  # metres (horizontal): a point the hand must reach farther than this is stepped up to
 PICK_REACH = 0.9  # metres (horizontal) from where the character stands to a prop it can pick up
 SEATED_AS = {"sit": "sit", "lie_down": "lie", "sleep": "lie", "sit_on_floor": "sit_floor", "stand": "stand"}
+STAND_AT_M = 0.8  # metres from a thing's footprint beyond which "stands at/in front of it" walks there first
 STAY_S = 1.0  # seconds a "sits" while seated or a "stands" while standing holds the posture
 SLEEP_S = 4.0  # seconds "falls asleep" holds the lying pose of one already in bed
 NEAR_NAMED = 1.6  # metres from a named non-seat ("sits at the desk") to the seat used with it
@@ -1205,7 +1206,15 @@ def plan_actions(
             walk_to(goal, SPEEDS.get(name, 1.3) * speed_k, None, name, ai, obj.id if obj else "", node.manner)
             continue
         if name == "stand" and now_posture() == "stand":
-            # Already standing: a short hold, not a get-up from a seat that is not there.
+            # Already standing: a short hold, not a get-up from a seat that is not there; "stands in front
+            # of the mirror" from across the room walks there first.
+            there = find_object(scene, node.target or node.destination)
+            geo = _object_geometry(there) if there is not None else None
+            if there is not None and geo is not None and _footprint_gap(there, pos) > STAND_AT_M:
+                from services.motion.routing import free_spot
+
+                goal = np.asarray(free_spot(scene, (float(geo[0][0]), float(geo[0][1]))), float)
+                walk_to(goal, SPEEDS.get("walk", 1.3) * speed_k, None, "walk", ai, there.id, node.manner)
             add(kind="wait", action=name, duration_s=STAY_S, action_index=ai)
             continue
         if name in ("turn_left", "turn_right", "turn_around") and now_posture() != "stand":

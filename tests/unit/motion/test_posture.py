@@ -280,3 +280,13 @@ def test_falling_asleep_in_a_chair_dozes_off_sitting_and_a_bed_is_walked_to():
     assert abs(rot[mid, head, 0]) > abs(rot[doze.start_frame, head, 0]) + 0.05  # the head has sunk
     to_bed = _plan(("sit", "sofa"), ("sleep", "bed"))
     assert [s.action for s in to_bed.segments][-2:] == ["lie_down", "sleep"]
+
+
+def test_standing_at_a_thing_across_the_room_walks_there_first():
+    """ "Stands in front of the bed" while standing 4 m away: a walk to the bed, then the hold (was: the
+    hold where she stood); next to it already, only the hold."""
+    far = _plan(("stand", "bed"))
+    assert [(s.kind, s.action) for s in far.segments][-1] == ("wait", "stand")
+    assert any(s.kind == "locomotion" for s in far.segments)
+    near = _plan(("stand", "bed"), start=(2.5, -1.2, 0.0))
+    assert [(s.kind, s.action) for s in near.segments] == [("wait", "stand")]
