@@ -176,7 +176,9 @@ def test_restale_draws_each_stale_label_as_its_unit_is_now_and_tells_nothing_of_
     now = {"story": "a", "seed": 0, "sentence": "s1", "check": "contact", "character": "Tom", "text": "Tom sits.",
            "check_verdict": "fail", "reason": "r", "frames": [5], "animation": "f2"}  # fmt: skip
     found = {agreement.unit_key(now): now}
-    rows = {("a", 0): {"per_sentence": [{"id": "s1", "text": "Tom sits."}, {"id": "s2", "text": "Tom waves."}]}}
+    rows = {
+        ("a", 0): {"per_sentence": [{"id": "s1", "text": "Tom sits."}, {"id": "s2", "text": "Tom waves."}]}
+    }
     labels = [
         {**{k: now[k] for k in ("story", "seed", "sentence", "character")}, "check": "entrance", "sentence": "s2",
          "human": "fail", "why": "gone"},
@@ -186,7 +188,12 @@ def test_restale_draws_each_stale_label_as_its_unit_is_now_and_tells_nothing_of_
     ]  # fmt: skip
     stale = [agreement.unit_key(lab) for lab in labels[:2]]
     first, second = agreement.restale_units(stale, labels, found, rows)
-    assert (first["sentence"], first["check"], first["text"], first["frames"]) == ("s2", "entrance", "Tom waves.", [])
+    assert (first["sentence"], first["check"], first["text"], first["frames"]) == (
+        "s2",
+        "entrance",
+        "Tom waves.",
+        [],
+    )
     assert first["check_verdict"] == "ok"  # no such check now: it claims nothing
     assert second["frames"] == [5] and second["text"] == "Tom sits."
     assert "human" not in first and "why" not in second  # the sheet's unit carries no former verdict
