@@ -1,7 +1,8 @@
 """Do the story checks agree with the eye? Sample checks, draw what they name, compare with a person's labels.
 
 Usage:
-    .venv/bin/python eval/agreement.py [--split dev|test|others|all] [--sample N | --blind N] [--sample-seed 0]
+    .venv/bin/python eval/agreement.py [--split dev|test|others|all] [--sample N | --blind N | --restale]
+                                       [--sample-seed 0]
                                        [--seed 0] [--quick | --labelled] [--group NAME] [--json PATH]
                                        [--labels PATH] [--out DIR]
 
@@ -30,7 +31,11 @@ computed with that seed. ``--labelled`` compares every label and computes nothin
 the QUICK_STORIES stories with the most labels, from the cache (seconds once cached; a cold cache computes
 them first).
 
-``--blind N`` draws N unlabelled units of every computed story and writes sheets under
+``--restale`` draws a blind sheet of every stale label's unit as it is now (under
+``out/eval/agreement/restale/``, with ``units.json``: each unit's key and its frames' fingerprints), to be judged
+again on what it shows; the former verdict goes under the label's ``before``.
+
+``--blind N`` draws N unlabelled units of the split's stories (at ``--seed``) and writes sheets under
 ``out/eval/agreement/blind/`` that show the frames but not the verdict, the reason or marked frames (only the
 question the check answers): labels drawn that way are marked ``fresh`` and reported on their own. A body
 check blames the sentence a fault began in and the character whose motion caused it, so the question of an
@@ -40,8 +45,8 @@ into furniture in that sentence.
 JSON keys: check_agreement (share of counted labels that agree), per_check (name -> labels, agree,
 agreement, false_alarms (check fails, eye says ok), misses (check passes, eye says fail)), counted, stale,
 skipped, disagreements (each unit with both verdicts and the check's reason), by_group (dev, test, others,
-fresh, fresh2, fresh3 -> agreement, counted, labels), agreement_dev / agreement_held_out / agreement_fresh /
-agreement_fresh2 / agreement_fresh3, fidelity (for
+fresh, fresh2, fresh3, fresh4 -> agreement, counted, labels), agreement_dev / agreement_held_out /
+agreement_fresh / agreement_fresh2 / agreement_fresh3 / agreement_fresh4, fidelity (for
 --split: the split's sentence_fidelity and failures per check with these checks), samples (when --sample).
 """
 
@@ -592,6 +597,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         ("fresh", "agreement_fresh"),
         ("fresh2", "agreement_fresh2"),
         ("fresh3", "agreement_fresh3"),
+        ("fresh4", "agreement_fresh4"),
         ("dev", "agreement_dev"),
     ):
         if group in summary["by_group"]:
@@ -606,7 +612,8 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         summary["fidelity"] = {k: v for k, v in fidelity.items() if k != "per_story"}
     if args.blind:
         labelled = {unit_key(lab) for lab in labels}
-        pool = [u for u in found.values() if unit_key(u) not in labelled]
+        mine = {(p.stem, args.seed) for p in story_eval.story_paths(args.split)}
+        pool = [u for u in found.values() if (u["story"], u["seed"]) in mine and unit_key(u) not in labelled]
         picked = stratified_sample(pool, args.blind, args.sample_seed)
         keyed(picked, results, tracks)
         sheets = draw_sheets(picked, results, args.out / "blind", draw_blind_sheet)
@@ -615,6 +622,8 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
             print(f"[{i}] {u['story']} {u['sentence']} {u['check']}{who}: {u['text']}")
         keep = ("story", "seed", "sentence", "check", "character", "text", "animation", "unit", "sheet")
         (sheets / "units.json").write_text(json.dumps([{k: u[k] for k in keep} for u in picked], indent=1))
+    if args.restale:
+        summary["restale"] = draw_restale(summary["stale"], labels, found, rows, results, tracks, args.out)
     if args.sample:
         labelled = {unit_key(lab) for lab in labels}
         pool = [
@@ -635,6 +644,59 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     return summary
 
 
+def restale_units(
+    stale: Sequence[Sequence[Any]],
+    labels: Sequence[dict[str, Any]],
+    found: dict[tuple[Any, ...], dict[str, Any]],
+    rows: dict[tuple[str, int], dict[str, Any]],
+) -> list[dict[str, Any]]:
+    """The unit of each stale label (in label file order) as the checks see it now, to be judged again; a
+    unit whose check is no longer made is drawn over its sentence's frames (its check claims ``ok``)."""
+    wanted = {tuple(k) for k in stale}
+    out = []
+    for lab in labels:
+        key = unit_key(lab)
+        if key not in wanted:
+            continue
+        u = found.get(key)
+        if u is None:
+            row = rows[(lab["story"], int(lab.get("seed", 0)))]
+            text = next((s["text"] for s in row["per_sentence"] if s["id"] == lab["sentence"]), "")
+            u = {**{k: lab[k] for k in ("story", "sentence", "check", "character")}, "seed": key[1],
+                 "text": text, "check_verdict": "ok", "reason": "(no such check now)", "frames": []}  # fmt: skip
+        out.append({**u, "frames": list(u["frames"])})
+        wanted.discard(key)
+    return out
+
+
+def draw_restale(
+    stale: Sequence[Sequence[Any]],
+    labels: Sequence[dict[str, Any]],
+    found: dict[tuple[Any, ...], dict[str, Any]],
+    rows: dict[tuple[str, int], dict[str, Any]],
+    results: dict[Any, Any],
+    tracks: dict[Any, Any],
+    out: Path,
+) -> list[dict[str, Any]]:
+    """Blind sheets (draw_blind_sheet: frames and the question only) of every stale label's unit under
+    ``out/restale/``, with ``units.json`` listing each unit's key, its frames' fingerprints now and its sheet:
+    what a person judging them again needs, and nothing of the former verdict."""
+    picked = restale_units(stale, labels, found, rows)
+    keyed(picked, results, tracks)
+    for u in picked:
+        u["animation"] = animation_fingerprint(results[(u["story"], u["seed"])])
+    folder = out / "restale"
+    for old in folder.glob("*.png"):
+        old.unlink()
+    draw_sheets(picked, results, folder, draw_blind_sheet)
+    keep = ("story", "seed", "sentence", "check", "character", "text", "animation", "unit", "sheet")
+    (folder / "units.json").write_text(json.dumps([{k: u.get(k) for k in keep} for u in picked], indent=1))
+    for i, u in enumerate(picked):
+        who = f" about {u['character']}" if u["character"] else ""
+        print(f"[{i}] {u['story']} {u['sentence']} {u['check']}{who}: {u['text']}")
+    return [{k: u.get(k) for k in keep} for u in picked]
+
+
 def keyed(picked: list[dict[str, Any]], results: dict[Any, Any], tracks: dict[Any, Any]) -> None:
     """Note each picked unit's ``unit`` fingerprint: the frames a label of it judges (its key for staleness)."""
     for u in picked:
@@ -652,6 +714,8 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--sample", type=int, default=0, help="draw this many units and write their sheets")
     ap.add_argument("--blind", type=int, default=0,
                     help="draw this many unlabelled units of every computed story, sheets with no verdict")  # fmt: skip
+    ap.add_argument("--restale", action="store_true",
+                    help="draw blind sheets (no verdict) of every stale label's unit, to judge it again")  # fmt: skip
     ap.add_argument("--relabel", action="store_true", help="let --sample draw units already labelled")
     ap.add_argument("--seed", type=int, default=0, help="the pipeline's seed for --split (default 0)")
     ap.add_argument("--sample-seed", type=int, default=0, help="the sample's seed (default 0)")

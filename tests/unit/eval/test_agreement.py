@@ -168,3 +168,34 @@ def test_a_label_keyed_by_its_unit_is_stale_only_when_its_unit_changed(agreement
     assert same["counted"] == 1 and not same["stale"]
     changed = agreement.compare([lab], found, {("a", 0): "new"}, unit_fps={key: "u2"})
     assert changed["counted"] == 0 and changed["stale"] == [list(key)]
+
+
+def test_restale_draws_each_stale_label_as_its_unit_is_now_and_tells_nothing_of_the_former_verdict(agreement):
+    """--restale: every stale label's unit once, in label order, with the check's current frames; a unit whose
+    check is no longer made still gets its sentence drawn (to be judged again, not dropped)."""
+    now = {"story": "a", "seed": 0, "sentence": "s1", "check": "contact", "character": "Tom", "text": "Tom sits.",
+           "check_verdict": "fail", "reason": "r", "frames": [5], "animation": "f2"}  # fmt: skip
+    found = {agreement.unit_key(now): now}
+    rows = {
+        ("a", 0): {"per_sentence": [{"id": "s1", "text": "Tom sits."}, {"id": "s2", "text": "Tom waves."}]}
+    }
+    labels = [
+        {**{k: now[k] for k in ("story", "seed", "sentence", "character")}, "check": "entrance", "sentence": "s2",
+         "human": "fail", "why": "gone"},
+        {**{k: now[k] for k in ("story", "seed", "sentence", "check", "character")}, "human": "ok", "why": "w"},
+        {**{k: now[k] for k in ("story", "seed", "sentence", "check", "character")}, "sentence": "s9",
+         "human": "ok", "why": "not stale"},
+    ]  # fmt: skip
+    stale = [agreement.unit_key(lab) for lab in labels[:2]]
+    first, second = agreement.restale_units(stale, labels, found, rows)
+    assert (first["sentence"], first["check"], first["text"], first["frames"]) == (
+        "s2",
+        "entrance",
+        "Tom waves.",
+        [],
+    )
+    assert first["check_verdict"] == "ok"  # no such check now: it claims nothing
+    assert second["frames"] == [5] and second["text"] == "Tom sits."
+    assert "human" not in first and "why" not in second  # the sheet's unit carries no former verdict
+    second["frames"].append(6)
+    assert now["frames"] == [5]  # a copy: drawing does not change the computed unit

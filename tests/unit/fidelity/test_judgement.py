@@ -594,3 +594,24 @@ def test_a_carried_box_is_where_the_hand_has_it_not_where_it_was_picked_up(make)
         if inside:
             assert "inside the box" in eve_in.reason
         assert by_name(checks["s1"], "penetration")[0].ok
+
+
+def test_a_tool_in_the_hand_works_on_the_named_thing_only_with_the_hand_at_it(make):
+    """Seen on the sheets: Ben held the screwdriver over a cabinet a metre from the bicycle he was to repair,
+    and contact passed on the tool alone (duo-garage-14 s7). The tool's hand must be at what it works on."""
+    frames = round(clip_needs("hammer").duration_s * 30)
+    sam = make.motion("Sam", make.still(0.0, 0.95, 0.0, frames), [("hammer", 0, frames, "s1", 0)])
+    hand = body_of(sam).joint("RightHand")[0]
+    sam = msgspec.structs.replace(sam, props=[track("hammer", "RightHand", 0, frames, hand)])
+    node = ActionNode(verb="hammer", action="hammer", target="wood_plank")
+    graphs = {"s1": graph_of("s1", "Sam hammers the plank.", "Sam", node)}
+    hammer = PlacedObject(id="hammer", category="hammer", position=(2.0, 0.0, 2.0))
+    verdicts = {}
+    for name, x in (("at", float(hand[0])), ("away", float(hand[0]) + 1.5)):
+        plank = PlacedObject(id="wood_plank", category="wood_plank", position=(x, 0.0, float(hand[2])))
+        bottom = float(catalog.world_bounds(plank)[1, 1])  # its top: put it just under the hand
+        plank = msgspec.structs.replace(plank, position=(x, float(hand[1]) - bottom - 0.02, float(hand[2])))
+        checks = story_checks([("s1", "action")], graphs, make.scene(plank, hammer), {"Sam": sam})["s1"]
+        (verdicts[name],) = by_name(checks, "contact")
+    assert verdicts["at"].ok, verdicts["at"].reason
+    assert not verdicts["away"].ok and "from the wood plank" in verdicts["away"].reason
