@@ -39,6 +39,7 @@ from services.motion.gait_style import gait_style
 from services.motion.style import mood_of, style_of
 from services.motion.synthesis import RISE_MAX_M, MotionPlan, PlannedSegment
 from wana.domain.actions import ActionClip, contact_targets, get_clip, load_library, names_object
+from wana.domain.hiding import HIDE_ACTIONS, hiding_spots
 from wana.domain.object_geometry import find_object
 from wana.domain.skeleton import JOINT_INDEX, forward_kinematics, rest_offsets
 
@@ -1499,6 +1500,21 @@ def plan_actions(
                     walk_to(
                         pos.copy(), 1.0, face, "turn", ai, obj.id
                     )  # close enough, but facing away: turn in place
+        elif obj is not None and name in HIDE_ACTIONS and now_posture() == "stand":
+            # "hides behind the door": beside it against its wall, or behind what stands free (its slot)
+            there = (
+                [np.asarray(spots[ai], float)]
+                if ai in spots
+                else [np.asarray(p) for p in hiding_spots(obj, scene)]
+            )
+            if there:
+                from services.motion.routing import free_spot
+
+                goal = min(there, key=lambda p: float(np.linalg.norm(p - pos)))
+                goal = np.asarray(free_spot(scene, (float(goal[0]), float(goal[1])), max_move=0.4), float)
+                d = np.array([obj.position[0], obj.position[2]]) - goal
+                face = float(np.arctan2(d[0], d[1])) if np.linalg.norm(d) > 1e-6 else yaw
+                walk_to(goal, SPEEDS.get("walk", 1.3) * speed_k, face, "walk", ai, obj.id, node.manner)
         elif obj is not None and clip.interaction is None and name in ("look_at", "point", "wave", "talk"):
             d = np.array([obj.position[0], obj.position[2]]) - pos
             if np.linalg.norm(d) > 0.3 and now_posture() == "stand":  # seated: no standing up to turn
@@ -1507,7 +1523,12 @@ def plan_actions(
                     walk_to(pos.copy(), 1.0, face, "turn", ai, obj.id)
         if obj is None and not held and clip.interaction is None:
             clear_of_others(name, ai)  # "They dance" right after a hug: a step apart first
-        if not targets and not held and (kind in HELD_KINDS or clip.interaction is None):
+        if (
+            not targets
+            and not held
+            and (kind in HELD_KINDS or clip.interaction is None)
+            and name not in HIDE_ACTIONS
+        ):
             make_room(name, ai, obj.id if obj else "")  # a gesture or a tool swung where it stands
         add(
             kind="action",

@@ -23,6 +23,7 @@ from proto.scene import PlacedObject, Scene
 from proto.ssg import ActionNode
 from wana.assets.relations import footprint_gap
 from wana.domain.actions import ActionClip, get_clip
+from wana.domain.hiding import HIDE_ACTIONS, hiding_spots
 from wana.domain.object_geometry import find_object, scene_footprints
 from wana.domain.routes import OccupancyGrid, occupancy_grid
 from wana.domain.slots import SlotBook, seat_slots, stand_slots
@@ -34,6 +35,7 @@ RING_M = 0.45  # metres from an object's centre at most for a stand spot round i
 CLEAR_M = 0.75  # metres from a bystander's hips within which a stand slot is not clear (arms that move)
 ELBOW_M = 0.7  # metres between two sitters' hips below which their arms and shoulders touch
 STAND_KEY = "#stand"  # a stand slot's object key in the book: "<object id>#stand"
+HIDE_KEY = "#hide"  # a hiding spot's object key in the book
 
 
 @dataclass
@@ -126,9 +128,31 @@ class Slotting:
             obj = find_object(self.scene, action.target or action.instrument or action.destination)
             if obj is not None:
                 return self._stand(who, action, obj, here, company, crowd)
+        if clip.name in HIDE_ACTIONS:
+            obj = find_object(self.scene, action.target or action.destination)
+            if obj is not None:
+                return self._hide(who, action, obj, here, company)
         if clip.name == "stand":
             self.book.release(who)
         return Claim(action)
+
+    def _hide(
+        self,
+        who: str,
+        action: ActionNode,
+        obj: PlacedObject,
+        here: tuple[float, float] | None,
+        company: Sequence[tuple[float, float]],
+    ) -> Claim:
+        """A spot of its own to hide at by ``obj`` (wana.domain.hiding): two hiding behind one door take its
+        two sides."""
+        spots = hiding_spots(obj, self.scene, need=1 + len(company))
+        if not spots:
+            return Claim(action)
+        names = [str(i) for i in range(len(spots))]
+        order = self._preferred(obj.id + HIDE_KEY, names, spots, who, here, company)
+        taken = self.book.take(obj.id + HIDE_KEY, order, who)
+        return Claim(action) if taken is None else Claim(action, spot=spots[int(taken)])
 
     def _preferred(
         self,
