@@ -393,13 +393,14 @@ def specs() -> list[Spec]:
             "jump",
             ["exercise", "happy", "sport"],
             ["leap", "hop", "jump up", "bounce"],
+            # the arms swing up over the 0.35 s of the push-off (hands at most 8 m/s: continuity's 10 m/s)
             seq(
                 (0.0, N, "linear"),
-                (0.4, jump_crouch, "in_out", (0, -0.2, 0)),
-                (0.25, jump_air, "out", (0, 0.35, 0)),
+                (0.3, jump_crouch, "in_out", (0, -0.2, 0)),
+                (0.35, jump_air, "in_out", (0, 0.35, 0)),
                 (0.25, jump_air, "in", (0, 0.15, 0)),
-                (0.2, jump_crouch, "out", (0, -0.15, 0)),
-                (0.4, N, "in_out"),
+                (0.3, jump_crouch, "in_out", (0, -0.15, 0)),
+                (0.3, N, "in_out"),
             ),
             body_parts=["full_body"],
         )
@@ -411,10 +412,10 @@ def specs() -> list[Spec]:
             ["long jump", "jump over"],
             seq(
                 (0.0, N, "linear"),
-                (0.4, jump_crouch, "in_out", (0, -0.2, 0)),
-                (0.3, jump_air, "out", (0, 0.3, 0.5)),
-                (0.3, jump_crouch, "in", (0, -0.15, 1.0)),
-                (0.4, N, "in_out", (0, 0, 1.0)),
+                (0.3, jump_crouch, "in_out", (0, -0.2, 0)),
+                (0.4, jump_air, "in_out", (0, 0.3, 0.5)),
+                (0.4, jump_crouch, "in_out", (0, -0.15, 1.0)),
+                (0.3, N, "in_out", (0, 0, 1.0)),
             ),
             body_parts=["full_body"],
         )
