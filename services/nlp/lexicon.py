@@ -637,7 +637,10 @@ def hyphenated_verbs() -> frozenset[str]:
     """Hyphenated action verbs ("high-five") the tokenizer must keep as one word (base forms)."""
     _, synonyms = _library()
     words = SOCIAL_VERBS | RECIPROCAL_VERBS | set(synonyms) | set(verbs.VERB_ACTIONS)
-    return frozenset(w for w in words if "-" in w and " " not in w)
+    # and the hyphenated words of phrases ("push-ups" of "do push-ups"), in their singular too
+    parts = {p for w in words if " " in w for p in w.split() if "-" in p}
+    parts |= {p[:-1] for p in parts if p.endswith("s")}
+    return frozenset(w for w in words | parts if "-" in w and " " not in w)
 
 
 def _tokens(text: str) -> list[str]:

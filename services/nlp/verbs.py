@@ -256,6 +256,8 @@ BODY_PART_ACTIONS: dict[tuple[str, str], str] = {
     ("bow", "head"): "look_down",
     ("lower", "head"): "look_down",
     ("hang", "head"): "look_down",
+    ("snap", "fingers"): "beckon",  # "snaps his fingers at Walter": a hand's call for attention, no photo
+    ("snap", "finger"): "beckon",
     ("raise", "head"): "look_up",
     ("lift", "head"): "look_up",
     ("turn", "head"): "look_around",

@@ -69,3 +69,13 @@ def test_hanging_a_coat_on_the_rack_puts_it_there():
 def test_helping_someone_do_a_thing_is_doing_it():
     assert acts("Walter drops the photo. Cheryl helps him pick it up.")[0][:2] == ("Cheryl", "pick_up")
     assert acts("Tom helps Mia carry the box.") == [("Tom", "carry", "box", "")]
+
+
+@pytest.mark.parametrize("text", ["He does push-ups on the yoga mat.", "Sam does a push-up."])
+def test_a_hyphenated_exercise_is_one_word(text):
+    (_, action, *_), *_ = acts(f"Sam walks in. {text}")
+    assert action == "push_up"
+
+
+def test_snapping_fingers_at_someone_is_a_gesture_not_a_photo():
+    assert acts("Ted snaps his fingers at Walter.") == [("Ted", "beckon", "Walter", "")]
