@@ -20,6 +20,7 @@ from services.nlp import lexicon, verbs
 from services.nlp.arguments import (
     STATE_PARTICLES,
     Argument,
+    argument,
     arguments,
     case_of,
     character_of,
@@ -34,6 +35,8 @@ from services.nlp.mentions import CharacterMention, character_mention, is_title,
 from services.nlp.scene import SUBJECT_DEPS, _mention
 from services.nlp.suggest import did_you_mean
 
+PHOTO_WORDS = frozenset({"photo", "picture", "pic", "snapshot", "selfie", "photograph", "shot"})
+DEFINITE = frozenset({"the", "this", "that", "his", "her", "their", "its", "my", "our", "your"})
 CLAUSE_DEPS = frozenset({"ROOT", "conj", "advcl", "xcomp", "ccomp", "parataxis"})
 LINKING_VERBS = frozenset(
     {"look", "feel", "seem", "become", "get", "appear", "grow", "turn", "remain", "stay"}
@@ -332,6 +335,20 @@ def _action(verb: Token, builder: GraphBuilder) -> tuple[ActionNode, str]:
             if destination.split("#")[0] == target.split("#")[0]:
                 destination = target  # "pours tea into a cup": the tea took the id cup, the cup got cup#2
             target = destination
+    if action == "take_photo" and primary is not None and primary.tok.lemma_.lower() in PHOTO_WORDS:
+        of = next((g for g in primary.tok.children if g.dep_ == "nmod" and case_of(g) == "of"), None)
+        definite = any(c.dep_ in ("det", "nmod:poss") and c.lower_ in DEFINITE for c in primary.tok.children)
+        if of is None and definite and lemma == "take" and primary.object_id:
+            action = "pick_up"  # "takes the photo from the table": that photo, into the hand
+        else:
+            # "takes a photo of the cake": the photo is the act (no photo frame to make); the cake its target
+            if primary.object_id:
+                builder.drop_object(primary.object_id)
+            if of is not None and of.lower_ in lexicon.OBJECT_PRONOUNS:
+                target = of.lower_  # "a picture of it": what "it" was before (resolve), not the picture
+            else:
+                shown = argument(of, "of", builder, report_unknown=True) if of is not None else None
+                target = (shown.object_id or shown.character or shown.word) if shown is not None else ""
     if lemma in verbs.WITH_THING and primary is not None and primary.object_id and not person:
         action = verbs.WITH_THING[lemma]  # "balances three plates"
     if (

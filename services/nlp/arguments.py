@@ -116,7 +116,8 @@ def _antecedent(pronoun: Token, builder: GraphBuilder) -> str:
     return min(candidates)[2] if candidates else ""
 
 
-def _argument(tok: Token, prep: str, builder: GraphBuilder, report_unknown: bool) -> Argument:
+def argument(tok: Token, prep: str, builder: GraphBuilder, report_unknown: bool) -> Argument:
+    """What one noun of a verb names: a character, a body part, an object (its id) or a bare word."""
     tok = relative_antecedent(tok)  # "a table at which a sailor sits": at the table
     arg = Argument(tok=tok, prep=prep)
     if reciprocal_phrase(tok):
@@ -211,7 +212,7 @@ def arguments(verb: Token, builder: GraphBuilder) -> tuple[list[Argument], list[
             # 'says "Sorry." to Ada': the words said are the caption, not a target; "to Ada" may hang
             # under them
             obliques += [
-                _argument(g, case_of(g), builder, report_unknown=True)
+                argument(g, case_of(g), builder, report_unknown=True)
                 for g in c.children
                 if g.dep_ in ("nmod", "obl", "compound") and any(h.dep_ == "case" for h in g.children)
             ]
@@ -224,17 +225,17 @@ def arguments(verb: Token, builder: GraphBuilder) -> tuple[list[Argument], list[
             or (by_position and c.dep_ in ("vocative", "appos") and c.i > verb.i)  # "Tom thanks/NOUN Mary"
         ):
             event = light and not character_of(c, builder) and bool(event_action(c))
-            arg = _argument(c, "", builder, report_unknown=not event)  # "a hug" is no unknown object
+            arg = argument(c, "", builder, report_unknown=not event)  # "a hug" is no unknown object
             objects.append(arg)
             if arg.body_part or event:  # "shakes hands with Mary": "with Mary" may hang under "hands"
                 obliques += [
-                    _argument(g, case_of(g), builder, report_unknown=True)
+                    argument(g, case_of(g), builder, report_unknown=True)
                     for g in c.children
                     if g.dep_ in ("nmod", "obl") and any(h.dep_ == "case" for h in g.children)
                 ]
             elif verb_lemma(verb) in GIVING_VERBS:  # "hands the hammer to Sam": "to Sam" may hang under
                 obliques += [  # "hammer"; Sam is whom it goes to
-                    _argument(g, case_of(g), builder, report_unknown=True)
+                    argument(g, case_of(g), builder, report_unknown=True)
                     for g in c.children
                     if g.dep_ == "nmod" and case_of(g) == "to" and character_of(g, builder) is not None
                 ]
@@ -253,10 +254,10 @@ def arguments(verb: Token, builder: GraphBuilder) -> tuple[list[Argument], list[
             of = _relation_noun_object(c)
             if of is not None:  # "stands in front of the mirror": at the mirror, not at a "front"
                 c = of  # with its own preposition: "walks to the front of the desk" goes to the desk
-            obliques.append(_argument(c, prep, builder, report_unknown=True))
+            obliques.append(argument(c, prep, builder, report_unknown=True))
             for conj in c.children:
                 if conj.dep_ == "conj" and conj.pos_ in ("NOUN", "PROPN"):
-                    obliques.append(_argument(conj, prep, builder, report_unknown=True))
+                    obliques.append(argument(conj, prep, builder, report_unknown=True))
     return objects, obliques, duration
 
 

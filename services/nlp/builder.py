@@ -93,6 +93,13 @@ class GraphBuilder:
         self._by_token[mention.head.i] = target.id
         return target.id
 
+    def drop_object(self, object_id: str) -> None:
+        """Forget an object a word seemed to name that is no thing ("takes a photo of the cake": the act)."""
+        if any(object_id in (r.subject, r.object) for r in self.relations):
+            return
+        self.objects = [o for o in self.objects if o.id != object_id]
+        self._by_token = {k: v for k, v in self._by_token.items() if v != object_id}
+
     def set_attribute(self, object_id: str, knob: str, value: str) -> None:
         for o in self.objects:
             if o.id == object_id:

@@ -42,6 +42,10 @@ PRONOUN_WORDS = {
 }
 
 
+# Actions named by their own noun, whatever the pronoun turns out to be ("takes a photo of it": a photo)
+OWN_NOUN_ACTIONS = frozenset({"take_photo"})
+
+
 class _State:
     def __init__(self) -> None:
         self.characters: list[str] = []  # in order of last mention, most recent last
@@ -539,7 +543,7 @@ def _resolve_refs(
     if target == action.target and destination == action.destination:
         return action
     name = action.action
-    if target != action.target and target in state.object_categories:
+    if target != action.target and target in state.object_categories and name not in OWN_NOUN_ACTIONS:
         # "She plays it": the verb's action depends on what "it" turned out to be.
         category = state.object_categories[target]
         verb, _, particle = action.verb.partition(" ")

@@ -79,3 +79,21 @@ def test_a_hyphenated_exercise_is_one_word(text):
 
 def test_snapping_fingers_at_someone_is_a_gesture_not_a_photo():
     assert acts("Ted snaps his fingers at Walter.") == [("Ted", "beckon", "Walter", "")]
+
+
+@pytest.mark.parametrize(
+    ("text", "who", "target"),
+    [
+        ("There is a cake$. Ana takes a photo of the cake.", "Ana", "cake"),
+        ("There is a cake$. Ana walks to the cake. She takes a picture of it.", "Ana", "cake"),
+        ("Tom takes a photo of Mia.", "Tom", "Mia"),
+    ],
+)
+def test_a_photo_of_a_thing_is_aimed_at_the_thing_and_makes_no_photo_frame(text, who, target):
+    assert acts(text) == [(who, "take_photo", target, "")]
+    assert not [o for o in parse_document(text)[-1].objects if o.category in ("photo_frame", "painting")]
+
+
+def test_taking_the_photo_from_the_table_picks_it_up():
+    (_, action, target, _), *_ = acts("There is a photo on the table$. Ana takes the photo from the table.")
+    assert (action, target) == ("pick_up", "photo_frame")
