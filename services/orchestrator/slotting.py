@@ -33,6 +33,7 @@ AT_GAP_M = 1.0  # ... or within this of its footprint (as "near"): the ends of a
 RING_M = 0.45  # metres from an object's centre at most for a stand spot round it
 CLEAR_M = 0.75  # metres from a bystander's hips within which a stand slot is not clear (arms that move)
 ELBOW_M = 0.7  # metres between two sitters' hips below which their arms and shoulders touch
+MAX_ROWS = 4  # rows of stand slots at most (a crowd at a window whose front is behind a sofa)
 STAND_KEY = "#stand"  # a stand slot's object key in the book: "<object id>#stand"
 
 
@@ -264,7 +265,13 @@ class Slotting:
         company: Sequence[tuple[float, float]] = (),
         crowd: Sequence[tuple[float, float]] = (),
     ) -> Claim:
-        spots = [p for p in stand_slots(obj, rows=2) if bool(self.grid.is_free_xz(np.asarray(p)))]
+        rows, spots = 2, []
+        standers = len(self.standers.get(obj.id, set()) | {who})
+        while rows <= MAX_ROWS:  # several at it: rows further out until each has its own free spot
+            spots = [p for p in stand_slots(obj, rows=rows) if bool(self.grid.is_free_xz(np.asarray(p)))]
+            if standers < 2 or len(spots) >= standers:
+                break
+            rows += 1
         spots = spots or stand_slots(obj)[:1]
         front = set(stand_slots(obj))  # the first row: within reach of the object
         reach = [p for p in spots if p in front]
