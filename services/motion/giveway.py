@@ -15,7 +15,8 @@ the walker steps aside instead: its path bends sideways round the other for the 
 as far as it needs and the furniture lets it, and joins its own path again before the walk ends, so the walk
 keeps its timing, its start and its end. Otherwise the walker is left as it is. Two who stand close when a
 walk begins (they hugged, then walk off) do not meet while the walker is still on its spot and the other no
-closer (``first_meeting``): the one who waits there is not walked into.
+closer (``first_meeting``): the one who waits there is not walked into; nor does one who gets up from beside
+someone seated walk into them while it moves no closer.
 """
 
 from __future__ import annotations
@@ -217,19 +218,25 @@ def _remove_prop(p: PropTrack, at: int, count: int) -> PropTrack | None:
     )
 
 
-def _set_off_beside(xz: np.ndarray, theirs: np.ndarray, start: int, lo: int, hi: int) -> np.ndarray:
-    """(hi - lo,) bool: the frames lo .. hi where a walker that began at ``start`` within the clearance of the
-    other (they hugged, then walk off) has not yet set off (moved SET_OFF_M) and the other is no closer than
-    when it began: it stands where it stood, the other walks away; no meeting."""
+def _set_off_beside(
+    xz: np.ndarray, theirs: np.ndarray, start: int, lo: int, hi: int, clearance: float
+) -> np.ndarray:
+    """(hi - lo,) bool: the frames lo .. hi where a walker that began at ``start`` within ``clearance`` of the
+    other gets no closer to it than it stood, while the walker is still on its spot (they hugged, then the
+    other walks off) or, until the two are first apart, while the other stays on its own (it gets up from
+    beside someone seated): nobody walks into anyone there."""
     n = min(len(xz), len(theirs))
     if not 0 <= start < n or hi <= lo:
         return np.zeros(max(0, hi - lo), bool)
     stood = float(np.linalg.norm(theirs[start] - xz[start]))
     d = np.linalg.norm(theirs[lo:hi] - xz[lo:hi], axis=1)
-    still = np.linalg.norm(xz[lo:hi] - xz[start], axis=1) <= SET_OFF_M
+    frames = np.arange(lo, hi)
+    apart = np.flatnonzero(~(np.linalg.norm(theirs[start:hi] - xz[start:hi], axis=1) < clearance))
+    together = frames < (start + int(apart[0]) if len(apart) else hi)
     moved = np.flatnonzero(np.linalg.norm(xz[start:hi] - xz[start], axis=1) > SET_OFF_M)
-    before = np.arange(lo, hi) < (start + int(moved[0]) if len(moved) else hi)
-    return still & before & (d >= stood - NO_CLOSER_M)
+    not_yet = frames < (start + int(moved[0]) if len(moved) else hi)
+    theirs_still = np.linalg.norm(theirs[lo:hi] - theirs[start], axis=1) <= SET_OFF_M
+    return (d >= stood - NO_CLOSER_M) & (not_yet | (theirs_still & together))
 
 
 def first_meeting(
@@ -245,7 +252,8 @@ def first_meeting(
         if hi <= lo:
             continue
         d = np.linalg.norm(track[lo:hi] - xz[lo:hi], axis=1)
-        hit = (d < table.clearance) & ~_set_off_beside(xz, track, start, lo, hi)  # NaN: off stage, no hit
+        beside = _set_off_beside(xz, track, start, lo, hi, table.clearance)
+        hit = (d < table.clearance) & ~beside  # NaN: off stage, no hit
         found = np.flatnonzero(hit)
         if len(found) and (best is None or lo + int(found[0]) < best[0]):
             best = (lo + int(found[0]), name)
@@ -327,7 +335,9 @@ def sidestep(
         return None
     gap = np.linalg.norm(theirs[frames] - xz[frames], axis=1)
     stood = float(gap[0])
-    near = frames[(gap < clearance) & ~_set_off_beside(xz, theirs, seg.start_frame, frames[0], end)]
+    near = frames[
+        (gap < clearance) & ~_set_off_beside(xz, theirs, seg.start_frame, frames[0], end, clearance)
+    ]
     if not len(near):
         return None
     window = _aside_window(seg, near)

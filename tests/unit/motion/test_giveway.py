@@ -174,3 +174,12 @@ def test_one_setting_off_beside_another_waits_behind_it_rather_than_walking_thro
     a, b = (from_wire(after[n].root_position)[:, [0, 2]] for n in ("Tom", "Eve"))
     moving = np.linalg.norm(np.diff(b, axis=0), axis=1) > 1e-3
     assert float(np.linalg.norm(a - b, axis=1)[1:][moving].min()) >= 0.4
+
+
+def test_one_getting_up_from_beside_someone_seated_walks_off_without_stepping_round_them():
+    tom = _walk("Tom", (0.45, 0.0, np.pi / 2), (3.0, 0.0))  # sets off from beside Eve, away from her
+    eve = _walk("Eve", (0.0, 0.0, 0.0), (0.0, 0.0))  # stays where she is (seated)
+    motions = _on_one_line({"Tom": tom, "Eve": eve})
+    after, notes = give_way(motions, EMPTY)
+    assert notes == []
+    assert after["Tom"] == motions["Tom"]
