@@ -100,6 +100,7 @@ class PairRequest(Request["PairReply"], frozen=True, kw_only=True, tag="pair_req
     motions: dict[str, Motion]  # name -> the character's whole motion, story frames
     pairs: list[PairedAction] = []  # in story order
     give_way: bool = True  # a walker about to walk into another character waits until the way is clear
+    scene: Scene | None = None  # the room and furniture: a walker no wait helps may step aside where it fits
 
 
 class PairReply(msgspec.Struct, frozen=True, kw_only=True, tag="pair_reply"):

@@ -110,7 +110,7 @@ def handle_pair(req: PairRequest) -> PairReply:
     motions = dict(req.motions)
     notes: list[str] = []
     if req.give_way:
-        motions, waits = give_way(motions)
+        motions, waits = give_way(motions, req.scene)
         notes += waits
     motions, contacts, pair_notes = solve_pairs(motions, req.pairs)
     motions, handed = hand_over(motions, req.pairs)  # "gives the cup to Anna": from hand to hand

@@ -108,23 +108,57 @@ def scene_grid(
 
 
 BODY_M = 0.32  # metres: a standing character as an obstacle: its body and the swing of a passing arm
-BODY_NEAR_END_M = 0.7  # metres: a character this near the start or the goal is not walked around (the one
-# walked up to, or the one stood beside when setting off)
+# metres: a character this near the start is not walked round (the one stood beside when setting off), one
+# this near the goal is walked round closer (the one walked up to, the one beside the goal): a disc that
+# leaves the goal free
+BODY_NEAR_END_M = 0.7
+END_FREE_M = 0.1  # metres between such a shrunk disc and the goal
+BODY_MIN_M = 0.3  # metres: the smallest disc kept round a body (hips this near touch); nearer ends drop it
 
 
 def with_bodies(
-    grid: OccupancyGrid, bodies: Sequence[tuple[float, float]], radius: float = RADIUS
+    grid: OccupancyGrid, bodies: Sequence[Sequence[float]], radius: float = RADIUS
 ) -> OccupancyGrid:
-    """The grid with the cells within ``radius`` + BODY_M of each standing character blocked too."""
+    """The grid with the cells within ``radius`` + BODY_M of each standing character blocked too; a body given
+    as (x, z, r) blocks the cells within r metres of it instead."""
     if not len(bodies):
         return grid
     h, w = grid.blocked.shape
     rows, cols = np.mgrid[0:h, 0:w]
     xz = grid.to_world(np.stack([rows, cols], axis=-1))
     blocked = grid.blocked.copy()
-    for bx, bz in bodies:
-        blocked |= np.hypot(xz[..., 0] - bx, xz[..., 1] - bz) < radius + BODY_M
+    for body in bodies:
+        bx, bz = body[0], body[1]
+        reach = body[2] if len(body) > 2 else radius + BODY_M
+        blocked |= np.hypot(xz[..., 0] - bx, xz[..., 1] - bz) < reach
     return OccupancyGrid(blocked=blocked, origin=grid.origin, cell=grid.cell)
+
+
+def round_bodies(
+    bodies: Sequence[tuple[float, float]],
+    start_xz: Sequence[float],
+    goal_xz: Sequence[float],
+    radius: float = RADIUS,
+) -> list[tuple[float, ...]]:
+    """The bodies a walk from ``start_xz`` to ``goal_xz`` goes round: (x, z) for those farther than
+    BODY_NEAR_END_M from both ends, none for those that near the start (stood beside when setting off),
+    (x, z, r) with a disc shrunk to leave the goal free for those that near the goal (the person walked up to
+    is not walked through on the way to her, nor is the one beside the goal), none for those nearer the goal
+    than BODY_MIN_M + END_FREE_M (the walk ends touching them)."""
+    start, goal = np.asarray(start_xz, np.float64), np.asarray(goal_xz, np.float64)
+    out: list[tuple[float, ...]] = []
+    for b in bodies:
+        if not np.isfinite(b).all():
+            continue
+        at = np.asarray(b, float)[:2]
+        if float(np.linalg.norm(start - at)) <= BODY_NEAR_END_M:
+            continue  # the one stood beside when setting off
+        near = float(np.linalg.norm(goal - at))
+        if near > BODY_NEAR_END_M:
+            out.append((float(b[0]), float(b[1])))
+        elif near - END_FREE_M >= BODY_MIN_M:
+            out.append((float(b[0]), float(b[1]), min(radius + BODY_M, near - END_FREE_M)))
+    return out
 
 
 def plan_scene_route(
@@ -339,18 +373,13 @@ def _scene_route(
     The route never ends inside other furniture (``into_hosts=False``); ``ignore`` should hold the
     object walked to and what rests on it. Where a body's width has no way through, a sideways squeeze
     (SQUEEZE_M) is tried, then the nearest reachable point and a last step in, before the straight line. ``bodies``: where other characters stand; the route goes
-    round them (those within BODY_NEAR_END_M of the start or the goal excepted), or past them where
-    they close the way.
+    round them (not those within BODY_NEAR_END_M of the start, closer round those that near the goal:
+    round_bodies), or past them where they close the way.
 
     Returns:
         waypoints (N, 2) metres, world; "" or a diagnostic saying why the route is straight.
     """
-    ends = np.array([start_xz, goal_xz], dtype=np.float64)
-    around = [
-        b
-        for b in bodies
-        if np.isfinite(b).all() and np.linalg.norm(ends - np.asarray(b), axis=1).min() > BODY_NEAR_END_M
-    ]
+    around = round_bodies(bodies, start_xz, goal_xz)
     if around:
         try:
             return plan_scene_route(

@@ -34,6 +34,7 @@ AT_GAP_M = 1.0  # ... or within this of its footprint (as "near"): the ends of a
 RING_M = 0.45  # metres from an object's centre at most for a stand spot round it
 CLEAR_M = 0.75  # metres from a bystander's hips within which a stand slot is not clear (arms that move)
 ELBOW_M = 0.7  # metres between two sitters' hips below which their arms and shoulders touch
+MAX_ROWS = 4  # rows of stand slots at most (a crowd at a window whose front is behind a sofa)
 STAND_KEY = "#stand"  # a stand slot's object key in the book: "<object id>#stand"
 HIDE_KEY = "#hide"  # a hiding spot's object key in the book
 
@@ -64,7 +65,7 @@ class Slotting:
     sitters: dict[str, set[str]] = field(default_factory=dict)  # object id -> who sits on it in the story
     standers: dict[str, set[str]] = field(default_factory=dict)  # object id -> who stands at it in the story
     _grid: OccupancyGrid | None = None
-    _spots: dict[str, tuple[list[tuple[float, float]], set[tuple[float, float]]]] = field(
+    _spots: dict[tuple[str, int], tuple[list[tuple[float, float]], set[tuple[float, float]]]] = field(
         default_factory=dict
     )
 
@@ -291,7 +292,11 @@ class Slotting:
         company: Sequence[tuple[float, float]] = (),
         crowd: Sequence[tuple[float, float]] = (),
     ) -> Claim:
-        spots, front = self._stand_spots(obj)
+        rows, standers = 2, len(self.standers.get(obj.id, set()) | {who})
+        spots, front = self._stand_spots(obj, rows)
+        while standers >= 2 and len(spots) < standers and rows < MAX_ROWS:
+            rows += 1  # several at it: rows further out until each has its own free spot
+            spots, front = self._stand_spots(obj, rows)
         reach = [p for p in spots if p in front]
         if crowd and reach and all(_near_any(p, crowd) for p in reach):  # bystanders there: round the object
             spots = [*reach, *self._ring(obj, reach[0]), *(p for p in spots if p not in front)]
@@ -309,13 +314,17 @@ class Slotting:
         # default spot is where someone else stands is sent to a clear one.
         return Claim(action, spot=spots[int(taken)])
 
-    def _stand_spots(self, obj: PlacedObject) -> tuple[list[tuple[float, float]], set[tuple[float, float]]]:
-        """The free stand spots at ``obj`` (two rows; its first spot when none is free) and its first row (within
-        reach), worked out once per object: the layout and the grid do not change while the story runs."""
-        if obj.id not in self._spots:
-            spots = [p for p in stand_slots(obj, rows=2) if bool(self.grid.is_free_xz(np.asarray(p)))]
-            self._spots[obj.id] = (spots or stand_slots(obj)[:1], set(stand_slots(obj)))
-        spots, front = self._spots[obj.id]
+    def _stand_spots(
+        self, obj: PlacedObject, rows: int = 2
+    ) -> tuple[list[tuple[float, float]], set[tuple[float, float]]]:
+        """The free stand spots at ``obj`` in ``rows`` rows (its first spot when none is free) and its first row
+        (within reach), worked out once per object and rows: the layout and the grid do not change while the
+        story runs."""
+        key = (obj.id, rows)
+        if key not in self._spots:
+            spots = [p for p in stand_slots(obj, rows=rows) if bool(self.grid.is_free_xz(np.asarray(p)))]
+            self._spots[key] = (spots or stand_slots(obj)[:1], set(stand_slots(obj)))
+        spots, front = self._spots[key]
         return list(spots), front
 
     def _ring(self, obj: PlacedObject, front: tuple[float, float]) -> list[tuple[float, float]]:

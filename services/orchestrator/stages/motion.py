@@ -641,7 +641,7 @@ def _played(
             motion = _wait_outside(motion, on, door.outside(waiting_place[name]))
         out.motions[name] = motion
     fitted = fit_cast(
-        ctx, out.motions, [*paired_actions(characters, plan), *handovers]
+        ctx, out.motions, [*paired_actions(characters, plan), *handovers], out.scene
     )  # give way, touch on both bodies
     touching: dict[str, list[tuple[int, int]]] = {}  # name -> frames its hands were solved onto another
     if fitted is not None:

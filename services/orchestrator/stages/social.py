@@ -13,6 +13,7 @@ import numpy as np
 
 from proto.motion import PairedAction, PairReply, PairRequest
 from proto.motion_data import Motion, Segment
+from proto.scene import Scene
 from proto.social import ExpressionTrackReply, ExpressionTrackRequest, SocialPlan, SocialPlanRequest
 from proto.ssg import CharacterNode, SentenceGraph
 from services.orchestrator.stages import StageContext, content_of
@@ -154,20 +155,22 @@ def walkers_meet(motions: dict[str, Motion]) -> bool:
     return False
 
 
-def fit_cast(ctx: StageContext, motions: dict[str, Motion], pairs: list[PairedAction]) -> PairReply | None:
+def fit_cast(
+    ctx: StageContext, motions: dict[str, Motion], pairs: list[PairedAction], scene: Scene | None = None
+) -> PairReply | None:
     """The `cast` node: the motions with walkers giving way and paired contacts solved.
 
     None (and no node at all) when there is nothing to fit: one character, no two-person action and no two
     characters who meet while one walks. So a story whose characters never come near each other recomputes
-    as before, and an edit there re-runs no `cast` node.
+    as before, and an edit there re-runs no `cast` node. ``scene``: where a walker may step aside.
     """
     if len(motions) < 2 or len({frame_count(m) for m in motions.values()}) != 1:
         return None
     if not pairs and not walkers_meet(motions):
         return None
-    request = PairRequest(header=ctx.header(), motions=motions, pairs=pairs)
+    request = PairRequest(header=ctx.header(), motions=motions, pairs=pairs, scene=scene)
 
     def run() -> PairReply:
         return content_of(ctx.backend.call(request))
 
-    return ctx.engine.query("cast", [motions, pairs], run)
+    return ctx.engine.query("cast", [motions, pairs, scene], run)

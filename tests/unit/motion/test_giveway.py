@@ -14,7 +14,7 @@ from proto.motion import PairRequest, SynthesizeRequest
 from proto.motion_data import Motion, Segment
 from proto.scene import Room, Scene
 from proto.ssg import ActionNode, CharacterNode
-from services.motion.giveway import give_way
+from services.motion.giveway import give_way, sidestep
 from services.motion.handlers import CONTRACT
 from wana.arrays import from_wire, to_wire
 from wana.bus.service import call_in_process
@@ -119,3 +119,67 @@ def test_the_pair_request_gives_way_by_default(crossing):
     reply = call_in_process(CONTRACT, PairRequest(header=Header(), motions=crossing))
     assert reply.status == "ok"
     assert _closest(reply.motions) >= Reservations().clearance - 0.05
+
+
+@pytest.fixture(scope="module")
+def head_on() -> dict[str, Motion]:
+    """Tom walks east and Eve west along the same line at the same time: waiting helps neither."""
+    tom = _walk("Tom", (-2.5, 0.0, np.pi / 2), (2.5, 0.0))
+    eve = _walk("Eve", (2.5, 0.0, -np.pi / 2), (-2.5, 0.0))
+    return _on_one_line({"Tom": tom, "Eve": eve})
+
+
+def test_two_walking_head_on_step_aside_and_pass_where_the_room_is_known(head_on):
+    assert _closest(head_on) < 0.3
+    kept, _ = give_way(head_on)  # without the scene nobody may step aside
+    assert _closest(kept) < 0.3
+    after, notes = give_way(head_on, EMPTY)
+    assert _closest(after) >= Reservations().clearance - 0.05
+    assert any("steps aside" in n for n in notes)
+    for name, m in after.items():  # the walk keeps its timing, its start and its end
+        was = from_wire(head_on[name].root_position)
+        now = from_wire(m.root_position)
+        assert now.shape == was.shape
+        assert np.allclose(now[0], was[0]) and np.allclose(now[-1], was[-1])
+
+
+def test_a_walker_steps_round_someone_standing_still_on_its_way_where_the_room_is_known():
+    tom = _walk("Tom", (-2.5, 0.0, np.pi / 2), (2.5, 0.0))
+    eve = _walk("Eve", (0.0, 0.0, 0.0), (0.0, 0.0))
+    motions = _on_one_line({"Tom": tom, "Eve": eve})
+    after, notes = give_way(motions, EMPTY)
+    assert notes and "steps round" in notes[0]
+    assert _closest(after) >= Reservations().clearance - 0.05
+
+
+def test_a_sidestep_does_not_bend_into_the_furniture():
+    seg = Segment(index=0, action="walk", start_frame=0, end_frame=100)
+    t = np.linspace(-2.0, 2.0, 100)
+    mine = np.stack([t, np.zeros(100)], axis=1)
+    theirs = mine[::-1].copy()
+    walled = lambda p: np.asarray(p)[:, 1] < 0.05  # noqa: E731 - nothing fits on the +z side
+    offset = sidestep(mine, seg, theirs, 0.6, walled)
+    assert offset is not None and offset[:, 1].max() <= 1e-9 and offset[:, 1].min() < -0.3
+    assert np.allclose(offset[0], 0) and np.allclose(offset[-1], 0)
+    corridor = lambda p: np.abs(np.asarray(p)[:, 1]) < 0.05  # noqa: E731 - a corridor one body wide
+    assert sidestep(mine, seg, theirs, 0.6, corridor) is None
+
+
+def test_one_setting_off_beside_another_waits_behind_it_rather_than_walking_through():
+    tom = _walk("Tom", (0.0, 0.0, np.pi / 2), (3.0, 0.0))
+    eve = _walk("Eve", (-0.4, 0.0, np.pi / 2), (2.6, 0.0))  # right behind him, walking the same way
+    motions = _on_one_line({"Tom": tom, "Eve": eve})
+    after, notes = give_way(motions)
+    assert notes and "waits" in notes[0]
+    a, b = (from_wire(after[n].root_position)[:, [0, 2]] for n in ("Tom", "Eve"))
+    moving = np.linalg.norm(np.diff(b, axis=0), axis=1) > 1e-3
+    assert float(np.linalg.norm(a - b, axis=1)[1:][moving].min()) >= 0.4
+
+
+def test_one_getting_up_from_beside_someone_seated_walks_off_without_stepping_round_them():
+    tom = _walk("Tom", (0.45, 0.0, np.pi / 2), (3.0, 0.0))  # sets off from beside Eve, away from her
+    eve = _walk("Eve", (0.0, 0.0, 0.0), (0.0, 0.0))  # stays where she is (seated)
+    motions = _on_one_line({"Tom": tom, "Eve": eve})
+    after, notes = give_way(motions, EMPTY)
+    assert notes == []
+    assert after["Tom"] == motions["Tom"]

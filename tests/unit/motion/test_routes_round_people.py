@@ -80,3 +80,17 @@ def test_with_nothing_between_them_the_straight_stop_stands():
     from services.motion.routing import reachable_short_of
 
     assert reachable_short_of(EMPTY, (-2.0, 0.0), (0.0, 0.0), 0.45) is None
+
+
+def test_someone_standing_beside_the_goal_is_walked_round_not_through():
+    # Ada stands 0.5 m past the goal on the straight line: the walk ends beside her, never through her
+    ada = (0.5, 0.0)
+    route, why = scene_route(EMPTY, (-3.0, 0.0), (1.0, 0.3), bodies=[ada])
+    assert why == ""
+    assert np.allclose(route[-1], (1.0, 0.3))
+    assert _distance_to_polyline(route, ada) >= 0.3
+
+
+def test_the_one_stood_beside_when_setting_off_is_not_walked_round():
+    route, _ = scene_route(EMPTY, (0.0, 0.4), (3.0, 0.0), bodies=[PETE])
+    assert np.allclose(route[0], (0.0, 0.4)) and np.allclose(route[-1], (3.0, 0.0))

@@ -109,3 +109,21 @@ def test_two_sitting_at_a_long_table_each_get_a_chair_at_its_ends():
     cheryl = slotting.claim("Cheryl", SIT_AT, here=(-1.0, 1.5))
     # each a chair at the table (0.4 m from its end, 1.9 m from its middle), not the stool far off
     assert {walter.action.target, cheryl.action.target} == {"chair", "chair/2"}
+
+
+def test_three_walking_to_a_window_behind_a_sofa_each_get_a_spot_of_their_own():
+    # the window's first row of stand slots is behind the sofa: the rows further out hold all three
+    scene = Scene(
+        room=ROOM,
+        objects=[
+            PlacedObject(id="window", category="window", position=(0.0, 0.9, 3.94), yaw=math.pi),
+            PlacedObject(id="sofa", category="sofa", position=(0.0, 0.0, 3.3), yaw=math.pi),
+        ],
+    )
+    to_window = ActionNode(verb="walk", action="walk", destination="window")
+    slotting = Slotting(scene)
+    for who in ("Ada", "Ben", "Eve"):
+        slotting.expect(who, to_window)
+    spots = [slotting.claim(who, to_window).spot for who in ("Ada", "Ben", "Eve")]
+    assert all(s is not None for s in spots)
+    assert min(math.dist(a, b) for i, a in enumerate(spots) for b in spots[i + 1 :]) >= 0.6  # type: ignore[arg-type]
