@@ -34,6 +34,8 @@ AT_GAP_M = 1.0  # ... or within this of its footprint (as "near"): the ends of a
 RING_M = 0.45  # metres from an object's centre at most for a stand spot round it
 CLEAR_M = 0.75  # metres from a bystander's hips within which a stand slot is not clear (arms that move)
 ELBOW_M = 0.7  # metres between two sitters' hips below which their arms and shoulders touch
+KNEE_OUT_M = 0.5  # metres in front of a seat's hips point where a sitter's knees and feet are
+KNEE_M = 0.4  # metres between two sitters' knee points below which their legs meet (a table's corner)
 MAX_ROWS = 4  # rows of stand slots at most (a crowd at a window whose front is behind a sofa)
 STAND_KEY = "#stand"  # a stand slot's object key in the book: "<object id>#stand"
 HIDE_KEY = "#hide"  # a hiding spot's object key in the book
@@ -195,6 +197,10 @@ class Slotting:
             # two on three cushions: the ends, with the middle between them
             slots, rest = slots[1:], slots[:1]
         slots = [*self._preferred(obj.id, slots, seat_points(obj, slots), who, here, company), *rest]
+        if kind == "sit":
+            slots, beside = self._roomy_cushion(who, action, obj, slots)
+            if beside is not None:
+                return beside
         taken = self.book.take(obj.id, slots, who)
         if taken is not None:
             return Claim(action, seat="" if taken == default else taken)
@@ -214,6 +220,39 @@ class Slotting:
                 return Claim(moved, seat="" if taken == seat_slots(other, kind)[0] else taken)
         return Claim(action)
 
+    def _roomy_cushion(
+        self, who: str, action: ActionNode, obj: PlacedObject, slots: list[str]
+    ) -> tuple[list[str], Claim | None]:
+        """``slots`` with a free one that is not within ELBOW_M of another sitter's hips first, or, when every
+        free one is (a lamp on the sofa's third cushion leaves two side by side), a roomy seat of another
+        object of its kind beside it (a second bench, within AT_GAP_M: "sits on the bench" still holds) when
+        there is one; else ``slots`` as they were (an armchair is not the sofa the sentence names)."""
+        held = self._held_points(who)
+        free = [n for n in slots if self.book.holder(obj.id, n) in ("", who)]
+        if not held or not free or _roomy(seat_points(obj, free[:1])[0], held):
+            return slots, None
+        roomy = [n for n in free if _roomy(seat_points(obj, [n])[0], held)]
+        if roomy:
+            return [roomy[0], *(n for n in slots if n != roomy[0])], None
+        beside = sorted(
+            (
+                (_gap_to(o, obj), o)
+                for o in self.scene.objects
+                if o.id != obj.id and o.category == obj.category and _gap_to(o, obj) <= AT_GAP_M
+            ),
+            key=lambda g_o: g_o[0],
+        )
+        for _, other in beside:
+            names = seat_slots(other, "sit", self.scene.objects)
+            open_slots = [n for n in names if self.book.holder(other.id, n) in ("", who)]
+            pick = next((n for n in open_slots if _roomy(seat_points(other, [n])[0], held)), None)
+            if pick is None or self.book.take(other.id, [pick], who) is None:
+                continue
+            field_name = "destination" if action.destination and not action.target else "target"
+            moved = msgspec.structs.replace(action, **{field_name: other.id})
+            return slots, Claim(moved, seat="" if pick == seat_slots(other, "sit")[0] else pick)
+        return slots, None
+
     def _seat_at(
         self,
         who: str,
@@ -226,9 +265,10 @@ class Slotting:
         """A free seat slot of the seats at an object that has none itself (a table): within AROUND_M of its
         middle or AT_GAP_M of its footprint.
 
-        Seats whose slot is within ELBOW_M of one another already holds are passed over while others are
-        free (two chairs pushed together seat two people shoulder in shoulder), and with company the seats
-        are shared out as `matched` says (walks to them do not cross)."""
+        Seats whose slot is within ELBOW_M of one another already holds, or whose knees (KNEE_OUT_M in front
+        of it) are within KNEE_M of theirs, are passed over while others are free (two chairs pushed together
+        seat two people shoulder in shoulder; two chairs at a table's corner, legs in legs), and with company
+        the seats are shared out as `matched` says (walks to them do not cross)."""
         here_xz = np.array([obj.position[0], obj.position[2]])
         near = sorted(
             (
@@ -242,25 +282,31 @@ class Slotting:
         # too (a chair at the end of a long conference table), when none nearer is free
         far = sorted(((_gap_to(o, obj), o) for d, o in near if d > AROUND_M), key=lambda g_o: g_o[0])
 
-        def free_of(seats: list[PlacedObject]) -> list[tuple[PlacedObject, list[str], tuple[float, float]]]:
+        def free_of(
+            seats: list[PlacedObject],
+        ) -> list[tuple[PlacedObject, list[str], tuple[float, float], str]]:
             out = []
             for seat in seats:
                 slots = seat_slots(seat, kind, self.scene.objects)
                 open_slots = [n for n in slots if self.book.holder(seat.id, n) in ("", who)]
                 if open_slots:
-                    out.append((seat, slots, seat_points(seat, open_slots[:1])[0]))
+                    out.append((seat, slots, seat_points(seat, open_slots[:1])[0], open_slots[0]))
             return out
 
         free = free_of([o for d, o in near if d <= AROUND_M]) or free_of([o for g, o in far if g <= AT_GAP_M])
-        held = self._held_points(who)
-        roomy = [f for f in free if all(np.hypot(f[2][0] - h[0], f[2][1] - h[1]) >= ELBOW_M for h in held)]
+        held, knees = self._held_points(who), self._held_points(who, KNEE_OUT_M)
+        roomy = [
+            f
+            for f in free
+            if _roomy(f[2], held) and _roomy(seat_points(f[0], [f[3]], KNEE_OUT_M)[0], knees, KNEE_M)
+        ]
         free = roomy + [f for f in free if f not in roomy]
         if here is not None and company:
             pick = matched([here, *company], [f[2] for f in roomy]) if len(roomy) > len(company) else None
             pick = pick if pick is not None else matched([here, *company], [f[2] for f in free])
             if pick is not None:
                 free.insert(0, free.pop(pick))
-        for seat, slots, _ in free:
+        for seat, slots, _, _ in free:
             taken = self.book.take(seat.id, slots, who)
             if taken is not None:
                 field_name = (
@@ -270,15 +316,16 @@ class Slotting:
                 return Claim(moved, seat="" if taken == seat_slots(seat, kind)[0] else taken)
         return Claim(action)
 
-    def _held_points(self, who: str) -> list[tuple[float, float]]:
-        """World (x, z) of the seat slots the others hold now."""
+    def _held_points(self, who: str, forward: float = 0.0) -> list[tuple[float, float]]:
+        """World (x, z) of the seat slots the others hold now (``forward`` metres in front of them: their
+        knees)."""
         out: list[tuple[float, float]] = []
         ids = {o.id: o for o in self.scene.objects}
         for (object_id, slot), holder in self.book.held.items():
             if holder == who or object_id not in ids or object_id.endswith(STAND_KEY):
                 continue
             try:
-                out.extend(seat_points(ids[object_id], [slot]))
+                out.extend(seat_points(ids[object_id], [slot], forward))
             except (KeyError, ValueError):
                 continue
         return out
@@ -357,6 +404,11 @@ def _gap_to(seat: PlacedObject, table: PlacedObject) -> float:
         return float(np.hypot(seat.position[0] - table.position[0], seat.position[2] - table.position[2]))
 
 
+def _roomy(p: tuple[float, float], others: Sequence[tuple[float, float]], apart: float = ELBOW_M) -> bool:
+    """True when ``p`` is at least ``apart`` metres from each of ``others`` (x, z)."""
+    return all(float(np.hypot(p[0] - o[0], p[1] - o[1])) >= apart for o in others)
+
+
 def _near_any(p: tuple[float, float], crowd: Sequence[tuple[float, float]]) -> bool:
     """True when ``p`` is within CLEAR_M of one of ``crowd`` (x, z)."""
     return any(float(np.hypot(p[0] - c[0], p[1] - c[1])) < CLEAR_M for c in crowd)
@@ -385,12 +437,16 @@ def matched(walkers: Sequence[tuple[float, float]], slots: Sequence[tuple[float,
     return pick
 
 
-def seat_points(placed: PlacedObject, slots: Sequence[str]) -> list[tuple[float, float]]:
-    """World (x, z) of each named seat slot (a hip contact point) of an object."""
+def seat_points(
+    placed: PlacedObject, slots: Sequence[str], forward: float = 0.0
+) -> list[tuple[float, float]]:
+    """World (x, z) of each named seat slot (a hip contact point) of an object, or of the point ``forward``
+    metres in front of it (the way the seat faces: a sitter's knees)."""
     from wana.assets.catalog import asset_for, to_world
 
     points = asset_for(placed).contact_points
     local = np.array([points[n].position for n in slots], float).reshape(-1, 3)
+    local = local + np.array([0.0, 0.0, forward / placed.scale[2]])
     world = to_world(placed, local)
     return [(float(q[0]), float(q[2])) for q in world]
 
