@@ -1209,13 +1209,13 @@ def plan_actions(
         if name == "stand" and now_posture() == "stand":
             # Already standing: a short hold, not a get-up from a seat that is not there; "stands in front
             # of the mirror" from across the room walks there first.
-            there = find_object(scene, node.target or node.destination)
-            geo = _object_geometry(there) if there is not None else None
-            if there is not None and geo is not None and _footprint_gap(there, pos) > STAND_AT_M:
+            stood_at = find_object(scene, node.target or node.destination)
+            geo = _object_geometry(stood_at) if stood_at is not None else None
+            if stood_at is not None and geo is not None and _footprint_gap(stood_at, pos) > STAND_AT_M:
                 from services.motion.routing import free_spot
 
                 goal = np.asarray(free_spot(scene, (float(geo[0][0]), float(geo[0][1]))), float)
-                walk_to(goal, SPEEDS.get("walk", 1.3) * speed_k, None, "walk", ai, there.id, node.manner)
+                walk_to(goal, SPEEDS.get("walk", 1.3) * speed_k, None, "walk", ai, stood_at.id, node.manner)
             add(kind="wait", action=name, duration_s=STAY_S, action_index=ai)
             continue
         if name in ("turn_left", "turn_right", "turn_around") and now_posture() != "stand":
@@ -1502,15 +1502,15 @@ def plan_actions(
                     )  # close enough, but facing away: turn in place
         elif obj is not None and name in HIDE_ACTIONS and now_posture() == "stand":
             # "hides behind the door": beside it against its wall, or behind what stands free (its slot)
-            there = (
+            hide_at = (
                 [np.asarray(spots[ai], float)]
                 if ai in spots
                 else [np.asarray(p) for p in hiding_spots(obj, scene)]
             )
-            if there:
+            if hide_at:
                 from services.motion.routing import free_spot
 
-                goal = min(there, key=lambda p: float(np.linalg.norm(p - pos)))
+                goal = min(hide_at, key=lambda p: float(np.linalg.norm(p - pos)))
                 goal = np.asarray(free_spot(scene, (float(goal[0]), float(goal[1])), max_move=0.4), float)
                 d = np.array([obj.position[0], obj.position[2]]) - goal
                 face = float(np.arctan2(d[0], d[1])) if np.linalg.norm(d) > 1e-6 else yaw

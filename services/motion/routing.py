@@ -171,7 +171,7 @@ def plan_scene_route(
     cell: float = CELL,
     step_in: float = STEP_IN,
     into_hosts: bool = True,
-    bodies: Sequence[tuple[float, float]] = (),
+    bodies: Sequence[tuple[float, ...]] = (),  # (x, z), or (x, z, radius) to shrink one
 ) -> np.ndarray:
     """``wana.domain.routes.plan_route`` on cached grids (same arguments, same answer).
 
@@ -268,7 +268,7 @@ def _reachable_near(
     start_xz: tuple[float, float],
     goal_xz: tuple[float, float],
     ignore: frozenset[str],
-    bodies: Sequence[tuple[float, float]],
+    bodies: Sequence[tuple[float, ...]],
 ) -> np.ndarray | None:
     """A route to the reachable free cell nearest an enclosed goal (a chair pushed in between a table and the
     fridge), then the last step in; None when that point is farther than LAST_STEP_M from the goal.

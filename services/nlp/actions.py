@@ -347,8 +347,8 @@ def _action(verb: Token, builder: GraphBuilder) -> tuple[ActionNode, str]:
             if of is not None and of.lower_ in lexicon.OBJECT_PRONOUNS:
                 target = of.lower_  # "a picture of it": what "it" was before (resolve), not the picture
             else:
-                shown = argument(of, "of", builder, report_unknown=True) if of is not None else None
-                target = (shown.object_id or shown.character or shown.word) if shown is not None else ""
+                pictured = argument(of, "of", builder, report_unknown=True) if of is not None else None
+                target = (pictured.object_id or pictured.character or pictured.word) if pictured else ""
     if lemma in verbs.WITH_THING and primary is not None and primary.object_id and not person:
         action = verbs.WITH_THING[lemma]  # "balances three plates"
     if (

@@ -215,13 +215,13 @@ def relation_candidates(
         for k, side in enumerate(order[start:] + order[:start]):
             half = half_w if side in ("front", "back") else half_d
             lateral = ((instance // 4) % 3 - 1) * 0.6 * half
-            lats = (lateral, 0.0, -lateral) if k == 0 else (0.0, 0.5 * half, -0.5 * half)
+            offsets = (lateral, 0.0, -lateral) if k == 0 else (0.0, 0.5 * half, -0.5 * half)
             # Each copy turns to face the anchor: front copies face -Z, back +Z, side copies face inwards.
             rel_yaw = {"front": math.pi, "back": 0.0, "left": -math.pi / 2.0, "right": math.pi / 2.0}[side]
             if LEFT_SIGN < 0 and side in ("left", "right"):
                 rel_yaw = -rel_yaw
             for gap in (float(rng.uniform(0.05, 0.2)), 0.05, 0.3, 0.6):
-                for lat in lats:
+                for lat in offsets:
                     yield _side(anchor, fp, side, gap, lat, rel_yaw, y, support)
         return
     sides, rel_yaws = _SIDES.get(relation, (["front", "left", "right", "back"], [0.0, math.pi]))

@@ -590,7 +590,7 @@ def _played(
         out.optimisations.append(reply)
         done += 1
     out.scene = scene
-    starts = kept_clear(scene, starts, hidden)  # furniture the optimiser slid onto a starting spot
+    starts = kept_clear(scene, starts, sorted(hidden))  # furniture the optimiser slid onto a starting spot
     tick("motion", done, total)
     notes: list[tuple[str, str]] = []
     handovers: list[PairedAction] = []
