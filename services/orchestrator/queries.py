@@ -86,11 +86,9 @@ class QueryEngine:
     def query(self, key: str, inputs: Any, compute: Callable[[], T]) -> T:
         """Return the memoised value of `key` for these inputs, computing it only when they changed."""
         input_hash = content_hash(inputs)
-        with self._lock:
-            memo = self.memos.get(key)
-            if memo is not None and memo.input_hash == input_hash:
-                self.log.append(LogEntry(self.revision, key, "reused", False))
-                return memo.value  # type: ignore[no-any-return]
+        memo, reused = self._memo_for(key, input_hash)
+        if reused:
+            return memo.value  # type: ignore[union-attr,no-any-return]
         value = compute()
         result_hash = content_hash(value)
         with self._lock:
@@ -101,15 +99,22 @@ class QueryEngine:
             self.log.append(LogEntry(self.revision, key, "ran", changed))
         return value
 
-    def query_unhashed(self, key: str, inputs: Any, compute: Callable[[], T]) -> T:
-        """``query`` for a value too big to hash on every run (every character's whole motion): memoised by
-        its input hash alone, logged like any query; it never backdates, so no node may key on its hash."""
-        input_hash = content_hash(inputs)
+    def _memo_for(self, key: str, input_hash: str) -> tuple[Memo | None, bool]:
+        """The memo of ``key`` and whether it answers these inputs (then logged as reused)."""
         with self._lock:
             memo = self.memos.get(key)
             if memo is not None and memo.input_hash == input_hash:
                 self.log.append(LogEntry(self.revision, key, "reused", False))
-                return memo.value  # type: ignore[no-any-return]
+                return memo, True
+        return memo, False
+
+    def query_unhashed(self, key: str, inputs: Any, compute: Callable[[], T]) -> T:
+        """``query`` for a value too big to hash on every run (every character's whole motion): memoised by
+        its input hash alone, logged like any query; it never backdates, so no node may key on its hash."""
+        input_hash = content_hash(inputs)
+        memo, reused = self._memo_for(key, input_hash)
+        if reused:
+            return memo.value  # type: ignore[union-attr,no-any-return]
         value = compute()
         with self._lock:
             self.memos[key] = Memo(input_hash, "", value)

@@ -200,18 +200,14 @@ def _stop_short(starts: np.ndarray, ends: np.ndarray) -> np.ndarray:
 def _cut_away(hidden: np.ndarray, furniture: Furniture, eyes: np.ndarray, room: Room, per_frame: int) -> None:
     """Nothing hides a character from behind the camera's wall: what hangs on a wall the eye stands behind
     is cut away with it (services.render.walls), as the renderer leaves it out."""
-    walls = furniture.walls
-    hung = {k for k, w in enumerate(walls) if w}
+    hung = [(k, w) for k, w in enumerate(furniture.walls) if w]
     if not hung:
         return
-    for i, eye in enumerate(eyes):
-        behind = walls_behind(eye, room)
-        if not behind:
-            continue
-        part = hidden[i * per_frame : (i + 1) * per_frame]
-        for k in hung:
-            if walls[k] in behind:
-                part[part == k] = -1
+    behind = [walls_behind(eye, room) for eye in eyes]
+    grid = hidden.reshape(len(eyes), per_frame)  # a view of ``hidden``, frame by frame
+    for k, wall in hung:
+        rows = np.array([wall in b for b in behind])
+        grid[rows] = np.where(grid[rows] == k, -1, grid[rows])
 
 
 def body_view(
