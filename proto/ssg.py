@@ -54,6 +54,7 @@ class RelationNode(msgspec.Struct, frozen=True, kw_only=True):
     relation: str  # one of RELATIONS
     object: str  # ObjectNode.id (the anchor)
     span: Span = Span(0, 0)
+    each: bool = False  # "a chair at each desk": one subject per copy of a counted anchor, copy k at anchor k
 
 
 class ActionNode(msgspec.Struct, frozen=True, kw_only=True):

@@ -236,6 +236,33 @@ DRINK_WORDS = frozenset(
 )
 
 
+# "gets out of bed", "climbs into the bathtub", "hops off the sofa": a verb of getting somewhere whose
+# place is a bed, a tub or a seat says a change of posture, not a climb or a walk
+POSTURE_MOVE_VERBS = frozenset(
+    {"get", "climb", "clamber", "scramble", "roll", "crawl", "slide", "slip", "ease", "step"}
+)
+CLIMBING_VERBS = frozenset({"climb", "clamber", "scramble"})
+OUT_OF_PREPS = frozenset({"out of", "off", "off of", "from", "out"})
+INTO_PREPS = frozenset({"into", "in", "onto", "on", "on to", "in to"})
+LYING_PLACES = frozenset({"bed", "bunk_bed", "bathtub", "hammock", "cot"})
+SITTING_PLACES = frozenset({"seat", "chair", "sofa", "couch", "armchair", "bench", "stool", "office_chair"})
+
+
+def _posture_move(lemma: str, primary: Argument | None, obj_words: tuple[str, ...]) -> str:
+    """ "stand" for getting out of a bed, tub or seat; "lie_down" into a bed or tub; "sit" onto a seat;
+    "" for anything else ("climbs onto the table" stays a climb)."""
+    if lemma not in POSTURE_MOVE_VERBS or primary is None or not primary.object_id:
+        return ""
+    words = {w.lower().replace(" ", "_") for w in obj_words}
+    if not words & (LYING_PLACES | SITTING_PLACES):
+        return ""
+    if primary.prep in OUT_OF_PREPS:
+        return "stand"
+    if primary.prep in INTO_PREPS and lemma not in CLIMBING_VERBS:  # "climbs into the bed" is shown climbing
+        return "lie_down" if words & LYING_PLACES else "sit"
+    return ""
+
+
 def _action(verb: Token, builder: GraphBuilder) -> tuple[ActionNode, str]:
     """The ActionNode of a verb clause and the verb its social meaning is read from ("hug" of "gives
     Mary a hug"; the verb's lemma otherwise)."""
@@ -360,6 +387,11 @@ def _action(verb: Token, builder: GraphBuilder) -> tuple[ActionNode, str]:
         action = "look_down"  # "dozes off with his head against the window": asleep where he sits
     if any(c.lower_ in lexicon.REFLEXIVE_PRONOUNS and c.dep_ in ("obj", "iobj") for c in verb.children):
         action = verbs.VERB_ACTIONS.get(f"{lemma} oneself", action)  # "lowers himself into the chair"
+    posture = _posture_move(lemma, primary, obj_words)
+    if posture:
+        action = posture  # "gets out of bed", "climbs into bed", "gets off the sofa"
+        if posture == "stand":
+            target = ""  # up from where one is: no walk to the bed first
     social_verb = lemma
     if (
         lemma in lexicon.LIGHT_VERBS

@@ -105,7 +105,9 @@ class GraphBuilder:
             if o.id == object_id:
                 o.attributes[knob] = value
 
-    def add_relation(self, subject: str, relation: str, anchor: str, start: int, end: int) -> None:
+    def add_relation(
+        self, subject: str, relation: str, anchor: str, start: int, end: int, *, each: bool = False
+    ) -> None:
         if relation not in RELATIONS or subject == anchor:
             return
         key = (subject, relation, anchor)
@@ -113,7 +115,9 @@ class GraphBuilder:
             return
         self._relation_keys.add(key)
         self.relations.append(
-            RelationNode(subject=subject, relation=relation, object=anchor, span=self.span(start, end))
+            RelationNode(
+                subject=subject, relation=relation, object=anchor, span=self.span(start, end), each=each
+            )
         )
 
     # --- characters -----------------------------------------------------------------------------------

@@ -23,6 +23,7 @@ import msgspec
 from proto.common import Span
 from proto.ssg import ActionNode, CharacterNode, Diagnostic, ObjectNode, SentenceGraph, SocialNode
 from services.nlp import lexicon
+from services.nlp.distributive import each_copies
 from services.nlp.errors import diagnostic
 from services.nlp.scene import PRONOUN_ANCHOR
 from services.nlp.senses import room_senses
@@ -282,7 +283,7 @@ def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> li
     Returns:
         New graphs; character names canonical, "they" expanded into one node per character.
     """
-    graphs = distinct_objects(room_senses(graphs, offsets), offsets)
+    graphs = each_copies(distinct_objects(room_senses(graphs, offsets), offsets))
     state = _State()
     out: list[SentenceGraph] = []
     multiword = state.multiword  # "can" -> the watering can

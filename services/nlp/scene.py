@@ -225,6 +225,7 @@ def _subjects_of(attach: Token) -> list[Token]:
             obj = [c for c in verb.children if c.dep_ == "obj"]
             if obj and (
                 verb.lemma_.lower() in PLACEMENT_VERBS
+                or verb.lemma_.lower() == "have"  # "the desk has a lamp on it": the lamp is on it
                 or not any(c.dep_ in SUBJECT_DEPS for c in verb.children)
             ):
                 return _expand_subject(obj[0])
@@ -386,6 +387,7 @@ def extract_scene(sent: SpacySpan, builder: GraphBuilder) -> None:
             relation = "hanging_above"
         for anchor in anchors:
             anchor = relative_antecedent(anchor)  # "a bed under which a box lies": under the bed
+            anchor = _holder_of_it(anchor)  # "Each desk has a computer on it": on each desk
             if anchor.i in built_in:
                 continue
             anchor_room = _room(anchor)
@@ -401,7 +403,9 @@ def extract_scene(sent: SpacySpan, builder: GraphBuilder) -> None:
                 sid = _mention(s, builder, report_unknown=False)
                 if sid is not None:  # the span covers both ends ("under which a box": box and bed)
                     end = max(anchor.idx + len(anchor.text), s.idx + len(s.text))
-                    builder.add_relation(sid, relation, anchor_id, min(start, s.idx, anchor.idx), end)
+                    builder.add_relation(
+                        sid, relation, anchor_id, min(start, s.idx, anchor.idx), end, each=_each(anchor)
+                    )
     _with_relations(sent, builder)
     _room_parts(sent, builder)
     # Verbs that are relations: "The sofa faces the TV", "a chair facing the window".
@@ -431,8 +435,33 @@ def extract_scene(sent: SpacySpan, builder: GraphBuilder) -> None:
                 sid = _mention(s, builder, report_unknown=False)
                 if sid is not None:
                     builder.add_relation(
-                        sid, rel, anchor_id, min(tok.idx, s.idx), anchor.idx + len(anchor.text)
+                        sid,
+                        rel,
+                        anchor_id,
+                        min(tok.idx, s.idx),
+                        anchor.idx + len(anchor.text),
+                        each=_each(anchor),
                     )
+
+
+def _holder_of_it(tok: Token) -> Token:
+    """The subject of "has" that "it" points back to ("A desk has a lamp on it" -> desk); else the token."""
+    if tok.lower_ != "it" or tok.pos_ != "PRON":
+        return tok
+    head = tok.head
+    for _ in range(3):
+        if head.lemma_.lower() == "have":
+            holders = [c for c in head.children if c.dep_ in SUBJECT_DEPS and c.pos_ in ("NOUN", "PROPN")]
+            return holders[0] if holders else tok
+        if head.head.i == head.i:
+            break
+        head = head.head
+    return tok
+
+
+def _each(anchor: Token) -> bool:
+    """True for an anchor written "each desk" / "every table": the thing stands at every one of them."""
+    return any(c.dep_ == "det" and c.lower_ in ("each", "every") for c in anchor.children)
 
 
 # Parts of a room a thing is placed by ("in the corner", "at the back of the room") -> the part's name.
@@ -548,6 +577,7 @@ def _with_relations(sent: SpacySpan, builder: GraphBuilder) -> None:
                     hid,
                     min(holder.idx, thing.idx),
                     max(holder.idx, thing.idx) + len(thing.text),
+                    each=_each(holder),
                 )
 
 

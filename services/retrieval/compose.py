@@ -115,12 +115,15 @@ def _validate(
 
 def _expand(objects: list[ObjectNode], relations: list[RelationNode]) -> list[tuple[int, RelationNode]]:
     """One relation per copy of a counted subject (with the stated relation's index); a counted
-    anchor is its first copy."""
+    anchor is its first copy, or, for "a chair at each desk" (``each``), copy k of the subject goes with
+    copy k of the anchor."""
     copies = {o.id: instance_ids(o) for o in objects}
     out = []
     for i, r in enumerate(relations):
-        for sid in copies[r.subject]:
-            out.append((i, RelationNode(subject=sid, relation=r.relation, object=r.object, span=r.span)))
+        anchors = copies[r.object] if r.each else [r.object]
+        for k, sid in enumerate(copies[r.subject]):
+            anchor = anchors[k % len(anchors)]
+            out.append((i, RelationNode(subject=sid, relation=r.relation, object=anchor, span=r.span)))
     return out
 
 

@@ -143,15 +143,17 @@ def relation_checks(graph: SentenceGraph, world: World) -> list[Check]:
                 Check(name="relation_holds", ok=False, reason=f"{said}: there is no {missing} to place")
             )
             continue
-        anchor = anchors[0]
-        failing = [s for s in subjects if not _looks_true(rel.relation, s, anchor)]
+        # "a chair at each desk": chair k at desk k; otherwise every copy at the (first) anchor
+        pairs = [(s, anchors[k % len(anchors)] if rel.each else anchors[0]) for k, s in enumerate(subjects)]
+        failing = [(s, a) for s, a in pairs if not _looks_true(rel.relation, s, a)]
         if failing:
+            subject, anchor = failing[0]
             checks.append(
                 Check(
                     name="relation_holds",
                     ok=False,
-                    reason=f"the {display(failing[0].id)} is not {words} the {display(anchor.id)}: "
-                    + _why_not(rel.relation, failing[0], anchor),
+                    reason=f"the {display(subject.id)} is not {words} the {display(anchor.id)}: "
+                    + _why_not(rel.relation, subject, anchor),
                 )
             )
         else:

@@ -55,6 +55,15 @@ def scene(ctx: StageContext, graphs: Sequence[SentenceGraph]) -> tuple[Scene, Co
     return ctx.engine.query("scene", part, lambda: compose(ctx, part))
 
 
+def _anchor_of(subject: str, relation: RelationNode, ids: list[str]) -> str:
+    """The anchor copy a subject copy is placed by: copy k of "a chair at each desk" by desk k, else the anchor."""
+    if not relation.each:
+        return relation.object
+    k = int(subject.rsplit("/", 1)[1]) if "/" in subject else 1
+    copy = relation.object if k == 1 else f"{relation.object}/{k}"
+    return copy if copy in ids else relation.object
+
+
 def _holds(relation: str, subject: PlacedObject, anchor: PlacedObject) -> bool:
     try:
         return relation_holds(relation, subject, anchor)
@@ -132,14 +141,15 @@ def keep_relations(before: Scene, after: Scene, relations: Sequence[RelationNode
     blend = _Blend(before, after)
     ids = [o.id for o in after.objects]
     pairs = [
-        (s, r.object, r.relation)
+        (s, a, r.relation)
         for r in relations
         for s in ids
         if (s == r.subject or s.startswith(r.subject + "/"))
-        and s in blend.before
-        and r.object in blend.before
-        and r.object in ids
-        and _holds(r.relation, blend.before[s], blend.before[r.object])
+        for a in [_anchor_of(s, r, ids)]
+        if s in blend.before
+        and a in blend.before
+        and a in ids
+        and _holds(r.relation, blend.before[s], blend.before[a])
     ]
     moved = {blend.root[m] for m in blend.moved}  # the trees the optimiser moved
     pairs = [p for p in pairs if blend.root[p[0]] in moved or blend.root[p[1]] in moved]

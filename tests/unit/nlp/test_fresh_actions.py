@@ -193,3 +193,22 @@ def test_she_is_the_character_known_to_be_a_she_before_one_of_no_known_gender():
         ("waiter", "present", "Ada"),
         ("Ada", "wave", "waiter"),
     ]
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        # getting out of a bed, a tub or a seat stands up where one is (no walk to it first)
+        ("A bed is by the wall$. Nadia gets out of bed.", [("Nadia", "stand", "")]),
+        ("A bathtub is here$. Omar climbs out of the bathtub.", [("Omar", "stand", "")]),
+        ("A sofa is here$. Ines slides off the sofa.", [("Ines", "stand", "")]),
+        # into a bed or a tub is lying there; onto a seat is sitting on it
+        ("A bed is by the wall$. Nadia gets into bed.", [("Nadia", "lie_down", "bed")]),
+        ("A bed is by the wall$. Nadia climbs into bed.", [("Nadia", "climb", "bed")]),
+        ("An armchair is here$. Ines gets into the armchair.", [("Ines", "sit", "armchair")]),
+        # a place that is no bed or seat keeps its verb
+        ("A table is here$. Nadia climbs onto the table.", [("Nadia", "climb", "table")]),
+    ],
+)
+def test_getting_into_and_out_of_places_changes_posture(text, expected):
+    assert acts(text) == expected

@@ -70,3 +70,33 @@ def test_two_things_the_parser_makes_two_subjects_are_both_on_the_table():
     found = rels(parse_document("A soda can and a bowl are on the coffee table$."))
     assert ("soda_can", "on", "coffee_table") in found
     assert ("bowl", "on", "coffee_table") in found
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        # "each"/"every" anchor: one subject per copy of the anchor, whichever sentence counted it
+        ("In the office there are two desks$. A chair is at each desk$.", [("chair", 2), ("desk", 2)]),
+        ("There are three tables$. Every table has a lamp on it$.", [("lamp", 3), ("table", 3)]),
+        ("There are two beds$. A rug lies beside each bed$.", [("bed", 2), ("rug", 2)]),
+        # one anchor: one subject
+        ("There is a desk$. A chair is at each desk$.", [("chair", 1), ("desk", 1)]),
+    ],
+)
+def test_a_thing_at_each_anchor_is_counted_per_anchor(text, expected):
+    graphs = parse_document(text)
+    assert objects(graphs) == expected
+    assert all(r.each for g in graphs for r in g.relations)
+
+
+@pytest.mark.parametrize(
+    ("text", "relation"),
+    [
+        # "has ... on it": the thing had is on the haver, "it" is the haver
+        ("The desk has a lamp on it$.", ("lamp", "on", "desk")),
+        ("Each desk has a computer on it$.", ("computer", "on", "desk")),
+        ("The office has a desk near the window$.", ("desk", "near", "window")),
+    ],
+)
+def test_what_a_thing_has_on_it_is_on_it(text, relation):
+    assert relation in rels(parse_document(text))

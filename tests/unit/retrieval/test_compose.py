@@ -139,6 +139,19 @@ def test_counted_objects_become_copies_that_each_keep_the_relation():
     assert report.relations[0].held and report.overlaps == 0
 
 
+def test_a_thing_at_each_copy_of_an_anchor_stands_by_its_own_copy():
+    # "Two desks. A computer is on each desk": computer k on desk k, not both on the first desk
+    each = RelationNode(subject="computer", relation="on", object="desk", each=True)
+    scene, report = compose_scene(
+        [o("desk", "desk", count=2), o("computer", "computer", count=2)], [each], seed=0
+    )
+    placed = {p.id: p for p in scene.objects}
+    assert relation_holds("on", placed["computer"], placed["desk"])
+    assert relation_holds("on", placed["computer/2"], placed["desk/2"])
+    assert not relation_holds("on", placed["computer/2"], placed["desk"])
+    assert report.relations[0].held and report.overlaps == 0
+
+
 def test_bad_input_gets_diagnostics_and_the_rest_is_composed():
     objects = [o("desk", "desk"), o("ghost", "flux_capacitor"), o("desk", "table")]
     relations = [r("ghost on desk"), RelationNode(subject="desk", relation="hovering", object="desk")]
