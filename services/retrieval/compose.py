@@ -123,7 +123,9 @@ def _expand(objects: list[ObjectNode], relations: list[RelationNode]) -> list[tu
         anchors = copies[r.object] if r.each else [r.object]
         for k, sid in enumerate(copies[r.subject]):
             anchor = anchors[k % len(anchors)]
-            out.append((i, RelationNode(subject=sid, relation=r.relation, object=anchor, span=r.span)))
+            out.append(
+                (i, RelationNode(subject=sid, relation=r.relation, object=anchor, span=r.span, each=r.each))
+            )
     return out
 
 

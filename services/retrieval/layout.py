@@ -332,8 +332,19 @@ class Layout:
             relation, anchor = via.relation, placed[via.object]
         else:
             relation, anchor = PLACE_ANCHOR_FROM_SUBJECT[via.relation], placed[via.subject]
+        instance = item.instance
+        if via.each and via.subject == item.id:
+            # "a chair at each desk": the chair at desk 2 is the first at that desk (its front), not the second
+            instance = sum(
+                1
+                for pid in placed
+                if any(
+                    r.subject == pid and r.object == via.object and r.relation == relation
+                    for r in self.touching[pid]
+                )
+            )
         yield from relation_candidates(
-            relation, item.fp, anchor, rng, room_height=self.room.height, instance=item.instance
+            relation, item.fp, anchor, rng, room_height=self.room.height, instance=instance
         )
 
     # -- placement -------------------------------------------------------------------------------
