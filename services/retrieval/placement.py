@@ -207,7 +207,7 @@ def relation_candidates(
                     for lat in lats:
                         yield _side(anchor, fp, side, gap, lat, rel_yaw, y, support)
         return
-    if relation == "around" or (relation in ("near", "next_to") and sits_at(fp, anchor.fp)):
+    if relation == "around":
         # Each copy takes its own side first (front, back, left, right in turn), then, where a wall or
         # another thing leaves that side no room (a table against the wall has no back), the others.
         order = ["front", "back", "left", "right"]
@@ -223,10 +223,7 @@ def relation_candidates(
             for gap in (float(rng.uniform(0.05, 0.2)), 0.05, 0.3, 0.6):
                 for lat in offsets:
                     yield _side(anchor, fp, side, gap, lat, rel_yaw, y, support)
-        if relation == "around":
-            return
-        # "a table with two chairs", "a chair near the desk": a seat stands at a table, desk or counter turned
-        # to it, as "around" places it; where no side has room, anywhere the relation allows
+        return
     sides, rel_yaws = _SIDES.get(relation, (["front", "left", "right", "back"], [0.0, math.pi]))
     sides = list(sides)
     if len(sides) > 1:
