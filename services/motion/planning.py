@@ -88,6 +88,8 @@ CLOSE_DISTANCE = {
 }
 REACH_SIDES = 8  # directions round a point tried for the nearest spot to reach it from
 BODY_CLEAR_M = 0.6  # metres from another character's hips a spot to stand and reach from keeps
+BODY_SHIFT_M = 0.4  # metres farther from the contacts such a spot may be than the one another stands on
+CLEAR_DIRECTIONS = 16  # ... tried in this many directions round them
 WALK_WEIGHT = 0.15  # metres of reach one metre more of walking is worth, choosing that spot
 POUR_INTO = ("pour",)  # actions whose held vessel empties into what the sentence names
 POUR_BACK_M = 0.12  # metres from the hand on a kettle's handle to its spout
@@ -907,15 +909,16 @@ def plan_actions(
         not from across the island; a longer walk counts WALK_WEIGHT against the nearer spot."""
         if np.linalg.norm(here - pos) <= STEP_IN:
             return
-        # the others, and the fronts of seats where one steps to sit (someone may be sitting down there)
-        bodies = [*(occupied or []), *others.values(), *_seat_fronts(scene)]
+        # the others (seated, aimed at, standing by), and the fronts of seats where one steps to sit (someone
+        # may be sitting down there): the bass guitar beside the drum kit is not taken from inside the drummer
+        people = [*(occupied or []), *others.values(), *(bodies or []), *_seat_fronts(scene)]
         sides = [pos - here] + [
             np.array([np.sin(a), np.cos(a)]) for a in np.arange(REACH_SIDES) * 2 * np.pi / REACH_SIDES
         ]
 
         def cost(side: np.ndarray) -> float:
             spot = reach_spot(here + side / np.linalg.norm(side) * REACH, here, target)
-            crowded = any(np.hypot(spot[0] - b[0], spot[1] - b[1]) < BODY_CLEAR_M for b in bodies)
+            crowded = any(np.hypot(spot[0] - b[0], spot[1] - b[1]) < BODY_CLEAR_M for b in people)
             return (  # beside the one seated at the cup, not in their lap
                 float(np.linalg.norm(here - spot))
                 + WALK_WEIGHT * float(np.linalg.norm(spot - pos))
@@ -925,6 +928,26 @@ def plan_actions(
         sides = [side for side in sides if np.linalg.norm(side) > 1e-6]
         if sides:
             step_up_to(here, ai, target, front=min(sides, key=cost))
+
+    def clear_of_bodies(stand: np.ndarray, centre: np.ndarray) -> np.ndarray:
+        """``stand``, or where another already stands there (the bass guitar lies where the drummer plays),
+        the free spot nearest it as far from the contacts at ``centre`` or up to BODY_SHIFT_M farther (rings
+        round them) and at least BODY_CLEAR_M from everyone standing; ``stand`` when there is none."""
+        from services.motion.routing import RADIUS, scene_grid
+
+        people = np.asarray(bodies or [], float).reshape(-1, 2)
+        if not len(people) or np.linalg.norm(people - stand, axis=1).min() >= BODY_CLEAR_M:
+            return stand
+        r0 = float(np.linalg.norm(stand - centre))
+        a = np.arange(CLEAR_DIRECTIONS) * 2 * np.pi / CLEAR_DIRECTIONS
+        rings = r0 + np.arange(0.0, BODY_SHIFT_M + 1e-9, 0.1)
+        spots = (centre + rings[:, None, None] * np.stack([np.sin(a), np.cos(a)], -1)[None]).reshape(-1, 2)
+        clear = np.linalg.norm(spots[:, None] - people[None], axis=2).min(axis=1) >= BODY_CLEAR_M
+        free = np.asarray(scene_grid(scene, frozenset(), RADIUS).is_free_xz(spots), bool).reshape(-1)
+        spots = spots[clear & free]
+        if not len(spots):
+            return stand
+        return spots[int(np.argmin(np.linalg.norm(spots - stand, axis=1)))]
 
     def front_of(obj_id: str) -> np.ndarray | None:
         """The side a piece of furniture is used from (its catalog stand point from its centre), None if unknown:
@@ -1480,6 +1503,7 @@ def plan_actions(
                 if ai in spots:
                     stand = np.asarray(spots[ai], float)
                 elif targets:  # the arm that does not reach (hanging, swinging) out of the furniture beside
+                    stand = clear_of_bodies(stand, centre)
                     keep = float(np.linalg.norm(stand - centre)) + 0.02  # no farther off: no deeper lean
                     roomy = make_room(name, ai, obj.id, at=stand, face_to=centre,
                                       reaching=reaching_sides(targets), within=keep)  # fmt: skip

@@ -9,7 +9,7 @@ from proto.motion import SynthesizeRequest
 from proto.scene import PlacedObject, Room, Scene
 from proto.ssg import ActionNode, CharacterNode
 from services.motion.handlers import CONTRACT
-from services.motion.routing import BODY_M, RADIUS, scene_route
+from services.motion.routing import BODY_M, PASS_BY_M, RADIUS, scene_route
 from wana.arrays import from_wire
 from wana.bus.service import call_in_process
 
@@ -94,3 +94,18 @@ def test_someone_standing_beside_the_goal_is_walked_round_not_through():
 def test_the_one_stood_beside_when_setting_off_is_not_walked_round():
     route, _ = scene_route(EMPTY, (0.0, 0.4), (3.0, 0.0), bodies=[PETE])
     assert np.allclose(route[0], (0.0, 0.4)) and np.allclose(route[-1], (3.0, 0.0))
+
+
+def test_someone_in_the_mouth_of_a_nook_is_passed_shoulder_by_shoulder_not_walked_through():
+    # two long cabinets from the west wall leave a way 1 m wide for the hips into the nook between them; Pete
+    # stands in it: the full disc round him closes the way, a closer pass (PASS_BY_M) does not
+    walls = [
+        PlacedObject(id=n, category="cabinet", position=(-2.5, 0.0, z), yaw=0.0, scale=(6.0, 1.0, 1.0))
+        for n, z in (("north", 1.0), ("south", -1.0))
+    ]
+    scene = Scene(room=ROOM, objects=walls)
+    pete = (-1.0, 0.0)
+    route, why = scene_route(scene, (2.0, 0.0), (-2.6, 0.0), bodies=[pete])
+    assert why == ""
+    assert np.allclose(route[-1], (-2.6, 0.0))
+    assert RADIUS + BODY_M > _distance_to_polyline(route, pete) >= min(PASS_BY_M) - 0.05

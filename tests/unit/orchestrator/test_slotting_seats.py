@@ -64,3 +64,26 @@ def test_a_chair_whose_knees_meet_a_sitters_at_a_corner_is_passed_over_for_a_fre
     eve, john = slotting.claim("Eve", SIT_AT), slotting.claim("John", SIT_AT)
     assert eve.action.target == "left"
     assert john.action.target == "across"
+
+
+def _sitters(names: list[str]) -> tuple[list[tuple[float, float]], list[tuple[float, float]]]:
+    """Hips and knees of ``names`` sitting on one three-seat sofa, all told before (Slotting.expect)."""
+    sofa = PlacedObject(id="sofa", category="sofa", position=(0.0, 0.0, 0.0))
+    slotting = Slotting(Scene(room=ROOM, objects=[sofa]))
+    for name in names:
+        slotting.expect(name, SIT_ON)
+    seats = [slotting.claim(name, SIT_ON).seat or "sit" for name in names]
+    assert len(set(seats)) == len(names)  # each a cushion of its own
+    return seat_points(sofa, seats), seat_points(sofa, seats, KNEE_OUT_M)
+
+
+def test_two_on_a_three_seat_sofa_take_its_ends_hips_and_knees_apart():
+    hips, knees = _sitters(["Mary", "Zoe"])
+    assert math.dist(*hips) >= ELBOW_M
+    assert math.dist(*knees) >= KNEE_M
+
+
+def test_three_on_a_three_seat_sofa_take_a_cushion_each():
+    hips, _ = _sitters(["Mary", "Zoe", "Ann"])
+    gaps = sorted(math.dist(a, b) for i, a in enumerate(hips) for b in hips[i + 1 :])
+    assert gaps[0] >= 0.4  # neighbours a cushion apart, not on one another's lap
