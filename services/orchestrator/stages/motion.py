@@ -9,6 +9,9 @@ Who is on stage when and where each starts (the door, entrances, exits: services
 and which seat or stand slot each action takes (services/orchestrator/slotting.py) are decided here, in
 story order, and reach the motion service as each segment's start, routes, seats and spots; after timing,
 each motion gets its presence track (Motion.present) and waits outside the room while off stage.
+Each pass over the story (drafts, segments) resumes from the checkpoints of the last one
+(services/orchestrator/stages/replay.py), so an edit walks only the actions from the first it changes.
+This module is over 400 lines because the passes, the interactions and the time line share one walk.
 """
 
 from __future__ import annotations
