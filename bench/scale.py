@@ -1,6 +1,6 @@
 """Where users wait, at every document size: edit latency, full recompute, start-up, render and encode.
 
-    .venv/bin/python bench/scale.py [--quick] [--json PATH] [--sizes 10,40,160] [--reps 3]
+    .venv/bin/python bench/scale.py [--quick] [--json PATH] [--sizes 10,40,160,640] [--reps 3]
 
 Edits (the orchestrator in this process over the in-process backend, as the embedded default calls the
 handlers; a document of 6 scene sentences, one of them an object no action uses, then two characters
@@ -25,7 +25,8 @@ all different (the 6 scene sentences, then actions no two alike), so the NLP ser
 sentence text answers none of them.
 
 JSON keys: action_edit_p50_ms, late_action_edit_p50_ms, scene_edit_p50_ms, scene_used_edit_p50_ms,
-full_ms, parse_ms (each a map size -> ms), nodes (size -> kind -> nodes run), startup_s, animate (per story),
+full_ms, parse_ms (each a map size -> ms), nodes (size -> kind -> nodes run), edit_cpu_p50_ms (size ->
+kind -> CPU ms of this process, time.process_time: the edits' cost as load does not distort it), startup_s, animate (per story),
 serve_ready_s, serve_first_ack_s, serve_first_edit_s (``wana serve`` launched on a fresh database: seconds to
 answer HTTP, to acknowledge a new document's first edit and to send its animation),
 animate_realtime_factor, render_fps_640, render_fps_1280, render_cpu_ms_per_frame_640 and _1280 (CPU time per
@@ -92,15 +93,16 @@ def edit_latency(size: int, reps: int) -> dict[str, Any]:
     from services.orchestrator.document import TextChange
     from services.orchestrator.session import Orchestrator
 
-    out: dict[str, Any] = {"ms": {}, "nodes": {}}
+    out: dict[str, Any] = {"ms": {}, "cpu_ms": {}, "nodes": {}}
     with tempfile.TemporaryDirectory(prefix="wana-scale-") as tmp:
         orch = Orchestrator(Path(tmp) / "s.db", InProcessBackend(), seed=SEED)
         orch.create(WARM_UP, doc_id="warm").compute()  # models loaded, caches warm: not part of any time
         text = document(size)
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         session = orch.create(text, doc_id="cold")
         result = session.compute()
         out["ms"]["full"] = 1000 * (time.perf_counter() - t0)
+        out["cpu_ms"]["full"] = 1000 * (time.process_time() - c0)
         out["nodes"]["full"] = len(result.ran)
         edits = {  # kind -> (the phrases it goes through, one edit from each to the next; where to look)
             "action": (["walks", "runs", "jogs", "marches", "walks"], len(text) // 2),
@@ -109,17 +111,19 @@ def edit_latency(size: int, reps: int) -> dict[str, Any]:
             "scene_used": (["A chair", "A wooden chair", "A metal chair", "A plastic chair", "A chair"], 0),
         }
         for kind, (phrases, at) in edits.items():
-            times, nodes = [], []
+            times, cpu, nodes = [], [], []
             for rep in range(reps):
                 cur = session.doc.text
                 old, new = phrases[rep % 4], phrases[rep % 4 + 1]  # never back to a text computed just before
                 start, end, repl = _swap(cur, old, new, min(at, len(cur) - 1))
-                t0 = time.perf_counter()
+                t0, c0 = time.perf_counter(), time.process_time()
                 session.edit(session.doc.version, [TextChange(start=start, end=end, text=repl)])
                 result = session.compute()
                 times.append(1000 * (time.perf_counter() - t0))
+                cpu.append(1000 * (time.process_time() - c0))
                 nodes.append(len(result.ran))
             out["ms"][kind] = statistics.median(times)
+            out["cpu_ms"][kind] = statistics.median(cpu)
             out["nodes"][kind] = int(statistics.median(nodes))
         orch.close()
     return out
@@ -370,12 +374,12 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
         "--quick", action="store_true", help="size 10, one rep, start-up only (no full animate), 8 frames"
     )
     ap.add_argument("--json", help="write the results here")
-    ap.add_argument("--sizes", default="", help="comma-separated sentence counts (default 10,40,160)")
+    ap.add_argument("--sizes", default="", help="comma-separated sentence counts (default 10,40,160,640)")
     ap.add_argument("--reps", type=int, default=0, help="edits per kind (default 3; --quick 1)")
     ap.add_argument("--no-animate", action="store_true", help="skip the `wana animate` runs")
     ap.add_argument("--no-render", action="store_true", help="skip the render fps")
     args = ap.parse_args(argv)
-    sizes = [int(s) for s in args.sizes.split(",") if s] or ([10] if args.quick else [10, 40, 160])
+    sizes = [int(s) for s in args.sizes.split(",") if s] or ([10] if args.quick else [10, 40, 160, 640])
     reps = args.reps or (1 if args.quick else 3)
     res: dict[str, Any] = {
         "action_edit_p50_ms": {},
@@ -384,6 +388,7 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
         "scene_used_edit_p50_ms": {},
         "full_ms": {},
         "nodes": {},
+        "edit_cpu_p50_ms": {},
         "cpu_count": os.cpu_count(),
         "load_average": list(os.getloadavg()),
     }
@@ -399,10 +404,17 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
         res["scene_used_edit_p50_ms"][str(size)] = round(ms["scene_used"], 1)
         res["full_ms"][str(size)] = round(ms["full"], 1)
         res["nodes"][str(size)] = nodes
+        res["edit_cpu_p50_ms"][str(size)] = {kind: round(v, 1) for kind, v in e["cpu_ms"].items()}
         print(
             f"{size:>9} {ms['action']:>7.0f}ms {ms['late_action']:>7.0f}ms {ms['scene_unused']:>11.0f}ms "
             f"{ms['scene_used']:>9.0f}ms {ms['full']:>7.0f}ms  "
             f"{nodes['action']}/{nodes['late_action']}/{nodes['scene_unused']}/{nodes['scene_used']}/{nodes['full']}",
+            flush=True,
+        )
+        cpu = e["cpu_ms"]
+        print(
+            f"{'CPU':>9} {cpu['action']:>7.0f}ms {cpu['late_action']:>7.0f}ms {cpu['scene_unused']:>11.0f}ms "
+            f"{cpu['scene_used']:>9.0f}ms {cpu['full']:>7.0f}ms  (process time: what load does not distort)",
             flush=True,
         )
     res["parse_ms"] = parse_latency(sizes)

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from proto.common import NDArray
@@ -18,7 +20,7 @@ def to_wire(array: np.ndarray) -> NDArray:
 def from_wire(wire: NDArray) -> np.ndarray:
     """Unpack an NDArray; raises ValueError when the byte count does not match the shape."""
     dtype = np.dtype(wire.dtype)
-    expected = int(np.prod(wire.shape, dtype=np.int64)) * dtype.itemsize
+    expected = math.prod(wire.shape) * dtype.itemsize  # (not np.prod: called for every piece of every motion)
     if len(wire.data) != expected:
         raise ValueError(
             f"NDArray of shape {wire.shape} {wire.dtype} needs {expected} bytes, got {len(wire.data)}"

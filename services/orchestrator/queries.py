@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import hashlib
 import threading
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from typing import Any, Literal, TypeVar
 
@@ -65,6 +65,9 @@ class QueryEngine:
     log: list[LogEntry] = field(default_factory=list)
     _lock: threading.RLock = field(default_factory=threading.RLock)
     _start: int = 0  # where the current revision's entries begin in the log
+    # a stage's own record of its last finished pass, by pass (stages/replay.py: the motion stage's
+    # checkpoints); it only saves walking what the memos would answer, never decides a value
+    traces: dict[str, Any] = field(default_factory=dict)
 
     def new_revision(self) -> int:
         self.revision += 1
@@ -107,6 +110,12 @@ class QueryEngine:
                 self.log.append(LogEntry(self.revision, key, "reused", False))
                 return memo, True
         return memo, False
+
+    def mark_reused(self, keys: Iterable[str]) -> None:
+        """Log queries as reused without asking them: a stage that knows their inputs are the ones of their
+        memos (a pass resumed from its checkpoint) logs what asking would have logged."""
+        with self._lock:
+            self.log.extend(LogEntry(self.revision, key, "reused", False) for key in keys)
 
     def query_unhashed(self, key: str, inputs: Any, compute: Callable[[], T]) -> T:
         """``query`` for a value too big to hash on every run (every character's whole motion): memoised by

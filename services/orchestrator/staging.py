@@ -303,8 +303,8 @@ def kept_clear(
             continue
         taken = [np.array(out[n][:2], float) for n in out if n != name and n not in hidden]
         order = np.argsort(np.linalg.norm(cells - xz, axis=1), kind="stable")
-        apart = [i for i in order[:4000] if all(np.linalg.norm(cells[i] - t) >= APART_M for t in taken)]
-        p = cells[apart[0] if apart else order[0]]
+        apart = (i for i in order[:4000] if all(np.linalg.norm(cells[i] - t) >= APART_M for t in taken))
+        p = cells[next(apart, order[0])]  # the first one apart: the rest need not be tested
         out[name] = (round(float(p[0]), 3), round(float(p[1]), 3), yaw)
     return out
 

@@ -24,7 +24,7 @@ from collections.abc import Callable
 
 import msgspec
 
-from proto.social import CharacterSocial, SocialPlan
+from proto.social import CharacterSocial, ExpressionKey, SocialPlan, StepEmotion
 from proto.ssg import SentenceGraph, SocialNode
 
 WINDOW_MIN_STEPS = 24  # character sentences a window holds before it may be cut
@@ -115,6 +115,8 @@ def merge_windows(windows: list[list[SentenceGraph]], plans: list[SocialPlan], s
     before: dict[str, int] = {}  # actions of each character in the windows so far
     step0 = 0
     chars: dict[str, CharacterSocial] = {}
+    keys_of: dict[str, list[ExpressionKey]] = {}  # (joined once: not a copy of a long story's list a window)
+    emotions_of: dict[str, list[StepEmotion]] = {}
     pairs: dict[tuple[str, str], object] = {}
     responses, proposals, distances, notes = [], [], [], []
     for win, p in zip(windows, plans, strict=True):
@@ -129,13 +131,9 @@ def merge_windows(windows: list[list[SentenceGraph]], plans: list[SocialPlan], s
                 for k in c.keys
             ]
             emotions = [msgspec.structs.replace(e, step=e.step + step0) for e in c.emotions]
-            if c.name in chars:
-                old = chars[c.name]
-                chars[c.name] = msgspec.structs.replace(
-                    old, keys=[*old.keys, *keys], emotions=[*old.emotions, *emotions]
-                )
-            else:
-                chars[c.name] = msgspec.structs.replace(c, keys=keys, emotions=emotions)
+            chars.setdefault(c.name, c)  # the first window's entry, its keys and emotions joined at the end
+            keys_of.setdefault(c.name, []).extend(keys)
+            emotions_of.setdefault(c.name, []).extend(emotions)
         for x in p.pairs:
             pairs.setdefault((x.character, x.other), x)
         responses += [
@@ -160,7 +158,10 @@ def merge_windows(windows: list[list[SentenceGraph]], plans: list[SocialPlan], s
         step0 += sum(_is_step(g) for g in win)
     return SocialPlan(
         expression_names=plans[0].expression_names,
-        characters=list(chars.values()),
+        characters=[
+            msgspec.structs.replace(c, keys=keys_of[name], emotions=emotions_of[name])
+            for name, c in chars.items()
+        ],
         pairs=list(pairs.values()),  # type: ignore[arg-type]
         responses=responses,
         proposals=proposals,

@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from wana.domain import quat
-from wana.domain.clip_headers import ACTIONS_DIR, clip_headers, library_dirs
+from wana.domain.clip_headers import ACTIONS_DIR, clip_headers, library_dirs, library_key
 from wana.domain.clip_headers import IMPORTED_DIR as IMPORTED_DIR  # re-exported: services/motion/cli.py
 from wana.domain.posing import neutral
 from wana.domain.skeleton import JOINT_INDEX, JOINT_NAMES, N_JOINTS
@@ -287,7 +287,7 @@ def _synonyms(dirs: tuple[Path, ...]) -> dict[str, str]:
 
 def get_clip(name: str) -> ActionClip:
     """The clip called name; raises KeyError listing close names when unknown."""
-    dirs = tuple(library_dirs())
+    dirs = library_key()
     lib = _load(dirs)  # the cached table itself: get_clip runs for every segment of every motion
     if name in lib:
         return lib[name]

@@ -32,11 +32,18 @@ class ClipHeader:
 
 def library_dirs() -> list[Path]:
     """The clip folders in order of precedence (authored, imported, then $WANA_ACTIONS_DIR; later wins)."""
-    dirs = [ACTIONS_DIR, IMPORTED_DIR]
-    extra = os.environ.get("WANA_ACTIONS_DIR")
-    if extra:
-        dirs.append(Path(extra))
-    return dirs
+    return list(library_key())
+
+
+def library_key() -> tuple[Path, ...]:
+    """``library_dirs`` as the tuple the caches are keyed by (get_clip asks for it on every clip it looks up:
+    the paths are built once per value of $WANA_ACTIONS_DIR)."""
+    return _dirs(os.environ.get("WANA_ACTIONS_DIR") or "")
+
+
+@functools.lru_cache(maxsize=8)
+def _dirs(extra: str) -> tuple[Path, ...]:
+    return (ACTIONS_DIR, IMPORTED_DIR, Path(extra)) if extra else (ACTIONS_DIR, IMPORTED_DIR)
 
 
 def clip_files(dirs: tuple[Path, ...]) -> list[tuple[Path, Path]]:

@@ -9,6 +9,9 @@ Who is on stage when and where each starts (the door, entrances, exits: services
 and which seat or stand slot each action takes (services/orchestrator/slotting.py) are decided here, in
 story order, and reach the motion service as each segment's start, routes, seats and spots; after timing,
 each motion gets its presence track (Motion.present) and waits outside the room while off stage.
+Each pass over the story (drafts, segments) resumes from the checkpoints of the last one
+(services/orchestrator/stages/replay.py), so an edit walks only the actions from the first it changes.
+This module is over 400 lines because the passes, the interactions and the time line share one walk.
 """
 
 from __future__ import annotations
@@ -29,9 +32,18 @@ from proto.social import SocialPlan
 from proto.ssg import ActionNode, CharacterNode, Command, Diagnostic, RelationNode, SentenceGraph
 from services.orchestrator.backend import StageFailed
 from services.orchestrator.document import Sentence
+from services.orchestrator.queries import content_hash
 from services.orchestrator.slotting import Slotting, matched
 from services.orchestrator.stages import StageContext, content_of
 from services.orchestrator.stages.props import aimed, brought_notes, carried, made_for, provide
+from services.orchestrator.stages.replay import (
+    Carried,
+    Outputs,
+    PassTrace,
+    resume_at,
+    same_from,
+    step_key,
+)
 from services.orchestrator.stages.scene import kept_relations
 from services.orchestrator.stages.seats import furnish, seat_at_instruments
 from services.orchestrator.stages.social import fit_cast, frame_count, paired_actions
@@ -226,14 +238,62 @@ def segments(
     trails: dict[
         str, tuple[int, list[tuple[float, float]]]
     ] = {}  # name -> (sentence, where its last walk went)
-    pieces: dict[str, list[Motion]] = {name: [] for name in characters}
+    out = Outputs({name: [] for name in characters})
+    pieces = out.pieces
     object_ids = {o.id for o in scene.objects}
     order = story_order(characters, sentences)
     for name, k in order:
         slotting.expect(name, characters[name][0].actions[k])
     ends = _sentence_ends(order, characters)
+    # Checkpoints (stages/replay.py): what each step reads besides the carried state, and the whole pass's.
+    skipped = [upto is not None and k > upto.get(name, -1) for name, k in order]
+    keys = [
+        step_key(
+            name,
+            k,
+            characters[name][0].actions[k],
+            characters[name][1][k],
+            sentence_index.get(characters[name][1][k], 0),
+            [[o, j, characters[o][0].actions[j]] for o, j in order[i + 1 : ends[i]]],
+            sorted((distances or {}).get((name, k), {}).items()),
+        )
+        if not skipped[i]
+        else "skipped"
+        for i, (name, k) in enumerate(order)
+    ]
+    context = content_hash(
+        [scene, list(starts.items()), sorted(held.items()), door, sorted(hidden or ()), list(characters)]
+        + [sorted((o, sorted(w)) for o, w in slotting.sitters.items())]
+        + [sorted((o, sorted(w)) for o, w in slotting.standers.items())]
+    )
+    last: PassTrace | None = ctx.engine.traces.pop(kind, None)  # put back only when this pass finishes
+    begin = resume_at(last, context, keys)
+    tail = same_from(last, context, keys)
+    after: list[Carried] = []
+    digests: list[str] = []
+    counts: list[tuple[dict[str, int], int, int]] = []
+    if begin and last is not None:  # the steps before the first changed one: as the last pass left them
+        live = last.after[begin - 1].copy()
+        states, outside, exit_lanes, trails = live.states, live.outside, live.exit_lanes, live.trails
+        slotting.book.held = live.held
+        out = last.outputs.upto(last.counts[begin - 1])
+        pieces = out.pieces
+        after, digests, counts = last.after[:begin], last.digests[:begin], last.counts[:begin]
+        ctx.engine.mark_reused(
+            f"{kind}:{n}:{j}" for (n, j), skip in zip(order[:begin], skipped[:begin], strict=True) if not skip
+        )
     for i, (name, k) in enumerate(order):
-        if upto is not None and k > upto.get(name, -1):
+        if i < begin:
+            continue
+        if skipped[i]:
+            if after:
+                after.append(after[-1])
+                digests.append(digests[-1])
+            else:
+                carried = Carried(states, outside, slotting.book.held, exit_lanes, trails).copy()
+                after.append(carried)
+                digests.append(carried.digest())
+            counts.append(out.counts())
             continue
         node, sids = characters[name]
         action = node.actions[k]
@@ -315,22 +375,43 @@ def segments(
             msgspec.structs.replace(seg, action_index=k, sentence_id=sids[k]) for seg in reply.motion.segments
         ]
         pieces[name].append(msgspec.structs.replace(reply.motion, segments=placed))
-        if notes is not None:
-            # (unknown actions the parse already reported)
-            notes.extend((sids[k], d) for d in reply.diagnostics if not d.startswith("unknown action"))
+        # (unknown actions the parse already reported)
+        out.notes.extend((sids[k], d) for d in reply.diagnostics if not d.startswith("unknown action"))
         states[name] = reply.end_states[-1] if reply.end_states else state
         to = recipient(action, name, states)
         if to and states[name].holding == "" and reply.motion.props:
             # "gives the cup to Anna": let go of here, in Anna's hand from now on (services.motion.handover)
             given = reply.motion.props[-1].object_id
             states[to] = msgspec.structs.replace(states[to], holding=given)
-            if handovers is not None:
-                handovers.append(PairedAction(actor=name, action_index=k, action="present", partner=to))
+            out.handovers.append(PairedAction(actor=name, action_index=k, action="present", partner=to))
         walked = from_wire(reply.motion.root_position)[::TRAIL_STEP, [0, 2]]
         if len(walked) > 1 and float(np.linalg.norm(walked[-1] - walked[0])) > TRAIL_MIN_M:
             trails[name] = (sentence_index.get(sids[k], 0), [(float(x), float(z)) for x, z in walked[:-1]])
         else:
             trails.pop(name, None)
+        carried = Carried(states, outside, slotting.book.held, exit_lanes, trails).copy()
+        after.append(carried)
+        digests.append(carried.digest())
+        counts.append(out.counts())
+        if i + 1 >= tail and last is not None and last.digests[i] == digests[-1]:
+            # early cutoff: the same state as the last pass's here, and the same steps after it
+            rest = [
+                f"{kind}:{n}:{j}"
+                for (n, j), skip in zip(order[i + 1 :], skipped[i + 1 :], strict=True)
+                if not skip
+            ]
+            ctx.engine.mark_reused(rest)
+            out.extended(last.outputs, last.counts[i])
+            after += last.after[i + 1 :]
+            digests += last.digests[i + 1 :]
+            counts += last.counts[i + 1 :]
+            break
+    ctx.engine.traces[kind] = PassTrace(context, keys, after, digests, counts, out)
+    if notes is not None:
+        notes.extend(out.notes)
+    if handovers is not None:
+        handovers.extend(out.handovers)
+    pieces = {name: list(p) for name, p in out.pieces.items()}  # the trace keeps its own lists
     for name, (node, _) in characters.items():
         if not node.actions and upto is None:
             view = scene_view(scene, None)
