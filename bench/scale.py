@@ -194,6 +194,8 @@ animate._progress_bar = bar  # the pipeline's own progress callback, to time its
 t_main = time.time()
 rc = animate.main(sys.argv[1:])
 t_end = time.time()
+import multiprocessing.forkserver as forkserver  # reap the render processes' fork server (after the timing):
+getattr(forkserver._forkserver, "_stop", lambda: None)()  # its CPU and its workers' join this child's
 print("TIMES " + json.dumps({"rc": rc, "main": t_main, "first": ticks[0] if ticks else t_end,
                               "last": ticks[-1] if ticks else t_end, "end": t_end}))
 """
@@ -255,9 +257,9 @@ def animate_run(actions: int, characters: int, startup_only: bool = False) -> di
             "wall_s": round(wall, 3),
             "animation_s": duration,
             "realtime_factor": round(duration / wall, 3) if wall > 0 else 0.0,
-            "cpu_s": round(
-                cpu, 2
-            ),  # the child's CPU time, its render processes included: load does not distort it
+            # the child's CPU time, its render processes included (their fork server is reaped before the
+            # child exits): load does not distort it
+            "cpu_s": round(cpu, 2),
             "load_average": [round(x, 2) for x in os.getloadavg()],
             "peak_rss_mb_max_so_far": round(rss_kb / 1024, 1),
         }
