@@ -1,0 +1,221 @@
+"""Arm clearance: a free arm swings clear of the furniture it would pass through.
+
+The gait's arm swing, an action clip's free hand and the arm of a character who turns beside a cabinet are
+played as authored, whatever stands at the elbow: the left hand of a walker passing a filing cabinet, the
+fingers of a one-handed action in the counter beside it. Here, after a segment is synthesised, the arm's
+capsule spheres (forearm, hand, fingers, as the story checks sample them: wana.fidelity.bodies) are tested
+against the solids of the scene's furniture (wana.fidelity.solids); on the frames where one is visibly inside,
+the whole arm turns about the shoulder by the smallest rotation that takes its deepest sphere out along the
+solid's outward direction. The corrections are spread over neighbouring frames (held at their peak, then
+eased) so that the arm does not jump, and a hand at a contact point (IK'd onto the object) is left where it is.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+
+import numpy as np
+
+from proto.scene import PlacedObject, Scene
+from services.motion.ik import global_transforms
+from services.motion.synthesis import MotionPiece
+from wana.domain import quat
+from wana.domain.skeleton import JOINT_INDEX, PARENTS
+from wana.fidelity.bodies import ALONG, BONE_RADII
+from wana.fidelity.body_checks import is_soft, visible_depth
+from wana.fidelity.solids import depth_inside
+from wana.fidelity.world import World
+
+ROUNDS = 3  # correct, spread, test again: a turn out of one object can graze another
+CLEAR_M = 0.015  # metres a corrected sphere is left short of where it would look inside
+STEP_M = 0.01  # metres: the finite difference that finds a solid's outward direction
+HOLD = 4  # frames a correction is held on either side of the frames that need it ...
+EASE = 4  # ... and then eased out over (a triangle of this half-width)
+MAX_TURN = np.radians(35.0)  # radians: an arm is never turned further than this in one round
+BONES = (("ForeArm", "Hand"), ("Hand", "HandMiddle1"))  # per side: the bones whose spheres are tested
+SHOULDER = "Arm"  # the joint the arm turns about
+
+
+@functools.lru_cache(maxsize=2)
+def _layout(side: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(P,) parent joint, child joint and share along the bone of each tested sphere, and (P,) radii."""
+    parent, child, share, radii = [], [], [], []
+    for a, b in BONES:
+        for t in (*ALONG, 1.0):
+            parent.append(JOINT_INDEX[side + a])
+            child.append(JOINT_INDEX[side + b])
+            share.append(t)
+            radii.append(BONE_RADII[side + b])
+    return np.array(parent), np.array(child), np.array([share, radii])
+
+
+def _spheres(pos: np.ndarray, side: str) -> tuple[np.ndarray, np.ndarray]:
+    """(T, P, 3) sphere centres of one arm and their (P,) radii."""
+    parent, child, sr = _layout(side)
+    share, radii = sr
+    return pos[:, parent] + share[None, :, None] * (pos[:, child] - pos[:, parent]), radii
+
+
+def furniture(
+    scene: Scene, ignore: frozenset[str] = frozenset()
+) -> list[tuple[PlacedObject, np.ndarray, float]]:
+    """(object, its world box (2, 3), the extra depth a cushion gives) for every piece of furniture an arm can
+    go into, as the story checks see the room."""
+    return [
+        (o, outer, 0.05 if is_soft(o.category, dict(o.attributes)) else 0.0)
+        for o, _, outer in World(scene).solids
+        if o.id not in ignore
+    ]
+
+
+def _deepest(
+    centres: np.ndarray, radii: np.ndarray, solids: list[tuple[PlacedObject, np.ndarray, float]]
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Per frame, how far past its allowance the arm's worst sphere is (T,), that sphere (T,) and the index of
+    its object in ``solids`` (T,; -1 where the arm is clear)."""
+    t, p = centres.shape[:2]
+    excess = np.zeros((t, p))
+    owner = np.full((t, p), -1)
+    allowance = visible_depth(radii) - CLEAR_M
+    for k, (placed, outer, soft) in enumerate(solids):
+        near = np.all(
+            (centres >= outer[0] - radii[None, :, None]) & (centres <= outer[1] + radii[None, :, None]), 2
+        )
+        if not near.any():
+            continue
+        ti, pi = np.nonzero(near)
+        over = depth_inside(placed, centres[ti, pi], radii[pi]) - allowance[pi] - soft
+        worse = over > excess[ti, pi]
+        excess[ti[worse], pi[worse]] = over[worse]
+        owner[ti[worse], pi[worse]] = k
+    worst = np.argmax(excess, axis=1)
+    frames = np.arange(t)
+    return excess[frames, worst], worst, owner[frames, worst]
+
+
+def _outward(placed: PlacedObject, points: np.ndarray, radii: np.ndarray) -> np.ndarray:
+    """(n, 3) unit directions in which each point leaves the object fastest (finite differences of depth)."""
+    grad = np.zeros_like(points)
+    for axis in range(3):
+        step = np.zeros(3)
+        step[axis] = STEP_M
+        grad[:, axis] = depth_inside(placed, points + step, radii) - depth_inside(
+            placed, points - step, radii
+        )
+    out = -grad
+    norm = np.linalg.norm(out, axis=1, keepdims=True)
+    flat = norm[:, 0] < 1e-9
+    out[flat] = (0.0, 1.0, 0.0)  # deep in a solid with no slope: up, out of a top
+    norm[flat] = 1.0
+    return out / norm
+
+
+def _spread(turn: np.ndarray, keep: np.ndarray) -> np.ndarray:
+    """(T, 3) rotation vectors held HOLD frames around each correction (the largest wins), eased over EASE,
+    and faded to none near the frames in ``keep`` (T,) bool."""
+    t = len(turn)
+    size = np.linalg.norm(turn, axis=1)
+    held = turn.copy()
+    best = size.copy()
+    for d in range(1, HOLD + 1):
+        for src, dst in ((slice(0, t - d), slice(d, t)), (slice(d, t), slice(0, t - d))):
+            bigger = size[src] > best[dst]
+            held[dst][bigger] = turn[src][bigger]
+            best[dst][bigger] = size[src][bigger]
+    kernel = np.r_[np.arange(1, EASE + 2), np.arange(EASE, 0, -1)].astype(float)
+    kernel /= kernel.max()
+    eased = np.stack([np.convolve(held[:, i], kernel / kernel.sum(), mode="same") for i in range(3)], 1)
+    # the average of a held plateau is its peak: the correction is whole there and eases off at its edges
+    if keep.any():
+        near = np.convolve(keep.astype(float), np.ones(2 * EASE + 1), mode="same") > 0
+        fade = 1.0 - np.convolve(near.astype(float), kernel / kernel.sum(), mode="same")
+        eased *= np.clip(fade, 0.0, 1.0)[:, None]
+    return eased
+
+
+def clear_arms(
+    rotations: np.ndarray,
+    root: np.ndarray,
+    offsets: np.ndarray,
+    solids: list[tuple[PlacedObject, np.ndarray, float]],
+    keep: dict[str, np.ndarray] | None = None,
+) -> np.ndarray:
+    """Turn each arm about its shoulder out of the furniture it goes into.
+
+    Args:
+        rotations: (T, J, 4) local joint rotations of a piece.
+        root: (T, 3) world hips positions, metres.
+        offsets: (J, 3) the character's rest offsets (the skeleton the checks and the renderer play).
+        solids: the room's furniture (``furniture``).
+        keep: side ("Left", "Right") -> (T,) bool: frames whose hand is at a contact point and stays there.
+
+    Returns:
+        (T, J, 4) rotations with the arms' shoulder joints turned where they were inside furniture.
+    """
+    keep = keep or {}
+    rot = np.array(rotations, dtype=np.float64, copy=True)
+    t = len(rot)
+    if not solids or t == 0:
+        return rot
+    for _ in range(ROUNDS):
+        pos, grot = global_transforms(rot, root, offsets)
+        changed = False
+        for side in ("Left", "Right"):
+            centres, radii = _spheres(pos, side)
+            excess, worst, owner = _deepest(centres, radii, solids)
+            fix = (owner >= 0) & (excess > 0)
+            held = keep.get(side)
+            if held is not None:
+                fix &= ~held[:t]
+            if not fix.any():
+                continue
+            turn = np.zeros((t, 3))
+            shoulder = pos[:, JOINT_INDEX[side + SHOULDER]]
+            for k in np.unique(owner[fix]):
+                f = np.nonzero(fix & (owner == k))[0]
+                p = centres[f, worst[f]]
+                out = _outward(solids[k][0], p, radii[worst[f]])
+                arm = p - shoulder[f]
+                moved = arm + out * excess[f, None]
+                axis = np.cross(arm, moved)
+                sin = np.linalg.norm(axis, axis=1)
+                angle = np.minimum(np.arctan2(sin, np.sum(arm * moved, axis=1)), MAX_TURN)
+                ok = sin > 1e-9
+                turn[f[ok]] = axis[ok] / sin[ok, None] * angle[ok, None]
+            spread = _spread(turn, held[:t] if held is not None else np.zeros(t, bool))
+            angle = np.linalg.norm(spread, axis=1)
+            moving = angle > 1e-6
+            if not moving.any():
+                continue
+            j = JOINT_INDEX[side + SHOULDER]
+            parent = grot[moving, PARENTS[j]]
+            world_turn = quat.from_axis_angle(spread[moving] / angle[moving, None], angle[moving])
+            local_turn = quat.mul(quat.mul(quat.inv(parent), world_turn), parent)
+            rot[moving, j] = quat.normalize(quat.mul(local_turn, rot[moving, j]))
+            changed = True
+        if not changed:
+            break
+    return rot
+
+
+def clear_piece(piece: MotionPiece, scene: Scene, offsets: np.ndarray) -> MotionPiece:
+    """The piece with its free arms turned out of the room's furniture; a hand on its contact point keeps its
+    frames, and the object sat or lain on (the stated contact) and the held prop are not in the way."""
+    seg = piece.segment
+    targets = dict(seg.targets)
+    ignore = {seg.prop} if seg.prop else set()
+    if "Hips" in targets and seg.target_id:
+        ignore.add(seg.target_id)
+    solids = furniture(scene, frozenset(ignore))
+    t = len(piece.rotations)
+    keep: dict[str, np.ndarray] = {}
+    for joint, (frames, _) in piece.contact_frames.items():
+        side = "Left" if joint.startswith("Left") else "Right" if joint.startswith("Right") else ""
+        if side and "Hand" in joint:
+            mask = keep.setdefault(side, np.zeros(t, bool))
+            mask[np.asarray(frames, int)[(np.asarray(frames, int) >= 0) & (np.asarray(frames, int) < t)]] = (
+                True
+            )
+    rot = clear_arms(piece.rotations, piece.root, offsets, solids, keep)
+    return dataclasses.replace(piece, rotations=quat.normalize(rot))
