@@ -27,7 +27,7 @@ from wana.fidelity.body_checks import is_soft, visible_depth
 from wana.fidelity.solids import depth_inside
 from wana.fidelity.world import World
 
-ROUNDS = 3  # correct, spread, test again: a turn out of one object can graze another
+ROUNDS = 5  # correct, spread, test again: a turn out of one object can graze another
 CLEAR_M = 0.015  # metres a corrected sphere is left short of where it would look inside
 STEP_M = 0.01  # metres: the finite difference that finds a solid's outward direction
 HOLD = 4  # frames a correction is held on either side of the frames that need it ...
@@ -111,6 +111,13 @@ def _outward(placed: PlacedObject, points: np.ndarray, radii: np.ndarray) -> np.
     return out / norm
 
 
+def _filtered(signal: np.ndarray, kernel: np.ndarray) -> np.ndarray:
+    """(T,) the signal convolved with an odd-length kernel, zero beyond its ends (any T, shorter than the
+    kernel too)."""
+    half = len(kernel) // 2
+    return np.convolve(np.pad(signal, half), kernel, mode="valid")
+
+
 def _spread(turn: np.ndarray, keep: np.ndarray) -> np.ndarray:
     """(T, 3) rotation vectors held HOLD frames around each correction (the largest wins), eased over EASE,
     and faded to none near the frames in ``keep`` (T,) bool."""
@@ -118,18 +125,18 @@ def _spread(turn: np.ndarray, keep: np.ndarray) -> np.ndarray:
     size = np.linalg.norm(turn, axis=1)
     held = turn.copy()
     best = size.copy()
-    for d in range(1, HOLD + 1):
+    for d in range(1, min(HOLD, t - 1) + 1):
         for src, dst in ((slice(0, t - d), slice(d, t)), (slice(d, t), slice(0, t - d))):
             bigger = size[src] > best[dst]
             held[dst][bigger] = turn[src][bigger]
             best[dst][bigger] = size[src][bigger]
     kernel = np.r_[np.arange(1, EASE + 2), np.arange(EASE, 0, -1)].astype(float)
     kernel /= kernel.max()
-    eased = np.stack([np.convolve(held[:, i], kernel / kernel.sum(), mode="same") for i in range(3)], 1)
+    eased = np.stack([_filtered(held[:, i], kernel / kernel.sum()) for i in range(3)], 1)
     # the average of a held plateau is its peak: the correction is whole there and eases off at its edges
     if keep.any():
-        near = np.convolve(keep.astype(float), np.ones(2 * EASE + 1), mode="same") > 0
-        fade = 1.0 - np.convolve(near.astype(float), kernel / kernel.sum(), mode="same")
+        near = _filtered(keep.astype(float), np.ones(2 * EASE + 1)) > 0
+        fade = 1.0 - _filtered(near.astype(float), kernel / kernel.sum())
         eased *= np.clip(fade, 0.0, 1.0)[:, None]
     return eased
 
@@ -176,6 +183,10 @@ def clear_arms(
                 f = np.nonzero(fix & (owner == k))[0]
                 p = centres[f, worst[f]]
                 out = _outward(solids[k][0], p, radii[worst[f]])
+                # a thin part (a chair's back) pierced through has no good side: out on the shoulder's, as
+                # the arm came in, so that neighbouring frames do not push it through either way in turn
+                back = np.sum(out * (shoulder[f] - p), axis=1) < 0
+                out[back] *= -1.0
                 arm = p - shoulder[f]
                 moved = arm + out * excess[f, None]
                 axis = np.cross(arm, moved)

@@ -71,3 +71,22 @@ def test_a_hand_at_its_contact_point_is_left_where_it_is():
 
 def test_the_object_sat_on_is_not_in_the_way():
     assert furniture(_scene(), frozenset({"filing_cabinet"})) == []
+
+
+def test_a_piece_shorter_than_the_easing_is_cleared_too():
+    scene = _scene()
+    rot, root = _passing_pose()
+    short = clear_arms(rot[PASSING][:3], root[PASSING][:3], REST_OFFSETS, furniture(scene))
+    assert short.shape == (3, *rot.shape[1:])
+
+
+def test_an_arm_through_a_thin_panel_leaves_it_on_the_shoulders_side():
+    # an office chair turned side on: its back (local z -0.30..-0.24) across the hanging hand, whose centre is
+    # just past the back's middle, so that the nearer face is the far one; the hand comes out toward the body
+    chair = PlacedObject(id="chair", category="office_chair", position=(0.493, 0.0, 0.0), yaw=np.pi / 2)
+    scene = Scene(room=Room(room_type="office", width=6, depth=6, height=3), objects=[chair])
+    rot, root = _passing_pose()
+    cleared = clear_arms(rot, root, REST_OFFSETS, furniture(scene))
+    pos, _ = global_transforms(cleared, root, REST_OFFSETS)
+    hand = pos[PASSING, JOINT_INDEX["LeftHand"]]
+    assert (hand[:, 0] < 0.493 - 0.30).all()  # turned in, not pushed on out through the back
