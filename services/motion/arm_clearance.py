@@ -19,7 +19,7 @@ import numpy as np
 
 from proto.scene import PlacedObject, Scene
 from services.motion.ik import global_transforms
-from services.motion.synthesis import MotionPiece
+from services.motion.synthesis import MotionPiece, held_prop
 from wana.domain import quat
 from wana.domain.skeleton import JOINT_INDEX, PARENTS
 from wana.fidelity.bodies import ALONG, BONE_RADII
@@ -229,4 +229,7 @@ def clear_piece(piece: MotionPiece, scene: Scene, offsets: np.ndarray) -> Motion
                 True
             )
     rot = clear_arms(piece.rotations, piece.root, offsets, solids, keep)
-    return dataclasses.replace(piece, rotations=quat.normalize(rot))
+    cleared = dataclasses.replace(piece, rotations=quat.normalize(rot))
+    if seg.prop:  # the prop goes on in the hand where the hand now is
+        cleared.props = [held_prop(cleared)]
+    return cleared
