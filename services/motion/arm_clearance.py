@@ -19,14 +19,16 @@ import numpy as np
 
 from proto.scene import PlacedObject, Scene
 from services.motion.ik import global_transforms
+from services.motion.planning import resting_on
 from services.motion.synthesis import MotionPiece, held_prop
 from wana.domain import quat
-from wana.domain.skeleton import JOINT_INDEX, PARENTS
+from wana.domain.skeleton import JOINT_INDEX, PARENTS, REST_OFFSETS
 from wana.fidelity.bodies import ALONG, BONE_RADII
 from wana.fidelity.body_checks import is_soft, visible_depth
 from wana.fidelity.solids import depth_inside
 from wana.fidelity.world import World
 
+SEATED_HIPS = 0.8  # share of the standing hips height below which hips over a seat or bed sit or lie on it
 ROUNDS = 5  # correct, spread, test again: a turn out of one object can graze another
 CLEAR_M = 0.015  # metres a corrected sphere is left short of where it would look inside
 STEP_M = 0.01  # metres: the finite difference that finds a solid's outward direction
@@ -70,10 +72,14 @@ def furniture(
 
 
 def _deepest(
-    centres: np.ndarray, radii: np.ndarray, solids: list[tuple[PlacedObject, np.ndarray, float]]
+    centres: np.ndarray,
+    radii: np.ndarray,
+    solids: list[tuple[PlacedObject, np.ndarray, float]],
+    skip: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Per frame, how far past its allowance the arm's worst sphere is (T,), that sphere (T,) and the index of
-    its object in ``solids`` (T,; -1 where the arm is clear)."""
+    its object in ``solids`` (T,; -1 where the arm is clear); ``skip`` (T, len(solids)) bool: objects not in
+    the way on a frame."""
     t, p = centres.shape[:2]
     excess = np.zeros((t, p))
     owner = np.full((t, p), -1)
@@ -82,6 +88,8 @@ def _deepest(
         near = np.all(
             (centres >= outer[0] - radii[None, :, None]) & (centres <= outer[1] + radii[None, :, None]), 2
         )
+        if skip is not None:
+            near &= ~skip[:, k, None]
         if not near.any():
             continue
         ti, pi = np.nonzero(near)
@@ -118,6 +126,13 @@ def _filtered(signal: np.ndarray, kernel: np.ndarray) -> np.ndarray:
     return np.convolve(np.pad(signal, half), kernel, mode="valid")
 
 
+def _edge_weight(t: int) -> np.ndarray:
+    """(T,) 0 on a piece's first and last frame, 1 from EASE frames in: the piece before or after was cleared
+    on its own, so a correction comes in and goes out inside the piece instead of jumping at its ends."""
+    frames = np.arange(t, dtype=float)
+    return np.clip(np.minimum(frames, t - 1 - frames) / EASE, 0.0, 1.0)
+
+
 def _spread(turn: np.ndarray, keep: np.ndarray) -> np.ndarray:
     """(T, 3) rotation vectors held HOLD frames around each correction (the largest wins), eased over EASE,
     and faded to none near the frames in ``keep`` (T,) bool."""
@@ -138,7 +153,18 @@ def _spread(turn: np.ndarray, keep: np.ndarray) -> np.ndarray:
         near = _filtered(keep.astype(float), np.ones(2 * EASE + 1)) > 0
         fade = 1.0 - _filtered(near.astype(float), kernel / kernel.sum())
         eased *= np.clip(fade, 0.0, 1.0)[:, None]
-    return eased
+    return eased * _edge_weight(t)[:, None]
+
+
+def seated_on(root: np.ndarray, solids: list[tuple[PlacedObject, np.ndarray, float]]) -> np.ndarray:
+    """(T, len(solids)) bool: the objects a character sits or lies on, frame by frame (hips over the object's
+    box and lower than standing): the stated contact, which the checks let the whole body touch."""
+    low = root[:, 1] < SEATED_HIPS * REST_OFFSETS[0, 1]
+    out = np.zeros((len(root), len(solids)), bool)
+    for k, (_, outer, _) in enumerate(solids):
+        over = np.all((root[:, [0, 2]] >= outer[0, [0, 2]]) & (root[:, [0, 2]] <= outer[1, [0, 2]]), axis=1)
+        out[:, k] = low & over
+    return out
 
 
 def clear_arms(
@@ -147,6 +173,7 @@ def clear_arms(
     offsets: np.ndarray,
     solids: list[tuple[PlacedObject, np.ndarray, float]],
     keep: dict[str, np.ndarray] | None = None,
+    worked: dict[str, frozenset[str]] | None = None,
 ) -> np.ndarray:
     """Turn each arm about its shoulder out of the furniture it goes into.
 
@@ -156,21 +183,29 @@ def clear_arms(
         offsets: (J, 3) the character's rest offsets (the skeleton the checks and the renderer play).
         solids: the room's furniture (``furniture``).
         keep: side ("Left", "Right") -> (T,) bool: frames whose hand is at a contact point and stays there.
+        worked: side -> ids of the objects that side's hand works at (the bench under the nail hammered):
+            not in its way.
 
     Returns:
         (T, J, 4) rotations with the arms' shoulder joints turned where they were inside furniture.
     """
     keep = keep or {}
+    worked = worked or {}
     rot = np.array(rotations, dtype=np.float64, copy=True)
     t = len(rot)
     if not solids or t == 0:
         return rot
+    seat = seated_on(np.asarray(root, dtype=np.float64), solids)
+    skips = {
+        side: seat | np.array([o.id in worked.get(side, frozenset()) for o, _, _ in solids], bool)[None, :]
+        for side in ("Left", "Right")
+    }
     for _ in range(ROUNDS):
         pos, grot = global_transforms(rot, root, offsets)
         changed = False
         for side in ("Left", "Right"):
             centres, radii = _spheres(pos, side)
-            excess, worst, owner = _deepest(centres, radii, solids)
+            excess, worst, owner = _deepest(centres, radii, solids, skips[side])
             fix = (owner >= 0) & (excess > 0)
             held = keep.get(side)
             if held is not None:
@@ -179,13 +214,14 @@ def clear_arms(
                 continue
             turn = np.zeros((t, 3))
             shoulder = pos[:, JOINT_INDEX[side + SHOULDER]]
+            elbow = pos[:, JOINT_INDEX[side + "ForeArm"]]
             for k in np.unique(owner[fix]):
                 f = np.nonzero(fix & (owner == k))[0]
                 p = centres[f, worst[f]]
                 out = _outward(solids[k][0], p, radii[worst[f]])
-                # a thin part (a chair's back) pierced through has no good side: out on the shoulder's, as
-                # the arm came in, so that neighbouring frames do not push it through either way in turn
-                back = np.sum(out * (shoulder[f] - p), axis=1) < 0
+                # a thin part (a chair's back, a table top) pierced through has no good side: out on the
+                # elbow's, as the arm came in, so that neighbouring frames do not push it through either way
+                back = np.sum(out * (elbow[f] - p), axis=1) < 0
                 out[back] *= -1.0
                 arm = p - shoulder[f]
                 moved = arm + out * excess[f, None]
@@ -212,24 +248,32 @@ def clear_arms(
 
 def clear_piece(piece: MotionPiece, scene: Scene, offsets: np.ndarray) -> MotionPiece:
     """The piece with its free arms turned out of the room's furniture; a hand on its contact point keeps its
-    frames, and the object sat or lain on (the stated contact) and the held prop are not in the way."""
+    frames, the object sat or lain on (the stated contact) and the held prop are not in the way, nor is what a
+    working hand (the one on the object, the one with the tool) works at and what that rests on."""
     seg = piece.segment
-    targets = dict(seg.targets)
-    ignore = {seg.prop} if seg.prop else set()
-    if "Hips" in targets and seg.target_id:
-        ignore.add(seg.target_id)
-    solids = furniture(scene, frozenset(ignore))
+    solids = furniture(scene, frozenset({seg.prop} if seg.prop else ()))
+    by_id = {o.id: o for o in scene.objects}
+    target = by_id.get(seg.target_id)
+    at = frozenset() if target is None else resting_on(scene, target.support or target.id) | {target.id}
+    working = {_side_of(j) for j in piece.contact_frames if "Hand" in j}
+    if seg.prop:
+        working.add(_side_of(seg.prop_joint))
     t = len(piece.rotations)
     keep: dict[str, np.ndarray] = {}
     for joint, (frames, _) in piece.contact_frames.items():
-        side = "Left" if joint.startswith("Left") else "Right" if joint.startswith("Right") else ""
+        side = _side_of(joint)
         if side and "Hand" in joint:
             mask = keep.setdefault(side, np.zeros(t, bool))
             mask[np.asarray(frames, int)[(np.asarray(frames, int) >= 0) & (np.asarray(frames, int) < t)]] = (
                 True
             )
-    rot = clear_arms(piece.rotations, piece.root, offsets, solids, keep)
+    worked = {side: at for side in working if side}
+    rot = clear_arms(piece.rotations, piece.root, offsets, solids, keep, worked)
     cleared = dataclasses.replace(piece, rotations=quat.normalize(rot))
     if seg.prop:  # the prop goes on in the hand where the hand now is
         cleared.props = [held_prop(cleared)]
     return cleared
+
+
+def _side_of(joint: str) -> str:
+    return "Left" if joint.startswith("Left") else "Right" if joint.startswith("Right") else ""

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from proto.scene import PlacedObject, Room, Scene
-from services.motion.arm_clearance import _spheres, clear_arms, furniture
+from services.motion.arm_clearance import _spheres, clear_arms, furniture, seated_on
 from services.motion.ik import global_transforms
 from services.motion.synthesis import SegmentState, rest_frame
 from wana.domain import quat
@@ -69,8 +69,18 @@ def test_a_hand_at_its_contact_point_is_left_where_it_is():
     assert np.allclose(quat.canonical(cleared), quat.canonical(rot))
 
 
-def test_the_object_sat_on_is_not_in_the_way():
-    assert furniture(_scene(), frozenset({"filing_cabinet"})) == []
+def test_the_object_sat_on_and_the_one_a_hand_works_at_are_not_in_the_way():
+    scene = _scene()
+    rot, root = _passing_pose()
+    worked = clear_arms(
+        rot, root, REST_OFFSETS, furniture(scene), worked={"Left": frozenset({"filing_cabinet"})}
+    )
+    assert np.allclose(worked, rot)  # the hammering hand at the bench under the nail
+    low = root.copy()
+    low[:, 0] = 0.438  # hips over the cabinet and low: sitting on it
+    low[:, 1] = 0.5
+    assert seated_on(low, furniture(scene)).all()
+    assert not seated_on(root, furniture(scene)).any()  # standing beside it
 
 
 def test_a_piece_shorter_than_the_easing_is_cleared_too():
