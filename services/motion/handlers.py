@@ -15,10 +15,12 @@ from proto.motion import (
     SynthesizeRequest,
 )
 from proto.scene import Scene
+from services.motion.arm_clearance import clear_piece
 from services.motion.planning import plan_actions
 from services.motion.routing import scene_route
 from services.motion.synthesis import SegmentState, assemble, holding_after, synthesise_segment
 from wana.bus.service import Contract, InvalidInput
+from wana.fidelity.bodies import skeleton_offsets
 
 
 def handle_synthesize(req: SynthesizeRequest) -> SynthesizeReply:
@@ -75,9 +77,10 @@ def handle_synthesize(req: SynthesizeRequest) -> SynthesizeReply:
         else SegmentState(st.x, st.z, st.yaw, st.posture, st.phase, st.hips_dy).rounded()
     )
     pieces, ends = [], []
+    offsets = skeleton_offsets(req.character.name)  # the skeleton the renderer and the checks play
     for k in range(req.from_segment, len(plan.segments)):
         piece, state = synthesise_segment(plan, k, state)
-        pieces.append(piece)
+        pieces.append(clear_piece(piece, req.scene, offsets))
         ends.append(
             SegmentEndState(
                 x=state.x,
