@@ -472,10 +472,13 @@ def solve_pairs(
         answer = max(min(s0 + int(round(pair.delay_s * motion.fps)), c0 - ANSWER_FRAMES), 0)
         held = profile(n, s0 - RAMP_FRAMES, s0, e0, e0 + RAMP_FRAMES)  # turning: the whole clip
         # the hands: full at the contact frames, eased in and out over ANSWER_FRAMES at least (a clip in contact
-        # from its first frame to its last, holding hands, stepped the hand 0.5 m in one frame: gump s11)
-        start, end = max(min(s0, c0 - ANSWER_FRAMES), 0), min(max(e0, c1 + ANSWER_FRAMES), n)
-        reach_a = profile(n, start, c0, c1, end)
-        reach_b = profile(n, answer, c0, c1, end)
+        # from its first frame to its last, holding hands, stepped the hand 0.5 m in one frame: gump s11); they
+        # let go before the clip ends, as the story checks let the two touch only during it
+        start = max(min(s0, c0 - ANSWER_FRAMES), 0)
+        until = c1 if e0 - c1 >= ANSWER_FRAMES else max(c0 + 1, e0 - ANSWER_FRAMES)
+        end = min(max(e0, until + ANSWER_FRAMES), n)
+        reach_a = profile(n, start, c0, until, end)
+        reach_b = profile(n, answer, c0, until, end)
         # a seated body's legs would swing into the other or the table: its chest turns instead
         if root_a[w0, 1] >= SEATED_HIPS_M:
             a.rotations = turn_towards(a.rotations, a.root, b.root, held)
@@ -516,7 +519,7 @@ def solve_pairs(
             a.rotations = two_bone(a.rotations, a.root, a.offsets, joint, goal, reach_a)
         for joint, goal in goals_b:
             b.rotations = two_bone(b.rotations, b.root, b.offsets, joint, goal, reach_b)
-        gap = _gap(a, b, goals_a, goals_b, c0, c1)
+        gap = _gap(a, b, goals_a, goals_b, c0, until)
         contacts.append(
             PairContact(
                 actor=pair.actor, partner=partner, action=pair.action, start_frame=w0, end_frame=w1, gap_m=gap
