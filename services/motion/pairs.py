@@ -486,7 +486,7 @@ def solve_pairs(
             a.rotations = twist_towards(a.rotations, a.root, b.root, held)
         if root_b[w0, 1] >= SEATED_HIPS_M and not busy:
             b.rotations = turn_towards(b.rotations, b.root, a.root, held)
-        elif not busy:
+        elif not busy and (spec.meet or spec.partner):  # one who answers; a hand put on the shoulder is not
             b.rotations = twist_towards(b.rotations, b.root, a.root, held)
         together = (frozenset((pair.actor, partner)), w0)
         if together not in leaned:  # "They hug": both lean in once, in the first of the two passes
