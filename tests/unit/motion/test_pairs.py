@@ -311,3 +311,13 @@ def test_a_seated_partner_answers_a_handshake_late_without_whipping_her_hand():
         abs(float(quat.yaw_of(after[mid : mid + 1, spine])[0] - quat.yaw_of(before[mid : mid + 1, spine])[0]))
         > 0.05
     )
+
+
+def test_a_seated_partner_comforted_from_the_side_keeps_still():
+    """A hand put on Eve's shoulder asks nothing of her: she does not turn to Tom (her shoulder would move out
+    of his reach while he bends to it)."""
+    motions = _seated_eve("comfort", tom=(3.0, 1.2, -np.pi / 2))
+    reply = _solve(motions, "comfort")
+    assert max(_gaps(reply.motions, "comfort")) <= CONTACT_M
+    before, after = (from_wire(m["Eve"].rotations) for m in (motions, reply.motions))
+    assert np.allclose(before, after, atol=1e-6)
