@@ -292,8 +292,9 @@ def answer_pose(rotations: np.ndarray, actor: np.ndarray, how: str, weight: np.n
 
 def surface_point(pos: np.ndarray, grot: np.ndarray, touch: Touch) -> np.ndarray:
     """(T, 3) world point on the surface of ``touch.on``'s sphere, on the side ``touch.towards`` points to in
-    the body's facing frame."""
-    heading = quat.yaw_of(grot[:, 0])
+    the chest's facing frame (a seated body's chest turned to the actor has its back turned too: with the
+    hips' heading a hug's hands went to mom's flank, group-living_room-03 s12)."""
+    heading = quat.yaw_of(grot[:, JOINT_INDEX["Spine2"]])
     d = np.asarray(touch.towards, float)
     d = d / np.linalg.norm(d)
     turned = quat.rotate(quat.yaw(heading), np.broadcast_to(d, (len(heading), 3)))

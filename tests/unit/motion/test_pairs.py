@@ -321,3 +321,20 @@ def test_a_seated_partner_comforted_from_the_side_keeps_still():
     assert max(_gaps(reply.motions, "comfort")) <= CONTACT_M
     before, after = (from_wire(m["Eve"].rotations) for m in (motions, reply.motions))
     assert np.allclose(before, after, atol=1e-6)
+
+
+def test_a_seated_partner_hugged_from_the_side_has_both_hands_on_her_turned_back():
+    """Eve, seated, turns her chest to Tom, who comes from her side: both his hands go on her back as it is
+    turned (well behind the plane of her shoulders), not to where her hips' heading puts it (her flank)."""
+    from services.motion.pairs import _window
+
+    motions = _seated_eve("hug", tom=(3.0, 1.2, -np.pi / 2))
+    reply = _solve(motions, "hug")
+    tom, eve = (body_of(reply.motions[n]) for n in ("Tom", "Eve"))
+    w0, w1 = _window(next(s for s in reply.motions["Tom"].segments if s.action == "hug"), "hug")
+    across = eve.joint("LeftShoulder")[w0:w1] - eve.joint("RightShoulder")[w0:w1]
+    forward = np.cross(across, eve.joint("Neck")[w0:w1] - eve.joint("Hips")[w0:w1])
+    forward /= np.linalg.norm(forward, axis=1, keepdims=True)
+    for hand in ("LeftHand", "RightHand"):
+        ahead = np.einsum("ij,ij->i", tom.joint(hand)[w0:w1] - eve.joint("Spine2")[w0:w1], forward)
+        assert float(ahead.max()) <= -0.05  # on her back, not beside her
