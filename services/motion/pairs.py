@@ -38,8 +38,12 @@ from wana.domain.skeleton import JOINT_INDEX, JOINT_NAMES, forward_kinematics
 # (wana.fidelity.bodies.BONE_RADII), so a hand put on the surface touches it there too.
 SURFACE_M = {"Spine1": 0.11, "Spine2": 0.12, "LeftArm": 0.045, "RightArm": 0.045}
 OUTSIDE_M = 0.005  # a hand rests this far outside the surface it touches
+ANSWER_FRAMES = 15  # frames at least that the partner's answering hand takes to reach the contact
 RAMP_FRAMES = 12  # frames the partner's turn and answer fade in before the actor's clip and out after it
+TWIST_MAX = 0.8  # radians a seated body's chest turns towards the other at most (its hips stay on the seat)
+SPINE = ("Spine", "Spine1", "Spine2")
 TURN_MIN = 0.12  # radians: a partner this far off facing the actor is turned towards them
+MEET_MARGIN = 0.9  # share of the partner's reach a bending actor's hand comes within (the point between them)
 REACH_SHARE = 0.93  # a meeting point is kept within this share of each arm's straight reach
 HANDS_MAX_MS = 9.0  # m/s: a fit that moves a hand faster than this is dropped (the story checks allow 10)
 BUSY_HIPS_M = 0.1  # metres the partner's hips rise or drop during the clip that mean it sits down or gets up
@@ -236,6 +240,26 @@ def turn_towards(
     return out
 
 
+def twist_towards(
+    rotations: np.ndarray, root: np.ndarray, other: np.ndarray, weight: np.ndarray
+) -> np.ndarray:
+    """A seated body's chest turned (about its spine, by ``weight``) towards ``other`` (T, 3), by at most
+    TWIST_MAX radians shared over the three spine joints: the hips stay square to the seat, the shoulders face
+    the one who comes to shake hands (a hand reaching back over the shoulder instead: duo-meeting_room-07)."""
+    d = other[:, [0, 2]] - root[:, [0, 2]]
+    err = _wrap(np.arctan2(d[:, 0], d[:, 1]) - _facing(rotations))
+    w = weight > 1e-6
+    if not w.any():
+        return rotations
+    delta = float(np.clip(np.angle(np.exp(1j * err[w]).mean()), -TWIST_MAX, TWIST_MAX))
+    out = rotations.copy()
+    turn = quat.yaw(delta / len(SPINE) * weight)
+    for joint in SPINE:
+        j = JOINT_INDEX[joint]
+        out[:, j] = quat.normalize(quat.mul(turn, rotations[:, j]))
+    return out
+
+
 def lean_in(rotations: np.ndarray, pitch: float, weight: np.ndarray) -> np.ndarray:
     """The spine leant forward by ``pitch`` radians (in the hips' frame), by ``weight``."""
     if pitch == 0.0:
@@ -268,8 +292,9 @@ def answer_pose(rotations: np.ndarray, actor: np.ndarray, how: str, weight: np.n
 
 def surface_point(pos: np.ndarray, grot: np.ndarray, touch: Touch) -> np.ndarray:
     """(T, 3) world point on the surface of ``touch.on``'s sphere, on the side ``touch.towards`` points to in
-    the body's facing frame."""
-    heading = quat.yaw_of(grot[:, 0])
+    the chest's facing frame (a seated body's chest turned to the actor has its back turned too: with the
+    hips' heading a hug's hands went to mom's flank, group-living_room-03 s12)."""
+    heading = quat.yaw_of(grot[:, JOINT_INDEX["Spine2"]])
     d = np.asarray(touch.towards, float)
     d = d / np.linalg.norm(d)
     turned = quat.rotate(quat.yaw(heading), np.broadcast_to(d, (len(heading), 3)))
@@ -423,7 +448,8 @@ def solve_pairs(
         rot_a, root_a = arrays[pair.actor]
         rot_b, root_b = arrays[partner]
         frames = min(len(rot_a), len(rot_b))
-        lo, hi = max(0, seg.start_frame - RAMP_FRAMES), min(frames, seg.end_frame + RAMP_FRAMES)
+        pad = RAMP_FRAMES + ANSWER_FRAMES  # the turn's ramp, or a short clip's hands easing in before it
+        lo, hi = max(0, seg.start_frame - pad), min(frames, seg.end_frame + pad)
         if w0 >= frames or hi <= lo:
             continue
         apart = float(np.linalg.norm(root_a[w0, [0, 2]] - root_b[w0, [0, 2]]))
@@ -440,14 +466,29 @@ def solve_pairs(
         b = _Side(partner, rot_b[lo:hi].copy(), root_b[lo:hi], offsets_of(partner))
         n = hi - lo
         s0, e0, c0, c1 = seg.start_frame - lo, seg.end_frame - lo, w0 - lo, w1 - lo
-        lag = int(round(pair.delay_s * motion.fps))
-        lag = max(0, min(lag, c0 - s0 - 3))
+        # the answer waits its delay, but never so long that the hand must cross to the contact in a few
+        # frames (a seated partner's hand rising from the lap 0.75 m in 3 frames whipped at 12 m/s, and the
+        # speed guard then dropped the whole answer: duo-meeting_room-07 s12); a short clip's answer starts
+        # before the actor's clip does, up to the ramp before it
+        answer = max(min(s0 + int(round(pair.delay_s * motion.fps)), c0 - ANSWER_FRAMES), 0)
         held = profile(n, s0 - RAMP_FRAMES, s0, e0, e0 + RAMP_FRAMES)  # turning: the whole clip
-        reach_a = profile(n, s0, c0, c1, e0)  # the hands: full at the contact frames
-        reach_b = profile(n, s0 + lag, c0, c1, e0)
-        a.rotations = turn_towards(a.rotations, a.root, b.root, held)
-        if root_b[w0, 1] >= SEATED_HIPS_M and not busy:  # a seated partner's legs would swing into the actor
+        # the hands: full at the contact frames, eased in and out over ANSWER_FRAMES at least (a clip in contact
+        # from its first frame to its last, holding hands, stepped the hand 0.5 m in one frame: gump s11); they
+        # let go before the clip ends, as the story checks let the two touch only during it
+        start = max(min(s0, c0 - ANSWER_FRAMES), 0)
+        until = c1 if e0 - c1 >= ANSWER_FRAMES else max(c0 + 1, e0 - ANSWER_FRAMES)
+        end = min(max(e0, until + ANSWER_FRAMES), n)
+        reach_a = profile(n, start, c0, until, end)
+        reach_b = profile(n, answer, c0, until, end)
+        # a seated body's legs would swing into the other or the table: its chest turns instead
+        if root_a[w0, 1] >= SEATED_HIPS_M:
+            a.rotations = turn_towards(a.rotations, a.root, b.root, held)
+        else:
+            a.rotations = twist_towards(a.rotations, a.root, b.root, held)
+        if root_b[w0, 1] >= SEATED_HIPS_M and not busy:
             b.rotations = turn_towards(b.rotations, b.root, a.root, held)
+        elif not busy and (spec.meet or spec.partner):  # one who answers; a hand put on the shoulder is not
+            b.rotations = twist_towards(b.rotations, b.root, a.root, held)
         together = (frozenset((pair.actor, partner)), w0)
         if together not in leaned:  # "They hug": both lean in once, in the first of the two passes
             a.rotations = lean_in(a.rotations, spec.lean, reach_a)  # upright again by the clip's end
@@ -458,8 +499,13 @@ def solve_pairs(
             b.rotations = answer_pose(b.rotations, a.rotations, spec.answer, reach_b)
         pos_b, grot_b = b.fk()
         goals_a = [(t.joint, surface_point(pos_b, grot_b, t)) for t in spec.actor]
-        # a shoulder out of the standing arm's reach (the partner sits): the actor bends down to it
-        a.rotations = lean_in(a.rotations, _reach_lean(a, goals_a, c0, c1), reach_a)
+        # a shoulder out of the standing arm's reach (the partner sits): the actor bends down to it; so for a
+        # seated partner's hand, till the two arms' reaches overlap (duo-office-01 s6 missed by 6 cm)
+        bend_to = list(goals_a)
+        if root_b[w0, 1] < SEATED_HIPS_M:
+            pos_a, _ = a.fk()
+            bend_to += [(ja, _reachable(pos_b, jb, pos_a, ja, busy)) for ja, jb in spec.meet]
+        a.rotations = lean_in(a.rotations, _reach_lean(a, bend_to, c0, c1), reach_a)
         pos_a, grot_a = a.fk()
         goals_b = [] if mutual or busy else [(t.joint, surface_point(pos_a, grot_a, t)) for t in spec.partner]
         for ja, jb in spec.meet:
@@ -474,7 +520,7 @@ def solve_pairs(
             a.rotations = two_bone(a.rotations, a.root, a.offsets, joint, goal, reach_a)
         for joint, goal in goals_b:
             b.rotations = two_bone(b.rotations, b.root, b.offsets, joint, goal, reach_b)
-        gap = _gap(a, b, goals_a, goals_b, c0, c1)
+        gap = _gap(a, b, goals_a, goals_b, c0, until)
         contacts.append(
             PairContact(
                 actor=pair.actor, partner=partner, action=pair.action, start_frame=w0, end_frame=w1, gap_m=gap
@@ -514,6 +560,16 @@ def _shoulder_reach(pos: np.ndarray, end: str) -> tuple[np.ndarray, np.ndarray]:
     ec = JOINT_INDEX[end]
     reach = np.linalg.norm(pos[:, mb] - pos[:, ua], axis=1) + np.linalg.norm(pos[:, ec] - pos[:, mb], axis=1)
     return pos[:, ua], reach
+
+
+def _reachable(pos_b: np.ndarray, jb: str, pos_a: np.ndarray, ja: str, busy: bool) -> np.ndarray:
+    """(T, 3) where the actor's ``ja`` must get to for the two hands to meet: the partner's ``jb`` itself when
+    it is busy (it does not answer), else the point of the partner's reach nearest the actor's shoulder."""
+    if busy:
+        return pos_b[:, JOINT_INDEX[jb]]
+    shoulder_b, reach_b = _shoulder_reach(pos_b, jb)
+    shoulder_a, _ = _shoulder_reach(pos_a, ja)
+    return shoulder_b + _unit(shoulder_a - shoulder_b) * (reach_b * REACH_SHARE * MEET_MARGIN)[:, None]
 
 
 def _within_reach(

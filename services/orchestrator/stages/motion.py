@@ -470,6 +470,25 @@ def _taken_after(
     return out
 
 
+def _partner_free(
+    beats: Sequence[Beat], touches: Sequence[PairedAction]
+) -> dict[tuple[str, int], tuple[tuple[str, int], float]]:
+    """(actor, k) -> ((partner, j), 0): a touching action starts once the partner's action before it in the
+    text is done, as timeline responses: Eve types, then Tom shakes her hand (not her hand taken off the keys
+    mid-typing, duo-office-01 s6); Mr Van Loon sits down, then Eddie shakes his hand (not while he drops onto
+    the chair, limitless-meeting_room-3 s7)."""
+    out = {}
+    keys = [(b.character, b.k) for b in beats]
+    for pair in touches:
+        mine = (pair.actor, pair.action_index)
+        if not pair.partner or mine not in keys:
+            continue
+        before = [key for key in keys[: keys.index(mine)] if key[0] == pair.partner]
+        if before:
+            out[mine] = (before[-1], 0.0)
+    return out
+
+
 def hands_over(action: ActionNode) -> bool:
     """Whether an action hands an object to someone ("gives the cup to Anna", "hands him the book")."""
     verb = action.verb.lower()
@@ -710,6 +729,9 @@ def _played(
         if r.response_index >= 0
     }
     responses.update(_taken_after(beats, handovers))
+    touches = paired_actions(characters, plan)
+    for key, answered in _partner_free(beats, touches).items():
+        responses.setdefault(key, answered)
     start_frames = schedule(beats, waits, [s.id for s in sentences], responses)
     length = max([start_frames[(b.character, b.k)] + b.frames for b in beats] or [1])
     for name, (node, _) in characters.items():
@@ -721,9 +743,7 @@ def _played(
         if door is not None and not on.all():
             motion = _wait_outside(motion, on, door.outside(waiting_place[name]))
         out.motions[name] = motion
-    fitted = fit_cast(
-        ctx, out.motions, [*paired_actions(characters, plan), *handovers], out.scene
-    )  # give way, touch on both bodies
+    fitted = fit_cast(ctx, out.motions, [*touches, *handovers], out.scene)  # give way, touch on both bodies
     touching: dict[str, list[tuple[int, int]]] = {}  # name -> frames its hands were solved onto another
     if fitted is not None:
         out.motions = dict(fitted.motions)

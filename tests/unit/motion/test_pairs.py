@@ -20,6 +20,7 @@ from services.motion.handlers import CONTRACT
 from wana.arrays import from_wire, to_wire
 from wana.bus.service import call_in_process
 from wana.domain import quat
+from wana.domain.skeleton import JOINT_INDEX
 from wana.fidelity.bodies import body_of
 
 EMPTY = Scene(room=Room(room_type="living_room", width=8, depth=8, height=3), objects=[])
@@ -239,9 +240,9 @@ def test_a_high_five_from_far_away_waits_for_the_one_who_walks_up():
     assert max(_gaps(reply.motions, "high_five")) <= CONTACT_M
 
 
-def test_a_hand_on_a_seated_partners_shoulder_reaches_it_bending_down():
-    """Eve sits on a chair; Tom walks up and comforts her: her shoulder is 0.5 m lower than his, out of his
-    standing arm's reach, so he bends down to put his hand on it."""
+def _seated_eve(action: str, tom=(1.0, 3.0, np.pi)) -> dict[str, Motion]:  # noqa: ANN001
+    """Eve sits on a chair; Tom walks up to her from ``tom`` (x, z, yaw) and does ``action`` to her (both on
+    one time line)."""
     from proto.scene import PlacedObject
 
     scene = Scene(
@@ -266,12 +267,74 @@ def test_a_hand_on_a_seated_partners_shoulder_reaches_it_bending_down():
     assert seat[1] < 0.7  # seated
     tom = synth(
         "Tom",
-        [ActionNode(verb="comfort", action="comfort", target="Eve")],
-        (1.0, 3.0, np.pi),
+        [ActionNode(verb=action, action=action, target="Eve")],
+        tom,
         {"Eve": (seat[0], seat[2])},
     )
     lead = eve.root_position.shape[0]
     frames = lead + tom.root_position.shape[0] + 10
-    motions = {"Tom": _hold_to(tom, frames, lead), "Eve": _hold_to(eve, frames)}
+    return {"Tom": _hold_to(tom, frames, lead), "Eve": _hold_to(eve, frames)}
+
+
+def test_a_hand_on_a_seated_partners_shoulder_reaches_it_bending_down():
+    """Eve sits on a chair; Tom walks up and comforts her: her shoulder is 0.5 m lower than his, out of his
+    standing arm's reach, so he bends down to put his hand on it."""
+    motions = _seated_eve("comfort")
     reply = _solve(motions, "comfort")
     assert max(_gaps(reply.motions, "comfort")) <= CONTACT_M
+
+
+def test_a_seated_partner_answers_a_handshake_late_without_whipping_her_hand():
+    """Eve, seated, answers Tom's handshake after a long delay: her hand still rises at a human speed (no
+    jump the speed guard would drop, leaving Tom's hand in the air), her hips stay square to the seat and
+    her chest turns to him; the two right hands meet."""
+    from services.motion.pairs import HANDS_MAX_MS, _fastest_hand, _Side, offsets_of
+
+    motions = _seated_eve("shake_hands", tom=(3.0, 1.2, -np.pi / 2))  # he comes to her left side
+    req = PairRequest(
+        header=Header(),
+        motions=motions,
+        pairs=[PairedAction(actor="Tom", action_index=0, action="shake_hands", partner="Eve", delay_s=1.5)],
+        give_way=False,
+    )
+    reply = call_in_process(CONTRACT, req)
+    assert max(_gaps(reply.motions, "shake_hands")) <= CONTACT_M
+    before, after = (from_wire(m["Eve"].rotations).astype(np.float64) for m in (motions, reply.motions))
+    root = from_wire(motions["Eve"].root_position).astype(np.float64)
+    assert np.allclose(quat.yaw_of(before[:, 0]), quat.yaw_of(after[:, 0]), atol=1e-4)  # hips kept
+    eve = _Side("Eve", after, root, offsets_of("Eve"))
+    assert _fastest_hand(eve) <= HANDS_MAX_MS
+    seg = next(s for s in reply.motions["Tom"].segments if s.action == "shake_hands")
+    mid = (seg.start_frame + seg.end_frame) // 2
+    spine = JOINT_INDEX["Spine"]
+    assert (
+        abs(float(quat.yaw_of(after[mid : mid + 1, spine])[0] - quat.yaw_of(before[mid : mid + 1, spine])[0]))
+        > 0.05
+    )
+
+
+def test_a_seated_partner_comforted_from_the_side_keeps_still():
+    """A hand put on Eve's shoulder asks nothing of her: she does not turn to Tom (her shoulder would move out
+    of his reach while he bends to it)."""
+    motions = _seated_eve("comfort", tom=(3.0, 1.2, -np.pi / 2))
+    reply = _solve(motions, "comfort")
+    assert max(_gaps(reply.motions, "comfort")) <= CONTACT_M
+    before, after = (from_wire(m["Eve"].rotations) for m in (motions, reply.motions))
+    assert np.allclose(before, after, atol=1e-6)
+
+
+def test_a_seated_partner_hugged_from_the_side_has_both_hands_on_her_turned_back():
+    """Eve, seated, turns her chest to Tom, who comes from her side: both his hands go on her back as it is
+    turned (well behind the plane of her shoulders), not to where her hips' heading puts it (her flank)."""
+    from services.motion.pairs import _window
+
+    motions = _seated_eve("hug", tom=(3.0, 1.2, -np.pi / 2))
+    reply = _solve(motions, "hug")
+    tom, eve = (body_of(reply.motions[n]) for n in ("Tom", "Eve"))
+    w0, w1 = _window(next(s for s in reply.motions["Tom"].segments if s.action == "hug"), "hug")
+    across = eve.joint("LeftShoulder")[w0:w1] - eve.joint("RightShoulder")[w0:w1]
+    forward = np.cross(across, eve.joint("Neck")[w0:w1] - eve.joint("Hips")[w0:w1])
+    forward /= np.linalg.norm(forward, axis=1, keepdims=True)
+    for hand in ("LeftHand", "RightHand"):
+        ahead = np.einsum("ij,ij->i", tom.joint(hand)[w0:w1] - eve.joint("Spine2")[w0:w1], forward)
+        assert float(ahead.max()) <= -0.05  # on her back, not beside her
