@@ -344,3 +344,53 @@ def test_ms_lee_comes_in_with_her_bag_and_puts_it_from_her_hand_on_the_desk():
 
 def bag_desk(scene: Scene) -> PlacedObject:
     return next(o for o in scene.objects if o.id == "teacher_desk")
+
+
+def test_a_photo_of_a_sculpture_in_a_room_with_no_table_is_taken_with_a_camera_brought_along():
+    """solo-gallery-12: the sculpture is what the photo is of, never in the hand; nothing can hold the camera
+    the action needs, so Nora brings it (in the hand from her first frame)."""
+    sculpture = PlacedObject(id="sculpture", category="sculpture", position=(0.0, 0.0, 1.0), yaw=0.0)
+    photo = ActionNode(verb="take", action="take_photo", target="sculpture")
+    graphs = [_graph("s1", "Nora", photo, objects=(ObjectNode(id="sculpture", category="sculpture",
+                                                                word="sculpture"),))]  # fmt: skip
+    scene = Scene(room=ROOM, objects=[sculpture])
+    needs = prop_needs(graphs, ["s1"], scene)
+    assert [(n.node.category, n.holder) for n in needs] == [("camera", "Nora")]
+    furnished, notes = provide(scene, graphs, _sentences("s1"))
+    (camera,) = [o for o in furnished.objects if o.category == "camera"]
+    assert camera.support == "" and "with Nora" in notes[0][1].message
+    characters = {"Nora": (CharacterNode(name="Nora", actions=[photo]), ["s1"])}
+    _, holding = carried(characters, furnished, {camera.id})
+    assert holding == {"Nora": camera.id}
+
+
+def test_pouring_into_a_glass_the_room_lacks_adds_the_glass_and_something_to_pour_with():
+    pour = ActionNode(verb="pour", action="pour", target="glass", destination="glass")
+    graphs = [_graph("s1", "Anna", pour, objects=(ObjectNode(id="glass", category="glass", word="glass"),))]
+    needs = prop_needs(graphs, ["s1"], Scene(room=ROOM, objects=[TABLE]))
+    assert [n.node.category for n in needs] == ["glass", "kettle"]
+
+
+def test_his_own_phone_is_in_his_hand_from_the_start_a_phone_on_the_table_is_not():
+    call = ActionNode(verb="call", action="call_with_phone", target="phone")
+    graphs = [_graph("s1", "Tom", call, objects=(ObjectNode(id="phone", category="phone", word="phone"),))]
+    furnished, _ = provide(Scene(room=ROOM, objects=[TABLE]), graphs, _sentences("s1"))
+    (phone,) = [o for o in furnished.objects if o.category == "phone"]
+    assert phone.support == "table"
+    characters = {"Tom": (CharacterNode(name="Tom", actions=[call]), ["s1"])}
+    _, own = carried(characters, furnished, {phone.id}, {"s1": "He calls someone on his phone."})
+    _, theirs = carried(characters, furnished, {phone.id}, {"s1": "He calls someone on the phone."})
+    assert own == {"Tom": phone.id} and theirs == {}
+
+
+def test_onions_chopped_on_the_cutting_board_lie_on_the_board():
+    board = PlacedObject(id="cutting_board", category="cutting_board", position=(1.5, 0.75, -1.0),
+                         yaw=0.0, support="table")  # fmt: skip
+    chop = ActionNode(verb="chop", action="chop", target="vegetable")
+    graphs = [_graph("s1", "Nora", chop, objects=(
+        ObjectNode(id="vegetable", category="vegetable", word="onions"),
+        ObjectNode(id="cutting_board", category="cutting_board", word="cutting board"),
+    ))]  # fmt: skip
+    furnished, notes = provide(Scene(room=ROOM, objects=[TABLE, board]), graphs, _sentences("s1"))
+    (onions,) = [o for o in furnished.objects if o.category == "vegetable"]
+    assert onions.support == "cutting_board" and notes[0][1].code == "I202"
