@@ -211,9 +211,10 @@ RELATION_NOUNS = {
     "bottom": "under",
     "corner": "in",
     "underside": "under",
-    "head": "next_to",  # "sits at the head of the table": at the table (a chair at its end)
-    "end": "next_to",
 }
+# Ends of a thing an action goes to: "sits at the head of the table" is at the table (a chair at its end).
+# Only for action sentences: a scene sentence's "on the end of the workbench" keeps its layout.
+END_NOUNS = frozenset({"head", "end"})
 RELATION_VERBS = {
     "face": "facing",
     "surround": "around",

@@ -171,14 +171,15 @@ def prop_needs(graphs: Sequence[SentenceGraph], sentence_ids: Sequence[str], sce
                 here = [r for r in refs if find_object(scene, r) is not None]
                 # what else the sentence names in the room comes next ("washes the dishes at the sink":
                 # the parse keeps the dishes only; they go in the sink, not on the table last sat at)
-                here += [o.id for o in g.objects if o.id not in refs and find_object(scene, o.id) is not None]
+                here += _nearest_first(scene, [o.id for o in g.objects if o.id not in refs])
                 for ref in refs:
                     node = named.get(ref)
                     if node is None or present(ref) or present(node.category) or not _known(node.category):
                         continue
                     near = (*here, *reversed(last_at.get(c.name, [])))
-                    holder = c.name if _clip_kind(a) in HELD_KINDS else ""
-                    out.append(Need(node, sid, tuple(dict.fromkeys(near)), a.action, holder=holder))
+                    # no holder: a named thing ("drinks from the cup") the room cannot hold stays missing, and
+                    # its check says so; only an instrument the sentence leaves unsaid comes with the character
+                    out.append(Need(node, sid, tuple(dict.fromkeys(near)), a.action))
                     wanted |= {node.id, node.category}
                 kind = _clip_kind(a)
                 default = DEFAULT_PROP.get(a.action, "")
@@ -199,6 +200,14 @@ def prop_needs(graphs: Sequence[SentenceGraph], sentence_ids: Sequence[str], sce
                 last_at.setdefault(c.name, []).extend(here)
         out.extend(_one_each(g, sid, scene, out, last_at))
     return out
+
+
+def _nearest_first(scene: Scene, refs: list[str]) -> list[str]:
+    """The refs found in the room, one resting on another of them first ("walks to the counter and chops
+    vegetables on the cutting board": the vegetables go on the board, not beside it on the counter)."""
+    found = [(r, o) for r in refs if (o := find_object(scene, r)) is not None]
+    ids = {o.id for _, o in found}
+    return [r for r, o in sorted(found, key=lambda ro: ro[1].support not in ids)]
 
 
 def _kin(category: str) -> set[str]:
@@ -560,7 +569,7 @@ def carried(
                 holding[name] = placed.id
                 if not a.destination and placed.support:
                     actions[k] = msgspec.structs.replace(a, destination=placed.support)
-            elif _clip_kind(a) in HELD_KINDS and (
+            elif _in_hand(a, placed.id, placed.category) and (
                 _unrested(placed) or owned((texts or {}).get(sids[k], ""), placed.category)
             ):
                 holding[name] = placed.id
@@ -583,6 +592,15 @@ def _added_used(scene: Scene, action: ActionNode, added: set[str]) -> PlacedObje
     if not default or _clip_kind(action) not in HELD_KINDS:
         return None
     return next((o for o in scene.objects if o.id in added and o.category == default), None)
+
+
+def _in_hand(action: ActionNode, ref: str, category: str) -> bool:
+    """Whether the object an action names is the one in its hand: any of a handheld action's but what it
+    pours into, a tool action's tool only ("saws the plank": the saw, not the plank)."""
+    kind = _clip_kind(action)
+    if kind == "handheld":
+        return ref != action.destination
+    return kind == "tool" and (ref == action.instrument or category == DEFAULT_PROP.get(action.action))
 
 
 def _unrested(placed: PlacedObject) -> bool:

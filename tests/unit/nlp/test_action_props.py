@@ -44,3 +44,8 @@ def test_the_head_or_end_of_a_table_is_the_table():
 def test_the_elevator_is_a_door_one_walks_to():
     assert categories("In the lobby there is an elevator door$.") == ["door"]
     assert acts("Walter walks to the elevator.") == [("walk", "door")]
+
+
+def test_a_scene_sentence_on_the_end_of_a_thing_is_not_read_as_beside_it():
+    graphs = parse_document("A vise is on the end of the workbench$.")
+    assert not [r for g in graphs for r in g.relations if r.relation == "next_to"]

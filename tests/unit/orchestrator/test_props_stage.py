@@ -394,3 +394,39 @@ def test_onions_chopped_on_the_cutting_board_lie_on_the_board():
     furnished, notes = provide(Scene(room=ROOM, objects=[TABLE, board]), graphs, _sentences("s1"))
     (onions,) = [o for o in furnished.objects if o.category == "vegetable"]
     assert onions.support == "cutting_board" and notes[0][1].code == "I202"
+
+
+def test_vegetables_chopped_on_the_board_at_the_counter_lie_on_the_board_not_the_counter():
+    counter = PlacedObject(
+        id="kitchen_counter", category="kitchen_counter", position=(1.0, 0.0, -2.0), yaw=0.0
+    )
+    (height, _), *_ = world_support_surfaces(counter)
+    board = PlacedObject(id="cutting_board", category="cutting_board", position=(1.0, height, -2.0),
+                         yaw=0.0, support="kitchen_counter")  # fmt: skip
+    chop = ActionNode(verb="chop", action="chop", target="vegetable")
+    graphs = [_graph("s1", "Anna", chop, objects=(
+        ObjectNode(id="kitchen_counter", category="kitchen_counter", word="counter"),
+        ObjectNode(id="vegetable", category="vegetable", word="vegetables"),
+        ObjectNode(id="cutting_board", category="cutting_board", word="cutting board"),
+    ))]  # fmt: skip
+    furnished, _ = provide(Scene(room=ROOM, objects=[counter, board]), graphs, _sentences("s1"))
+    (veg,) = [o for o in furnished.objects if o.category == "vegetable"]
+    assert veg.support == "cutting_board"
+
+
+def test_what_a_tool_works_on_is_never_brought_in_the_hand():
+    """solo-workshop-19: "saws the plank" in a room where nothing holds a plank: the saw is the held thing,
+    the plank is not carried from the first frame (it took the hand the saw needed)."""
+    saw = PlacedObject(id="saw", category="saw", position=(1.5, 0.76, -1.0), support="table")
+    cut = ActionNode(verb="saw", action="saw", target="wood_plank")
+    plank = ObjectNode(id="wood_plank", category="wood_plank", word="plank")
+    graphs = [_graph("s1", "Mr Garcia", cut, objects=(plank,))]
+    needs = prop_needs(graphs, ["s1"], Scene(room=ROOM, objects=[TABLE, saw]))
+    assert [(n.node.id, n.holder) for n in needs] == [("wood_plank", "")]
+    _, holding = carried(
+        {"Mr Garcia": (CharacterNode(name="Mr Garcia", actions=[cut]), ["s1"])},
+        Scene(room=ROOM, objects=[TABLE, saw, PlacedObject(id="wood_plank", category="wood_plank")]),
+        {"wood_plank"},
+        {"s1": "He saws his plank."},
+    )
+    assert holding == {}  # his own plank is still what the saw works on, not what the hand holds
