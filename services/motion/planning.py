@@ -729,6 +729,14 @@ def _walk_speed_factor(manner: str) -> float:
     return gait.speed if gait != NEUTRAL_GAIT else style_of(*mood_of(manner)).tempo
 
 
+def _puts_another(scene: Scene, target: str, held: str) -> bool:
+    """Whether a put names a thing other than the one in the hand ("hangs his coat" with a phone in the hand
+    and no coat in the room): the phone stays in the hand, not hung on the coat rack."""
+    if not target or target == held or target.lower() in ("it", "them", "this", "that", "everything"):
+        return False
+    return find_object(scene, target) is None
+
+
 def plan_actions(
     character: CharacterNode,
     scene: Scene,
@@ -1442,7 +1450,7 @@ def plan_actions(
                 continue  # at table or shelf height an arm's reach takes it: no bend down into the furniture
             held = {"prop": obj.id, "prop_joint": rj, "prop_grip": rlocal, "prop_yaw": float(obj.yaw),
                     "prop_span": "grasp"}  # fmt: skip
-        if name == "put_down" and hand:
+        if name == "put_down" and hand and not _puts_another(scene, node.target, hand["prop"]):
             # Set down on what the sentence names, else the nearest surface in reach, else where it was.
             dest = find_object(scene, node.destination) or (
                 obj if obj is not None and obj.id != hand["prop"] else None

@@ -264,7 +264,8 @@ def arguments(verb: Token, builder: GraphBuilder) -> tuple[list[Argument], list[
 def _relation_noun_object(tok: Token) -> Token | None:
     """The thing of "in front of the mirror", "at the back of the room", "on top of the shelf": the noun
     after "of" under a relational noun (lexicon.RELATION_NOUNS) that has a preposition of its own."""
-    if tok.lower_ not in lexicon.RELATION_NOUNS or not any(g.dep_ == "case" for g in tok.children):
+    relational = tok.lower_ in lexicon.RELATION_NOUNS or tok.lower_ in lexicon.END_NOUNS
+    if not relational or not any(g.dep_ == "case" for g in tok.children):
         return None
     return next(
         (

@@ -59,7 +59,7 @@ NON_OBJECT_NOUNS = (
         # places a story is set in that are no room type and no furniture: never an unknown object
         "attic loft basement cellar greenhouse ward carriage compartment cabin bakery park beach forest "
         "field meadow hill river lake sea shore street road alley path lane corridor stairs staircase "
-        "stairway steps landing elevator lift lifts platform station village town city castle tower cottage "
+        "stairway steps landing lift lifts platform station village town city castle tower cottage "
         "hut barn stable shop store market square courtyard balcony terrace porch patio roof rooftop sky "
         "threshold row aisle centre tavern inn pub saloon dungeon cave".split()
     )
@@ -212,6 +212,9 @@ RELATION_NOUNS = {
     "corner": "in",
     "underside": "under",
 }
+# Ends of a thing an action goes to: "sits at the head of the table" is at the table (a chair at its end).
+# Only for action sentences: a scene sentence's "on the end of the workbench" keeps its layout.
+END_NOUNS = frozenset({"head", "end"})
 RELATION_VERBS = {
     "face": "facing",
     "surround": "around",

@@ -184,7 +184,7 @@ candle | decoration | candles, candlestick, candle holder, tealight | dining_roo
 cushion | textile | pillow, throw pillow, pillows, cushions | living_room bedroom | SCX | surface
 fireplace | architecture | hearth, chimney, fire place, wood stove | living_room library | STM | floor
 window | architecture | windows, window pane, casement, windowpane | office living_room bedroom classroom kitchen meeting_room | STC | wall
-door | architecture | doorway, entrance, front door, exit, entry door | office living_room bedroom classroom kitchen bathroom | STCM | wall
+door | architecture | doorway, entrance, front door, exit, entry door, elevator, elevator door, elevators, lift door | office living_room bedroom classroom kitchen bathroom | STCM | wall
 teddy_bear | toy | teddy, stuffed animal, plush toy, stuffed toy, soft toy, plushie | kids_room bedroom | SC | surface
 ball | toy | football, soccer ball, basketball, beach ball, volleyball | kids_room gym garage | SC | floor
 refrigerator | kitchen_appliance | fridge, freezer, icebox, refrigerator freezer, refridgerator | kitchen | STC | floor
@@ -196,6 +196,7 @@ toaster | kitchen_appliance | toaster oven, sandwich maker | kitchen | SC | surf
 coffee_maker | kitchen_appliance | coffee machine, espresso machine, coffeemaker, percolator, coffee pot | kitchen cafe office | SCT | surface
 kettle | kitchen_appliance | electric kettle, water kettle, tea kettle, watering can | kitchen office | SCT | surface
 teapot | tableware | tea pot, tea set | kitchen dining_room cafe living_room | STCM | surface
+jug | tableware | pitcher, water jug, milk jug, carafe, decanter, jugs, pitchers | kitchen dining_room cafe | SCT | surface
 cup | drinkware | teacup, tea cup, coffee cup, cups, paper cup, coffee, tea, espresso, cappuccino, latte, cocoa | kitchen dining_room cafe office | SCTM | surface
 mug | drinkware | coffee mug, beer mug, tankard, travel mug | kitchen office cafe | SCT | surface
 glass | drinkware | drinking glass, tumbler, wine glass, wineglass, goblet, water glass, milk, juice, orange juice, wine, lemonade, smoothie | kitchen dining_room cafe | SCT | surface
@@ -247,6 +248,8 @@ bicycle | vehicle | bike, cycle, push bike, mountain bike, road bike | garage | 
 rug | textile | carpet, area rug, rugs, carpets, persian rug, doormat, door mat, floor mat, runner rug, throw rug | living_room bedroom kids_room lobby library home_office office | SCTM | floor
 instrument_stand | music_equipment | stand, guitar stand, instrument stand, keyboard stand, amp stand | music_studio | SCM | floor
 cake | food | birthday cake, cakes, pie, tart, cheesecake, cupcake, gateau, layer cake, sponge cake, chocolate cake | kids_room dining_room kitchen cafe living_room office | SCX | surface
+vegetable | food | vegetables, veg, veggies, onion, onions, carrot, carrots, potato, potatoes, tomato, tomatoes, cucumber, cucumbers, zucchini, courgette, courgettes, leek, leeks, garlic, celery, lettuce, cabbage, broccoli, aubergine, eggplant, herbs, mushrooms, mushroom | kitchen | SC | surface
+bread | food | loaf, loaf of bread, baguette, breads, bread loaf | kitchen dining_room cafe | SC | surface
 chocolate_box | food | box of chocolates, chocolates, chocolate box, candy box, candies, candy, sweets, bonbons, pralines, truffles, chocolate | lobby living_room bedroom dining_room | SC | surface
 film_negative | stationery | negative, negatives, photo negative, film negative, film strip, filmstrip, negative of a photo, contact sheet | gallery office home_office meeting_room | S | surface
 pill_bottle | medicine | pill, pills, pill bottle, pillbox, pill box, medicine, medicine bottle, medication, capsule, capsules, aspirin, painkiller, painkillers, vitamins | bathroom bedroom kitchen | SC | surface

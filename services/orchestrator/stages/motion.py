@@ -587,7 +587,8 @@ def animate(
     scene, provided = provide(scene, graphs, sentences, ctx.seed)
     characters = aimed(characters_of(graphs, [s.id for s in sentences]), scene)
     # an added bag the character puts down came in with them: in the hand from the first frame
-    characters, brought = carried(characters, scene, {o.id for o in scene.objects} - there)
+    texts = {s.id: s.text for s in sentences}  # "his phone": his own, in the hand from the first frame
+    characters, brought = carried(characters, scene, {o.id for o in scene.objects} - there, texts)
     scene, stools = seat_at_instruments(scene, characters, sentences)  # the stool to the drum kit's place
     added = [*provided, *brought_notes(characters, brought, scene, sentences), *stools, *added]
     looks, scene = scene, geometry_view(scene)  # the nodes below read shapes, not paint

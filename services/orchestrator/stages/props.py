@@ -12,7 +12,8 @@ action's own check says so (the object is missing; nothing passes silently).
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import re
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from types import ModuleType
 
@@ -70,6 +71,7 @@ class Need:
     action: str = ""  # the action that works on it there ("wash_dishes": the dishes go where one washes)
     why: str = ""  # what the diagnostic says it is for, when not "the story uses the <word>"
     owner: str = ""  # the character it is added for, when one of several ("They drink": one glass each)
+    holder: str = ""  # the character whose held action needs it ("takes a photo": the camera in Nora's hand)
 
 
 def _catalog() -> ModuleType:
@@ -116,6 +118,14 @@ def _usable(scene: Scene, action: str) -> list[PlacedObject]:
     return out
 
 
+def _holdable(placed: PlacedObject) -> bool:
+    """Whether an object can be taken in the hand at all (a "pick_up" point; a sculpture has none)."""
+    try:
+        return "pick_up" in _catalog().asset_for(placed).contact_points
+    except Exception:  # noqa: BLE001 - unknown category
+        return False
+
+
 def _made_for(scene: Scene, action: str) -> bool:
     """Whether the room already has a small object the action can use."""
     return bool(_usable(scene, action))
@@ -144,11 +154,12 @@ def prop_needs(graphs: Sequence[SentenceGraph], sentence_ids: Sequence[str], sce
 
     def fits(ref: str, action: str, kind: str) -> bool:
         """Whether a named object is the one the action uses ("with the hammer"), not what it works on
-        ("sweeps the floor", "hammers a nail": the broom, the hammer are still needed)."""
+        ("sweeps the floor", "hammers a nail": the broom, the hammer are still needed) nor what it is aimed
+        at ("takes a photo of the sculpture": a camera is still needed, the sculpture is never in the hand)."""
         placed = find_object(scene, ref)
         if placed is None:
             return True  # to be added from the sentence's own object
-        return kind != "tool" or placed in made_for(scene, action)
+        return placed in made_for(scene, action) or (kind != "tool" and _holdable(placed))
 
     for g, sid in zip(graphs, sentence_ids, strict=True):
         if g.kind != "action":
@@ -160,12 +171,14 @@ def prop_needs(graphs: Sequence[SentenceGraph], sentence_ids: Sequence[str], sce
                 here = [r for r in refs if find_object(scene, r) is not None]
                 # what else the sentence names in the room comes next ("washes the dishes at the sink":
                 # the parse keeps the dishes only; they go in the sink, not on the table last sat at)
-                here += [o.id for o in g.objects if o.id not in refs and find_object(scene, o.id) is not None]
+                here += _nearest_first(scene, [o.id for o in g.objects if o.id not in refs])
                 for ref in refs:
                     node = named.get(ref)
                     if node is None or present(ref) or present(node.category) or not _known(node.category):
                         continue
                     near = (*here, *reversed(last_at.get(c.name, [])))
+                    # no holder: a named thing ("drinks from the cup") the room cannot hold stays missing, and
+                    # its check says so; only an instrument the sentence leaves unsaid comes with the character
                     out.append(Need(node, sid, tuple(dict.fromkeys(near)), a.action))
                     wanted |= {node.id, node.category}
                 kind = _clip_kind(a)
@@ -174,18 +187,27 @@ def prop_needs(graphs: Sequence[SentenceGraph], sentence_ids: Sequence[str], sce
                     kind in HELD_KINDS
                     and default
                     and _known(default)
-                    and not any(present(r) and fits(r, a.action, kind) for r in refs)
+                    # what it is poured into is not what one pours with ("pours water into a glass")
+                    and not any(present(r) and fits(r, a.action, kind) for r in refs if r != a.destination)
                     and default not in wanted
                     and not _made_for(scene, a.action)
                     and find_object(scene, default) is None  # one there that stays put: the hand goes to it
                 ):
                     node = ObjectNode(id=default, category=default, word=default.replace("_", " "))
                     near = (*here, *reversed(last_at.get(c.name, [])))
-                    out.append(Need(node, sid, tuple(dict.fromkeys(near))))
+                    out.append(Need(node, sid, tuple(dict.fromkeys(near)), holder=c.name))
                     wanted |= {default}
                 last_at.setdefault(c.name, []).extend(here)
         out.extend(_one_each(g, sid, scene, out, last_at))
     return out
+
+
+def _nearest_first(scene: Scene, refs: list[str]) -> list[str]:
+    """The refs found in the room, one resting on another of them first ("walks to the counter and chops
+    vegetables on the cutting board": the vegetables go on the board, not beside it on the counter)."""
+    found = [(r, o) for r in refs if (o := find_object(scene, r)) is not None]
+    ids = {o.id for _, o in found}
+    return [r for r, o in sorted(found, key=lambda ro: ro[1].support not in ids)]
 
 
 def _kin(category: str) -> set[str]:
@@ -463,7 +485,10 @@ def place(scene: Scene, need: Need, seed: int = 0) -> tuple[PlacedObject, str] |
             spot = _on_surface(scene, anchor, fp, height) or _at_work_point(anchor, need)
             if spot is not None:
                 return _placed(node, attrs, seed, spot, anchor.id), anchor.id
-        return None
+        if not need.holder:
+            return None
+        # nothing to rest it on (a gallery has no table): the one who uses it brings it (carried), so it
+        # stands in for a thing taken from a pocket; its place on the floor is never seen
     beside: list[PlacedObject | None] = [*candidates, None]
     for near in beside:
         spot = _beside(scene, near, fp, height)
@@ -510,31 +535,88 @@ PUTS = ("put_down",)  # actions that set down what the hand holds
 
 
 def carried(
-    characters: dict[str, tuple[CharacterNode, list[str]]], scene: Scene, added: set[str]
+    characters: dict[str, tuple[CharacterNode, list[str]]],
+    scene: Scene,
+    added: set[str],
+    texts: Mapping[str, str] | None = None,
 ) -> tuple[dict[str, tuple[CharacterNode, list[str]]], dict[str, str]]:
     """The characters who bring an added object with them, and each one's actions put it where the sentence
     says: "She puts her bag on the teacher's desk" in a room with no bag (provide added one on the desk)
     has Ms Lee hold the bag from her first frame (she came in with it), so the put moves it from her hand to
     the desk. An object is brought by the character whose first action on it puts it down; that put gets
-    the surface it was added on as its destination when the parse named none. Returns (characters, name
-    -> id of the object in the hand from the start)."""
+    the surface it was added on as its destination when the parse named none. A held object is brought too
+    when it is the character's own ("calls someone on his phone": not a phone 5 m away on another table) or
+    when nothing could hold it (a camera in a gallery with no table: provide left it on the floor).
+
+    Args:
+        texts: sentence id -> its text, to read "his phone" (without it nothing is owned).
+
+    Returns:
+        (characters, name -> id of the object in the hand from the start).
+    """
     out, holding = {}, {}
     taken: set[str] = set()
     for name, (node, sids) in characters.items():
         actions = list(node.actions)
         for k, a in enumerate(actions):
-            ref = a.target or a.instrument
-            placed = find_object(scene, ref) if ref else None
-            if placed is None or placed.id not in added or placed.id in taken:
+            placed = _added_used(scene, a, added)
+            if placed is None or placed.id in taken:
                 continue
             taken.add(placed.id)  # the first action on it decides (a "read" first: picked up where it lies)
-            if a.action not in PUTS or name in holding or not _holdable(placed):
+            if name in holding or not _holdable(placed):
                 continue
-            holding[name] = placed.id
-            if not a.destination and placed.support:
-                actions[k] = msgspec.structs.replace(a, destination=placed.support)
+            if a.action in PUTS:
+                holding[name] = placed.id
+                if not a.destination and placed.support:
+                    actions[k] = msgspec.structs.replace(a, destination=placed.support)
+            elif _in_hand(a, placed.id, placed.category) and (
+                _unrested(placed) or owned((texts or {}).get(sids[k], ""), placed.category)
+            ):
+                holding[name] = placed.id
         out[name] = (msgspec.structs.replace(node, actions=actions), sids)
     return out, holding
+
+
+def _added_used(scene: Scene, action: ActionNode, added: set[str]) -> PlacedObject | None:
+    """The added object an action works with: the one it names, else (a held action) the one added for it
+    ("takes a photo of the sculpture": the camera)."""
+    ref = action.target or action.instrument
+    placed = find_object(scene, ref) if ref else None
+    if placed is not None and placed.id in added:
+        return placed
+    if placed is not None and action.target and action.instrument:
+        other = find_object(scene, action.instrument)
+        if other is not None and other.id in added:
+            return other
+    default = DEFAULT_PROP.get(action.action, "")
+    if not default or _clip_kind(action) not in HELD_KINDS:
+        return None
+    return next((o for o in scene.objects if o.id in added and o.category == default), None)
+
+
+def _in_hand(action: ActionNode, ref: str, category: str) -> bool:
+    """Whether the object an action names is the one in its hand: any of a handheld action's but what it
+    pours into, a tool action's tool only ("saws the plank": the saw, not the plank)."""
+    kind = _clip_kind(action)
+    if kind == "handheld":
+        return ref != action.destination
+    return kind == "tool" and (ref == action.instrument or category == DEFAULT_PROP.get(action.action))
+
+
+def _unrested(placed: PlacedObject) -> bool:
+    """A small object left on the floor because nothing in the room could hold it."""
+    return not placed.support and _mount(placed.category) == "surface"
+
+
+def owned(text: str, category: str) -> bool:
+    """Whether a sentence names a thing of the category as someone's own ("his phone", "her old book")."""
+    from wana.assets import vocabulary
+
+    info = vocabulary.CATEGORIES.get(category)
+    words = {category.replace("_", " "), *(info.synonyms if info is not None else ())}
+    alternatives = "|".join(re.escape(w) for w in sorted(words, key=len, reverse=True))
+    pattern = rf"\b(?:his|her|their|my|your|our)\s+(?:(?!(?:a|an|the|some)\s)[a-z]+\s+)?(?:{alternatives})\b"
+    return re.search(pattern, text.lower()) is not None
 
 
 def brought_notes(
@@ -549,24 +631,19 @@ def brought_notes(
     for name, held in holding.items():
         node, sids = characters[name]
         placed = find_object(scene, held)
-        k = next((k for k, a in enumerate(node.actions) if a.action in PUTS), None)
+        # the first action that uses it: the put that sets it down, or a held action ("on his phone")
+        k = next((k for k, a in enumerate(node.actions) if _added_used(scene, a, {held})), None)
         if placed is None or k is None:
             continue
         what = placed.category.replace("_", " ")
-        on = node.actions[k].destination.split("#")[0].replace("_", " ")
+        put = node.actions[k].action in PUTS
+        on = node.actions[k].destination.split("#")[0].replace("_", " ") if put else ""
         message = f"{name} brings the {what}: in the hand from {name}'s first frame" + (
             f", then put on the {on}" if on else ""
         )
         span = spans.get(sids[k], Span(0, 0))
         out.append((sids[k], Diagnostic(code="I202", message=message, span=span, severity="info")))
     return out
-
-
-def _holdable(placed: PlacedObject) -> bool:
-    try:
-        return "pick_up" in _catalog().asset_for(placed).contact_points
-    except Exception:  # noqa: BLE001 - unknown category
-        return False
 
 
 def _is_walk(action: ActionNode) -> bool:
@@ -623,6 +700,8 @@ def provide(
         where = (
             f"on the {at.split('#')[0].replace('_', ' ')}"
             if placed.support
+            else f"with {need.holder}, nothing in the room to rest it on"
+            if need.holder and _unrested(placed)
             else f"beside the {at.split('#')[0].replace('_', ' ')}"
             if at
             else "in the room"

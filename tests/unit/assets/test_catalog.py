@@ -144,3 +144,18 @@ def test_world_boxes_follow_yaw_and_position():
     assert np.allclose(centre[[0, 2]], [1.0, 2.0], atol=0.05)
     m = catalog.object_to_world(placed)
     assert np.allclose(m[:3, :3] @ [0, 0, 1], [1, 0, 0], atol=1e-9)  # front turns to +X
+
+
+@pytest.mark.parametrize(
+    ("category", "points", "height"),
+    [
+        ("vegetable", {"pick_up", "cut"}, (0.03, 0.12)),  # what one chops: cut where the knife comes down
+        ("bread", {"pick_up", "cut"}, (0.06, 0.16)),
+        ("jug", {"pick_up", "pour"}, (0.15, 0.3)),  # one pours water from it into a glass
+        ("camera", {"pick_up", "take_photo"}, (0.05, 0.15)),  # held up to take a photo
+    ],
+)
+def test_props_named_in_actions_are_held_where_the_action_works(category, points, height):
+    obj = catalog.make_object(category)
+    assert points <= set(obj.contact_points)
+    assert height[0] < obj.mesh.bounds[1][1] < height[1]

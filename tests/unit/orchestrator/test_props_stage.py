@@ -344,3 +344,89 @@ def test_ms_lee_comes_in_with_her_bag_and_puts_it_from_her_hand_on_the_desk():
 
 def bag_desk(scene: Scene) -> PlacedObject:
     return next(o for o in scene.objects if o.id == "teacher_desk")
+
+
+def test_a_photo_of_a_sculpture_in_a_room_with_no_table_is_taken_with_a_camera_brought_along():
+    """solo-gallery-12: the sculpture is what the photo is of, never in the hand; nothing can hold the camera
+    the action needs, so Nora brings it (in the hand from her first frame)."""
+    sculpture = PlacedObject(id="sculpture", category="sculpture", position=(0.0, 0.0, 1.0), yaw=0.0)
+    photo = ActionNode(verb="take", action="take_photo", target="sculpture")
+    graphs = [_graph("s1", "Nora", photo, objects=(ObjectNode(id="sculpture", category="sculpture",
+                                                                word="sculpture"),))]  # fmt: skip
+    scene = Scene(room=ROOM, objects=[sculpture])
+    needs = prop_needs(graphs, ["s1"], scene)
+    assert [(n.node.category, n.holder) for n in needs] == [("camera", "Nora")]
+    furnished, notes = provide(scene, graphs, _sentences("s1"))
+    (camera,) = [o for o in furnished.objects if o.category == "camera"]
+    assert camera.support == "" and "with Nora" in notes[0][1].message
+    characters = {"Nora": (CharacterNode(name="Nora", actions=[photo]), ["s1"])}
+    _, holding = carried(characters, furnished, {camera.id})
+    assert holding == {"Nora": camera.id}
+
+
+def test_pouring_into_a_glass_the_room_lacks_adds_the_glass_and_something_to_pour_with():
+    pour = ActionNode(verb="pour", action="pour", target="glass", destination="glass")
+    graphs = [_graph("s1", "Anna", pour, objects=(ObjectNode(id="glass", category="glass", word="glass"),))]
+    needs = prop_needs(graphs, ["s1"], Scene(room=ROOM, objects=[TABLE]))
+    assert [n.node.category for n in needs] == ["glass", "kettle"]
+
+
+def test_his_own_phone_is_in_his_hand_from_the_start_a_phone_on_the_table_is_not():
+    call = ActionNode(verb="call", action="call_with_phone", target="phone")
+    graphs = [_graph("s1", "Tom", call, objects=(ObjectNode(id="phone", category="phone", word="phone"),))]
+    furnished, _ = provide(Scene(room=ROOM, objects=[TABLE]), graphs, _sentences("s1"))
+    (phone,) = [o for o in furnished.objects if o.category == "phone"]
+    assert phone.support == "table"
+    characters = {"Tom": (CharacterNode(name="Tom", actions=[call]), ["s1"])}
+    _, own = carried(characters, furnished, {phone.id}, {"s1": "He calls someone on his phone."})
+    _, theirs = carried(characters, furnished, {phone.id}, {"s1": "He calls someone on the phone."})
+    assert own == {"Tom": phone.id} and theirs == {}
+
+
+def test_onions_chopped_on_the_cutting_board_lie_on_the_board():
+    board = PlacedObject(id="cutting_board", category="cutting_board", position=(1.5, 0.75, -1.0),
+                         yaw=0.0, support="table")  # fmt: skip
+    chop = ActionNode(verb="chop", action="chop", target="vegetable")
+    graphs = [_graph("s1", "Nora", chop, objects=(
+        ObjectNode(id="vegetable", category="vegetable", word="onions"),
+        ObjectNode(id="cutting_board", category="cutting_board", word="cutting board"),
+    ))]  # fmt: skip
+    furnished, notes = provide(Scene(room=ROOM, objects=[TABLE, board]), graphs, _sentences("s1"))
+    (onions,) = [o for o in furnished.objects if o.category == "vegetable"]
+    assert onions.support == "cutting_board" and notes[0][1].code == "I202"
+
+
+def test_vegetables_chopped_on_the_board_at_the_counter_lie_on_the_board_not_the_counter():
+    counter = PlacedObject(
+        id="kitchen_counter", category="kitchen_counter", position=(1.0, 0.0, -2.0), yaw=0.0
+    )
+    (height, _), *_ = world_support_surfaces(counter)
+    board = PlacedObject(id="cutting_board", category="cutting_board", position=(1.0, height, -2.0),
+                         yaw=0.0, support="kitchen_counter")  # fmt: skip
+    chop = ActionNode(verb="chop", action="chop", target="vegetable")
+    graphs = [_graph("s1", "Anna", chop, objects=(
+        ObjectNode(id="kitchen_counter", category="kitchen_counter", word="counter"),
+        ObjectNode(id="vegetable", category="vegetable", word="vegetables"),
+        ObjectNode(id="cutting_board", category="cutting_board", word="cutting board"),
+    ))]  # fmt: skip
+    furnished, _ = provide(Scene(room=ROOM, objects=[counter, board]), graphs, _sentences("s1"))
+    (veg,) = [o for o in furnished.objects if o.category == "vegetable"]
+    assert veg.support == "cutting_board"
+
+
+def test_what_a_tool_works_on_is_never_brought_in_the_hand():
+    """solo-workshop-19: "saws the plank" in a room where nothing holds a plank: the saw is the held thing,
+    the plank is not carried from the first frame (it took the hand the saw needed)."""
+    saw = PlacedObject(id="saw", category="saw", position=(1.5, 0.76, -1.0), support="table")
+    cut = ActionNode(verb="saw", action="saw", target="wood_plank")
+    plank = ObjectNode(id="wood_plank", category="wood_plank", word="plank")
+    graphs = [_graph("s1", "Mr Garcia", cut, objects=(plank,))]
+    needs = prop_needs(graphs, ["s1"], Scene(room=ROOM, objects=[TABLE, saw]))
+    assert [(n.node.id, n.holder) for n in needs] == [("wood_plank", "")]
+    _, holding = carried(
+        {"Mr Garcia": (CharacterNode(name="Mr Garcia", actions=[cut]), ["s1"])},
+        Scene(room=ROOM, objects=[TABLE, saw, PlacedObject(id="wood_plank", category="wood_plank")]),
+        {"wood_plank"},
+        {"s1": "He saws his plank."},
+    )
+    assert holding == {}  # his own plank is still what the saw works on, not what the hand holds

@@ -132,6 +132,9 @@ def box_device(b: Builder, p: Params, kind: str = "computer") -> None:
     elif kind == "camera":
         b.cyl((0, h * 0.45, fz), h * 0.35, d * 0.8, p.tone("black"), axis="z")
         b.contact("shoot", "RightHand", (w * 0.4, h * 0.5, 0.0), {"LeftHand": (0.0, h * 0.45, fz + d * 0.5)})
+        # held up to the eye to take a photo: the planner and the check find it by these points
+        b.contact("take_photo", "RightHand", (w * 0.4, h * 0.5, 0.0))
+        b.contact("pick_up", "RightHand", (w * 0.4, h * 0.5, 0.0))
     elif kind == "microwave":
         b.box((-w / 2 + 0.03, 0.03, fz), (w * 0.2, h - 0.03, fz + 0.005), p.tone("screen", 1.5))
         b.box((w * 0.25, h * 0.5, fz), (w * 0.4, h * 0.8, fz + 0.005), p.tone("charcoal"))

@@ -1,5 +1,6 @@
 """Things stories put on tables and floors that no furniture family covers: a rug, a cake, a box of
-chocolates, a strip of photo negatives, a pill bottle, and the low cradle an instrument rests on."""
+chocolates, vegetables and a loaf of bread to cut, a strip of photo negatives, a pill bottle, and the low cradle
+an instrument rests on."""
 
 from __future__ import annotations
 
@@ -73,6 +74,32 @@ def chocolate_box(b: Builder, p: Params) -> None:
     b.contact("present", "RightHand", (w / 2, h * 0.5, 0.0), {"LeftHand": (-w / 2, h * 0.5, 0.0)})
 
 
+def vegetable(b: Builder, p: Params) -> None:
+    """A few vegetables lying together (an onion, a carrot, a tomato): what one chops on a board."""
+    w, h, d = p.w, p.h, p.d
+    r = h / 2
+    b.ellipsoid((-w * 0.25, r, -d * 0.1), (r * 1.05, r, r * 1.05), p.body)  # the onion
+    b.cyl((-w * 0.25, h * 0.95, -d * 0.1), r * 0.12, h * 0.12, p.tone("leaf"), sections=6)
+    b.ellipsoid((w * 0.22, r * 0.85, d * 0.2), (r * 0.85, r * 0.85, r * 0.85), p.tone("red"))  # the tomato
+    b.rod((-w * 0.45, h * 0.2, d * 0.38), (w * 0.45, h * 0.2, d * 0.3), h * 0.2, p.tone("orange"))  # a carrot
+    top = (0.0, h, 0.0)
+    b.contact("pick_up", "RightHand", top)
+    b.contact("cut", "RightHandMiddle1", top)
+    b.contact("eat", "RightHand", top)
+
+
+def bread(b: Builder, p: Params) -> None:
+    """A loaf of bread: a rounded crust, scored across the top."""
+    w, h, d = p.w, p.h, p.d
+    b.box((-w / 2, 0, -d / 2), (w / 2, h * 0.55, d / 2), p.body)
+    b.ellipsoid((0, h * 0.55, 0), (w / 2, h * 0.45, d / 2), p.body)
+    for k in (-1, 0, 1):
+        b.boxc((k * w * 0.25, h * 0.97, 0), (0.01, 0.006, d * 0.6), p.tone("cream"), yaw=0.4)
+    b.contact("pick_up", "RightHand", (0.0, h, 0.0))
+    b.contact("cut", "RightHandMiddle1", (0.0, h, 0.0))
+    b.contact("eat", "RightHand", (w * 0.4, h * 0.6, 0.0))
+
+
 def film_negative(b: Builder, p: Params) -> None:
     """A strip of negatives in a paper sleeve lying flat: frames in dark amber."""
     w, h, d = p.w, p.h, p.d
@@ -99,5 +126,7 @@ register("rug", rug, (2.0, 0.012, 1.4), body="red", frame="navy")
 register("instrument_stand", instrument_stand, (0.34, 0.14, 0.3), body="rubber", frame="black")
 register("cake", cake, (0.26, 0.16, 0.26), body="beige")
 register("chocolate_box", chocolate_box, (0.24, 0.04, 0.18), body="red")
+register("vegetable", vegetable, (0.2, 0.07, 0.14), body="beige")
+register("bread", bread, (0.28, 0.11, 0.13), body="brown")
 register("film_negative", film_negative, (0.2, 0.004, 0.05), body="orange")
 register("pill_bottle", pill_bottle, (0.045, 0.09, 0.045), body="orange")
