@@ -643,7 +643,9 @@ def _played(
     door = doorway(scene)
     wait_ids = {sid for sid, c in commands if c.kind == "wait"}
     answering = {r.responder for r in (plan.responses if plan is not None else []) if r.response_index == 0}
-    starts, hidden = _first_positions(scene, door, characters, sentences, wait_ids, answering)
+    touches = paired_actions(characters, plan)
+    answered = _touch_sentences(characters, sentences, touches)
+    starts, hidden = _first_positions(scene, door, characters, sentences, wait_ids, answering, answered)
     waiting_place = {name: i for i, name in enumerate(sorted(characters, key=lambda n: n not in hidden))}
     ids = {o.id for o in scene.objects}
     out = Animated(scene=scene, diagnostics=_door_added(scene, characters, sentences, hidden))
@@ -730,7 +732,6 @@ def _played(
         if r.response_index >= 0
     }
     responses.update(_taken_after(beats, handovers))
-    touches = paired_actions(characters, plan)
     for key, answered in _partner_free(beats, touches).items():
         responses.setdefault(key, answered)
     start_frames = schedule(beats, waits, [s.id for s in sentences], responses)
@@ -862,15 +863,41 @@ def _wait_outside(motion: Motion, on: np.ndarray, spot: tuple[float, float]) -> 
     return msgspec.structs.replace(motion, root_position=to_wire(root.astype(np.float32)))
 
 
-def _late_comers(
-    characters: Characters, sentences: Sequence[Sentence], waits: set[str], answering: set[str]
+def _touch_sentences(
+    characters: Characters, sentences: Sequence[Sentence], touches: Sequence[PairedAction]
 ) -> set[str]:
-    """The characters whose first sentence starts after frame 0 (timeline.schedule's rule, before timing).
+    """Sentences with a touching action that waits for its partner's action in an earlier sentence (as
+    ``_partner_free`` times it): the sentence starts when that action ends, not with the one before it."""
+    order = {s.id: i for i, s in enumerate(sentences)}
+    out: set[str] = set()
+    for pair in touches:
+        if not pair.partner or pair.actor not in characters or pair.partner not in characters:
+            continue
+        sids = characters[pair.actor][1]
+        if pair.action_index >= len(sids):
+            continue
+        mine = order.get(sids[pair.action_index], -1)
+        if any(order.get(sid, mine) < mine for sid in characters[pair.partner][1]):
+            out.add(sids[pair.action_index])
+    return out
+
+
+def _late_comers(
+    characters: Characters,
+    sentences: Sequence[Sentence],
+    waits: set[str],
+    answering: set[str],
+    answered: set[str] | None = None,
+) -> tuple[set[str], dict[str, str]]:
+    """The characters whose first sentence starts after frame 0 (timeline.schedule's rule, before timing), and
+    per sentence the sentence it starts together with (the last one that had to start later).
 
     A sentence starts with the one before it unless one of its characters is still busy with an earlier
     action, its first action answers another's (the social plan's response delay: ``answering``) or a
-    `wait` holds it; from the first sentence that starts later, every later one does too.
+    `wait` holds it, or a touch in it waits for the partner's earlier action (``answered``: sentence ids); from
+    the first sentence that starts later, every later one does too.
     """
+    answered = answered or set()
     group: dict[str, set[str]] = {}
     for name, (_, sids) in characters.items():
         for sid in sids:
@@ -878,16 +905,18 @@ def _late_comers(
     seen: set[str] = set()
     late: set[str] = set()
     delayed = False
+    together: dict[str, str] = {}
+    current = ""
     for s in sentences:
-        if s.id in waits and seen:
-            delayed = True
         names = group.get(s.id, set())
-        if names & seen or (names & answering and seen):
+        if (s.id in waits and seen) or names & seen or (names & answering and seen) or s.id in answered:
             delayed = True
+            current = s.id
         if delayed:
             late |= names - seen
+        together[s.id] = current
         seen |= names
-    return late
+    return late, together
 
 
 def _first_positions(
@@ -897,6 +926,7 @@ def _first_positions(
     sentences: Sequence[Sentence],
     waits: set[str] | None = None,
     answering: set[str] | None = None,
+    answered: set[str] | None = None,
 ) -> tuple[dict[str, tuple[float, float, float]], set[str]]:
     """Where each character is at frame 0, and who waits outside the door until their first sentence.
 
@@ -904,7 +934,7 @@ def _first_positions(
     character whose first sentence starts later wait at the door (hidden until their first sentence), those
     who come in at the same time side by side on its threshold.
     """
-    late = _late_comers(characters, sentences, waits or set(), answering or set())
+    late, together_with = _late_comers(characters, sentences, waits or set(), answering or set(), answered)
     starts: dict[str, tuple[float, float, float]] = {}
     hidden: set[str] = set()
     taken: list[tuple[float, float]] = []
@@ -912,7 +942,8 @@ def _first_positions(
     for name, (node, sids) in characters.items():
         first = node.actions[0] if node.actions else None
         if door is not None and first is not None and (name in late or is_entrance(first)):
-            when = sids[0] if name in late else ""  # "": with the story's first frame
+            # "": with the story's first frame; else the first sentence of those starting at the same time
+            when = together_with.get(sids[0], sids[0]) if name in late else ""
             beside = together.get(when, 0)
             together[when] = beside + 1
             starts[name] = (*door.inside(beside=beside), door.yaw_in)
