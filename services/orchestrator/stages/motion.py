@@ -644,8 +644,8 @@ def _played(
     wait_ids = {sid for sid, c in commands if c.kind == "wait"}
     answering = {r.responder for r in (plan.responses if plan is not None else []) if r.response_index == 0}
     touches = paired_actions(characters, plan)
-    answered = _touch_sentences(characters, sentences, touches)
-    starts, hidden = _first_positions(scene, door, characters, sentences, wait_ids, answering, answered)
+    touch_sids = _touch_sentences(characters, sentences, touches)
+    starts, hidden = _first_positions(scene, door, characters, sentences, wait_ids, answering, touch_sids)
     waiting_place = {name: i for i, name in enumerate(sorted(characters, key=lambda n: n not in hidden))}
     ids = {o.id for o in scene.objects}
     out = Animated(scene=scene, diagnostics=_door_added(scene, characters, sentences, hidden))
