@@ -32,6 +32,7 @@ from services.retrieval.layout import Holds, Item, Layout, RoomBox, object_seed,
 from services.retrieval.matching import Matching, match_relation_first
 from services.retrieval.room import base_size, context_objects, fit_size, normalize_room_type, vote_room_type
 from wana.assets import catalog
+from wana.assets.relations import anchor_copy
 
 GROW_STEPS = 3  # times the room may grow by GROW_BY when objects do not fit
 GROW_BY = 1.0  # metres added to width and depth
@@ -120,9 +121,8 @@ def _expand(objects: list[ObjectNode], relations: list[RelationNode]) -> list[tu
     copies = {o.id: instance_ids(o) for o in objects}
     out = []
     for i, r in enumerate(relations):
-        anchors = copies[r.object] if r.each else [r.object]
-        for k, sid in enumerate(copies[r.subject]):
-            anchor = anchors[k % len(anchors)]
+        for sid in copies[r.subject]:
+            anchor = anchor_copy(sid, r, len(copies[r.object]))
             out.append(
                 (i, RelationNode(subject=sid, relation=r.relation, object=anchor, span=r.span, each=r.each))
             )

@@ -192,3 +192,14 @@ def relation_holds(
 def relations_between(subject_placed: PlacedObject, anchor_placed: PlacedObject) -> list[str]:
     """All relation names that hold from subject to anchor."""
     return [r for r in RELATIONS if PREDICATES[r](subject_placed, anchor_placed)]
+
+
+def anchor_copy(subject_copy: str, relation: RelationNode, anchor_copies: int) -> str:
+    """The placed id of the anchor copy one subject copy is placed by ("chair/2" of "a chair at each desk" ->
+    "desk/2", counting round when there are fewer desks); the anchor itself for a relation without ``each``.
+    Copy ids are the layout's: "desk", "desk/2", ... (services.retrieval.compose.instance_ids)."""
+    if not relation.each or anchor_copies <= 1:
+        return relation.object
+    k = int(subject_copy.rsplit("/", 1)[1]) if "/" in subject_copy else 1
+    j = (k - 1) % anchor_copies + 1
+    return relation.object if j == 1 else f"{relation.object}/{j}"

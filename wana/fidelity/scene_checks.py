@@ -12,7 +12,7 @@ from proto.fidelity import Check
 from proto.ssg import SentenceGraph
 from wana.assets import vocabulary
 from wana.assets.catalog import world_bounds
-from wana.assets.relations import AROUND_M, NEAR_M, NEXT_TO_M, footprint_gap, relation_holds
+from wana.assets.relations import AROUND_M, NEAR_M, NEXT_TO_M, anchor_copy, footprint_gap, relation_holds
 from wana.fidelity.world import World, display
 
 RELATION_WORDS = {
@@ -144,7 +144,8 @@ def relation_checks(graph: SentenceGraph, world: World) -> list[Check]:
             )
             continue
         # "a chair at each desk": chair k at desk k; otherwise every copy at the (first) anchor
-        pairs = [(s, anchors[k % len(anchors)] if rel.each else anchors[0]) for k, s in enumerate(subjects)]
+        by_id = {a.id: a for a in anchors}
+        pairs = [(s, by_id.get(anchor_copy(s.id, rel, len(anchors)), anchors[0])) for s in subjects]
         failing = [(s, a) for s, a in pairs if not _looks_true(rel.relation, s, a)]
         if failing:
             subject, anchor = failing[0]

@@ -26,7 +26,7 @@ from services.orchestrator.stages import StageContext, content_of
 from services.orchestrator.staging import with_door
 from services.orchestrator.views import ScenePart, scene_part
 from wana.assets.catalog import world_bounds
-from wana.assets.relations import relation_holds
+from wana.assets.relations import anchor_copy, relation_holds
 
 KEPT_SHARES = (0.75, 0.5, 0.25, 0.0)  # shares of an optimiser's move tried, most of it first
 OVERLAP_M = 1e-3  # metres two AABBs must interpenetrate on every axis to overlap (the optimiser's own test)
@@ -53,15 +53,6 @@ def scene(ctx: StageContext, graphs: Sequence[SentenceGraph]) -> tuple[Scene, Co
     """The `scene` node: keyed by the scene sentences' objects, relations and room kind only."""
     part = scene_part(graphs)
     return ctx.engine.query("scene", part, lambda: compose(ctx, part))
-
-
-def _anchor_of(subject: str, relation: RelationNode, ids: list[str]) -> str:
-    """The anchor copy a subject copy is placed by: copy k of "a chair at each desk" by desk k, else the anchor."""
-    if not relation.each:
-        return relation.object
-    k = int(subject.rsplit("/", 1)[1]) if "/" in subject else 1
-    copy = relation.object if k == 1 else f"{relation.object}/{k}"
-    return copy if copy in ids else relation.object
 
 
 def _holds(relation: str, subject: PlacedObject, anchor: PlacedObject) -> bool:
@@ -145,7 +136,7 @@ def keep_relations(before: Scene, after: Scene, relations: Sequence[RelationNode
         for r in relations
         for s in ids
         if (s == r.subject or s.startswith(r.subject + "/"))
-        for a in [_anchor_of(s, r, ids)]
+        for a in [anchor_copy(s, r, sum(i == r.object or i.startswith(r.object + "/") for i in ids))]
         if s in blend.before
         and a in blend.before
         and a in ids

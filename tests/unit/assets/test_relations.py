@@ -79,3 +79,13 @@ def test_under_a_window_is_against_its_wall_below_it_and_within_its_width():
     wardrobe = catalog.make_object("wardrobe").dims
     too_tall = _at("wardrobe", 0.0, w[2] / 2 + wardrobe[2] / 2 + 0.01)
     assert not relation_holds("under", too_tall, window)
+
+
+def test_a_subject_copy_of_an_each_relation_goes_with_its_own_anchor_copy():
+    from proto.ssg import RelationNode
+    from wana.assets.relations import anchor_copy
+
+    each = RelationNode(subject="chair", relation="near", object="desk", each=True)
+    assert [anchor_copy(c, each, 2) for c in ("chair", "chair/2", "chair/3")] == ["desk", "desk/2", "desk"]
+    plain = RelationNode(subject="chair", relation="near", object="desk")
+    assert anchor_copy("chair/2", plain, 2) == "desk"
