@@ -106,6 +106,7 @@ class Slotting:
         here: tuple[float, float] | None = None,
         company: Sequence[tuple[float, float]] = (),
         crowd: Sequence[tuple[float, float]] = (),
+        joined: bool = False,
     ) -> Claim:
         """The slot ``who`` takes for ``action`` (or gives back), in story order.
 
@@ -114,27 +115,29 @@ class Slotting:
         shared out so that the walks, together, are shortest (`matched`): such paths never cross, so two
         walking side by side stay side by side instead of walking through each other to swapped slots.
         ``crowd``: where the others on stage stand; a stand slot within CLEAR_M of one is taken last.
+        ``joined``: others of the sentence went to the same object before it: the last of them to claim takes
+        the free slot nearest to it (what the shortest sharing-out left it), not the first free one.
         """
         clip = _clip(action)
         if clip is None:
             return Claim(action)
         kind = clip.interaction.object if clip.interaction is not None else ""
         if kind in ("seat", "bed"):
-            return self._seat(who, action, "lie" if clip.name in LYING else "sit", here, company)
+            return self._seat(who, action, "lie" if clip.name in LYING else "sit", here, company, joined)
         if "locomotion" in clip.tags:
             obj = find_object(self.scene, action.destination or action.target)
             if obj is None:
                 self.book.release(who)
                 return Claim(action)
-            return self._stand(who, action, obj, here, company, crowd)
+            return self._stand(who, action, obj, here, company, crowd, joined)
         if kind and kind not in ("handheld", "person"):
             obj = find_object(self.scene, action.target or action.instrument or action.destination)
             if obj is not None:
-                return self._stand(who, action, obj, here, company, crowd)
+                return self._stand(who, action, obj, here, company, crowd, joined)
         if clip.name in HIDE_ACTIONS:
             obj = find_object(self.scene, action.target or action.destination)
             if obj is not None:
-                return self._hide(who, action, obj, here, company)
+                return self._hide(who, action, obj, here, company, joined)
         if clip.name == "stand":
             self.book.release(who)
         return Claim(action)
@@ -146,6 +149,7 @@ class Slotting:
         obj: PlacedObject,
         here: tuple[float, float] | None,
         company: Sequence[tuple[float, float]],
+        joined: bool = False,
     ) -> Claim:
         """A spot of its own to hide at by ``obj`` (wana.domain.hiding): two hiding behind one door take its
         two sides."""
@@ -153,7 +157,7 @@ class Slotting:
         if not spots:
             return Claim(action)
         names = [str(i) for i in range(len(spots))]
-        order = self._preferred(obj.id + HIDE_KEY, names, spots, who, here, company)
+        order = self._preferred(obj.id + HIDE_KEY, names, spots, who, here, company, joined)
         taken = self.book.take(obj.id + HIDE_KEY, order, who)
         return Claim(action) if taken is None else Claim(action, spot=spots[int(taken)])
 
@@ -165,9 +169,10 @@ class Slotting:
         who: str,
         here: tuple[float, float] | None,
         company: Sequence[tuple[float, float]],
+        joined: bool = False,
     ) -> list[str]:
-        """``slots`` with the one `matched` gives ``who`` first (unchanged without company)."""
-        if here is None or not company:
+        """``slots`` with the one `matched` gives ``who`` first (unchanged when it goes there alone)."""
+        if here is None or not (company or joined):
             return slots
         free = [i for i, n in enumerate(slots) if self.book.holder(object_id, n) in ("", who)]
         pick = matched([here, *company], [where[i] for i in free])
@@ -183,20 +188,21 @@ class Slotting:
         kind: str,
         here: tuple[float, float] | None = None,
         company: Sequence[tuple[float, float]] = (),
+        joined: bool = False,
     ) -> Claim:
         obj = find_object(self.scene, action.target or action.instrument or action.destination)
         if obj is None:
             return Claim(action)
         every = seat_slots(obj, kind)
         if not every:  # "sits at the table": a free seat around it
-            return self._seat_at(who, action, obj, kind)
+            return self._seat_at(who, action, obj, kind, here, company, joined)
         default = every[0]  # what the planner takes by itself
         slots = seat_slots(obj, kind, self.scene.objects)  # those no prop rests on
         rest: list[str] = []
         if len(self.sitters.get(obj.id, ())) == 2 and len(slots) >= 3:
             # two on three cushions: the ends, with the middle between them
             slots, rest = slots[1:], slots[:1]
-        slots = [*self._preferred(obj.id, slots, seat_points(obj, slots), who, here, company), *rest]
+        slots = [*self._preferred(obj.id, slots, seat_points(obj, slots), who, here, company, joined), *rest]
         if kind == "sit":
             slots, beside = self._roomy_cushion(who, action, obj, slots)
             if beside is not None:
@@ -261,6 +267,7 @@ class Slotting:
         kind: str,
         here: tuple[float, float] | None = None,
         company: Sequence[tuple[float, float]] = (),
+        joined: bool = False,
     ) -> Claim:
         """A free seat slot of the seats at an object that has none itself (a table): within AROUND_M of its
         middle or AT_GAP_M of its footprint.
@@ -301,7 +308,7 @@ class Slotting:
             if _roomy(f[2], held) and _roomy(seat_points(f[0], [f[3]], KNEE_OUT_M)[0], knees, KNEE_M)
         ]
         free = roomy + [f for f in free if f not in roomy]
-        if here is not None and company:
+        if here is not None and (company or joined):
             pick = matched([here, *company], [f[2] for f in roomy]) if len(roomy) > len(company) else None
             pick = pick if pick is not None else matched([here, *company], [f[2] for f in free])
             if pick is not None:
@@ -338,6 +345,7 @@ class Slotting:
         here: tuple[float, float] | None = None,
         company: Sequence[tuple[float, float]] = (),
         crowd: Sequence[tuple[float, float]] = (),
+        joined: bool = False,
     ) -> Claim:
         rows, standers = 2, len(self.standers.get(obj.id, set()) | {who})
         spots, front = self._stand_spots(obj, rows)
@@ -348,7 +356,7 @@ class Slotting:
         if crowd and reach and all(_near_any(p, crowd) for p in reach):  # bystanders there: round the object
             spots = [*reach, *self._ring(obj, reach[0]), *(p for p in spots if p not in front)]
         names = [str(i) for i in range(len(spots))]
-        order = self._preferred(obj.id + STAND_KEY, names, spots, who, here, company)
+        order = self._preferred(obj.id + STAND_KEY, names, spots, who, here, company, joined)
         clear = [n for n in order if not _near_any(spots[int(n)], crowd)]
         order = [*clear, *(n for n in order if n not in clear)]
         taken = self.book.take(obj.id + STAND_KEY, order, who)

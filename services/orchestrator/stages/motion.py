@@ -304,6 +304,10 @@ def segments(
             for o, j in later
             if o != name and _same_goal(characters[o][0].actions[j], action)
         ]
+        joined = any(  # others of this sentence went there before it: it takes what they left nearest
+            o != name and _same_goal(characters[o][0].actions[j], action)
+            for o, j in order[_sentence_start(ends, i) : i]
+        )
         lane = None
         if door is not None and is_exit(action):  # "They leave": each its own lane through the door
             going = [
@@ -324,7 +328,7 @@ def segments(
         for o, (at, trail) in trails.items():  # the ways the others walk meanwhile are no place to stand
             if o != name and at >= here_at - 1:
                 crowd.extend(trail)
-        claim = slotting.claim(name, asked[-1], (state.x, state.z), company, crowd)
+        claim = slotting.claim(name, asked[-1], (state.x, state.z), company, crowd, joined)
         asked[-1] = claim.action
         at = len(asked) - 1
         seats = {at: claim.seat} if claim.seat else {}
@@ -424,6 +428,13 @@ def segments(
 
             pieces[name] = [ctx.engine.query(f"{kind}:{name}:idle", [name, view, st], idle).motion]
     return pieces
+
+
+def _sentence_start(ends: Sequence[int], i: int) -> int:
+    """Where the actions of action ``i``'s sentence begin in story order (``ends`` from `_sentence_ends`)."""
+    while i > 0 and ends[i - 1] == ends[i]:
+        i -= 1
+    return i
 
 
 def _sentence_ends(order: Sequence[tuple[str, int]], characters: Characters) -> list[int]:

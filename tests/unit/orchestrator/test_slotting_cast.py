@@ -127,3 +127,34 @@ def test_three_walking_to_a_window_behind_a_sofa_each_get_a_spot_of_their_own():
     spots = [slotting.claim(who, to_window).spot for who in ("Ada", "Ben", "Eve")]
     assert all(s is not None for s in spots)
     assert min(math.dist(a, b) for i, a in enumerate(spots) for b in spots[i + 1 :]) >= 0.6  # type: ignore[arg-type]
+
+
+# A dining table with three chairs around it: two on its near side, one on its far side.
+DINING = Scene(
+    room=ROOM,
+    objects=[
+        PlacedObject(id="dining_table", category="dining_table", position=(0.0, 0.0, 0.0)),
+        PlacedObject(id="chair", category="chair", position=(-0.5, 0.0, 0.75), yaw=math.pi),
+        PlacedObject(id="chair/2", category="chair", position=(-0.5, 0.0, -0.75)),
+        PlacedObject(id="chair/3", category="chair", position=(0.4, 0.0, 0.75), yaw=math.pi),
+    ],
+)
+SIT_AT_DINING = ActionNode(verb="sit", action="sit", target="dining_table")
+
+
+def test_two_sitting_at_a_table_together_take_the_chairs_on_their_own_sides():
+    # "Tom and Sam sit at the table": the first shares the chairs out with the second, the second takes
+    # what that left it (the chair nearest to it), so their walks to the chairs do not cross
+    for tom_near in (True, False):
+        slotting = Slotting(DINING)
+        for who in ("Tom", "Sam"):
+            slotting.expect(who, SIT_AT_DINING)
+        near, far = (-1.5, 1.2), (-1.5, -1.2)
+        here = {"Tom": near, "Sam": far} if tom_near else {"Tom": far, "Sam": near}
+        tom = slotting.claim("Tom", SIT_AT_DINING, here["Tom"], [here["Sam"]])
+        sam = slotting.claim("Sam", SIT_AT_DINING, here["Sam"], joined=True)
+        chairs = {o.id: (o.position[0], o.position[2]) for o in DINING.objects}
+        assert tom.action.target != sam.action.target
+        assert {tom.action.target, sam.action.target} == {"chair", "chair/2"}
+        assert not _crosses(here["Tom"], chairs[tom.action.target], here["Sam"], chairs[sam.action.target])
+        assert chairs[tom.action.target][1] * here["Tom"][1] > 0  # each the chair on its own side
