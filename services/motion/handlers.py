@@ -17,7 +17,7 @@ from proto.motion import (
 from proto.scene import Scene
 from services.motion.arm_clearance import clear_piece
 from services.motion.planning import plan_actions
-from services.motion.routing import scene_route
+from services.motion.routing import joined_route, scene_route
 from services.motion.synthesis import SegmentState, assemble, holding_after, synthesise_segment
 from wana.bus.service import Contract, InvalidInput
 from wana.fidelity.bodies import skeleton_offsets
@@ -47,7 +47,7 @@ def handle_synthesize(req: SynthesizeRequest) -> SynthesizeReply:
         if routes:
             r = np.asarray(routes.pop(0), float).reshape(-1, 2)
             if len(r) >= 2 and np.isfinite(r).all():
-                return r
+                return joined_route(scene, a, r, ignore, req.bodies)  # a walk from a seat starts beside it
         wps, why = scene_route(scene, a, b, ignore, bodies=req.bodies)
         if why:
             route_diags.append(why)

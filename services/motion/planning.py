@@ -293,12 +293,34 @@ def seat_slots(placed: PlacedObject, kind: str) -> list[tuple[float, float, floa
     ]
 
 
+def _slot_on_it(scene: Scene, placed: PlacedObject, slot: tuple[float, float, float]) -> bool:
+    """Whether a seat slot lies over the object's own footprint (a chair's seat), not beside it (a drum
+    kit's "sit" point: the place its player's stool goes)."""
+    from wana.domain.object_geometry import object_shape, scene_footprints
+    from wana.domain.routes import point_rect_distance
+
+    try:
+        object_shape(placed)
+    except (KeyError, ValueError):
+        return True  # no known footprint: taken at its word
+    fp = scene_footprints(Scene(room=scene.room, objects=[placed]))
+    return bool(len(fp)) and float(point_rect_distance(np.array([[slot[0], slot[2]]]), fp).min()) <= 1e-6
+
+
 def seat_under(scene: Scene, pos: np.ndarray) -> tuple[PlacedObject, tuple[float, float, float]] | None:
     """The seat a seated character sits on (the slot nearest its position, within SEAT_FOUND) and its hips
-    point, None when no seat is there (on the floor)."""
+    point, None when no seat is there (on the floor).
+
+    A slot over its object's own footprint comes before one beside it: the stool moved to a drum kit's place
+    to sit has its slot where the kit's is, and getting up "in front of" the kit's (the kit faces its
+    player) walked Leo backwards through the stool (duo-music_studio-12 s11)."""
     cands = [(o, p) for o in scene.objects for p in seat_slots(o, "seat")]
     ok = [(o, p) for o, p in cands if np.hypot(p[0] - pos[0], p[2] - pos[1]) <= SEAT_FOUND]
-    return min(ok, key=lambda c: np.hypot(c[1][0] - pos[0], c[1][2] - pos[1]), default=None)
+
+    def order(c: tuple[PlacedObject, tuple[float, float, float]]) -> tuple[bool, float]:
+        return not _slot_on_it(scene, *c), float(np.hypot(c[1][0] - pos[0], c[1][2] - pos[1]))
+
+    return min(ok, key=order, default=None)
 
 
 def pick_seat(

@@ -329,11 +329,29 @@ def _action_piece(seg: PlannedSegment, state: SegmentState) -> tuple[MotionPiece
         end = SegmentState(state.x, state.z, end_yaw, new_posture, state.phase, hips_dy)
     rise = _rise_shift(clip, posture, targets, state)
     if rise is not None:  # getting up onto the spot in front of the seat
-        frames = np.arange(t)
-        ramp = _smooth(np.clip((frames / FPS - RISE_FROM_S) / max(dur - RISE_FROM_S, 1.0 / FPS), 0, 1))
-        root = root + ramp[:, None] * rise
+        root = root + rise_path(rise, state.yaw, t, dur)
         end = SegmentState(state.x + rise[0], state.z + rise[2], end_yaw, new_posture, state.phase, hips_dy)
     return MotionPiece(root, quat.normalize(rot), contacts, seg, contact_frames), end.rounded()
+
+
+def rise_path(rise: np.ndarray, yaw: float, frames: int, dur: float) -> np.ndarray:
+    """(frames, 3) world metres the hips are moved by on each frame of a stand-up that ends ``rise`` away.
+
+    The part of ``rise`` back from the seat's facing (``yaw``) comes first, the rest (sideways) after it: one
+    gets up beside a chair tucked in at a desk by pushing back out from under it, then stepping aside; moved
+    on one ramp, the knees under the desk swept sideways through its end (solo-office-01 s11, a foot 6 cm in).
+    A rise with no part back (onto the spot in front) is one ramp from RISE_FROM_S to the clip's end.
+    """
+    u = np.clip((np.arange(frames) / FPS - RISE_FROM_S) / max(dur - RISE_FROM_S, 1.0 / FPS), 0, 1)
+    fwd = np.array([np.sin(yaw), 0.0, np.cos(yaw)])
+    back = min(float(rise @ fwd), 0.0) * fwd
+    aside = rise - back
+    if not np.any(back) or not np.any(aside):
+        return _smooth(u)[:, None] * rise
+    share = float(np.linalg.norm(back) / (np.linalg.norm(back) + np.linalg.norm(aside)))
+    first = _smooth(np.clip(u / max(share, 1e-6), 0, 1))
+    second = _smooth(np.clip((u - share) / max(1.0 - share, 1e-6), 0, 1))
+    return first[:, None] * back + second[:, None] * aside
 
 
 def _rise_shift(
