@@ -247,7 +247,8 @@ def clear_arms(
 
 
 def clear_piece(piece: MotionPiece, scene: Scene, offsets: np.ndarray) -> MotionPiece:
-    """The piece with its free arms turned out of the room's furniture; a hand on its contact point keeps its
+    """The piece with its trunk straightened out of the furniture it bends into (trunk_clearance), then its
+    free arms turned out of the room's furniture; a hand on its contact point keeps its
     frames, the object sat or lain on (the stated contact) and the held prop are not in the way, nor is what a
     working hand (the one on the object, the one with the tool) works at and what that rests on."""
     seg = piece.segment
@@ -268,7 +269,12 @@ def clear_piece(piece: MotionPiece, scene: Scene, offsets: np.ndarray) -> Motion
                 True
             )
     worked = {side: at for side in working if side}
-    rot = clear_arms(piece.rotations, piece.root, offsets, solids, keep, worked)
+    from services.motion.trunk_clearance import hands_back, straighten
+
+    rot, straightened = straighten(piece.rotations, piece.root, offsets, solids)
+    if straightened:  # the hands on their contact points again, from the straightened shoulders
+        rot = hands_back(rot, piece.root, piece.contact_frames)
+    rot = clear_arms(rot, piece.root, offsets, solids, keep, worked)
     cleared = dataclasses.replace(piece, rotations=quat.normalize(rot))
     if seg.prop:  # the prop goes on in the hand where the hand now is
         cleared.props = [held_prop(cleared)]

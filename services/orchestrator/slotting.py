@@ -67,6 +67,7 @@ class Slotting:
     sitters: dict[str, set[str]] = field(default_factory=dict)  # object id -> who sits on it in the story
     standers: dict[str, set[str]] = field(default_factory=dict)  # object id -> who stands at it in the story
     _grid: OccupancyGrid | None = None
+    _regions: np.ndarray | None = None  # labels of the connected free floor of the grid (0: blocked)
     _spots: dict[tuple[str, int], tuple[list[tuple[float, float]], set[tuple[float, float]]]] = field(
         default_factory=dict
     )
@@ -129,6 +130,7 @@ class Slotting:
             if obj is None:
                 self.book.release(who)
                 return Claim(action)
+            obj, action = self._reachable_copy(obj, action, here)
             return self._stand(who, action, obj, here, company, crowd, joined)
         if kind and kind not in ("handheld", "person"):
             obj = find_object(self.scene, action.target or action.instrument or action.destination)
@@ -141,6 +143,55 @@ class Slotting:
         if clip.name == "stand":
             self.book.release(who)
         return Claim(action)
+
+    def _reachable_copy(
+        self, obj: PlacedObject, action: ActionNode, here: tuple[float, float] | None
+    ) -> tuple[PlacedObject, ActionNode]:
+        """The copy of a multiplied object ("Eight chairs are around the table": chair, chair/2, ...) a walk to
+        "a chair" goes to: the one named while it can be walked to from ``here``, else the nearest that can.
+
+        The sentence names the group, which the scene resolves to its first copy; on the far side of a long
+        table ringed with chairs that copy has no way to it, and the walk went straight through the table
+        (solo-meeting_room-18 s10: the belly 13 cm inside it) while a chair stood free on the walker's side.
+        """
+        if here is None or "/" in obj.id:
+            return obj, action
+        copies = [o for o in self.scene.objects if o.id.startswith(obj.id + "/")]
+        if not copies:
+            return obj, action
+        start = self._region(here)
+        if start == 0 or self._region_of(obj) == start:
+            return obj, action
+        at = np.asarray(here, float)
+        for other in sorted(
+            copies, key=lambda o: float(np.hypot(o.position[0] - at[0], o.position[2] - at[1]))
+        ):
+            if self._region_of(other) == start:
+                field_name = "destination" if action.destination and not action.target else "target"
+                return other, msgspec.structs.replace(action, **{field_name: other.id})
+        return obj, action
+
+    def _region(self, xz: tuple[float, float] | np.ndarray) -> int:
+        """The label of the connected free floor ``xz`` is on (the nearest free cell's; 0: no free floor)."""
+        if self._regions is None:
+            from scipy import ndimage
+
+            self._regions = ndimage.label(~self.grid.blocked)[0]
+        rc = self.grid.to_cell(np.asarray(xz, float))
+        free = np.argwhere(self._regions > 0)
+        if not len(free):
+            return 0
+        r, c = int(rc[0]), int(rc[1])
+        if 0 <= r < self._regions.shape[0] and 0 <= c < self._regions.shape[1] and self._regions[r, c]:
+            return int(self._regions[r, c])
+        near = free[int(np.argmin(np.sum((free - np.array([r, c])) ** 2, axis=1)))]
+        return int(self._regions[near[0], near[1]])
+
+    def _region_of(self, obj: PlacedObject) -> int:
+        """The floor region of an object's free stand spot, else of the free floor nearest the object (a chair's
+        spot in front of it is under the table it is tucked in at)."""
+        spots = [p for p in stand_slots(obj) if bool(self.grid.is_free_xz(np.asarray(p)))]
+        return self._region(spots[0] if spots else (obj.position[0], obj.position[2]))
 
     def _hide(
         self,

@@ -709,7 +709,9 @@ def _arrival(act: Act, body: Body, world: World, bodies: Mapping[str, Body]) -> 
             reason=f"{who} stops {gap:.1f} m from {dest}" + ("" if ok else f" (at most {ARRIVE_PERSON_M} m)"),
             frames=[] if ok else [end],
         )
-    found = world.find(dest)
+    # "walks to a chair" of "eight chairs around the table": any of its copies (the walk goes to one it can
+    # reach, services.orchestrator.slotting), not only the first
+    found = world.copies(dest) or world.find(dest)
     if not found and _is_room_word(dest):
         return None  # "walks into the room", "goes to the kitchen": the room itself, no object to reach
     if not found:
