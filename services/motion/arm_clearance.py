@@ -18,22 +18,18 @@ import functools
 import numpy as np
 
 from proto.scene import PlacedObject, Scene
+from services.motion.clearance import deepest, furniture, seated_on, spread_turns
 from services.motion.ik import global_transforms
 from services.motion.planning import resting_on
 from services.motion.synthesis import MotionPiece, held_prop
+from services.motion.trunk_clearance import hands_back, straighten
 from wana.domain import quat
-from wana.domain.skeleton import JOINT_INDEX, PARENTS, REST_OFFSETS
+from wana.domain.skeleton import JOINT_INDEX, PARENTS
 from wana.fidelity.bodies import ALONG, BONE_RADII
-from wana.fidelity.body_checks import is_soft, visible_depth
 from wana.fidelity.solids import depth_inside
-from wana.fidelity.world import World
 
-SEATED_HIPS = 0.8  # share of the standing hips height below which hips over a seat or bed sit or lie on it
 ROUNDS = 5  # correct, spread, test again: a turn out of one object can graze another
-CLEAR_M = 0.015  # metres a corrected sphere is left short of where it would look inside
 STEP_M = 0.01  # metres: the finite difference that finds a solid's outward direction
-HOLD = 4  # frames a correction is held on either side of the frames that need it ...
-EASE = 4  # ... and then eased out over (a triangle of this half-width)
 MAX_TURN = np.radians(35.0)  # radians: an arm is never turned further than this in one round
 BONES = (("ForeArm", "Hand"), ("Hand", "HandMiddle1"))  # per side: the bones whose spheres are tested
 SHOULDER = "Arm"  # the joint the arm turns about
@@ -59,49 +55,6 @@ def _spheres(pos: np.ndarray, side: str) -> tuple[np.ndarray, np.ndarray]:
     return pos[:, parent] + share[None, :, None] * (pos[:, child] - pos[:, parent]), radii
 
 
-def furniture(
-    scene: Scene, ignore: frozenset[str] = frozenset()
-) -> list[tuple[PlacedObject, np.ndarray, float]]:
-    """(object, its world box (2, 3), the extra depth a cushion gives) for every piece of furniture an arm can
-    go into, as the story checks see the room."""
-    return [
-        (o, outer, 0.05 if is_soft(o.category, dict(o.attributes)) else 0.0)
-        for o, _, outer in World(scene).solids
-        if o.id not in ignore
-    ]
-
-
-def _deepest(
-    centres: np.ndarray,
-    radii: np.ndarray,
-    solids: list[tuple[PlacedObject, np.ndarray, float]],
-    skip: np.ndarray | None = None,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Per frame, how far past its allowance the arm's worst sphere is (T,), that sphere (T,) and the index of
-    its object in ``solids`` (T,; -1 where the arm is clear); ``skip`` (T, len(solids)) bool: objects not in
-    the way on a frame."""
-    t, p = centres.shape[:2]
-    excess = np.zeros((t, p))
-    owner = np.full((t, p), -1)
-    allowance = visible_depth(radii) - CLEAR_M
-    for k, (placed, outer, soft) in enumerate(solids):
-        near = np.all(
-            (centres >= outer[0] - radii[None, :, None]) & (centres <= outer[1] + radii[None, :, None]), 2
-        )
-        if skip is not None:
-            near &= ~skip[:, k, None]
-        if not near.any():
-            continue
-        ti, pi = np.nonzero(near)
-        over = depth_inside(placed, centres[ti, pi], radii[pi]) - allowance[pi] - soft
-        worse = over > excess[ti, pi]
-        excess[ti[worse], pi[worse]] = over[worse]
-        owner[ti[worse], pi[worse]] = k
-    worst = np.argmax(excess, axis=1)
-    frames = np.arange(t)
-    return excess[frames, worst], worst, owner[frames, worst]
-
-
 def _outward(placed: PlacedObject, points: np.ndarray, radii: np.ndarray) -> np.ndarray:
     """(n, 3) unit directions in which each point leaves the object fastest (finite differences of depth)."""
     grad = np.zeros_like(points)
@@ -117,54 +70,6 @@ def _outward(placed: PlacedObject, points: np.ndarray, radii: np.ndarray) -> np.
     out[flat] = (0.0, 1.0, 0.0)  # deep in a solid with no slope: up, out of a top
     norm[flat] = 1.0
     return out / norm
-
-
-def _filtered(signal: np.ndarray, kernel: np.ndarray) -> np.ndarray:
-    """(T,) the signal convolved with an odd-length kernel, zero beyond its ends (any T, shorter than the
-    kernel too)."""
-    half = len(kernel) // 2
-    return np.convolve(np.pad(signal, half), kernel, mode="valid")
-
-
-def _edge_weight(t: int) -> np.ndarray:
-    """(T,) 0 on a piece's first and last frame, 1 from EASE frames in: the piece before or after was cleared
-    on its own, so a correction comes in and goes out inside the piece instead of jumping at its ends."""
-    frames = np.arange(t, dtype=float)
-    return np.clip(np.minimum(frames, t - 1 - frames) / EASE, 0.0, 1.0)
-
-
-def _spread(turn: np.ndarray, keep: np.ndarray) -> np.ndarray:
-    """(T, 3) rotation vectors held HOLD frames around each correction (the largest wins), eased over EASE,
-    and faded to none near the frames in ``keep`` (T,) bool."""
-    t = len(turn)
-    size = np.linalg.norm(turn, axis=1)
-    held = turn.copy()
-    best = size.copy()
-    for d in range(1, min(HOLD, t - 1) + 1):
-        for src, dst in ((slice(0, t - d), slice(d, t)), (slice(d, t), slice(0, t - d))):
-            bigger = size[src] > best[dst]
-            held[dst][bigger] = turn[src][bigger]
-            best[dst][bigger] = size[src][bigger]
-    kernel = np.r_[np.arange(1, EASE + 2), np.arange(EASE, 0, -1)].astype(float)
-    kernel /= kernel.max()
-    eased = np.stack([_filtered(held[:, i], kernel / kernel.sum()) for i in range(3)], 1)
-    # the average of a held plateau is its peak: the correction is whole there and eases off at its edges
-    if keep.any():
-        near = _filtered(keep.astype(float), np.ones(2 * EASE + 1)) > 0
-        fade = 1.0 - _filtered(near.astype(float), kernel / kernel.sum())
-        eased *= np.clip(fade, 0.0, 1.0)[:, None]
-    return eased * _edge_weight(t)[:, None]
-
-
-def seated_on(root: np.ndarray, solids: list[tuple[PlacedObject, np.ndarray, float]]) -> np.ndarray:
-    """(T, len(solids)) bool: the objects a character sits or lies on, frame by frame (hips over the object's
-    box and lower than standing): the stated contact, which the checks let the whole body touch."""
-    low = root[:, 1] < SEATED_HIPS * REST_OFFSETS[0, 1]
-    out = np.zeros((len(root), len(solids)), bool)
-    for k, (_, outer, _) in enumerate(solids):
-        over = np.all((root[:, [0, 2]] >= outer[0, [0, 2]]) & (root[:, [0, 2]] <= outer[1, [0, 2]]), axis=1)
-        out[:, k] = low & over
-    return out
 
 
 def clear_arms(
@@ -205,7 +110,7 @@ def clear_arms(
         changed = False
         for side in ("Left", "Right"):
             centres, radii = _spheres(pos, side)
-            excess, worst, owner = _deepest(centres, radii, solids, skips[side])
+            excess, worst, owner = deepest(centres, radii, solids, skips[side])
             fix = (owner >= 0) & (excess > 0)
             held = keep.get(side)
             if held is not None:
@@ -230,7 +135,7 @@ def clear_arms(
                 angle = np.minimum(np.arctan2(sin, np.sum(arm * moved, axis=1)), MAX_TURN)
                 ok = sin > 1e-9
                 turn[f[ok]] = axis[ok] / sin[ok, None] * angle[ok, None]
-            spread = _spread(turn, held[:t] if held is not None else np.zeros(t, bool))
+            spread = spread_turns(turn, held[:t] if held is not None else np.zeros(t, bool))
             angle = np.linalg.norm(spread, axis=1)
             moving = angle > 1e-6
             if not moving.any():
@@ -269,8 +174,6 @@ def clear_piece(piece: MotionPiece, scene: Scene, offsets: np.ndarray) -> Motion
                 True
             )
     worked = {side: at for side in working if side}
-    from services.motion.trunk_clearance import hands_back, straighten
-
     rot, straightened = straighten(piece.rotations, piece.root, offsets, solids)
     if straightened:  # the hands on their contact points again, from the straightened shoulders
         rot = hands_back(rot, piece.root, piece.contact_frames)

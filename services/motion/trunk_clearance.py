@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from proto.scene import PlacedObject
-from services.motion.arm_clearance import _deepest, _spread, seated_on
+from services.motion.clearance import deepest, seated_on, spread_turns
 from services.motion.ik import global_transforms, two_bone_ik
 from wana.domain import quat
 from wana.domain.skeleton import JOINT_INDEX, PARENTS
@@ -83,7 +83,7 @@ def straighten(
         rotations: (T, J, 4) local joint rotations of a piece.
         root: (T, 3) world hips positions, metres.
         offsets: (J, 3) the character's rest offsets (the skeleton the checks and the renderer play).
-        solids: the room's furniture (services.motion.arm_clearance.furniture); what the character sits or
+        solids: the room's furniture (services.motion.clearance.furniture); what the character sits or
             lies on is left out frame by frame.
 
     Returns:
@@ -99,7 +99,7 @@ def straighten(
     for _ in range(ROUNDS):
         pos, grot = global_transforms(rot, root, offsets)
         centres, radii = trunk_spheres(pos, grot)
-        excess, worst, owner = _deepest(centres, radii, solids, skip)
+        excess, worst, owner = deepest(centres, radii, solids, skip)
         tilt, axis = _tilt(pos)
         fix = (owner >= 0) & (excess > 0) & (tilt > MIN_TURN)
         if not fix.any():
@@ -109,7 +109,7 @@ def straighten(
         angle = np.minimum(np.minimum(excess[f] / np.maximum(lever, 0.1) * 1.2, MAX_TURN), tilt[f])
         turn = np.zeros((t, 3))
         turn[f] = axis[f] * angle[:, None]
-        spread = _spread(turn, np.zeros(t, bool))
+        spread = spread_turns(turn, np.zeros(t, bool))
         size = np.linalg.norm(spread, axis=1)
         # never past upright: the spread may carry a frame's turn onto a neighbour that leans less
         size = np.minimum(size, tilt)
