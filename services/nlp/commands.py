@@ -140,14 +140,16 @@ SPEED_VALUES = {
 _NUM = r"(\d+(?:\.\d+)?|half a|a couple of|couple of|a few|[a-z]+)"
 _WAIT = re.compile(rf"^(?:wait|pause)(?:\s+for)?(?:\s+{_NUM}(?:\s*([a-z]+))?)?$")
 _CAMERA = re.compile(
-    r"^camera\s*:?\s+(?:view\s+)?(?:from\s+(?:the\s+)?)?([a-z-]+)(?:\s+(?:on\s+|to\s+)?([A-Za-z][\w'-]*))?$",
+    r"^camera\s*:?\s+(?:view\s+)?(?:from\s+(?:the\s+)?)?([a-z-]+)(?:\s+(?:on\s+|to\s+)?([A-Za-z][\w'.-]*(?:\s+(?!and\b)[A-Za-z][\w'.-]*){0,2}))?$",
     re.IGNORECASE,
 )
 _OVER_SHOULDER = re.compile(
     r"^camera\s*:?\s+over\s+(?:the\s+shoulder(?:\s+of\s+([A-Za-z][\w'-]*))?|([A-Za-z][\w-]*)'s?\s+shoulder)$",
     re.IGNORECASE,
 )
-_FOLLOW = re.compile(r"^follow\s+([A-Z][\w'-]*)$")  # "Follow Anna." (an imperative, not "Tom follows Anna")
+_FOLLOW = re.compile(
+    r"^follow\s+([A-Z][\w'.-]*(?:\s+[A-Z][\w'.-]*){0,2})$"
+)  # "Follow Anna." (an imperative, not "Tom follows Anna")
 _WEATHER = re.compile(r"^(?:(?:weather|light|lighting|time)\s*:?\s+|it\s+is\s+|it's\s+)?([a-z]+)$")
 # "It starts to pour outside.", "It is raining.", "It snows": the weather, said as a sentence
 _WEATHER_SENTENCE = re.compile(
@@ -206,6 +208,8 @@ def parse_command(text: str, offset: int = 0) -> Command | None:
         target = m.group(2) or ""
         if target.lower() in ("the", "view", "shot", "angle"):
             target = ""
+        elif target.lower().startswith("the "):  # "camera close on the teacher": the character "teacher"
+            target = target[4:]
         return Command(kind="camera", value=value, target=target, span=span)
     if lower in SPEED_VALUES:
         return Command(kind="speed", value=SPEED_VALUES[lower], span=span)

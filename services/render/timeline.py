@@ -14,7 +14,7 @@ pairs or plain strings.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -93,6 +93,21 @@ def _sentence_spans(motions: list[Motion]) -> dict[str, tuple[int, int, str]]:
     return spans
 
 
+def character_named(said: str, names: Sequence[str]) -> str:
+    """The character a command's subject means, as the motions name it: "camera close on Mom" is the
+    character "mom", "follow Okafor" is "Professor Okafor" when no one else is called so; ``said`` itself
+    when no character or more than one matches."""
+    if said in names:
+        return said
+    low = said.lower().removeprefix("the ")
+    same = [n for n in names if n.lower() == low]
+    if len(same) == 1:
+        return same[0]
+    words = low.split()
+    part = [n for n in names if (w := n.lower().split())[-len(words) :] == words or w[: len(words)] == words]
+    return part[0] if len(part) == 1 else said
+
+
 def place_commands(
     commands: Iterable[Any] | None,
     sentences: Iterable[Any] | None,
@@ -107,6 +122,7 @@ def place_commands(
     order = {s.id: i for i, s in enumerate(sents)}
     spans = _sentence_spans(mlist)
     default_char = mlist[0].character if mlist else ""
+    names = [m.character for m in mlist]
     out: list[tuple[int, int, TimedCommand]] = []
     for n, item in enumerate(commands or []):
         if isinstance(item, TimedCommand):
@@ -134,6 +150,8 @@ def place_commands(
                 and MODE_ALIASES.get(cmd.value, cmd.value) in ("close", "follow")
             ):
                 current = later[0][2]  # a close-up or a follow is on who acts next (the scene it cuts to)
+        if cmd.kind == "camera" and cmd.target and (who := character_named(cmd.target, names)) != cmd.target:
+            cmd = Command(kind=cmd.kind, value=cmd.value, seconds=cmd.seconds, target=who, span=cmd.span)
         implied = cmd.kind == "camera" and not cmd.target and bool(current)
         if implied:
             cmd = Command(kind=cmd.kind, value=cmd.value, seconds=cmd.seconds, target=current, span=cmd.span)

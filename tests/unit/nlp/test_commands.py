@@ -68,3 +68,22 @@ def test_camera_follow_names_its_target_and_span_is_in_document_coordinates():
 )
 def test_sentences_that_are_not_commands_give_none(line):
     assert parse_command(line) is None
+
+
+@pytest.mark.parametrize(
+    "line,value,target",
+    [
+        ("camera close on Professor Okafor", "close", "Professor Okafor"),
+        ("camera close on Ms Lee", "close", "Ms Lee"),
+        ("follow Prof. Kim", "follow", "Prof. Kim"),
+        ("camera close on the teacher", "close", "teacher"),
+        ("camera front on Uncle Bob", "front", "Uncle Bob"),
+    ],
+)
+def test_a_camera_subject_of_several_words_is_one_character(line, value, target):
+    cmd = parse_command(line)
+    assert cmd is not None and (cmd.kind, cmd.value, cmd.target) == ("camera", value, target)
+
+
+def test_two_camera_subjects_are_no_command_rather_than_one_called_ben_and_anna():
+    assert parse_command("camera close on Ben and Anna") is None

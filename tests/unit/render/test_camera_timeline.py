@@ -126,3 +126,24 @@ def test_chunk_ranges_cover_every_frame_once():
     assert ranges[0][0] == 0 and ranges[-1][1] == 101
     assert all(a[1] == b[0] for a, b in zip(ranges, ranges[1:], strict=False))
     assert chunk_ranges(2, 5) == [(0, 1), (1, 2)]
+
+
+@pytest.mark.parametrize(
+    "said,meant",
+    [
+        ("Mom", "mom"),
+        ("the teacher", "teacher"),
+        ("Okafor", "Professor Okafor"),
+        ("Professor Okafor", "Professor Okafor"),
+    ],
+)
+def test_a_camera_command_names_the_character_as_the_motions_do(said, meant):
+    people = [walk_motion(n, (0.0, 0.0), (1.0, 0.0), 30) for n in ("mom", "teacher", "Professor Okafor")]
+    (timed,) = place_commands([("", Command(kind="camera", value="close", target=said))], [], people)
+    assert timed.command.target == meant
+
+
+def test_a_camera_subject_two_characters_share_is_left_as_written():
+    people = [walk_motion(n, (0.0, 0.0), (1.0, 0.0), 30) for n in ("Ms Lee", "Mr Lee")]
+    (timed,) = place_commands([("", Command(kind="camera", value="close", target="Lee"))], [], people)
+    assert timed.command.target == "Lee"
