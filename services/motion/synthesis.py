@@ -25,7 +25,7 @@ from services.motion.gait_style import NEUTRAL as NEUTRAL_GAIT
 from services.motion.gait_style import gait_style
 from services.motion.ik import joint_globals, lean_needed, lean_spine, lock_feet, trunk_tilt, two_bone_ik
 from services.motion.locomotion import lock_walk, locomote
-from services.motion.style import apply_style, resample_fps, style_of
+from services.motion.style import apply_style, resample_fps, style_of, within_body_limits
 from wana.arrays import to_wire
 from wana.domain import quat
 from wana.domain.actions import JOIN_FRAMES, ActionClip, get_clip, neutral_rotations
@@ -216,7 +216,7 @@ def _action_piece(seg: PlannedSegment, state: SegmentState) -> tuple[MotionPiece
         if seg.duration_s > 0
         else (max(clip.duration_s, 3.0) if clip.looping else clip.duration_s)
     )
-    style = style_of(*seg.mood)
+    style = within_body_limits(style_of(*seg.mood), clip)
     plain = clip.interaction is None  # contact clips keep their timing (windows are in clip time)
     if plain and style.tempo != 1.0:
         rate = resample_fps(FPS, style)

@@ -119,6 +119,7 @@ def _antecedent(pronoun: Token, builder: GraphBuilder) -> str:
 def argument(tok: Token, prep: str, builder: GraphBuilder, report_unknown: bool) -> Argument:
     """What one noun of a verb names: a character, a body part, an object (its id) or a bare word."""
     tok = relative_antecedent(tok)  # "a table at which a sailor sits": at the table
+    tok = partitive_noun(tok)  # "sits on one of the chairs": on a chair
     arg = Argument(tok=tok, prep=prep)
     if reciprocal_phrase(tok):
         arg.character = "each other"
@@ -150,6 +151,19 @@ def argument(tok: Token, prep: str, builder: GraphBuilder, report_unknown: bool)
             tok.idx + len(tok.text),
         )
     return arg
+
+
+PARTITIVE_WORDS = frozenset({"one", "each", "some", "any", "either", "neither", "both", "all", "another"})
+
+
+def partitive_noun(tok: Token) -> Token:
+    """The noun after "of" of "one of the chairs", "either of the stools" (``tok`` itself otherwise)."""
+    if tok.lower_ not in PARTITIVE_WORDS:
+        return tok
+    for c in tok.children:
+        if c.dep_ == "nmod" and c.pos_ in ("NOUN", "PROPN") and any(g.lower_ == "of" for g in c.children):
+            return c
+    return tok
 
 
 def reciprocal_phrase(tok: Token) -> bool:

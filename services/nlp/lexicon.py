@@ -32,6 +32,8 @@ PERSON_NOUNS = frozenset(
     "teammates player players spectator spectators performer drummer bassist vocalist "
     "reporter journalist photographer mechanic plumber electrician gardener housekeeper nanny "
     "caretaker porter bellboy concierge owner landlord landlady tenant referee umpire "
+    "trainer instructor tutor partner roommate classmate coworker boyfriend girlfriend cousin "
+    "assistant secretary employee nurse surgeon pharmacist technician engineer programmer designer "
     # the cast of quest text and fantasy
     "rogue archer mage sorcerer sorceress warrior paladin ranger hunter blacksmith healer bandit "
     "adventurer goblin troll ogre dragon fairy ghost robot monster pilot ".split()

@@ -17,7 +17,7 @@ from spacy.tokens import Token
 
 from services.nlp import lexicon
 from services.nlp.lemmatizer import verb_lemma_candidates
-from services.nlp.mentions import exact_category
+from services.nlp.mentions import exact_category, is_title
 
 _NOT_VERBS = frozenset({"PUNCT", "CCONJ", "DET", "ADP", "PRON", "PART", "SCONJ", "AUX", "SYM"})
 
@@ -268,6 +268,28 @@ def _repair_progressive(sent: SpacySpan) -> bool:
         tok.lemma_ = lemma
         for c in cops:
             c.dep_ = "aux"
+        changed = True
+    return changed
+
+
+_STATE_ACTIONS = {"asleep": "sleep", "seated": "sit"}  # a state said with "is" that is an action's pose
+
+
+def _repair_state(sent: SpacySpan) -> bool:
+    """ "Nina is asleep/ADJ in the bed", "Tom is seated/ADJ at the desk" -> sleep/VERB, sit/VERB with "is"
+    as its auxiliary: the character is shown in that pose (where it is, from the obliques)."""
+    changed = False
+    for tok in sent:
+        lemma = _STATE_ACTIONS.get(tok.lower_)
+        cops = [c for c in tok.children if c.dep_ in ("cop", "aux:pass") and c.lemma_.lower() == "be"]
+        if lemma is None or not cops or not any(c.dep_ in ("nsubj", "nsubj:pass") for c in tok.children):
+            continue
+        tok.pos_, tok.tag_, tok.lemma_ = "VERB", "VBG", lemma
+        for c in cops:
+            c.dep_ = "aux"
+        for c in tok.children:
+            if c.dep_ == "nsubj:pass":
+                c.dep_ = "nsubj"
         changed = True
     return changed
 
@@ -614,6 +636,103 @@ def _repair_title_root(sent: SpacySpan) -> bool:
     return True
 
 
+_NAMING_WORDS = frozenset({"named", "called"})
+
+
+def _person_noun(tok: Token) -> bool:
+    """A common noun for a person ("waitress", "grandson", "students"), not a name nor a title of one."""
+    return (
+        tok.pos_ == "NOUN"
+        and not tok.text[:1].isupper()
+        and (tok.lemma_.lower() in lexicon.PERSON_NOUNS or tok.lower_ in lexicon.PERSON_NOUNS)
+    )
+
+
+def _names_at(sent: SpacySpan, i: int) -> list[Token]:
+    """The names from token i on: "Rosa", "Aiko and Pedro", "Ana, Ben and Cy" (empty when token i is none)."""
+    doc, names = sent.doc, []
+    while i < sent.end and is_title(doc[i]):
+        i += 1  # "his boss Mrs. Lane": the name's token (the title stays part of the name)
+    while i < sent.end and doc[i].text[:1].isupper() and doc[i].is_alpha and _is_person(doc[i]):
+        names.append(doc[i])
+        if i + 2 < sent.end and doc[i + 1].text in ("and", ",") and doc[i + 2].text[:1].isupper():
+            i += 2
+        elif i + 3 < sent.end and doc[i + 1].text == "," and doc[i + 2].text == "and":
+            i += 3
+        else:
+            break
+    return names
+
+
+def _described_names(sent: SpacySpan) -> tuple[Token, list[Token], int] | None:
+    """(person noun, the names it describes, index after them) of "A waitress named Rosa", "His grandson
+    Eli", "Two students, Aiko and Pedro," and "Rosa, the waitress,"; None when the sentence has none."""
+    doc = sent.doc
+    for tok in sent:
+        if not _person_noun(tok) or tok.i + 1 >= sent.end:
+            continue
+        nxt = doc[tok.i + 1]
+        if nxt.lower_ in _NAMING_WORDS:  # "a waitress named Rosa"
+            names = _names_at(sent, tok.i + 2)
+            if names:
+                return tok, names, names[-1].i + 1
+        elif nxt.text == ",":  # "two students, Aiko and Pedro, come in"
+            names = _names_at(sent, tok.i + 2)
+            end = names[-1].i + 1 if names else 0
+            if names and end < sent.end and doc[end].text == ",":
+                return tok, names, end + 1
+        elif names := _names_at(sent, tok.i + 1):  # "his grandson Eli"
+            return tok, names, names[-1].i + 1
+        start = tok.i - 1  # "Rosa, the waitress, walks": the noun between commas after the name
+        while start > sent.start and doc[start].pos_ in ("DET", "ADJ", "PRON"):
+            start -= 1
+        if (
+            start - 1 >= sent.start
+            and doc[start].text == ","
+            and nxt.text == ","
+            and _is_person(doc[start - 1])
+            and doc[start - 1].text[:1].isupper()
+        ):
+            return tok, [doc[start - 1]], tok.i + 2
+    return None
+
+
+def _repair_described_name(sent: SpacySpan) -> bool:
+    """ "A waitress named Rosa walks/xcomp to the table", "His grandson/nsubj Eli/nsubj runs in", "Two
+    students/nsubj, Aiko/conj and Pedro, come in": a person noun with the names that say who it is -> the
+    names are the subject of the verb after them, the noun only describes the first (appos), so one
+    character acts (Rosa), not two (a waitress and Rosa)."""
+    found = _described_names(sent)
+    if found is None:
+        return False
+    noun, names, after = found
+    if noun.dep_ == "appos" and noun.head in names:
+        return False  # an earlier repair read it so already ("Vincent, the barber, sweeps/NOUN")
+    doc = sent.doc
+    verb = next((t for t in doc[after : sent.end] if t.pos_ == "VERB"), None)
+    if verb is None:
+        return False
+    first = names[0]
+    if first.head.i == first.i or first.dep_ == "ROOT":
+        return False  # the name is the root already: nothing to hang it under
+    if verb.head.i != verb.i and any(a.i == noun.i for a in verb.ancestors):
+        verb.head, verb.dep_ = verb, "ROOT"  # "walks/xcomp" under "named" under "waitress/ROOT"
+    for t in sent:
+        if t.head.i == noun.i and t.i != noun.i and t.i > names[-1].i:
+            t.head = verb  # the full stop and what else the noun held after the names
+    if noun.dep_ == "ROOT" or noun.head.i == noun.i or noun.i < noun.head.i < after:
+        first.head, first.dep_ = verb, "nsubj"  # "A waitress/ROOT named Rosa walks": Rosa walks
+    else:
+        first.head, first.dep_ = noun.head, noun.dep_  # "Sophie and her trainer/conj Marcus": Marcus/conj
+    for other in names[1:]:
+        other.head, other.dep_ = first, "conj"
+    noun.head, noun.dep_ = first, "appos"
+    for t in doc[noun.i + 1 : first.i]:
+        if t.lower_ in _NAMING_WORDS:
+            t.head, t.dep_, t.pos_, t.tag_ = noun, "amod", "ADJ", "JJ"  # "named": no call on the phone
+    return True
+
+
 def repair_character_sentence(sent: SpacySpan) -> bool:
     """Repair the tree of one character sentence in place; True when something changed."""
     return (
@@ -621,6 +740,7 @@ def repair_character_sentence(sent: SpacySpan) -> bool:
         | _repair_determined_adverb(sent)
         | _repair_subject_relative_clause(sent)
         | _repair_progressive(sent)
+        | _repair_state(sent)
         | _repair_adverb_subject(sent)
         | _repair_adverb_name(sent)
         | _repair_name_as_verb(sent)
@@ -631,6 +751,7 @@ def repair_character_sentence(sent: SpacySpan) -> bool:
         | _repair_pronoun_relative_clause(sent)
         | _repair_noun_conjunct_verb(sent)
         | _repair_verb_conjunct_noun(sent)
+        | _repair_described_name(sent)  # last: on the verb the repairs above may have made one
     )
 
 

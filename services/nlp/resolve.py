@@ -61,6 +61,7 @@ class _State:
         self.resolved_words: set[str] = set()  # words of this sentence that turned out to name an object
         self.passing_names: list[str] = []  # names said of no acting character ("Jen's phone", "named Rosa")
         self.last_sentence: list[str] = []  # the characters the previous sentence named
+        self.described: dict[str, str] = {}  # "waitress" -> "Rosa" after "a waitress named Rosa"
 
     def mention(self, name: str, recent: bool = True) -> str:
         """Register a mention; ``recent=False`` (an object of a verb) keeps the subject the most recent."""
@@ -113,6 +114,27 @@ def _is_animal(name: str) -> bool:
 
 
 _PASSING_NAME = re.compile(r"\b(?:named|called) ([A-Z][a-z]+)\b|\b([A-Z][a-z]+)'s\b")
+
+
+_DESCRIBED_NAME = (
+    re.compile(r"\b([a-z]+) (?:named|called) ([A-Z][a-z]+)\b"),  # "a waitress named Rosa"
+    re.compile(
+        r"\b(?:[Hh]is|[Hh]er|[Tt]heir|[Mm]y|[Oo]ur|[Tt]he|[Aa]n?) ([a-z]+) ([A-Z][a-z]+)\b"
+    ),  # "his grandson Eli"
+    re.compile(r"\b([A-Z][a-z]+), (?:the|a|an|his|her|their) ([a-z]+),"),  # "Rosa, the waitress,"
+)
+
+
+def _described_names(text: str) -> dict[str, str]:
+    """Person nouns a sentence gives a name ("a waitress named Rosa", "his grandson Eli", "Rosa, the
+    waitress,") -> that name: a later "the waitress" is Rosa (services.nlp.repair makes Rosa the one who acts)."""
+    out = {}
+    for k, pattern in enumerate(_DESCRIBED_NAME):
+        for m in pattern.finditer(text):
+            noun, name = (m.group(2), m.group(1)) if k == 2 else (m.group(1), m.group(2))
+            if noun in lexicon.PERSON_NOUNS and name.lower() not in lexicon.TITLES | lexicon.PRONOUNS.keys():
+                out[noun] = name
+    return out
 
 
 def _names_in_passing(text: str) -> list[str]:
@@ -199,6 +221,8 @@ def _titled_character(name: str, state: _State) -> str:
     """ "the nurse" after "Nurse Adaeze", "the coach" after "Coach Miller": the one character so titled."""
     if not name or not name.islower() or " " in name or name not in lexicon.PERSON_NOUNS | lexicon.TITLES:
         return name
+    if name in state.described:
+        return state.described[name]  # "the waitress" after "a waitress named Rosa"
     titles = _TITLE_NOUNS.get(name, (name,))
     hits = {c for c in state.characters if len(c.split()) > 1 and c.split()[0].lower().rstrip(".") in titles}
     return hits.pop() if len(hits) == 1 else name
@@ -298,6 +322,7 @@ def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> li
             state.object_categories.setdefault(o.id, o.category)
         diagnostics: list[Diagnostic] = list(graph.diagnostics)
         state.passing_names.extend(_names_in_passing(graph.text))
+        state.described.update(_described_names(graph.text))
         sentence_names: list[str] = []
         merged: dict[str, list[ActionNode]] = {}
         mentions: dict[str, str] = {}

@@ -46,6 +46,8 @@ def room_senses(graphs: list[SentenceGraph], offsets: list[int] | None = None) -
             word = o.word.split()[-1] if o.word else ""
             if o.id in renames:
                 new_cat = renames[o.id].split("#")[0]
+            elif word and vocabulary.lookup(word) not in (None, o.category):
+                new_cat = o.category  # "the teacher's desk": its words named the kind, not the bare "desk"
             else:
                 seen = tuple(present) if _definite(graph, o, base) else ()
                 new_cat = vocabulary.sense_in_context(word, o.category, room, seen) if word else o.category

@@ -756,8 +756,11 @@ def _command_shots(
             continue
         acting = tuple(dict.fromkeys(a for b in beats if b.start < end and b.end > start for a in b.acting))
         shot = Shot(start, end, mode, who, "", tc.sentence_id, "command", acting=acting)
-        if mode in SCOPED_COMMANDS and tc.implied_target and (other := _co_actor(who, start, beats, tracks)):
-            shot = replace(shot, partner=other)  # both in the picture: the pair's middle, closer in
+        # both in the picture: the pair's middle, closer in ("camera close on Okafor" while Sam walks off: a
+        # close shot of Okafor alone left Sam out, and the framing then rose to a top view that showed neither;
+        # "follow Mei" while Raj argues with her left Raj out for the 1.5 s the command must hold)
+        if mode in SCOPED_COMMANDS and (other := _co_actor(who, start, beats, tracks)):
+            shot = replace(shot, partner=other)
         if mode == "over_shoulder":  # over this character's shoulder onto the nearest other one
             other = _nearest(who, tracks, start)
             shot = replace(shot, subject=other or who, partner=who if other else "")

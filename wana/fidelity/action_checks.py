@@ -10,7 +10,7 @@ from functools import partial
 import numpy as np
 
 from proto.fidelity import Check
-from wana.fidelity.acts import SEATING, Act, window_frames
+from wana.fidelity.acts import SEATING, Act, is_entrance, window_frames
 from wana.fidelity.bodies import Body
 from wana.fidelity.clips import clip_needs
 from wana.fidelity.contact_checks import CONTACT_SHARE, HEAD_OFF_M, head_beyond
@@ -27,7 +27,6 @@ FOOT_DOWN_M = 0.12  # ... when that foot is within this of the floor or a surfac
 FEET = ("LeftFoot", "LeftToeBase", "RightFoot", "RightToeBase")
 LEAN_M = 0.08  # a leaning hand within this of a wall or a piece of furniture
 DOOR_M = 1.0  # an entrance starts within this of a door
-ENTRANCE_VERBS = ("walk in", "enter", "come in", "run in", "step in", "burst in", "walk into", "come into")
 
 
 # -- performed -----------------------------------------------------------------------------------
@@ -242,11 +241,6 @@ def _leaning(act: Act, body: Body, world: World) -> Check:
 
 
 # -- entrance ------------------------------------------------------------------------------------
-
-
-def is_entrance(act: Act) -> bool:
-    verb = act.node.verb.lower()
-    return any(verb == v or verb.startswith(v + " ") for v in ENTRANCE_VERBS)
 
 
 def entrance(

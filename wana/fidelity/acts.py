@@ -35,6 +35,15 @@ def is_locomotion(action: str) -> bool:
     return action in LOCOMOTION or (clip is not None and "locomotion" in clip.tags)
 
 
+ENTRANCE_VERBS = ("walk in", "enter", "come in", "run in", "step in", "burst in", "walk into", "come into")
+
+
+def is_entrance(act: Act) -> bool:
+    """ "walks in", "enters", "comes into" (the verb as written)."""
+    verb = act.node.verb.lower()
+    return any(verb == v or verb.startswith(v + " ") for v in ENTRANCE_VERBS)
+
+
 @dataclass
 class Act:
     """One action node of one character and the segments that play it."""

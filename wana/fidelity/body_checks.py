@@ -12,6 +12,7 @@ import numpy as np
 
 from proto.scene import PlacedObject
 from wana.assets import catalog
+from wana.domain.body_limits import HANDS_MAX_MS, HIPS_MAX_MS, STRIKE_MAX_MS
 from wana.domain.skeleton import JOINT_INDEX, JOINT_NAMES
 from wana.fidelity.bodies import Body
 from wana.fidelity.solids import depth_inside, depth_inside_at, depth_inside_open, leaf_transforms
@@ -31,12 +32,6 @@ MIN_RUN = 4  # frames
 # group-meeting_room-01 s7): a hand on the stated surface gets this much more.
 REST_M = 0.03
 SOFT = ("sofa", "armchair", "ottoman", "bean_bag", "bed", "bunk_bed", "cushion", "pillow", "mattress")
-HIPS_MAX_MS = 6.0  # metres per second between two frames
-HANDS_MAX_MS = 10.0
-# A throw, a punch or a kick is a hand or foot at 10-20 m/s by nature (a thrown ball leaves the hand at 15 m/s
-# and more): inside those clips only a hand past STRIKE_MAX_MS is a jump in the pose.
-STRIKES = ("throw", "punch", "kick", "punch_bag", "box", "slap")
-STRIKE_MAX_MS = 20.0
 # A fingertip brushing another's sleeve (arms crossing in a yoga line, a hand on a shoulder) is not a body
 # inside a body: a sphere of the hand or fingers counts from beyond GRAZE_M, what a 320x240 tile shows as
 # two pixels of overlap at 3 m (seen on group-gym-06 s8: arms crossing 4 cm deep read as in front).

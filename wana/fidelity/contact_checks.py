@@ -24,7 +24,7 @@ from wana.assets.catalog import asset_for, to_world, world_bounds
 from wana.assets.relations import footprint_gap
 from wana.assets.vocabulary import CATEGORIES, hypernyms, lookup_room
 from wana.domain.actions import names_object
-from wana.fidelity.acts import Act, is_locomotion, window_frames
+from wana.fidelity.acts import Act, is_entrance, is_locomotion, window_frames
 from wana.fidelity.bodies import Body
 from wana.fidelity.clips import ClipNeeds, clip_needs
 from wana.fidelity.handover import handover, is_handover
@@ -714,6 +714,8 @@ def _arrival(act: Act, body: Body, world: World, bodies: Mapping[str, Body]) -> 
     found = world.copies(dest) or world.find(dest)
     if not found and _is_room_word(dest):
         return None  # "walks into the room", "goes to the kitchen": the room itself, no object to reach
+    if not found and is_entrance(act) and base_id(dest) not in CATEGORIES:
+        return None  # "enters the bakery": a place the catalog has no object for is the room it comes into
     if not found:
         return Check(
             name="contact",

@@ -19,6 +19,7 @@ from proto.motion_data import Motion
 from proto.scene import Scene
 from proto.ssg import SentenceGraph
 from wana.arrays import from_wire
+from wana.domain.body_limits import HANDS_MAX_MS, HIPS_MAX_MS, STRIKES
 from wana.domain.skeleton import JOINT_NAMES
 from wana.fidelity import action_checks as ac
 from wana.fidelity import body_checks as bc
@@ -329,7 +330,7 @@ def _body_checks(
         boundaries = sorted({s.start_frame for s in motion.segments if s.start_frame > 0})
         strikes = np.zeros(body.frames, bool)
         for seg in motion.segments:
-            if seg.action in bc.STRIKES:
+            if seg.action in STRIKES:
                 strikes[max(seg.start_frame, 0) : seg.end_frame] = True
         fast, popped = bc.speeds(body, motion.fps, strikes), bc.pops(body, boundaries)
         # Off stage nothing is seen: no furniture to be inside, and the hidden move to the door is no jump.
@@ -461,7 +462,7 @@ def _continuity_check(name: str, fast: bc.FrameFailures, popped: bc.FrameFailure
         return Check(name="continuity", character=name, ok=True, reason=f"{name} moves smoothly")
     reasons = []
     if wf >= 0:
-        limit = bc.HIPS_MAX_MS if JOINT_NAMES[int(fast.joint[wf])] == "Hips" else bc.HANDS_MAX_MS
+        limit = HIPS_MAX_MS if JOINT_NAMES[int(fast.joint[wf])] == "Hips" else HANDS_MAX_MS
         reasons.append(
             f"{name}'s {_joint_word(int(fast.joint[wf]))} {_verb(int(fast.joint[wf]), 'moves')} {fast.amount[wf]:.1f} m/s at frame {wf} "
             f"(at most {limit:.0f} m/s)"

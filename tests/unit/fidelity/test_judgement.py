@@ -615,3 +615,24 @@ def test_a_tool_in_the_hand_works_on_the_named_thing_only_with_the_hand_at_it(ma
         (verdicts[name],) = by_name(checks, "contact")
     assert verdicts["at"].ok, verdicts["at"].reason
     assert not verdicts["away"].ok and "from the wood plank" in verdicts["away"].reason
+
+
+def test_entering_a_place_the_catalog_has_no_object_for_is_coming_into_the_room_and_a_missing_sofa_fails(
+    make,
+):
+    """Seen on a new story: "Kofi enters the bakery." (a bakery is no room type the catalog knows) failed as
+    "there is no bakery in the room to walk to"; walking to a sofa the room lacks still fails."""
+    frames = 40
+    walk = np.stack([np.linspace(-2.0, 0.0, frames), np.full(frames, 0.95), np.zeros(frames)], axis=1)
+    kofi = make.motion("Kofi", walk, [("walk", 0, frames, "s1", 0)])
+
+    def contact_of(verb: str, target: str) -> list:
+        node = ActionNode(verb=verb, action="walk", target=target)
+        graphs = {"s1": graph_of("s1", f"Kofi {verb}s the {target}.", "Kofi", node)}
+        return by_name(
+            story_checks([("s1", "action")], graphs, make.scene(), {"Kofi": kofi})["s1"], "contact"
+        )
+
+    assert contact_of("enter", "bakery") == []
+    (sofa,) = contact_of("walk", "sofa")
+    assert not sofa.ok and sofa.reason.startswith("there is no sofa in the room")

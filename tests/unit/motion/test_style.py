@@ -159,3 +159,18 @@ def test_a_mood_keeps_the_hands_on_what_they_touch():
         assert np.abs(pos_s[20 : n - 20, JOINT_INDEX[j]] - pos_p[20 : n - 20, JOINT_INDEX[j]]).max() < 0.005
     head = JOINT_INDEX["Head"]
     assert not np.allclose(from_wire(sad.rotations)[:, head], from_wire(plain.rotations)[:, head])
+
+
+def test_a_happy_jump_is_wider_but_no_hand_moves_faster_than_a_body_can():
+    """ "Ivy jumps happily" played the jump 14 % faster and wider: its hands swung at 11 m/s (the story checks
+    allow 10). The mood still shows (wider), within the limit; a wave, far from it, keeps its whole style."""
+    from wana.domain.body_limits import HANDS_MAX_MS
+
+    happy = mood_of("happily")
+    piece, pos = _piece("jump", happy)
+    plain, plain_pos = _piece("jump")
+    speed = np.linalg.norm(np.diff(pos[:, JOINT_INDEX["LeftHand"]], axis=0), axis=1).max() * 30
+    assert speed <= HANDS_MAX_MS
+    assert len(piece.rotations) >= len(plain.rotations)  # never played faster than authored
+    wave, _ = _piece("wave", happy)
+    assert len(wave.rotations) < len(_piece("wave")[0].rotations)  # the wave keeps its quicker tempo

@@ -243,9 +243,11 @@ def test_every_shot_with_one_of_eves_sentences_is_framed_from_where_she_is_seen(
             assert camera_at(mid, keys, stage.tracks, ROOM).eye[2] < 0, (s, k)
 
 
-def test_an_unnamed_close_up_frames_the_character_who_acts_beside_its_subject() -> None:
+def test_a_close_up_frames_the_character_who_acts_beside_its_subject() -> None:
     """Seen on the sheets: "camera close" before "They sit on the sofa and talk" held on Forrest's face
-    for 1.5 s while Jenny sat down off-screen; "camera close on Tom" names Tom and is held on him."""
+    for 1.5 s while Jenny sat down off-screen; "camera close on Professor Okafor" while Sam walked off rose
+    to a top view that showed neither. Named or not, the close shot takes in whoever acts beside its
+    subject, and stays the subject's."""
     from services.render.camera_checks import camera_checks
 
     tom = actor("Tom", 1.2, 0.0, 150, [("clap", 0, 150, "s2")])
@@ -267,7 +269,10 @@ def test_an_unnamed_close_up_frames_the_character_who_acts_beside_its_subject() 
         frame=0, command=Command(kind="camera", value="close", target="Tom"), sentence_id="s1"
     )
     [held] = [s for s in Staging.build(SCENE, [tom, eve], [named]).shots if s.source == "command"]
-    assert (held.subject, held.partner) == ("Tom", "")
+    assert (held.subject, held.partner) == ("Tom", "Eve")
+    alone = actor("Eve", -1.2, -0.4, 150, [])
+    [held] = [s for s in Staging.build(SCENE, [tom, alone], [named]).shots if s.source == "command"]
+    assert (held.subject, held.partner) == ("Tom", "")  # nobody else acts: Tom alone
 
 
 class _AllSeen(Scorer):
