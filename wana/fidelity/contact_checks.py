@@ -129,7 +129,9 @@ def _fitting(
             continue
         by_limb = {_limb(j): (j, p) for j, p in pairs}
         if wanted and wanted <= set(by_limb):
-            out.append((name, {by_limb[w][0]: by_limb[w][1] for w in wanted}))
+            out.append(
+                (name, {by_limb[w][0]: by_limb[w][1] for w in sorted(wanted)})
+            )  # sorted: the same in every process
         elif (clip.object in HELD or name in (clip.name, clip.name.split("_")[0])) and wanted & set(by_limb):
             # a held thing, or the object's own point for this action serving one of its hands (the
             # shower's one-handed "wash" point for washing the hands: solo-bathroom-23 s6 read "the shower
