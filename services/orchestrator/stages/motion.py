@@ -136,13 +136,14 @@ def synthesise(
 def seated_others(
     action: ActionNode, name: str, states: dict[str, SegmentEndState]
 ) -> list[tuple[float, float]]:
-    """Where the other characters sit by the time a sit / lie action starts (their seat slots are taken);
-    [] for any other action, so that its recompute does not depend on them."""
+    """Where the other characters sit by the time a sit / lie action starts (their seat slots are taken), or
+    a two-person action (a hug: one seated is hugged from beyond its legs); [] for any other action, so that
+    its recompute does not depend on them."""
     try:
         clip = get_clip(action.action) if action.action else None
     except KeyError:
         clip = None
-    if clip is None or clip.interaction is None or clip.interaction.object not in ("seat", "bed"):
+    if clip is None or clip.interaction is None or clip.interaction.object not in ("seat", "bed", "person"):
         return []
     return sorted(
         (round(st.x, 3), round(st.z, 3)) for c, st in states.items() if c != name and st.posture != "stand"
