@@ -78,6 +78,7 @@ HANDOVER_HEIGHT = 1.0  # metres above the floor where the object passes from han
 HANDOVER_GESTURE_S = 1.2  # seconds of the presenting gesture after letting go
 # metres between the two hips, per touching action: a hand on the other's shoulder or chest needs them
 # within an arm's reach of it (at PERSON_DISTANCE the straight arm stops 0.2 m short of the shoulder)
+SEATED_PARTNER_M = 0.75  # metres from a seated partner's hips at least that one standing touches it from
 CLOSE_DISTANCE = {
     "hug": 0.45,
     "shake_hands": 0.75,
@@ -670,6 +671,11 @@ def _short_of(pos: np.ndarray, other: np.ndarray, distance: float) -> np.ndarray
     return other - d / n * distance
 
 
+def _seated_at(xz: np.ndarray, seated: Sequence[tuple[float, float]]) -> bool:
+    """Whether one of the seated others (x, z) is the character at ``xz``."""
+    return any(float(np.hypot(xz[0] - s[0], xz[1] - s[1])) < 0.05 for s in seated)
+
+
 def _at_distance(pos: np.ndarray, other: np.ndarray, distance: float) -> np.ndarray:
     """Where to stand ``distance`` metres from other: short of it on the way there, or a step back from it
     along the same line when TOO_CLOSE_M closer already (two who end up nose to nose after one waited
@@ -1205,6 +1211,10 @@ def plan_actions(
                     if "locomotion" in clip.tags
                     else PERSON_DISTANCE
                 )
+                if touching and not seated and _seated_at(there, occupied or []):
+                    # a seated one's knees and feet are in front of its hips: stand beyond them and bend
+                    # down (Leo's toes in Marta's shins as he hugged her on the sofa, livingroom s9)
+                    near = max(near, SEATED_PARTNER_M)
                 goal = _at_distance(pos, there, near)
                 if np.linalg.norm(goal - there) > np.linalg.norm(pos - there) + 0.05:  # a step back
                     step_back(_free_beside(scene, goal, there, near), there, ai, person)

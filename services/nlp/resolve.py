@@ -57,6 +57,8 @@ class _State:
         self.last_object = ""
         self.object_categories: dict[str, str] = {}
         self.seat_of: dict[str, str] = {}  # character -> the object it last sat or lay on
+        self.went_to: dict[str, str] = {}  # character -> the object its last action went to or used
+        self.several: set[str] = set()  # object ids that stand for more than one ("eight chairs")
         self.multiword: dict[str, str] = {}  # last word of an object named in several words -> its id
         self.resolved_words: set[str] = set()  # words of this sentence that turned out to name an object
         self.passing_names: list[str] = []  # names said of no acting character ("Jen's phone", "named Rosa")
@@ -320,6 +322,8 @@ def resolve(graphs: list[SentenceGraph], offsets: list[int] | None = None) -> li
             if len(words) >= 2:
                 multiword.setdefault(words[-1], o.id)
             state.object_categories.setdefault(o.id, o.category)
+            if o.count > 1:
+                state.several.add(o.id)
         diagnostics: list[Diagnostic] = list(graph.diagnostics)
         state.passing_names.extend(_names_in_passing(graph.text))
         state.described.update(_described_names(graph.text))
@@ -530,7 +534,7 @@ def _astuple(span: Span) -> tuple[int, int]:
 
 
 SEAT_ACTIONS = frozenset({"sit", "lie_down", "sleep"})
-SHARED_SEATS = frozenset({"sofa", "loveseat"})  # seats for two or more the text may share
+SHARED_SEATS = frozenset({"sofa", "loveseat", "bench"})  # seats for two or more the text may share
 BEDS = frozenset({"bed", "bunk_bed", "crib", "sofa_bed"})  # what one sleeps in
 DOZING = frozenset({"fall asleep", "doze off", "doze", "drift off", "nap", "nod off", "snooze"})
 
@@ -549,16 +553,37 @@ def _resolve_action(
         bed = state.seat_of.get(actor, "")
         if state.object_categories.get(bed, "") in BEDS:  # "He falls asleep" in the bed he got into
             action = msgspec.structs.replace(action, action="sleep", target=bed)
+    if action.action in SEAT_ACTIONS and not action.target and not action.destination:
+        went = state.went_to.get(actor, "")
+        if went not in state.several and _is_seat_for(state.object_categories.get(went, ""), action.action):
+            # "walks to the sofa and sits down": on the sofa (so "next to her" finds her seat, and two
+            # sent to one sofa are seated apart); "walks to a chair" of eight: left unnamed, the motion
+            # service sits down on the nearest, the one the walk reached
+            action = msgspec.structs.replace(action, target=went)
+    went = action.destination or action.target
+    state.went_to[actor] = went if went in state.object_categories else ""
     if action.action in SEAT_ACTIONS:
         if action.target in state.object_categories:
             state.seat_of[actor] = action.target
         elif action.target and (action.target[0].isupper() or action.target.lower() in state.spelling):
-            # "sits next to Omar": a body is nothing to sit on. On a sofa Omar shares, else on a free seat
-            # the motion service picks (it walking up to Omar first, or onto his full bench, ends on air)
+            # "sits next to Omar": a body is nothing to sit on. On the sofa or bench Omar shares, beside him
+            # (the destination: the slot next to his), else on a free seat the motion service picks (it
+            # walking up to Omar first ends on air)
             seat = state.seat_of.get(action.target, "")
             shared = seat if state.object_categories.get(seat, "") in SHARED_SEATS else ""
-            action = msgspec.structs.replace(action, target=shared, destination="")
+            beside = action.target if shared else ""
+            action = msgspec.structs.replace(action, target=shared, destination=beside)
     return action
+
+
+def _is_seat_for(category: str, action: str) -> bool:
+    """Whether an object of ``category`` is what a sit (a lie or a sleep) with nothing named happens on."""
+    if not category:
+        return False
+    kinds = {category, *lexicon.hypernyms(category)}
+    if action == "sit":
+        return "seat" in kinds
+    return bool(kinds & (BEDS | {"bed"})) or category in SHARED_SEATS - {"bench"}
 
 
 def _resolve_refs(

@@ -37,6 +37,9 @@ ELBOW_M = 0.7  # metres between two sitters' hips below which their arms and sho
 KNEE_OUT_M = 0.5  # metres in front of a seat's hips point where a sitter's knees and feet are
 KNEE_M = 0.4  # metres between two sitters' knee points below which their legs meet (a table's corner)
 MAX_ROWS = 4  # rows of stand slots at most (a crowd at a window whose front is behind a sofa)
+# spots side by side in a row at least, when as many stand at one object (beyond its width: the second of
+# two at a painting stood in the row behind, 1.1 m from it, duo-gallery-15 s4)
+MAX_ACROSS = 3
 STAND_KEY = "#stand"  # a stand slot's object key in the book: "<object id>#stand"
 HIDE_KEY = "#hide"  # a hiding spot's object key in the book
 
@@ -68,7 +71,7 @@ class Slotting:
     standers: dict[str, set[str]] = field(default_factory=dict)  # object id -> who stands at it in the story
     _grid: OccupancyGrid | None = None
     _regions: np.ndarray | None = None  # labels of the connected free floor of the grid (0: blocked)
-    _spots: dict[tuple[str, int], tuple[list[tuple[float, float]], set[tuple[float, float]]]] = field(
+    _spots: dict[tuple[str, int, int], tuple[list[tuple[float, float]], set[tuple[float, float]]]] = field(
         default_factory=dict
     )
 
@@ -399,20 +402,33 @@ class Slotting:
         joined: bool = False,
     ) -> Claim:
         rows, standers = 2, len(self.standers.get(obj.id, set()) | {who})
-        spots, front = self._stand_spots(obj, rows)
+        across = min(standers, MAX_ACROSS)  # several at it: side by side in the front row first
+        spots, front = self._stand_spots(obj, rows, across)
         while standers >= 2 and len(spots) < standers and rows < MAX_ROWS:
-            rows += 1  # several at it: rows further out until each has its own free spot
-            spots, front = self._stand_spots(obj, rows)
+            rows += 1  # ... then rows further out until each has its own free spot
+            spots, front = self._stand_spots(obj, rows, across)
         reach = [p for p in spots if p in front]
         if crowd and reach and all(_near_any(p, crowd) for p in reach):  # bystanders there: round the object
             spots = [*reach, *self._ring(obj, reach[0]), *(p for p in spots if p not in front)]
         names = [str(i) for i in range(len(spots))]
-        order = self._preferred(obj.id + STAND_KEY, names, spots, who, here, company, joined)
-        clear = [n for n in order if not _near_any(spots[int(n)], crowd)]
+        # shared out over the front row when it has room for the whole group (the shortest walks would send
+        # one to the nearer row behind it), else over every row
+        row = [n for n in names if spots[int(n)] in front]
+        if sum(self.book.holder(obj.id + STAND_KEY, n) in ("", who) for n in row) < 1 + len(company):
+            row = names
+        order = self._preferred(
+            obj.id + STAND_KEY, row, [spots[int(n)] for n in row], who, here, company, joined
+        )
+        order = [*order, *(n for n in names if n not in order)]
+        seated = self._seats_of_others(who, obj)
+        clear = [n for n in order if not _near_any(spots[int(n)], [*crowd, *seated])]
         order = [*clear, *(n for n in order if n not in clear)]
         taken = self.book.take(obj.id + STAND_KEY, order, who)
         if taken is None or (
-            taken == names[0] and len(self.standers.get(obj.id, ())) < 2 and not _near_any(spots[0], crowd)
+            taken == names[0]
+            and len(self.standers.get(obj.id, ())) < 2
+            and not _near_any(spots[0], crowd)
+            and not _near_any(_own_stand_point(obj, spots[0]), seated)
         ):
             return Claim(action)
         # Two or more at one object: the first is told its slot too (the planner's own spot, the middle of
@@ -420,16 +436,32 @@ class Slotting:
         # default spot is where someone else stands is sent to a clear one.
         return Claim(action, spot=spots[int(taken)])
 
+    def _seats_of_others(self, who: str, obj: PlacedObject) -> list[tuple[float, float]]:
+        """World (x, z) of the seat slots of the objects others sit on in the story (those of ``obj`` itself
+        aside): a stand spot there is in the way of one sitting down (Hana at the counter between the two
+        stools, and Kofi's hand in her as he sat on one, bakery s6)."""
+        ids = {o.id: o for o in self.scene.objects}
+        out: list[tuple[float, float]] = []
+        for object_id, sitters in self.sitters.items():
+            if object_id == obj.id or object_id not in ids or not sitters - {who}:
+                continue
+            try:
+                out.extend(seat_points(ids[object_id], seat_slots(ids[object_id])))
+            except (KeyError, ValueError):
+                continue
+        return out
+
     def _stand_spots(
-        self, obj: PlacedObject, rows: int = 2
+        self, obj: PlacedObject, rows: int = 2, across: int = 1
     ) -> tuple[list[tuple[float, float]], set[tuple[float, float]]]:
-        """The free stand spots at ``obj`` in ``rows`` rows (its first spot when none is free) and its first row
-        (within reach), worked out once per object and rows: the layout and the grid do not change while the
-        story runs."""
-        key = (obj.id, rows)
+        """The free stand spots at ``obj`` in ``rows`` rows of at least ``across`` (its first spot when none is
+        free) and its first row (within reach), worked out once per object, rows and across: the layout and
+        the grid do not change while the story runs."""
+        key = (obj.id, rows, across)
         if key not in self._spots:
-            spots = [p for p in stand_slots(obj, rows=rows) if bool(self.grid.is_free_xz(np.asarray(p)))]
-            self._spots[key] = (spots or stand_slots(obj)[:1], set(stand_slots(obj)))
+            every = stand_slots(obj, rows=rows, across=across)
+            spots = [p for p in every if bool(self.grid.is_free_xz(np.asarray(p)))]
+            self._spots[key] = (spots or stand_slots(obj)[:1], set(stand_slots(obj, across=across)))
         spots, front = self._spots[key]
         return list(spots), front
 
@@ -453,6 +485,18 @@ class Slotting:
             if bool(self.grid.is_free_xz(p)):
                 out.append((round(float(p[0]), 3), round(float(p[1]), 3)))
         return out
+
+
+def _own_stand_point(obj: PlacedObject, fallback: tuple[float, float]) -> tuple[float, float]:
+    """World (x, z) where the motion service stands at ``obj`` by itself (the catalog's stand point), else
+    ``fallback``."""
+    try:
+        from wana.assets.catalog import asset_for, to_world
+
+        stand = to_world(obj, np.asarray(asset_for(obj).stand_point, float))
+    except Exception:  # noqa: BLE001 - an unknown category: the first stand spot
+        return fallback
+    return (float(stand[0]), float(stand[2]))
 
 
 def _gap_to(seat: PlacedObject, table: PlacedObject) -> float:

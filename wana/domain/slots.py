@@ -67,12 +67,14 @@ def seat_slots(placed: PlacedObject, kind: str = "sit", resting: Iterable[Placed
     ]
 
 
-def stand_slots(placed: PlacedObject, rows: int = 1) -> list[tuple[float, float]]:
+def stand_slots(placed: PlacedObject, rows: int = 1, across: int = 1) -> list[tuple[float, float]]:
     """World (x, z) spots where characters stand at an object, the middle of its front first.
 
-    Spots run along the front edge one STAND_APART_M apart (as many as its width holds, at least one);
-    tables and desks get the same along their back. ``rows`` > 1 adds rows further out, one
-    STAND_APART_M behind the other (a crowd at a window), after all the spots of the rows before.
+    Spots run along the front edge one STAND_APART_M apart (as many as its width holds, at least
+    ``across``: two who walk to one painting stand side by side before it, the row wider than the frame,
+    rather than one behind the other); tables and desks get the same along their back. ``rows`` > 1 adds
+    rows further out, one STAND_APART_M behind the other (a crowd at a window), after all the spots of the
+    rows before.
     """
     from wana.assets.catalog import asset_for, to_world
 
@@ -81,7 +83,7 @@ def stand_slots(placed: PlacedObject, rows: int = 1) -> list[tuple[float, float]
     except Exception:  # noqa: BLE001 - unknown category: a spot in front of its position
         dims = np.array([0.6, 0.0, 0.6])
     width, depth = float(dims[0]) * placed.scale[0], float(dims[2]) * placed.scale[2]
-    n = max(1, int(width / STAND_APART_M + 0.6))  # a 1 m counter: two; a 2 m table side: three
+    n = max(1, across, int(width / STAND_APART_M + 0.6))  # a 1 m counter: two; a 2 m table side: three
     offsets = sorted(((i - (n - 1) / 2) * STAND_APART_M for i in range(n)), key=abs)
     sides = [1.0, -1.0] if any(w in placed.category for w in TABLE_WORDS) else [1.0]
     local = np.array(

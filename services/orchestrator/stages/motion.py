@@ -84,6 +84,7 @@ HANDS_WHAT_HELD = (
 )  # hand-over verbs that always pass an object ("gives her a smile" need not)
 HANDOVER_VERB = "give"  # the verb an action that hands an object over keeps for the motion service (planning)
 
+LEGS_OUT_M = 0.4  # metres in front of a seated character's hips where its knees and shins are
 GESTURE_NEAR_M = 1.0  # metres: the standing others a gesture aimed at nobody may step back from
 TRAIL_STEP = 8  # frames between the points kept of a character's last walk
 TRAIL_MIN_M = 0.3  # metres: an action that moves its character less than this leaves no trail
@@ -135,13 +136,14 @@ def synthesise(
 def seated_others(
     action: ActionNode, name: str, states: dict[str, SegmentEndState]
 ) -> list[tuple[float, float]]:
-    """Where the other characters sit by the time a sit / lie action starts (their seat slots are taken);
-    [] for any other action, so that its recompute does not depend on them."""
+    """Where the other characters sit by the time a sit / lie action starts (their seat slots are taken), or
+    a two-person action (a hug: one seated is hugged from beyond its legs); [] for any other action, so that
+    its recompute does not depend on them."""
     try:
         clip = get_clip(action.action) if action.action else None
     except KeyError:
         clip = None
-    if clip is None or clip.interaction is None or clip.interaction.object not in ("seat", "bed"):
+    if clip is None or clip.interaction is None or clip.interaction.object not in ("seat", "bed", "person"):
         return []
     return sorted(
         (round(st.x, 3), round(st.z, 3)) for c, st in states.items() if c != name and st.posture != "stand"
@@ -152,8 +154,9 @@ def standing_others(
     action: ActionNode, name: str, states: dict[str, SegmentEndState], hidden: set[str]
 ) -> list[tuple[float, float]]:
     """Where the other characters on stage stand when an action that may walk starts (its route goes round
-    them, services/motion/routing.py); [] for an action that stays put, so its recompute does not depend on
-    them."""
+    them, services/motion/routing.py), and for a walk or an action aimed at something the legs of those
+    seated (LEGS_OUT_M in front of their hips); [] for an action that stays put, so its recompute does not
+    depend on them."""
     try:
         clip = get_clip(action.action) if action.action else None
     except KeyError:
@@ -164,7 +167,7 @@ def standing_others(
     if not aimed and (clip is None or clip.interaction is not None or me is None):
         return []
     # a gesture aimed at nobody ("They dance") steps away from those within GESTURE_NEAR_M (planning)
-    return sorted(
+    standing = sorted(
         (round(st.x, 3), round(st.z, 3))
         for c, st in states.items()
         if c != name
@@ -172,6 +175,16 @@ def standing_others(
         and st.posture == "stand"
         and (aimed or (me is not None and math.hypot(st.x - me.x, st.z - me.z) < GESTURE_NEAR_M))
     )
+    if not aimed:
+        return standing
+    # a seated one's legs reach out into the floor in front of the seat: a walk goes round them too (Mei
+    # getting up walked past Raj's desk chair through his shins, office2 s8)
+    legs = sorted(
+        (round(st.x + math.sin(st.yaw) * LEGS_OUT_M, 3), round(st.z + math.cos(st.yaw) * LEGS_OUT_M, 3))
+        for c, st in states.items()
+        if c != name and c not in hidden and st.posture in ("sit", "sit_floor")
+    )
+    return standing + legs
 
 
 def optimise(
@@ -304,10 +317,12 @@ def segments(
             for o, j in later
             if o != name and _same_goal(characters[o][0].actions[j], action)
         ]
-        joined = any(  # others of this sentence went there before it: it takes what they left nearest
-            o != name and _same_goal(characters[o][0].actions[j], action)
+        went = {  # others of this sentence who went there before it
+            o
             for o, j in order[_sentence_start(ends, i) : i]
-        )
+            if o != name and _same_goal(characters[o][0].actions[j], action)
+        }
+        joined = bool(went)  # it takes what they left nearest
         lane = None
         if door is not None and is_exit(action):  # "They leave": each its own lane through the door
             going = [
@@ -319,14 +334,22 @@ def segments(
             pick = matched([(state.x, state.z), *going], lanes) if going and lanes else 0
             lane = lanes.pop(pick or 0) if lanes else None  # ("gets out and leaves": one lane, two exits)
         asked, routes = _staged(scene, door, name, action, state, states, outside, lane)
+        # those walking there with it are no bystanders: they stand side by side there on purpose ("They walk
+        # to the statue": the second kept off the first's spot, 0.65 m beside it, stood in the row behind);
+        # those who work there with it are ("Ben and Nora eat at the counter": their arms need the room)
+        company_at = went if _walks(action) else set()
         crowd = [
             (st.x, st.z)
             for o, st in states.items()
-            if o != name and o not in outside and st.posture == "stand" and (st.x, st.z) not in company
+            if o != name
+            and o not in outside
+            and o not in company_at
+            and st.posture == "stand"
+            and (st.x, st.z) not in company
         ]
         here_at = sentence_index.get(sids[k], 0)
         for o, (at, trail) in trails.items():  # the ways the others walk meanwhile are no place to stand
-            if o != name and at >= here_at - 1:
+            if o != name and o not in company_at and at >= here_at - 1:
                 crowd.extend(trail)
         claim = slotting.claim(name, asked[-1], (state.x, state.z), company, crowd, joined)
         asked[-1] = claim.action
@@ -447,6 +470,14 @@ def _sentence_ends(order: Sequence[tuple[str, int]], characters: Characters) -> 
         same = characters[a][1][k] == characters[b][1][j]
         ends[i] = ends[i + 1] if same else i + 1
     return ends
+
+
+def _walks(action: ActionNode) -> bool:
+    """Whether an action is a walk (a locomotion clip)."""
+    try:
+        return "locomotion" in get_clip(action.action or action.verb).tags
+    except KeyError:
+        return False
 
 
 def _same_goal(a: ActionNode, b: ActionNode) -> bool:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from proto.scene import PlacedObject
@@ -78,3 +80,22 @@ def test_a_slot_something_rests_on_is_not_offered():
     elsewhere = PlacedObject(id="mug", category="mug", position=(float(middle[0]), 0.0, 2.0))
     assert seat_slots(sofa, "sit", [laptop, elsewhere]) == ["sit_0", "sit_2"]
     assert seat_slots(sofa, "sit", [elsewhere]) == ["sit", "sit_0", "sit_2"]
+
+
+def test_a_park_bench_seats_two_apart_and_a_piano_bench_one():
+    bench = placed("bench")
+    assert seat_slots(bench) == ["sit", "sit_0", "sit_2"]  # one alone sits in the middle
+    ends = [
+        to_world(bench, np.asarray(asset_for(bench).contact_points[n].position, float))
+        for n in ("sit_0", "sit_2")
+    ]
+    assert np.linalg.norm(ends[0] - ends[1]) >= 0.7  # two side by side: their elbows apart
+    assert seat_slots(placed("piano_bench")) == ["sit"]
+
+
+def test_a_front_row_holds_as_many_as_asked_side_by_side():
+    painting = placed("painting")
+    assert len(stand_slots(painting)) == 1
+    two = stand_slots(painting, across=2)
+    assert len(two) == 2 and abs(two[0][1] - two[1][1]) < 1e-6  # one row, side by side
+    assert math.dist(*two) >= 0.6

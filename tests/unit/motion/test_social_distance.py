@@ -112,3 +112,28 @@ def test_dancing_right_after_a_hug_steps_back_from_the_one_still_there():
 
     assert apart(0.45) >= arms_room("dance") / 2 + 0.2
     assert apart(2.0) == pytest.approx(2.0, abs=0.05)
+
+
+def test_one_seated_is_hugged_from_beyond_her_knees():
+    """Mary sits (she is among the seated others): Tom walking up to hug her stops past her knees and feet,
+    not at the standing hug's distance with his toes in her shins."""
+    from services.motion.planning import CLOSE_DISTANCE, SEATED_PARTNER_M
+
+    def apart(occupied: list[tuple[float, float]]) -> float:
+        reply = handle_synthesize(
+            SynthesizeRequest(
+                header=Header(),
+                character=CharacterNode(
+                    name="Tom", actions=[ActionNode(verb="hug", action="hug", target="Mary")]
+                ),
+                scene=SCENE,
+                start=(-2.0, 0.0, 1.57),
+                others={"Mary": (0.0, 0.0)},
+                occupied=occupied,
+            )
+        )
+        end = from_wire(reply.motion.root_position)[-1]
+        return float(np.hypot(end[0], end[2]))
+
+    assert apart([]) == pytest.approx(CLOSE_DISTANCE["hug"], abs=0.05)
+    assert apart([(0.0, 0.0)]) == pytest.approx(SEATED_PARTNER_M, abs=0.05)

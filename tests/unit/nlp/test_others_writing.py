@@ -90,9 +90,27 @@ def test_parts_and_short_names_mean_the_object_named_before() -> None:
 def test_sitting_next_to_someone_takes_a_seat_beside_them() -> None:
     graphs = parse_document("There is a sofa$. Omar sits on the sofa. Eve sits next to Omar.")
     last = graphs[-1].characters[0].actions[0]
-    assert (last.action, last.target, last.destination) == ("sit", "sofa", "")
+    assert (last.action, last.target, last.destination) == ("sit", "sofa", "Omar")  # on it, beside him
     (alone,) = parse_document("Eve sits next to Omar.")[0].characters[0].actions
     assert (alone.target, alone.destination) == ("", "")  # a body is nothing to sit on
+    graphs = parse_document(
+        "There is a bench$. Grandpa walks to the bench and sits on it. Ivy sits beside him."
+    )
+    last = graphs[-1].characters[0].actions[0]
+    assert (last.target, last.destination) == ("bench", "grandpa")  # a park bench seats two
+
+
+def test_sitting_down_after_walking_to_a_seat_sits_on_it() -> None:
+    graphs = parse_document(
+        "There is a sofa and a fridge$. Marta walks to the sofa and sits down. Leo sits next to her."
+    )
+    marta, leo = (g.characters[0].actions[-1] for g in graphs[1:])
+    assert (marta.action, marta.target) == ("sit", "sofa")
+    assert (leo.target, leo.destination) == ("sofa", "Marta")
+    (graph,) = parse_document("Tom walks to the fridge and sits down.")
+    assert graph.characters[0].actions[-1].target == ""  # a fridge is nothing to sit on
+    graphs = parse_document("Eight chairs are around the table$. Eve walks to a chair and sits down.")
+    assert graphs[-1].characters[0].actions[-1].target == ""  # whichever of the eight the walk reached
 
 
 def test_weather_said_as_a_sentence_is_a_light_command() -> None:
@@ -126,7 +144,7 @@ def test_a_capitalised_subject_no_dictionary_knows_is_a_name() -> None:
     assert acts(graphs)[0] == ("Forrest", "sit", "bench")
     assert acts(graphs)[-1] == ("Forrest", "eat", "")
     nurse_sits = graphs[1].characters[0].actions[-1]
-    assert (nurse_sits.target, nurse_sits.destination) == ("", "")  # a free seat, not on Forrest
+    assert (nurse_sits.target, nurse_sits.destination) == ("bench", "Forrest")  # on his bench, beside him
 
 
 def test_a_listener_looks_at_whoever_spoke_to_them() -> None:

@@ -19,6 +19,8 @@ def test_a_gesture_aimed_at_nobody_hears_of_the_standing_ones_near_it_only():
     assert standing_others(dance, "Lily", STATES, set()) == [(0.45, 0.0)]
 
 
-def test_a_walk_hears_of_every_one_standing_on_stage():
+def test_a_walk_hears_of_every_one_standing_on_stage_and_of_the_legs_of_those_seated():
     walk = ActionNode(verb="walk", action="walk", destination="door")
-    assert standing_others(walk, "Lily", STATES, set()) == [(0.45, 0.0), (3.0, 0.0)]
+    # Zoe sits facing +z: her shins are in front of her hips, in the way of a walk past her chair
+    assert standing_others(walk, "Lily", STATES, set()) == [(0.45, 0.0), (3.0, 0.0), (0.3, 0.7)]
+    assert standing_others(walk, "Lily", STATES, {"Zoe"}) == [(0.45, 0.0), (3.0, 0.0)]  # outside

@@ -158,3 +158,41 @@ def test_two_sitting_at_a_table_together_take_the_chairs_on_their_own_sides():
         assert {tom.action.target, sam.action.target} == {"chair", "chair/2"}
         assert not _crosses(here["Tom"], chairs[tom.action.target], here["Sam"], chairs[sam.action.target])
         assert chairs[tom.action.target][1] * here["Tom"][1] > 0  # each the chair on its own side
+
+
+def test_two_walking_to_one_painting_stand_side_by_side_in_its_front_row():
+    scene = Scene(
+        room=ROOM,
+        objects=[PlacedObject(id="painting", category="painting", position=(0.0, 1.3, -3.9))],
+    )
+    to_it = ActionNode(verb="walk", action="walk", destination="painting")
+    slotting = Slotting(scene)
+    for who in ("Mary", "John"):
+        slotting.expect(who, to_it)
+    mary = slotting.claim("Mary", to_it, (-1.0, 1.0), [(1.0, 1.0)])
+    john = slotting.claim("John", to_it, (1.0, 1.0), joined=True)
+    assert mary.spot is not None and john.spot is not None
+    assert abs(mary.spot[1] - john.spot[1]) < 1e-6  # one row, the front one (not one behind the other)
+    assert math.dist(mary.spot, john.spot) >= 0.6
+
+
+# A counter with a stool standing in front of its middle, and one who will sit on it.
+STOOL_AT_COUNTER = Scene(
+    room=ROOM,
+    objects=[
+        PlacedObject(id="counter", category="kitchen_counter", position=(0.0, 0.0, -1.5)),
+        PlacedObject(id="stool", category="stool", position=(0.45, 0.0, -0.75)),
+    ],
+)
+
+
+def test_one_at_a_counter_keeps_clear_of_the_stool_another_will_sit_on():
+    sit = ActionNode(verb="sit", action="sit", target="stool")
+    slotting = Slotting(STOOL_AT_COUNTER)
+    slotting.expect("Hana", EAT)
+    slotting.expect("Kofi", sit)
+    hana = slotting.claim("Hana", EAT)
+    assert hana.spot is not None and math.dist(hana.spot, (0.45, -0.75)) >= 0.75
+    alone = Slotting(STOOL_AT_COUNTER)  # nobody sits there: the planner's own spot, as before
+    alone.expect("Hana", EAT)
+    assert alone.claim("Hana", EAT).spot is None

@@ -41,17 +41,24 @@ def test_a_chair_tucked_chest_deep_under_a_table_collides_but_one_at_its_edge_do
     assert _chair_facing_table(0.25) == "table"  # the seat under the top: the chest would be in the table
 
 
-def test_what_rests_on_a_bench_keeps_off_its_sitters_place():
-    bench_fp = footprint("bench", {}, 0)
+def test_what_rests_on_a_bench_for_one_keeps_off_its_sitters_place():
+    bench_fp = footprint("bench", {"size": "small"}, 0)
+    assert bench_fp.sitters == 1
     bench = Placed("bench", bench_fp, np.zeros(3), 0.0)
     top = float(bench_fp.surfaces[0].height)
-    box_fp = footprint("box", {}, 0)
+    box_fp = footprint("box", {"size": "small"}, 0)
     index = ObstacleIndex([bench])
     middle = Placed("box", box_fp, np.array([0.0, top, 0.0]), 0.0, support="bench")
-    end = Placed("box", box_fp, np.array([0.5, top, 0.0]), 0.0, support="bench")
+    end = Placed("box", box_fp, np.array([0.45, top, 0.0]), 0.0, support="bench")
     assert index.first_collider(middle) == "bench"
     assert index.first_collider(end) is None
     assert index.first_colliders([middle, end]) == ["bench", None]
+    # a park bench that seats two is a sofa: what rests on it takes a place, the sitters the others
+    wide = Placed("bench", footprint("bench", {}, 0), np.zeros(3), 0.0)
+    assert wide.fp.sitters == 3
+    wide_top = float(wide.fp.surfaces[0].height)
+    on_wide = Placed("box", box_fp, np.array([0.0, wide_top, 0.0]), 0.0, support="bench")
+    assert ObstacleIndex([wide]).first_collider(on_wide) is None
 
 
 def test_a_bench_in_front_of_a_painting_faces_it_with_room_for_the_legs():

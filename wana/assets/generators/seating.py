@@ -11,6 +11,10 @@ from wana.assets.params import Builder, Params
 # thickness above the seat (the body's thigh spheres are 6 cm, 5 cm under the Hips joint), so the thighs rest
 # on the seat instead of sinking 7-11 cm into it.
 SIT_HIPS_M = 0.10
+# A bench this wide (metres) seats two side by side: besides its middle seat ("sit", where one alone sits) it
+# has one BENCH_END_M in from each end ("sit_0", "sit_2"), at least ELBOW_M (slotting) apart: 1.4 m, 0.8 m.
+BENCH_FOR_TWO_M = 1.3
+BENCH_END_M = 0.3
 
 
 def _sit(b: Builder, p: Params, seat_h: float, z: float = 0.0, x: float = 0.0, name: str = "sit") -> None:
@@ -152,6 +156,10 @@ def bench(b: Builder, p: Params, kind: str = "bench") -> None:
     if p.style.trim and kind == "bench":
         b.box((-w / 2, h, -d / 2), (w / 2, h + 0.35, -d / 2 + 0.04), p.body)
     _sit(b, p, h)
+    if kind == "bench" and w >= BENCH_FOR_TWO_M:
+        # two side by side: a seat towards each end ("Ivy sits beside him" on grandpa's park bench)
+        for i, x in ((0, -(w / 2 - BENCH_END_M)), (2, w / 2 - BENCH_END_M)):
+            _sit(b, p, h, x=x, name=f"sit_{i}")
     b.surface(h, -w / 2 + 0.02, -d / 2 + 0.05, w / 2 - 0.02, d / 2 - 0.02)
     b.stand = (0.0, 0.0, d / 2 + 0.3)
 
