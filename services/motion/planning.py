@@ -93,6 +93,9 @@ BODY_SHIFT_M = 0.4  # metres farther from the contacts such a spot may be than t
 CLEAR_DIRECTIONS = 16  # ... tried in this many directions round them
 WALK_WEIGHT = 0.15  # metres of reach one metre more of walking is worth, choosing that spot
 POUR_INTO = ("pour",)  # actions whose held vessel empties into what the sentence names
+BETWEEN_HANDS_M = 0.12  # metres from the line between two hand targets a thing worked on lies between them
+HAND_TARGETS = ("LeftHand", "RightHand", "LeftHandMiddle1", "RightHandMiddle1")
+SEATED_POUR_M = 0.75  # metres (horizontal) from a seated character's position to a vessel it pours into
 POUR_BACK_M = 0.12  # metres from the hand on a kettle's handle to its spout
 POUR_ABOVE_M = 0.15  # metres above the vessel's rim where the pouring hand holds the kettle
 TOO_CLOSE_M = 0.1  # metres closer than the wanted distance to another character that make one step back
@@ -406,9 +409,19 @@ def prop_grip(
         return (named, *g) if g is not None else None
     if not made_for:
         return None
-    best = nearest(made_for)
+    # "They drink" after pouring the wine: from a glass, not the bottle poured from (the last choice)
+    best = nearest([o for o in made_for if not _poured_from(o, action)] or made_for)
     g = grip(best)
     return (best, *g) if g is not None else None
+
+
+def _poured_from(placed: PlacedObject | None, action: str) -> bool:
+    """Whether a small object is one poured from (a bottle, a kettle: a "pour" point) and the action not a
+    pour: drunk from only when nothing else in the room is made for drinking."""
+    if placed is None or action in POUR_INTO:
+        return False
+    geo = _object_geometry(placed)
+    return geo is not None and "pour" in geo[1]
 
 
 def _is_tool_action(action: str) -> bool:
@@ -499,6 +512,22 @@ def offering(scene: Scene, action: str, pos: np.ndarray, limit: float) -> Placed
             gap = _footprint_gap(o, pos)
             if gap <= limit:
                 near.append((gap, o.id, o))
+    return min(near, key=lambda t: t[:2])[2] if near else None
+
+
+def _small_offering(scene: Scene, action: str, pos: np.ndarray) -> PlacedObject | None:
+    """The small object (a "pick_up" point) nearest pos within PICK_REACH that offers the action's own point,
+    for a seated action at an object whose sentence names none and whose table offers none ("Lucy eats"
+    with a plate on the kitchen table: the hands at the plate, not in the air above her lap)."""
+    meant = {action, action.split("_")[0]} - {"touch", "pick_up"}
+    near = []
+    for o in scene.objects:
+        geo = _object_geometry(o)
+        if geo is None or "pick_up" not in geo[1] or not meant & set(geo[1]):
+            continue
+        d = float(np.hypot(o.position[0] - pos[0], o.position[2] - pos[1]))
+        if d <= PICK_REACH:
+            near.append((d, o.id, o))
     return min(near, key=lambda t: t[:2])[2] if near else None
 
 
@@ -660,6 +689,35 @@ def _pour_point(vessel: PlacedObject, pos: np.ndarray) -> tuple[float, float, fl
         float(top + POUR_ABOVE_M),
         float(vessel.position[2] + back[1]),
     )
+
+
+def _onto(
+    targets: dict[str, tuple[float, float, float]], small: PlacedObject
+) -> dict[str, tuple[float, float, float]]:
+    """A surface action's hand targets moved along the surface so the right hand is at the small object the
+    sentence names ("makes a coffee": at the cup on the counter, not at the counter's own point 0.4 m away);
+    the targets as they are when it is no small object (no "pick_up" point), there is no right hand, or it
+    lies between the hands already."""
+    grasp = _grasp(small)
+    right = next((j for j in ("RightHandMiddle1", "RightHand") if j in targets), None)
+    if grasp is None or right is None:
+        return targets
+    hands = [np.array([p[0], p[2]]) for j, p in targets.items() if j in HAND_TARGETS]
+    at = np.array([small.position[0], small.position[2]])
+    a, b = hands[0], hands[-1]
+    t = float(np.clip(np.dot(at - a, b - a) / max(float(np.dot(b - a, b - a)), 1e-9), 0.0, 1.0))
+    if np.linalg.norm(a + t * (b - a) - at) <= BETWEEN_HANDS_M:
+        return targets  # already between the hands (the dishes in the sink's basin): both stay at work
+    dx, dz = grasp[2][0] - targets[right][0], grasp[2][2] - targets[right][2]
+    lift = max(0.0, grasp[2][1] - targets[right][1])  # above the object, never into it
+    return {j: (p[0] + dx, p[1] + lift, p[2] + dz) if j in HAND_TARGETS else p for j, p in targets.items()}
+
+
+def _pours_seated(vessel: PlacedObject, pos: np.ndarray) -> bool:
+    """Whether a seated character pours into the vessel where it stands: one within SEATED_POUR_M of its
+    position (its own glass at its place); a farther one is poured towards where the clip reaches (an arm
+    stretched at a far glass pulled the trunk over the table)."""
+    return bool(np.hypot(vessel.position[0] - pos[0], vessel.position[2] - pos[1]) <= SEATED_POUR_M)
 
 
 def _short_of(pos: np.ndarray, other: np.ndarray, distance: float) -> np.ndarray:
@@ -1318,6 +1376,9 @@ def plan_actions(
         if obj is None and at_object and not clip.drives_lower_body:
             # "washes her hands", "takes notes": at the nearest object made for it (seated: in reach only)
             obj = offering(scene, name, pos, PICK_REACH if now_posture() != "stand" else OFFER_NEAR_M)
+            if obj is None and now_posture() == "sit":
+                # "Lucy eats" at the table with a plate in front of her: at the plate (its "eat" point)
+                obj = _small_offering(scene, name, pos)
         if (
             name == "sleep"
             and now_posture() == "sit"
@@ -1371,13 +1432,18 @@ def plan_actions(
         in_hand = next((o for o in scene.objects if hand and o.id == hand["prop"]), None)
         # a screwdriver in the hand does not sweep the floor when a broom is there to take
         any_made_for = kind in HELD_KINDS and any(made_for_action(o, name) for o in scene.objects)
+        # the bottle just poured from is set down for a glass to drink from, when the room has one
+        fits_hand = made_for_action(in_hand, name) and not (
+            _poured_from(in_hand, name)
+            and any(made_for_action(o, name) and not _poured_from(o, name) for o in scene.objects)
+        )
         if (
             kind in HELD_KINDS
             and hand
             and (
-                (obj is None and (made_for_action(in_hand, name) or not any_made_for))
+                (obj is None and (fits_hand or not any_made_for))
                 or (obj is not None and obj.id == hand["prop"])
-                or (made_for_action(in_hand, name) and not made_for_action(obj, name))
+                or (fits_hand and not made_for_action(obj, name))
             )
         ):
             # Already in the hand (picked up before): the action plays with it, no new reach; its arms may go
@@ -1394,9 +1460,9 @@ def plan_actions(
             # seated, the vessel is poured into where the clip reaches: an arm stretched at a far glass
             # pulled the trunk over the table
             aim = (
-                ()
-                if poured is None or now_posture() != "stand"
-                else ((hand["prop_joint"], _pour_point(poured, pos)),)
+                ((hand["prop_joint"], _pour_point(poured, pos)),)
+                if poured is not None and (now_posture() == "stand" or _pours_seated(poured, pos))
+                else ()
             )
             add(kind="action", action=name, duration_s=float(node.duration_s), target_id=hand["prop"],
                 targets=aim, action_index=ai)  # fmt: skip
@@ -1458,7 +1524,8 @@ def plan_actions(
                         make_room(
                             name, ai
                         )  # the prop in hand: where its use has room (a sweep, a saw stroke)
-                    aim = () if vessel is None or not standing else ((rj, _pour_point(vessel, pos)),)
+                    aims = vessel is not None and (standing or _pours_seated(vessel, pos))
+                    aim = ((rj, _pour_point(vessel, pos)),) if aims and vessel is not None else ()
                     add(kind="action", action=name, duration_s=float(node.duration_s),
                         target_id=prop_obj.id, targets=aim, action_index=ai)  # fmt: skip
                     continue
@@ -1482,6 +1549,18 @@ def plan_actions(
                 continue  # at table or shelf height an arm's reach takes it: no bend down into the furniture
             held = {"prop": obj.id, "prop_joint": rj, "prop_grip": rlocal, "prop_yaw": float(obj.yaw),
                     "prop_span": "grasp"}  # fmt: skip
+        put = find_object(scene, node.target) if name == "put_down" and node.target else None
+        put_on = find_object(scene, node.destination) if put is not None and node.destination else None
+        if (
+            put is not None
+            and put.id not in (hand.get("prop"), put_on.id if put_on is not None else "")
+            and _grasp(put) is not None
+            and take(put, ai)
+        ):
+            # "Dan puts the plate on the table" with empty hands: the plate is taken first, then put there
+            # (where the parse kept no surface: back down where it was, the nearest surface in reach)
+            set_down(put_on, ai)
+            continue
         if name == "put_down" and hand and not _puts_another(scene, node.target, hand["prop"]):
             # Set down on what the sentence names, else the nearest surface in reach, else where it was.
             dest = find_object(scene, node.destination) or (
@@ -1489,6 +1568,7 @@ def plan_actions(
             )
             set_down(dest, ai)
             continue
+        worked_on = obj  # "makes a coffee" (the cup) at the counter: the hands on the cup, not its far end
         if obj is not None and clip.interaction and kind not in ("handheld", "person", "seat", "bed"):
             obj = work_place(scene, obj, name)
         if obj is not None and kind == "surface" and "/" not in obj.id and _grasp(obj) is not None:
@@ -1505,6 +1585,8 @@ def plan_actions(
                 targets = {j: (float(p[0]), float(p[1]), float(p[2])) for j, p in points[slot]}
             elif seat_pick is not None:
                 targets = {"Hips": seat_pick[1]}
+            if kind == "surface" and worked_on is not None and worked_on.id != obj.id and _grasp(obj) is None:
+                targets = _onto(targets, worked_on)
             if clip.interaction.object in ("seat", "bed") and "Hips" in targets:
                 face = float(obj.yaw)
                 seat = np.array([targets["Hips"][0], targets["Hips"][2]])

@@ -35,7 +35,16 @@ from services.orchestrator.document import Sentence
 from services.orchestrator.queries import content_hash
 from services.orchestrator.slotting import Slotting, matched
 from services.orchestrator.stages import StageContext, content_of
-from services.orchestrator.stages.props import aimed, brought_notes, carried, made_for, provide
+from services.orchestrator.stages.props import (
+    POURED_FROM,
+    aimed,
+    brought_notes,
+    carried,
+    made_for,
+    provide,
+    worked_at,
+)
+from services.orchestrator.stages.reach import within_reach
 from services.orchestrator.stages.replay import (
     Carried,
     Outputs,
@@ -548,11 +557,19 @@ def _with_props(scene: Scene, view: Scene, action: ActionNode) -> Scene:
     """The view with the props a held action can use when it names none that is in the view ("drinks
     water": the cups on the table, with what they rest on), so that it walks up to one and takes it; when
     it names one, the others of its kind ("drinks from her mug" with two mugs on the table: the planner
-    takes the one nearest her, services.motion.planning.prop_grip, so it must see both)."""
-    tools = made_for(scene, action.action)
-    in_view = {o.category for o in view.objects if o.id in {t.id for t in tools}}
+    takes the one nearest her, services.motion.planning.prop_grip, so it must see both); a pour, the vessels
+    like the one it pours into; an action at a surface naming nothing, the small things made for it ("Lucy
+    eats": the plates, the planner eats at one in her reach when she sits)."""
+    tools = made_for(scene, action.action) or worked_at(action, scene)
+    ids = {t.id for t in tools}
+    # the bottle in the hand after pouring does not hide the glasses ("They drink": from a glass)
+    poured_from = POURED_FROM if action.action != "pour" else ()
+    in_view = {o.category for o in view.objects if o.id in ids and o.category not in poured_from}
     if in_view:
         tools = [t for t in tools if t.category in in_view]
+    into = find_object(scene, action.destination) if action.action == "pour" and action.destination else None
+    if into is not None:  # "pours wine into the glasses": into the one nearest the pourer, so all of them
+        tools += [o for o in scene.objects if o.category == into.category]
     if not tools:
         return view
     by_id = {o.id: o for o in scene.objects}
@@ -739,21 +756,38 @@ def _played(
     tick("motion", done, total)
     notes: list[tuple[str, str]] = []
     handovers: list[PairedAction] = []
-    pieces = segments(
-        ctx,
-        "segment",
-        characters,
-        sentences,
-        scene,
-        starts,
-        distances=near,
-        door=door,
-        hidden=hidden,
-        notes=notes,
-        handovers=handovers,
-        holding=brought,
+
+    def final(scene: Scene) -> dict[str, list[Motion]]:
+        notes.clear()
+        handovers.clear()
+        return segments(
+            ctx,
+            "segment",
+            characters,
+            sentences,
+            scene,
+            starts,
+            distances=near,
+            door=door,
+            hidden=hidden,
+            notes=notes,
+            handovers=handovers,
+            holding=brought,
+        )
+
+    pieces = final(scene)
+    # a prop out of reach of where its user sits is put in front of that place (stages/reach.py), and the
+    # story played again on that room: the seats are the ones this pass took, known only now
+    scene, moved = within_reach(
+        scene, characters, *_before_each(ctx, characters, sentences, starts, brought), stated
     )
+    if moved:
+        out.scene = scene
+        pieces = final(scene)
     spans = {s.id: Span(s.start, s.end) for s in sentences}
+    for sid, why in moved:
+        note = Diagnostic(code="I202", message=why, span=spans.get(sid, Span(0, 0)), severity="info")
+        out.diagnostics.append((sid, note))
     for sid, why in dict.fromkeys(notes):
         span = spans.get(sid, Span(0, 0))
         if "instead" in why:  # something the sentence asks could not be done
@@ -797,6 +831,26 @@ def _played(
     out.motions = set_down_props(out.scene, out.motions, length)
     out.motions = _enlivened(out.scene, characters, _in_moods(characters, out.motions, moods), touching)
     return out
+
+
+def _before_each(
+    ctx: StageContext,
+    characters: Characters,
+    sentences: Sequence[Sentence],
+    starts: dict[str, tuple[float, float, float]],
+    holding: dict[str, str],
+) -> tuple[list[tuple[str, int]], list[dict[str, SegmentEndState]]]:
+    """Every action in story order and every character's state as it starts, from the checkpoints of the
+    last `segment` pass (stages/replay.py)."""
+    order = story_order(characters, sentences)
+    trace: PassTrace | None = ctx.engine.traces.get("segment")
+    first = {
+        name: SegmentEndState(x=st[0], z=st[1], yaw=st[2], holding=holding.get(name, ""))
+        for name, st in starts.items()
+    }
+    if trace is None or len(trace.after) != len(order):
+        return [], []
+    return order, [first, *(c.states for c in trace.after[:-1])][: len(order)]
 
 
 def _door_added(

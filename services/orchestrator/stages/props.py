@@ -95,7 +95,7 @@ def _mount(category: str) -> str:
     return info.mount if info is not None else "floor"
 
 
-def _clip_kind(action: ActionNode) -> str:
+def clip_kind(action: ActionNode) -> str:
     try:
         clip = get_clip(action.action) if action.action else None
     except KeyError:
@@ -118,7 +118,7 @@ def _usable(scene: Scene, action: str) -> list[PlacedObject]:
     return out
 
 
-def _holdable(placed: PlacedObject) -> bool:
+def holdable(placed: PlacedObject) -> bool:
     """Whether an object can be taken in the hand at all (a "pick_up" point; a sculpture has none)."""
     try:
         return "pick_up" in _catalog().asset_for(placed).contact_points
@@ -143,6 +143,13 @@ def made_for(scene: Scene, action: str) -> list[PlacedObject]:
     return _usable(scene, action)
 
 
+def worked_at(action: ActionNode, scene: Scene) -> list[PlacedObject]:
+    """The small objects of the room an action at a surface that names nothing can be done at ("Lucy eats"
+    at the table: the plates and bowls, their "eat" point); none for any other action."""
+    named = action.target or action.instrument or action.destination
+    return [] if named or clip_kind(action) != "surface" else _usable(scene, action.action)
+
+
 def prop_needs(graphs: Sequence[SentenceGraph], sentence_ids: Sequence[str], scene: Scene) -> list[Need]:
     """The objects action sentences use that the room lacks, in story order (one per id)."""
     out: list[Need] = []
@@ -159,7 +166,7 @@ def prop_needs(graphs: Sequence[SentenceGraph], sentence_ids: Sequence[str], sce
         placed = find_object(scene, ref)
         if placed is None:
             return True  # to be added from the sentence's own object
-        return placed in made_for(scene, action) or (kind != "tool" and _holdable(placed))
+        return placed in made_for(scene, action) or (kind != "tool" and holdable(placed))
 
     for g, sid in zip(graphs, sentence_ids, strict=True):
         if g.kind != "action":
@@ -181,7 +188,7 @@ def prop_needs(graphs: Sequence[SentenceGraph], sentence_ids: Sequence[str], sce
                     # its check says so; only an instrument the sentence leaves unsaid comes with the character
                     out.append(Need(node, sid, tuple(dict.fromkeys(near)), a.action))
                     wanted |= {node.id, node.category}
-                kind = _clip_kind(a)
+                kind = clip_kind(a)
                 default = DEFAULT_PROP.get(a.action, "")
                 if (
                     kind in HELD_KINDS
@@ -232,7 +239,7 @@ def _one_each(
         for a in c.actions:
             refs = [r for r in (a.target, a.instrument, a.destination) if r]
             named = [find_object(scene, r) for r in refs]
-            if a.action in DEFAULT_PROP and _clip_kind(a) == "handheld" and not any(named):
+            if a.action in DEFAULT_PROP and clip_kind(a) == "handheld" and not any(named):
                 doers.setdefault(a.action, []).append(c.name)
                 verbs.setdefault(a.action, a.verb or a.action.replace("_", " "))
     out = []
@@ -278,7 +285,7 @@ def _bare_places(
     places that table has."""
     tables = []
     for n in names:  # each one's latest object with a table top ("sits at the table", then "pours")
-        tops = [o for r in reversed(last_at.get(n, [])) if (o := find_object(scene, r)) and _surfaces(o)]
+        tops = [o for r in reversed(last_at.get(n, [])) if (o := find_object(scene, r)) and table_tops(o)]
         tables += tops[:1]
     mine = [
         np.array([o.position[0], o.position[2]])
@@ -296,7 +303,7 @@ def _bare_places(
     return out, len(seen)
 
 
-def _surfaces(placed: PlacedObject) -> list[tuple[float, np.ndarray, np.ndarray]]:
+def table_tops(placed: PlacedObject) -> list[tuple[float, np.ndarray, np.ndarray]]:
     """(height, xz min, xz max) of an object's support surfaces at table height, world; none for a seat or a
     bed (a cup is not put where someone sits)."""
     try:
@@ -312,7 +319,7 @@ def _surfaces(placed: PlacedObject) -> list[tuple[float, np.ndarray, np.ndarray]
     ]
 
 
-def _footprint(category: str, attributes: dict[str, str], seed: int) -> np.ndarray:
+def footprint(category: str, attributes: dict[str, str], seed: int) -> np.ndarray:
     """(2, 2) xz half extents box of a catalog object (min, max), object frame."""
     obj = _catalog().make_object(category, attributes, seed)
     b = np.asarray(obj.collision_boxes, float).reshape(-1, 2, 3)
@@ -345,7 +352,7 @@ def _overlaps(
 
 def _seats_at(scene: Scene, anchor: PlacedObject, reach: float = SEAT_REACH) -> list[tuple[str, np.ndarray]]:
     """(id, xz) of the seats whose sitting point is within ``reach`` of the anchor's table top, by id."""
-    tops = _surfaces(anchor)
+    tops = table_tops(anchor)
     out = []
     for o in scene.objects:
         if o.id == anchor.id:
@@ -378,19 +385,19 @@ def _before_seat(
     for _, seat in _seats_at(scene, anchor):
         if any(np.linalg.norm(m - seat) <= PLACE_REACH for m in mine):
             continue
-        spot = _on_surface(scene, anchor, fp, height, toward=seat)
+        spot = on_surface(scene, anchor, fp, height, toward=seat)
         if spot is not None and np.hypot(spot[0] - seat[0], spot[2] - seat[1]) <= PLACE_REACH:
             return spot
     return None
 
 
-def _on_surface(
+def on_surface(
     scene: Scene, anchor: PlacedObject, fp: np.ndarray, height: float, toward: np.ndarray | None = None
 ) -> tuple | None:
     """(x, y, z) centre of the base of a free spot on the anchor's surfaces nearest their middle (nearest
     ``toward``, xz, when given), or None."""
     others = _boxes_xz(scene)
-    for h, lo, hi in sorted(_surfaces(anchor), key=lambda s: -float(np.prod(s[2] - s[1]))):
+    for h, lo, hi in sorted(table_tops(anchor), key=lambda s: -float(np.prod(s[2] - s[1]))):
         size = fp[1] - fp[0]
         if np.any(hi - lo < size + 2 * EDGE):
             lo, hi = lo - EDGE, hi + EDGE  # a small surface: the object may come to its edge
@@ -454,7 +461,7 @@ def _tables(scene: Scene) -> list[PlacedObject]:
     """Floor objects with a surface at table height, largest surface first."""
     scored = []
     for o in scene.objects:
-        surfs = _surfaces(o) if not o.support else []
+        surfs = table_tops(o) if not o.support else []
         if surfs:
             scored.append((max(float(np.prod(s[2] - s[1])) for s in surfs), o))
     return [o for _, o in sorted(scored, key=lambda t: -t[0])]
@@ -482,7 +489,7 @@ def place(scene: Scene, need: Need, seed: int = 0) -> tuple[PlacedObject, str] |
                 if spot is not None:
                     return _placed(node, attrs, seed, spot, anchor.id), anchor.id
         for anchor in candidates:
-            spot = _on_surface(scene, anchor, fp, height) or _at_work_point(anchor, need)
+            spot = on_surface(scene, anchor, fp, height) or _at_work_point(anchor, need)
             if spot is not None:
                 return _placed(node, attrs, seed, spot, anchor.id), anchor.id
         if not need.holder:
@@ -522,10 +529,10 @@ def aimed(
             a, before = actions[k], actions[k - 1]
             if a.target or a.instrument or a.destination or sids[k] != sids[k - 1]:
                 continue
-            if _clip_kind(a) not in HELD_KINDS or not _is_walk(before):
+            if clip_kind(a) not in HELD_KINDS or not _is_walk(before):
                 continue
             there = find_object(scene, before.destination or before.target)
-            if there is not None and _offers(there, a.action):
+            if there is not None and offers(there, a.action):
                 actions[k] = msgspec.structs.replace(a, destination=there.id)
         out[name] = (msgspec.structs.replace(node, actions=actions), sids)
     return out
@@ -563,7 +570,7 @@ def carried(
             if placed is None or placed.id in taken:
                 continue
             taken.add(placed.id)  # the first action on it decides (a "read" first: picked up where it lies)
-            if name in holding or not _holdable(placed):
+            if name in holding or not holdable(placed):
                 continue
             if a.action in PUTS:
                 holding[name] = placed.id
@@ -589,7 +596,7 @@ def _added_used(scene: Scene, action: ActionNode, added: set[str]) -> PlacedObje
         if other is not None and other.id in added:
             return other
     default = DEFAULT_PROP.get(action.action, "")
-    if not default or _clip_kind(action) not in HELD_KINDS:
+    if not default or clip_kind(action) not in HELD_KINDS:
         return None
     return next((o for o in scene.objects if o.id in added and o.category == default), None)
 
@@ -597,7 +604,7 @@ def _added_used(scene: Scene, action: ActionNode, added: set[str]) -> PlacedObje
 def _in_hand(action: ActionNode, ref: str, category: str) -> bool:
     """Whether the object an action names is the one in its hand: any of a handheld action's but what it
     pours into, a tool action's tool only ("saws the plank": the saw, not the plank)."""
-    kind = _clip_kind(action)
+    kind = clip_kind(action)
     if kind == "handheld":
         return ref != action.destination
     return kind == "tool" and (ref == action.instrument or category == DEFAULT_PROP.get(action.action))
@@ -654,7 +661,7 @@ def _is_walk(action: ActionNode) -> bool:
     return clip is not None and "locomotion" in clip.tags
 
 
-def _offers(placed: PlacedObject, action: str) -> bool:
+def offers(placed: PlacedObject, action: str) -> bool:
     """Whether an object has a contact point for the action itself (its name or first word)."""
     try:
         points = set(_catalog().asset_for(placed).contact_points)
@@ -734,4 +741,5 @@ __all__ = [
     "place",
     "prop_needs",
     "provide",
+    "worked_at",
 ]

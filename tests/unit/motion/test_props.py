@@ -224,3 +224,42 @@ def test_taking_a_second_prop_sets_the_first_one_down_first():
     assert all(s.prop != "cup" for s in plan.segments[released[0] + 1 :])
     motion, _, _ = synthesise(plan)
     assert max(_grip_errors(motion)) < 0.01
+
+
+def test_putting_down_what_is_not_in_the_hand_takes_it_first_then_puts_it_there():
+    """ "Dan puts the plate on the table" with empty hands: a reach for the plate, then the put with it in
+    the hand (was a put_down of nothing, the hand 0.3 m from the plate, kitchen2 s6)."""
+    scene = Scene(
+        room=SCENE.room,
+        objects=[
+            *SCENE.objects,
+            PlacedObject(id="counter", category="kitchen_counter", position=(-1.5, 0.0, 1.5)),
+        ],
+    )
+    dan = CharacterNode(
+        name="Dan", actions=[ActionNode(verb="put", action="put_down", target="cup", destination="counter")]
+    )
+    plan = plan_actions(dan, scene, (-1.0, -1.0, 0.0))
+    spans = [(s.prop, s.prop_span) for s in plan.segments if s.kind == "action"]
+    assert spans == [("cup", "grasp"), ("cup", "release")]
+    assert plan.segments[-1].target_id == "counter"
+    motion, _, _ = synthesise(plan)
+    assert max(_grip_errors(motion)) < 0.01
+
+
+def test_drinking_after_pouring_puts_the_bottle_down_for_a_glass():
+    """ "John pours wine into the glasses. They drink.": from a glass, not from the bottle still in the hand
+    (drinkware poured from is the last choice)."""
+    scene = Scene(
+        room=SCENE.room,
+        objects=[
+            SCENE.objects[0],
+            PlacedObject(id="bottle", category="bottle", position=(1.3, 0.76, 0.8), support="table"),
+            PlacedObject(id="glass", category="glass", position=(1.7, 0.76, 0.8), support="table"),
+        ],
+    )
+    john = CharacterNode(name="John", actions=[ActionNode(verb="drink", action="drink")])
+    plan = plan_actions(john, scene, (1.3, 0.2, 0.0), holding="bottle")
+    spans = [(s.prop, s.prop_span) for s in plan.segments if s.kind == "action"]
+    assert spans[0] == ("bottle", "release") and ("glass", "grasp") in spans
+    assert plan.segments[-1].action == "drink" and plan.segments[-1].prop == "glass"

@@ -12,7 +12,7 @@ from proto.ssg import ActionNode, CharacterNode
 from services.motion.planning import SEAT_BACK, plan_actions, slid_to_place
 from services.orchestrator.stages.motion import _with_props
 from services.orchestrator.views import scene_view
-from wana.assets.catalog import asset_for, to_world
+from wana.assets.catalog import asset_for, to_world, world_support_surfaces
 
 ROOM = Room(room_type="bathroom", width=5, depth=5, height=3)
 
@@ -160,3 +160,44 @@ def test_eating_from_the_plate_with_a_plate_at_each_place_eats_from_the_nearest(
     assert eat.target_id == "plate/2"
     (hand,) = np.array(list(dict(eat.targets).values()))
     assert np.hypot(hand[0] - near.position[0], hand[2] - near.position[2]) < 0.2
+
+
+def test_making_a_coffee_at_the_counter_puts_the_right_hand_on_the_cup_and_stands_by_it():
+    """bakery s4: "Hana makes a coffee" (cook, the cup) played at the counter's own cook point, the right
+    hand 0.40 m from the cup at the counter's other end; the hands go to the cup, the body beside it."""
+    counter = PlacedObject(id="kitchen_counter", category="kitchen_counter", position=(0.0, 0.0, -1.0))
+    top = max(h for h, _ in world_support_surfaces(counter))
+    cup = PlacedObject(id="cup", category="cup", position=(0.6, top, -0.85), support="kitchen_counter")
+    scene = Scene(room=Room(room_type="kitchen", width=5, depth=5, height=3), objects=[counter, cup])
+    hana = CharacterNode(name="Hana", actions=[ActionNode(verb="make", action="cook", target="cup")])
+    plan = plan_actions(hana, scene, (0.0, 0.5, np.pi))
+    (cook,) = _actions(plan, "cook")
+    hands = dict(cook.targets)
+    right = np.asarray(hands.get("RightHandMiddle1", hands.get("RightHand")))
+    grip = to_world(cup, np.asarray(asset_for(cup).contact_points["pick_up"].position, float))
+    assert np.hypot(right[0] - grip[0], right[2] - grip[2]) < 1e-6 and right[1] >= grip[1] - 1e-6
+    walk = [s for s in plan.segments if s.kind == "locomotion"]
+    end = np.asarray(walk[-1].waypoints[-1])
+    assert np.hypot(end[0] - grip[0], end[1] - grip[2]) < 0.75  # within an arm's reach of the cup
+
+
+def test_eating_seated_with_nothing_named_eats_at_the_plate_in_front_of_the_chair():
+    """kitchen2 s7: "Lucy walks in and sits at the table ... Lucy eats." at a table with no "eat" point of its
+    own and a plate in front of her: the hand went nowhere (0.19 m above the table); now at the plate."""
+    scene, table, chair = _meeting()
+    top = max(h for h, _ in world_support_surfaces(table))
+    plate = PlacedObject(
+        id="plate", category="plate", position=(chair.position[0], top, chair.position[2] - 0.55),
+        support="conference_table",
+    )  # fmt: skip
+    scene = Scene(room=scene.room, objects=[*scene.objects, plate])
+    lucy = CharacterNode(
+        name="Lucy",
+        actions=[ActionNode(verb="sit", action="sit", target="chair"), ActionNode(verb="eat", action="eat")],
+    )
+    plan = plan_actions(lucy, scene, (float(chair.position[0]), 2.5, np.pi))
+    (eat,) = _actions(plan, "eat")
+    assert eat.target_id == "plate"
+    cp = asset_for(plate).contact_points["eat"]
+    point = to_world(plate, np.asarray(cp.position, float))
+    assert np.linalg.norm(np.asarray(dict(eat.targets)[cp.joint]) - point) < 1e-6
