@@ -45,8 +45,8 @@ into furniture in that sentence.
 JSON keys: check_agreement (share of counted labels that agree), per_check (name -> labels, agree,
 agreement, false_alarms (check fails, eye says ok), misses (check passes, eye says fail)), counted, stale,
 skipped, disagreements (each unit with both verdicts and the check's reason), by_group (dev, test, others,
-fresh, fresh2, fresh3, fresh4 -> agreement, counted, labels), agreement_dev / agreement_held_out /
-agreement_fresh / agreement_fresh2 / agreement_fresh3 / agreement_fresh4, fidelity (for
+fresh, fresh2, fresh3, fresh4, fresh5 -> agreement, counted, labels), agreement_dev / agreement_held_out /
+agreement_fresh / agreement_fresh2 / agreement_fresh3 / agreement_fresh4 / agreement_fresh5, fidelity (for
 --split: the split's sentence_fidelity and failures per check with these checks), samples (when --sample).
 """
 
@@ -598,6 +598,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         ("fresh2", "agreement_fresh2"),
         ("fresh3", "agreement_fresh3"),
         ("fresh4", "agreement_fresh4"),
+        ("fresh5", "agreement_fresh5"),
         ("dev", "agreement_dev"),
     ):
         if group in summary["by_group"]:

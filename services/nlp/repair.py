@@ -294,6 +294,24 @@ def _repair_state(sent: SpacySpan) -> bool:
     return changed
 
 
+def _repair_participle_argument(sent: SpacySpan) -> bool:
+    """ "Luis came in, yawning/VERB/obl": a verb's -ing form after a comma hung as its argument -> a clause of
+    its own (advcl, as "walks in, smiling" is parsed), so it is a second action, never the walk's target."""
+    changed = False
+    for tok in sent:
+        if (
+            tok.pos_ == "VERB"
+            and tok.lower_.endswith("ing")
+            and tok.dep_ in ("obl", "obj", "nmod")
+            and tok.i > sent.start
+            and sent.doc[tok.i - 1].text == ","
+            and not any(c.dep_ == "case" for c in tok.children)
+        ):
+            tok.dep_ = "advcl"
+            changed = True
+    return changed
+
+
 def _prepositions_as_obliques(verb: Token) -> None:
     """A noun read as a verb kept its prepositional phrases as noun modifiers ("to the door"/nmod): under a
     verb they are obliques (obl), where the argument reader looks for destinations and targets."""
@@ -741,6 +759,7 @@ def repair_character_sentence(sent: SpacySpan) -> bool:
         | _repair_subject_relative_clause(sent)
         | _repair_progressive(sent)
         | _repair_state(sent)
+        | _repair_participle_argument(sent)
         | _repair_adverb_subject(sent)
         | _repair_adverb_name(sent)
         | _repair_name_as_verb(sent)

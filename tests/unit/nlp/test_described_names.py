@@ -1,7 +1,8 @@
 """Sentences of stories written after the corpus (a diner, a classroom, a workshop, a bedroom) that the
 parser lost: a person noun with the name that says who it is ("a waitress named Rosa", "his grandson
 Eli", "Two students, Aiko and Pedro,"), "one of the chairs", a kind named by its owner ("the teacher's
-desk") among desks of another kind, and a pose said as a state ("Nina is asleep in the bed").
+desk") among desks of another kind, a pose said as a state ("Nina is asleep in the bed"), and a participle
+after a comma ("came in, yawning").
 
 Every sentence goes through the committed pipeline; expected values are written here by hand.
 """
@@ -43,6 +44,8 @@ def acts(text):
         ("Tom sits on either of the stools.", [("Tom", "sit", "stool")]),
         ("Nina is asleep in the bed.", [("Nina", "sleep", "bed")]),
         ("Tom is seated at the desk.", [("Tom", "sit", "desk")]),
+        # a participle after a comma is a second action, not where the walk goes
+        ("Her brother Luis came in, yawning.", [("Luis", "walk", ""), ("Luis", "yawn", "")]),
     ],
 )
 def test_who_acts_and_on_what(text, expected):
