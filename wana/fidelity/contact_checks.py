@@ -725,6 +725,9 @@ def _arrival(act: Act, body: Body, world: World, bodies: Mapping[str, Body]) -> 
             ok=False,
             reason=f"there is no {display(dest)} in the room for {who} to walk to",
         )
+    on = [p for p in found if set(world.contact_points(p)) & RUN_ON_POINTS and said_on(act, dest)]
+    if on:
+        return _on_it(act, body, world, on, end)
     via = passes_through(act, dest)
     # "comes in through the door", "leaves through the back door": the walk passes it, wherever it ends
     at = np.arange(max(0, seg.start_frame), end + 1) if via else np.array([end])
@@ -745,6 +748,39 @@ def _arrival(act: Act, body: Body, world: World, bodies: Mapping[str, Body]) -> 
         reason=f"{who} {where} {gap:.1f} m from the {display(dest)}"
         + ("" if ok else f" (at most {ARRIVE_M} m)"),
         frames=[] if ok else [int(at[int(np.argmin(each))])],
+    )
+
+
+RUN_ON_POINTS = frozenset({"run", "walk", "jog"})  # an object made to be run on (a treadmill's "run" point)
+ON_IT_M = 0.1  # metres from its footprint that the hips of one running on it may be
+
+
+def said_on(act: Act, dest: str) -> bool:
+    """Whether the sentence moves on the destination ("runs on the treadmill"), not to it."""
+    name = re.escape(display(dest).split(" ")[-1])
+    return (
+        re.search(rf"\bon\s+(?:the|a|an|his|her|their)?\s*(?:\w+\s+)?{name}\b", act.text.lower()) is not None
+    )
+
+
+def _on_it(act: Act, body: Body, world: World, found: list[PlacedObject], end: int) -> Check:
+    """ "Ben runs on the treadmill": the hips over the treadmill when the run ends, not beside it (a run to
+    its front read "stops 0.5 m from the treadmill" and passed while nobody was on it: duo-gym-05 s5)."""
+    who = act.character
+    hips = body.joint("Hips")[end, [0, 2]]
+    gaps = []
+    for placed in found:
+        b = world_bounds(placed)
+        d = np.maximum(0.0, np.maximum(b[0, [0, 2]] - hips, hips - b[1, [0, 2]]))
+        gaps.append(float(np.hypot(d[0], d[1])))
+    gap, name = min(gaps), display(found[int(np.argmin(gaps))].id)
+    ok = gap <= ON_IT_M
+    return Check(
+        name="contact",
+        character=who,
+        ok=ok,
+        reason=f"{who} is on the {name}" if ok else f"{who} ends {gap:.1f} m beside the {name}, not on it",
+        frames=[] if ok else [end],
     )
 
 

@@ -636,3 +636,31 @@ def test_entering_a_place_the_catalog_has_no_object_for_is_coming_into_the_room_
     assert contact_of("enter", "bakery") == []
     (sofa,) = contact_of("walk", "sofa")
     assert not sofa.ok and sofa.reason.startswith("there is no sofa in the room")
+
+
+def test_running_on_the_treadmill_needs_the_hips_over_it_not_a_run_to_its_front(make):
+    """Seen on a blind sheet (duo-gym-05 s5): "Ben runs on the treadmill" passed as "Ben stops 0.5 m from the
+    treadmill" while nobody was on it; running to the treadmill still only has to arrive."""
+    frames = 40
+    tread = PlacedObject(id="treadmill", category="treadmill", position=(0.0, 0.0, 0.0))
+    top = catalog.world_bounds(tread)
+
+    def contact_of(text: str, end_z: float) -> list:
+        walk = np.stack([np.zeros(frames), np.full(frames, 0.95), np.linspace(3.0, end_z, frames)], axis=1)
+        ben = make.motion("Ben", walk, [("run", 0, frames, "s1", 0)])
+        node = ActionNode(verb="run", action="run", destination="treadmill")
+        graphs = {
+            "s1": graph_of(
+                "s1", text, "Ben", node, [ObjectNode(id="treadmill", category="treadmill", word="treadmill")]
+            )
+        }
+        checks = story_checks([("s1", "action")], graphs, make.scene(tread), {"Ben": ben})["s1"]
+        return by_name(checks, "contact")
+
+    front = float(top[1, 2]) + 0.5
+    (beside,) = contact_of("Ben runs on the treadmill.", front)
+    assert not beside.ok and "not on it" in beside.reason
+    (on,) = contact_of("Ben runs on the treadmill.", 0.0)
+    assert on.ok, on.reason
+    (to,) = contact_of("Ben runs to the treadmill.", front)
+    assert to.ok, to.reason
