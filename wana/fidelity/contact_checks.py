@@ -690,6 +690,13 @@ def _is_room_word(word: str) -> bool:
     return base in ("room", "house", "home", "inside", "outside") or lookup_room(base) is not None
 
 
+def _gap_to_footprint(placed: PlacedObject, xz: np.ndarray) -> np.ndarray:
+    """(N,) metres from each floor point (N, 2) to the object's footprint (its world bounds seen from above)."""
+    b = world_bounds(placed)
+    d = np.maximum(0.0, np.maximum(b[0, [0, 2]] - xz, xz - b[1, [0, 2]]))
+    return np.hypot(d[:, 0], d[:, 1])
+
+
 def _arrival(act: Act, body: Body, world: World, bodies: Mapping[str, Body]) -> Check | None:
     """A walk to something ends next to it."""
     dest = act.node.destination or act.node.target
@@ -734,9 +741,7 @@ def _arrival(act: Act, body: Body, world: World, bodies: Mapping[str, Body]) -> 
     walked = body.joint("Hips")[np.clip(at, 0, body.frames - 1)][:, [0, 2]]
     gaps = []
     for placed in found:
-        b = world_bounds(placed)
-        d = np.maximum(0.0, np.maximum(b[0, [0, 2]] - walked, walked - b[1, [0, 2]]))
-        gaps.append(np.hypot(d[:, 0], d[:, 1]))
+        gaps.append(_gap_to_footprint(placed, walked))
     each = np.min(gaps, axis=0)
     gap = float(each.min())
     ok = gap <= ARRIVE_M
@@ -757,10 +762,7 @@ ON_IT_M = 0.1  # metres from its footprint that the hips of one running on it ma
 
 def said_on(act: Act, dest: str) -> bool:
     """Whether the sentence moves on the destination ("runs on the treadmill"), not to it."""
-    name = re.escape(display(dest).split(" ")[-1])
-    return (
-        re.search(rf"\bon\s+(?:the|a|an|his|her|their)?\s*(?:\w+\s+)?{name}\b", act.text.lower()) is not None
-    )
+    return _said_with(act, dest, "on")
 
 
 def _on_it(act: Act, body: Body, world: World, found: list[PlacedObject], end: int) -> Check:
@@ -770,9 +772,7 @@ def _on_it(act: Act, body: Body, world: World, found: list[PlacedObject], end: i
     hips = body.joint("Hips")[end, [0, 2]]
     gaps = []
     for placed in found:
-        b = world_bounds(placed)
-        d = np.maximum(0.0, np.maximum(b[0, [0, 2]] - hips, hips - b[1, [0, 2]]))
-        gaps.append(float(np.hypot(d[0], d[1])))
+        gaps.append(float(_gap_to_footprint(placed, hips[None])[0]))
     gap, name = min(gaps), display(found[int(np.argmin(gaps))].id)
     ok = gap <= ON_IT_M
     return Check(
@@ -786,11 +786,14 @@ def _on_it(act: Act, body: Body, world: World, found: list[PlacedObject], end: i
 
 def passes_through(act: Act, dest: str) -> bool:
     """Whether the sentence walks through the destination ("enters through the front door"), not to it."""
+    return _said_with(act, dest, "through")
+
+
+def _said_with(act: Act, dest: str, prep: str) -> bool:
+    """Whether the sentence puts ``prep`` before the destination's name ("through the front door")."""
     name = re.escape(display(dest).split(" ")[-1])
-    return (
-        re.search(rf"\bthrough\s+(?:the|a|an|his|her|their)?\s*(?:\w+\s+)?{name}\b", act.text.lower())
-        is not None
-    )
+    pattern = rf"\b{prep}\s+(?:the|a|an|his|her|their)?\s*(?:\w+\s+)?{name}\b"
+    return re.search(pattern, act.text.lower()) is not None
 
 
 __all__ = ["CONTACT_M", "carried", "contact", "other_character", "reach"]
